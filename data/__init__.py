@@ -1,0 +1,14 @@
+"""Published parameters and reference values, each with the document it came from.
+
+Every number a source document gives lives in a TOML file here, never in code. Lengths in the
+files are in the units the source prints (the key says which, e.g. ``l_mm``); loaders convert
+them to SI once.
+"""
+import tomllib
+from importlib import resources
+
+
+def load_toml(name: str) -> dict:
+    """Parse ``data/<name>`` (a TOML file shipped with the package) into a dict."""
+    with resources.files(__name__).joinpath(name).open("rb") as f:
+        return tomllib.load(f)

@@ -1,0 +1,66 @@
+"""The ``flexfem`` command: a thin layer over the Python API.
+
+Each command module registers its sub-command with ``register(subparsers)`` and sets two
+defaults on its parser: ``run(args) -> dict`` (JSON-able, computed by one public function) and
+``summarize(result) -> str`` (the human summary). This module only dispatches: with ``--json`` it
+prints the dict as one JSON object and nothing else on stdout, otherwise the summary.
+"""
+import argparse
+import importlib
+import json
+import math
+import sys
+
+COMMAND_MODULES = [
+    "flexfem.studies.cli_dbma",
+    "flexfem.studies.cli_eightbar",
+    "flexfem.studies.cli_balance",
+    "flexfem.studies.cli_studies",
+]
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(prog="flexfem", description=__doc__.splitlines()[0])
+    subparsers = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+    for name in COMMAND_MODULES:
+        try:
+            module = importlib.import_module(name)
+        except ModuleNotFoundError as error:
+            if error.name != name:
+                raise
+            continue
+        module.register(subparsers)
+    return parser
+
+
+def _jsonable(value):
+    """Numpy scalars and arrays to plain Python; non-finite floats to None (JSON has no NaN)."""
+    if isinstance(value, dict):
+        return {str(k): _jsonable(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_jsonable(v) for v in value]
+    if hasattr(value, "tolist"):
+        return _jsonable(value.tolist())
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    return value
+
+
+def main(argv=None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    try:
+        result = args.run(args)
+    except (ValueError, FileNotFoundError) as error:
+        print(f"flexfem {args.command}: error: {error}", file=sys.stderr)
+        return 2
+    if getattr(args, "json", False):
+        json.dump(_jsonable(result), sys.stdout)
+        sys.stdout.write("\n")
+    else:
+        print(args.summarize(result))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
