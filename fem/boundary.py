@@ -1,0 +1,191 @@
+"""Supports and loads, addressed by group name, and how they become DOFs and load vectors."""
+from dataclasses import dataclass
+import math
+
+import numpy as np
+import skfem
+from skfem.helpers import dot
+
+_AXES = ("x", "y", "z")
+
+
+def _finite_vector(value, name: str) -> tuple:
+    v = tuple(float(c) for c in value)
+    if not all(math.isfinite(c) for c in v):
+        raise ValueError(f"{name} = {value} must be finite")
+    return v
+
+
+@dataclass(frozen=True)
+class Fixed:
+    """All displacement components of group ``group`` held at zero."""
+
+    group: str
+
+
+@dataclass(frozen=True)
+class Prescribed:
+    """Displacement components (m) prescribed on ``group``; None leaves a component free."""
+
+    group: str
+    x: float | None = None
+    y: float | None = None
+    z: float | None = None
+
+    def __post_init__(self):
+        if self.x is None and self.y is None and self.z is None:
+            raise ValueError(f"Prescribed({self.group!r}) prescribes no component; give x, y or z")
+        for axis in _AXES:
+            value = getattr(self, axis)
+            if value is not None and not math.isfinite(value):
+                raise ValueError(f"Prescribed({self.group!r}).{axis} = {value} must be finite")
+
+    def components(self) -> dict:
+        return {i: getattr(self, a) for i, a in enumerate(_AXES) if getattr(self, a) is not None}
+
+
+@dataclass(frozen=True)
+class Force:
+    """Total force ``vector`` (N) spread uniformly over boundary group ``group``."""
+
+    group: str
+    vector: tuple
+
+    def __post_init__(self):
+        object.__setattr__(self, "vector", _finite_vector(self.vector, f"Force({self.group!r}).vector"))
+
+
+@dataclass(frozen=True)
+class Traction:
+    """Surface traction ``vector`` (Pa) on boundary group ``group``."""
+
+    group: str
+    vector: tuple
+
+    def __post_init__(self):
+        object.__setattr__(self, "vector", _finite_vector(self.vector, f"Traction({self.group!r}).vector"))
+
+
+@dataclass(frozen=True)
+class PointForce:
+    """Force ``vector`` (N) at the mesh vertex nearest ``point`` (m)."""
+
+    point: tuple
+    vector: tuple
+
+    def __post_init__(self):
+        object.__setattr__(self, "point", _finite_vector(self.point, "PointForce.point"))
+        object.__setattr__(self, "vector", _finite_vector(self.vector, "PointForce.vector"))
+
+
+@dataclass(frozen=True)
+class BodyForce:
+    """Body force density ``vector`` (N/m^3) on the whole body or on subdomain ``group``."""
+
+    vector: tuple
+    group: str | None = None
+
+    def __post_init__(self):
+        object.__setattr__(self, "vector", _finite_vector(self.vector, "BodyForce.vector"))
+
+
+@dataclass(frozen=True)
+class Gravity:
+    """Self-weight: body force rho * ``acceleration`` (m/s^2) on the whole body or on
+    subdomain ``group``."""
+
+    acceleration: tuple = (0.0, -9.81)
+    group: str | None = None
+
+    def __post_init__(self):
+        object.__setattr__(self, "acceleration", _finite_vector(self.acceleration, "Gravity.acceleration"))
+
+
+def _check_dim(vector, dim, what):
+    if len(vector) != dim:
+        raise ValueError(f"{what} has {len(vector)} components; the model is {dim}-D")
+
+
+def _facet_basis(model, group):
+    facets = model.mesh.facets(group)
+    if len(facets) == 0:
+        raise ValueError(f"group {group!r} has no facets: a load on it would act on no nodes")
+    return skfem.FacetBasis(model.mesh.mesh, model.basis.elem, facets=facets,
+                            intorder=2 * model.order)
+
+
+def component_indices(model) -> list[np.ndarray]:
+    """DOF indices of each displacement component (x, y[, z])."""
+    return model.basis.split_indices()
+
+
+def group_dofs(model, group: str) -> dict[int, np.ndarray]:
+    """DOFs of a boundary group or subdomain per component: {0: x DOFs, 1: y DOFs, ...}."""
+    mesh = model.mesh
+    if group in mesh.boundaries:
+        dofs = model.basis.get_dofs(facets=mesh.facets(group))
+    else:
+        dofs = model.basis.get_dofs(elements=mesh.elements(group))
+    return {i: dofs.all(f"u^{i + 1}") for i in range(model.dim)}
+
+
+def constrained_dofs(model, supports) -> tuple[np.ndarray, np.ndarray, dict]:
+    """(DOF indices, prescribed values (m), {group: its DOFs}) of the supports; where supports
+    share a DOF, the first listed wins."""
+    values = {}
+    owned = {}
+    for support in supports:
+        comps = {i: 0.0 for i in range(model.dim)} if isinstance(support, Fixed) else support.components()
+        if max(comps) >= model.dim:
+            raise ValueError(f"{support} prescribes z in a 2-D model")
+        dofs = group_dofs(model, support.group)
+        mine = []
+        for i, value in comps.items():
+            if len(dofs[i]) == 0:
+                raise ValueError(f"support on {support.group!r} acts on no nodes")
+            for d in dofs[i]:
+                if d not in values:
+                    values[d] = value
+                    mine.append(d)
+        owned[support.group] = np.array(mine, dtype=np.int64)
+    D = np.fromiter(values.keys(), dtype=np.int64, count=len(values))
+    x = np.fromiter(values.values(), dtype=float, count=len(values))
+    order = np.argsort(D)
+    return D[order], x[order], owned
+
+
+def load_vector(model, loads) -> np.ndarray:
+    """Assembled nodal force vector (N) of ``loads``."""
+    f = np.zeros(model.n_dofs)
+    t = model.thickness
+    for load in loads:
+        if isinstance(load, (Force, Traction)):
+            _check_dim(load.vector, model.dim, type(load).__name__)
+            fb = _facet_basis(model, load.group)
+            if isinstance(load, Force):
+                measure = skfem.Functional(lambda w: 1.0 + 0 * w.x[0]).assemble(fb)
+                traction = np.array(load.vector) / (measure * t)
+            else:
+                traction = np.array(load.vector)
+            tr = traction.reshape(-1, 1, 1)
+            f += t * skfem.LinearForm(lambda v, w: dot(tr + 0 * w.x, v)).assemble(fb)
+        elif isinstance(load, PointForce):
+            _check_dim(load.vector, model.dim, "PointForce")
+            p = model.mesh.mesh.p
+            node = int(np.argmin(np.sum((p - np.array(load.point).reshape(-1, 1)) ** 2, axis=0)))
+            for i, dofs in enumerate(model.basis.nodal_dofs):
+                f[dofs[node]] += load.vector[i]
+        elif isinstance(load, (BodyForce, Gravity)):
+            if isinstance(load, Gravity):
+                vector = model.material.rho * np.array(load.acceleration)
+            else:
+                vector = np.array(load.vector)
+            _check_dim(vector, model.dim, type(load).__name__)
+            b = vector.reshape(-1, 1, 1)
+            basis = model.basis
+            if load.group is not None:
+                basis = model.basis.with_elements(model.mesh.elements(load.group))
+            f += t * skfem.LinearForm(lambda v, w: dot(b + 0 * w.x, v)).assemble(basis)
+        else:
+            raise ValueError(f"unknown load {load!r}")
+    return f

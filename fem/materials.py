@@ -1,0 +1,58 @@
+"""Linear-elastic isotropic materials: a small library with sources, and user-defined ones."""
+from dataclasses import dataclass
+import math
+
+from flexfem.data import load_toml
+
+
+@dataclass(frozen=True)
+class Material:
+    """An isotropic linear-elastic material.
+
+    name : label; E : Young's modulus (Pa); nu : Poisson's ratio (-); rho : density (kg/m^3);
+    yield_strength : stress at which the design fails (Pa; fracture strength for brittle
+    materials); source : where the values come from.
+    """
+
+    name: str
+    E: float
+    nu: float
+    rho: float
+    yield_strength: float = math.inf
+    source: str = "user-defined"
+
+    def __post_init__(self):
+        _require(self.E, "E", lambda v: v > 0, "> 0")
+        _require(self.nu, "nu", lambda v: -1.0 < v < 0.5, "in (-1, 0.5)")
+        _require(self.rho, "rho", lambda v: v > 0, "> 0")
+        if not (self.yield_strength > 0):
+            raise ValueError(f"material {self.name!r}: yield_strength = {self.yield_strength} must be > 0")
+
+    @property
+    def lame(self) -> tuple[float, float]:
+        """Lame parameters (lambda, mu) in Pa, for 3-D and plane strain."""
+        lam = self.E * self.nu / ((1 + self.nu) * (1 - 2 * self.nu))
+        mu = self.E / (2 * (1 + self.nu))
+        return lam, mu
+
+    def as_dict(self) -> dict:
+        return {"name": self.name, "E": self.E, "nu": self.nu, "rho": self.rho,
+                "yield_strength": self.yield_strength}
+
+
+def _require(value, name, ok, bound):
+    if not (isinstance(value, (int, float)) and math.isfinite(value) and ok(value)):
+        raise ValueError(f"material parameter {name} = {value!r} must be finite and {bound}")
+
+
+def material_names() -> list[str]:
+    """Names of the materials in the library (data/materials.toml)."""
+    return sorted(load_toml("materials.toml"))
+
+
+def material(name: str) -> Material:
+    """A material from the library by name, e.g. ``material("aluminium_6061_t6")``."""
+    table = load_toml("materials.toml")
+    if name not in table:
+        raise ValueError(f"unknown material {name!r}; known: {', '.join(sorted(table))}")
+    return Material(name=name, **table[name])

@@ -1,0 +1,185 @@
+"""Meshes with named groups: gmsh physical groups become skfem boundaries and subdomains.
+
+Nodes, elements and groups are read from the gmsh API directly (not through pygmsh or
+meshio's tag parsing, see DESIGN.md), and boundaries are matched to skfem facets by their
+sorted vertex indices, vectorised.
+"""
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+import skfem
+
+from flexfem.fem.gmsh_session import gmsh_session
+
+# gmsh element type -> (skfem mesh class, number of corner nodes)
+_GMSH_CELLS = {
+    2: (skfem.MeshTri, 3), 9: (skfem.MeshTri, 3),
+    3: (skfem.MeshQuad, 4), 10: (skfem.MeshQuad, 4),
+    4: (skfem.MeshTet, 4), 11: (skfem.MeshTet, 4),
+    5: (skfem.MeshHex, 8), 12: (skfem.MeshHex, 8),
+}
+# gmsh's (= VTK's) hexahedron vertex order -> skfem's (skfem.io.meshio.HEX_MAPPING)
+_HEX_FROM_GMSH = [0, 4, 3, 1, 7, 5, 2, 6]
+
+
+@dataclass(frozen=True, eq=False)
+class FEMesh:
+    """A first-order skfem mesh with named boundaries (facet indices) and subdomains
+    (element indices). Coordinates in metres."""
+
+    mesh: skfem.Mesh
+    boundaries: dict = field(default_factory=dict)
+    subdomains: dict = field(default_factory=dict)
+
+    def __post_init__(self):
+        if self.mesh.t.shape[1] == 0:
+            raise ValueError("the mesh has no elements")
+        volumes = _signed_measures(self.mesh)
+        if np.any(np.abs(volumes) <= 1e-14 * np.max(np.abs(volumes))):
+            raise ValueError(f"the mesh has {np.sum(np.abs(volumes) <= 1e-14 * np.max(np.abs(volumes)))} "
+                             "degenerate (zero-area/volume) elements; remesh")
+
+    @property
+    def dim(self) -> int:
+        return self.mesh.dim()
+
+    @property
+    def group_names(self) -> list[str]:
+        return sorted(self.boundaries) + sorted(self.subdomains)
+
+    def facets(self, name: str) -> np.ndarray:
+        """Facet indices of boundary group ``name``."""
+        if name not in self.boundaries:
+            raise ValueError(f"no boundary group {name!r}; boundary groups: {sorted(self.boundaries)}"
+                             f", subdomains: {sorted(self.subdomains)}")
+        return self.boundaries[name]
+
+    def elements(self, name: str) -> np.ndarray:
+        """Element indices of subdomain ``name``."""
+        if name not in self.subdomains:
+            raise ValueError(f"no subdomain {name!r}; subdomains: {sorted(self.subdomains)}"
+                             f", boundary groups: {sorted(self.boundaries)}")
+        return self.subdomains[name]
+
+    def nodes(self, name: str) -> np.ndarray:
+        """Vertex indices of the boundary group or subdomain ``name``."""
+        if name in self.boundaries:
+            return np.unique(self.mesh.facets[:, self.boundaries[name]])
+        return np.unique(self.mesh.t[:, self.elements(name)])
+
+    def with_groups(self, boundaries=None, subdomains=None) -> "FEMesh":
+        """A copy with extra groups added (e.g. built with :func:`facets_where`)."""
+        return FEMesh(self.mesh, {**self.boundaries, **(boundaries or {})},
+                      {**self.subdomains, **(subdomains or {})})
+
+
+def facets_where(mesh: skfem.Mesh, condition) -> np.ndarray:
+    """Boundary facet indices whose midpoint satisfies ``condition(x)`` (x: (dim, n) array, m)."""
+    return mesh.facets_satisfying(condition, boundaries_only=True)
+
+
+def _signed_measures(mesh: skfem.Mesh) -> np.ndarray:
+    p, t = mesh.p, mesh.t
+    if isinstance(mesh, skfem.MeshTri):
+        a, b, c = (p[:, t[i]] for i in range(3))
+        return 0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]))
+    if isinstance(mesh, skfem.MeshTet):
+        a, b, c, d = (p[:, t[i]] for i in range(4))
+        return np.einsum("ij,ij->j", b - a, np.cross(c - a, d - a, axis=0)) / 6.0
+    # quads and hexes: the Jacobian determinant at the element centre is enough to spot
+    # degenerate cells
+    basis = skfem.Basis(mesh, mesh.elem(), intorder=1)
+    return basis.dx.sum(axis=1)
+
+
+def _facet_keys(facet_nodes: np.ndarray, n_vertices: int) -> np.ndarray:
+    """One int64 key per facet from its three smallest sorted vertex indices."""
+    s = np.sort(facet_nodes, axis=0)[:3].astype(np.int64)
+    if s.shape[0] == 2:
+        return s[0] * n_vertices + s[1]
+    return (s[0] * n_vertices + s[1]) * n_vertices + s[2]
+
+
+def _match_facets(mesh: skfem.Mesh, facet_nodes: np.ndarray, name: str) -> np.ndarray:
+    n = mesh.p.shape[1]
+    all_keys = _facet_keys(mesh.facets, n)
+    order = np.argsort(all_keys)
+    keys = _facet_keys(facet_nodes, n)
+    pos = np.searchsorted(all_keys, keys, sorter=order)
+    pos = np.clip(pos, 0, len(order) - 1)
+    found = order[pos]
+    if not np.all(all_keys[found] == keys):
+        raise ValueError(f"boundary group {name!r} has elements that are not facets of the mesh")
+    return np.unique(found)
+
+
+def mesh_from_gmsh(gmsh) -> FEMesh:
+    """Read the current gmsh model's mesh (call inside :func:`gmsh_session` after
+    ``gmsh.model.mesh.generate``).
+
+    The highest-dimensional elements form the mesh; physical groups of that dimension become
+    subdomains, those one dimension lower become boundaries. Higher-order gmsh elements are
+    read by their corner nodes (quadratic fields come from the basis, on straight-sided cells).
+    """
+    dim = gmsh.model.getDimension()
+    types, elem_tags, elem_nodes = gmsh.model.mesh.getElements(dim)
+    if len(types) == 0:
+        raise ValueError("the gmsh model has no mesh; call gmsh.model.mesh.generate(dim) first")
+    if len(set(types)) != 1 or types[0] not in _GMSH_CELLS:
+        raise ValueError(f"unsupported or mixed gmsh element types {list(types)}; "
+                         "use triangles, quadrangles, tetrahedra or hexahedra only")
+    mesh_type, n_corner = _GMSH_CELLS[types[0]]
+    n_per = len(elem_nodes[0]) // len(elem_tags[0])
+    conn = np.asarray(elem_nodes[0], dtype=np.int64).reshape(-1, n_per)[:, :n_corner]
+
+    node_tags, coords, _ = gmsh.model.mesh.getNodes()
+    coords = np.asarray(coords).reshape(-1, 3)
+    used = np.unique(conn)
+    tag_to_index = np.full(int(max(node_tags.max(), used.max())) + 1, -1, dtype=np.int64)
+    tag_to_index[used] = np.arange(len(used))
+    coord_of_tag = np.zeros((tag_to_index.size, 3))
+    coord_of_tag[node_tags] = coords
+    p = coord_of_tag[used, :dim].T.copy()
+    t = tag_to_index[conn].T.copy()
+    if mesh_type is skfem.MeshHex:
+        t = t[_HEX_FROM_GMSH]
+    mesh = mesh_type(p, t)
+
+    element_index = np.full(int(np.max(elem_tags[0])) + 1, -1, dtype=np.int64)
+    element_index[np.asarray(elem_tags[0], dtype=np.int64)] = np.arange(len(elem_tags[0]))
+
+    boundaries, subdomains = {}, {}
+    for gdim, tag in gmsh.model.getPhysicalGroups():
+        name = gmsh.model.getPhysicalName(gdim, tag) or f"group{tag}"
+        if gdim == dim:
+            tags = [np.asarray(gmsh.model.mesh.getElements(dim, e)[1][0], dtype=np.int64)
+                    for e in gmsh.model.getEntitiesForPhysicalGroup(gdim, tag)]
+            subdomains[name] = np.unique(element_index[np.concatenate(tags)])
+        elif gdim == dim - 1:
+            nodes = []
+            for entity in gmsh.model.getEntitiesForPhysicalGroup(gdim, tag):
+                ftypes, _, fnodes = gmsh.model.mesh.getElements(gdim, entity)
+                for ftype, fn in zip(ftypes, fnodes):
+                    n_corner_f = {1: 2, 8: 2, 2: 3, 9: 3, 3: 4, 10: 4}[int(ftype)]
+                    n_per_f = gmsh.model.mesh.getElementProperties(int(ftype))[3]
+                    nodes.append(np.asarray(fn, dtype=np.int64).reshape(-1, n_per_f)[:, :n_corner_f])
+            if nodes:
+                facet_nodes = tag_to_index[np.concatenate(nodes)].T
+                boundaries[name] = _match_facets(mesh, facet_nodes, name)
+    return FEMesh(mesh, boundaries, subdomains)
+
+
+def read_mesh(path) -> FEMesh:
+    """Read a mesh file with its physical groups: ``.msh`` through gmsh, other formats
+    (e.g. ``.vtu``, ``.xdmf``) through meshio, using their cell sets as groups."""
+    path = Path(path)
+    if not path.exists():
+        raise FileNotFoundError(f"mesh file {path} does not exist")
+    if path.suffix == ".msh":
+        with gmsh_session() as gmsh:
+            gmsh.open(str(path))
+            return mesh_from_gmsh(gmsh)
+    mesh = skfem.Mesh.load(str(path))  # meshio underneath; cell sets become groups
+    return FEMesh(mesh, dict(mesh.boundaries or {}),
+                  dict(mesh.subdomains or {}))
