@@ -8,12 +8,14 @@ prints the dict as one JSON object and nothing else on stdout, otherwise the sum
 import argparse
 import importlib
 import json
-import math
 import sys
 
+from flexfem.studies.serialize import jsonable
+
 COMMAND_MODULES = [
+    "flexfem.studies.cli_reproduce",
     "flexfem.studies.cli_dbma",
-    "flexfem.studies.cli_eightbar",
+    "flexfem.studies.cli_linkage",
     "flexfem.studies.cli_balance",
     "flexfem.studies.cli_studies",
 ]
@@ -33,19 +35,6 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
-def _jsonable(value):
-    """Numpy scalars and arrays to plain Python; non-finite floats to None (JSON has no NaN)."""
-    if isinstance(value, dict):
-        return {str(k): _jsonable(v) for k, v in value.items()}
-    if isinstance(value, (list, tuple)):
-        return [_jsonable(v) for v in value]
-    if hasattr(value, "tolist"):
-        return _jsonable(value.tolist())
-    if isinstance(value, float) and not math.isfinite(value):
-        return None
-    return value
-
-
 def main(argv=None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
@@ -55,7 +44,7 @@ def main(argv=None) -> int:
         print(f"flexfem {args.command}: error: {error}", file=sys.stderr)
         return 2
     if getattr(args, "json", False):
-        json.dump(_jsonable(result), sys.stdout)
+        json.dump(jsonable(result), sys.stdout)
         sys.stdout.write("\n")
     else:
         print(args.summarize(result))

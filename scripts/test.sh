@@ -1,0 +1,9 @@
+#!/usr/bin/env bash
+# Install flexfem with its test extras into .venv and run the whole test suite.
+# Local runs may skip the slow checks: bash scripts/test.sh -m "not slow"
+set -euo pipefail
+cd "$(dirname "$0")/.."
+python3 -m venv .venv
+.venv/bin/python -m pip install -q --upgrade pip
+.venv/bin/python -m pip install -q -e ".[test,fast]"
+.venv/bin/python -m pytest "$@"
