@@ -25,19 +25,21 @@ class Fixed:
 
 @dataclass(frozen=True)
 class Prescribed:
-    """Displacement components (m) prescribed on ``group``; None leaves a component free."""
+    """Displacement components (m) prescribed on ``group``; None leaves a component free.
+    A component may be a number or a function of the coordinates, ``f(p) -> values`` with
+    ``p`` a (dim, n) array of points (m)."""
 
     group: str
-    x: float | None = None
-    y: float | None = None
-    z: float | None = None
+    x: object = None
+    y: object = None
+    z: object = None
 
     def __post_init__(self):
         if self.x is None and self.y is None and self.z is None:
             raise ValueError(f"Prescribed({self.group!r}) prescribes no component; give x, y or z")
         for axis in _AXES:
             value = getattr(self, axis)
-            if value is not None and not math.isfinite(value):
+            if value is not None and not callable(value) and not math.isfinite(value):
                 raise ValueError(f"Prescribed({self.group!r}).{axis} = {value} must be finite")
 
     def components(self) -> dict:
@@ -132,7 +134,8 @@ def group_dofs(model, group: str) -> dict[int, np.ndarray]:
 def constrained_dofs(model, supports) -> tuple[np.ndarray, np.ndarray, dict]:
     """(DOF indices, prescribed values (m), {group: its DOFs}) of the supports; where supports
     share a DOF, the first listed wins."""
-    values = {}
+    taken = np.zeros(model.n_dofs, dtype=bool)
+    values = np.zeros(model.n_dofs)
     owned = {}
     for support in supports:
         comps = {i: 0.0 for i in range(model.dim)} if isinstance(support, Fixed) else support.components()
@@ -143,15 +146,16 @@ def constrained_dofs(model, supports) -> tuple[np.ndarray, np.ndarray, dict]:
         for i, value in comps.items():
             if len(dofs[i]) == 0:
                 raise ValueError(f"support on {support.group!r} acts on no nodes")
-            for d in dofs[i]:
-                if d not in values:
-                    values[d] = value
-                    mine.append(d)
-        owned[support.group] = np.array(mine, dtype=np.int64)
-    D = np.fromiter(values.keys(), dtype=np.int64, count=len(values))
-    x = np.fromiter(values.values(), dtype=float, count=len(values))
-    order = np.argsort(D)
-    return D[order], x[order], owned
+            new = dofs[i][~taken[dofs[i]]]
+            if callable(value):
+                values[new] = value(model.basis.doflocs[:, new])
+            else:
+                values[new] = value
+            taken[new] = True
+            mine.append(new)
+        owned[support.group] = np.sort(np.concatenate(mine))
+    D = np.flatnonzero(taken)
+    return D, values[D], owned
 
 
 def load_vector(model, loads) -> np.ndarray:

@@ -1,0 +1,66 @@
+"""gmsh physical groups arrive as named skfem boundaries and subdomains."""
+import numpy as np
+import pytest
+import skfem
+
+from flexfem.fem import gmsh_session, mesh_from_gmsh, read_mesh
+from conftest import beam_2d, beam_3d
+
+
+@pytest.mark.parametrize("build, cell", [
+    (lambda: beam_2d(1.0, 0.1, 0.05), skfem.MeshTri),
+    (lambda: beam_2d(1.0, 0.1, 0.05, quads=True), skfem.MeshQuad),
+    (lambda: beam_3d(1.0, 0.1, 0.1, 0.05), skfem.MeshTet),
+    (lambda: beam_3d(1.0, 0.1, 0.1, 0.05, hexes=True), skfem.MeshHex),
+])
+def test_groups_become_boundaries_and_subdomains(build, cell):
+    mesh = build()
+    assert isinstance(mesh.mesh, cell)
+    p = mesh.mesh.p
+    assert np.allclose(p[0, mesh.nodes("fixed")], 0.0)
+    assert np.allclose(p[0, mesh.nodes("tip")], 1.0)
+    assert len(mesh.elements("body")) == mesh.mesh.t.shape[1]
+    # every facet at x = 0 is in the group, and nothing else
+    at_root = mesh.mesh.facets_satisfying(lambda x: np.isclose(x[0], 0.0), boundaries_only=True)
+    assert np.array_equal(np.sort(mesh.facets("fixed")), np.sort(at_root))
+
+
+def test_hex_elements_are_valid():
+    mesh = beam_3d(1.0, 0.1, 0.1, 0.05, hexes=True)
+    basis = skfem.Basis(mesh.mesh, skfem.ElementHex1())
+    assert np.isclose(basis.dx.sum(), 1.0 * 0.1 * 0.1)  # positive Jacobians add up to the volume
+
+
+def test_unknown_group_lists_existing_names():
+    mesh = beam_2d(1.0, 0.1, 0.05)
+    with pytest.raises(ValueError, match=r"no boundary group 'output'.*'fixed', 'tip'"):
+        mesh.facets("output")
+    with pytest.raises(ValueError, match="subdomains: \\['body'\\]"):
+        mesh.elements("arm")
+
+
+def test_msh_file_round_trip(tmp_path):
+    path = tmp_path / "beam.msh"
+    with gmsh_session() as gmsh:
+        s = gmsh.model.occ.addRectangle(0, 0, 0, 1.0, 0.1)
+        gmsh.model.occ.synchronize()
+        gmsh.model.addPhysicalGroup(2, [s], name="body")
+        gmsh.model.addPhysicalGroup(1, [4], name="fixed")
+        gmsh.option.setNumber("Mesh.MeshSizeMax", 0.05)
+        gmsh.model.mesh.generate(2)
+        direct = mesh_from_gmsh(gmsh)
+        gmsh.write(str(path))
+    again = read_mesh(path)
+    assert np.allclose(again.mesh.p, direct.mesh.p)
+    assert np.array_equal(again.mesh.t, direct.mesh.t)
+    assert np.array_equal(again.facets("fixed"), direct.facets("fixed"))
+
+
+def test_missing_file_and_empty_model():
+    with pytest.raises(FileNotFoundError, match="does not exist"):
+        read_mesh("/nonexistent/mesh.msh")
+    with gmsh_session() as gmsh:
+        gmsh.model.occ.addRectangle(0, 0, 0, 1.0, 0.1)
+        gmsh.model.occ.synchronize()
+        with pytest.raises(ValueError, match="no mesh"):
+            mesh_from_gmsh(gmsh)
