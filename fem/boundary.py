@@ -1,6 +1,7 @@
 """Supports and loads, addressed by group name, and how they become DOFs and load vectors."""
 from dataclasses import dataclass
 import math
+import numbers
 
 import numpy as np
 import skfem
@@ -10,10 +11,18 @@ _AXES = ("x", "y", "z")
 
 
 def _finite_vector(value, name: str) -> tuple:
-    v = tuple(float(c) for c in value)
+    try:
+        v = tuple(float(c) for c in value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} = {value!r} must be a sequence of 2 (2-D) or 3 (3-D) numbers, "
+                         "e.g. (0.0, -10.0)") from None
     if not all(math.isfinite(c) for c in v):
         raise ValueError(f"{name} = {value} must be finite")
     return v
+
+
+def _is_number(value) -> bool:
+    return isinstance(value, numbers.Real) and not isinstance(value, bool)
 
 
 @dataclass(frozen=True)
@@ -39,8 +48,11 @@ class Prescribed:
             raise ValueError(f"Prescribed({self.group!r}) prescribes no component; give x, y or z")
         for axis in _AXES:
             value = getattr(self, axis)
-            if value is not None and not callable(value) and not math.isfinite(value):
-                raise ValueError(f"Prescribed({self.group!r}).{axis} = {value} must be finite")
+            if value is None or callable(value):
+                continue
+            if not (_is_number(value) and math.isfinite(value)):
+                raise ValueError(f"Prescribed({self.group!r}).{axis} = {value!r} must be a finite "
+                                 "number (m) or a function of the coordinates")
 
     def components(self) -> dict:
         return {i: getattr(self, a) for i, a in enumerate(_AXES) if getattr(self, a) is not None}
@@ -105,7 +117,7 @@ class Gravity:
 
 def _check_dim(vector, dim, what):
     if len(vector) != dim:
-        raise ValueError(f"{what} has {len(vector)} components; the model is {dim}-D")
+        raise ValueError(f"{what} has {len(vector)} components; the model is {dim}-D: give {dim}")
 
 
 def _facet_basis(model, group):
@@ -126,6 +138,9 @@ def group_dofs(model, group: str) -> dict[int, np.ndarray]:
     mesh = model.mesh
     if group in mesh.boundaries:
         dofs = model.basis.get_dofs(facets=mesh.facets(group))
+    elif group not in mesh.subdomains:
+        raise ValueError(f"no group {group!r}; boundary groups: {sorted(mesh.boundaries)}, "
+                         f"subdomains: {sorted(mesh.subdomains)}")
     else:
         dofs = model.basis.get_dofs(elements=mesh.elements(group))
     return {i: dofs.all(f"u^{i + 1}") for i in range(model.dim)}
@@ -148,7 +163,8 @@ def constrained_dofs(model, supports) -> tuple[np.ndarray, np.ndarray, dict]:
                 raise ValueError(f"support on {support.group!r} acts on no nodes")
             new = dofs[i][~taken[dofs[i]]]
             if callable(value):
-                values[new] = value(model.basis.doflocs[:, new])
+                values[new] = _evaluate_prescribed(value, model.basis.doflocs[:, new],
+                                                   f"Prescribed({support.group!r}).{_AXES[i]}")
             else:
                 values[new] = value
             taken[new] = True
@@ -156,6 +172,40 @@ def constrained_dofs(model, supports) -> tuple[np.ndarray, np.ndarray, dict]:
         owned[support.group] = np.sort(np.concatenate(mine))
     D = np.flatnonzero(taken)
     return D, values[D], owned
+
+
+def _evaluate_prescribed(function, points, name: str) -> np.ndarray:
+    """Values (m) of a function-valued Prescribed component at ``points`` ((dim, n), m)."""
+    n = points.shape[1]
+    try:
+        values = np.broadcast_to(np.asarray(function(points), dtype=float), (n,))
+    except (TypeError, ValueError) as error:
+        raise ValueError(f"{name}: the function must return one number per point for a "
+                         f"(dim, n) array of points, here n = {n} ({error})") from None
+    if not np.all(np.isfinite(values)):
+        bad = points[:, np.flatnonzero(~np.isfinite(values))[0]]
+        raise ValueError(f"{name}: the function returns a non-finite value at {bad.tolist()} m")
+    return values
+
+
+def nearest_vertex(model, point, what: str = "PointForce.point") -> int:
+    """Index of the mesh vertex nearest ``point`` (m); a point farther from it than the
+    largest element edge there lies off the body and raises ValueError."""
+    mesh = model.mesh.mesh
+    if len(point) != model.dim:
+        raise ValueError(f"{what} = {point} has {len(point)} coordinates; the model is "
+                         f"{model.dim}-D: give {model.dim}")
+    x = np.reshape(point, (-1, 1))
+    distance = np.sqrt(np.sum((mesh.p - x) ** 2, axis=0))
+    node = int(np.argmin(distance))
+    around = mesh.t[:, np.any(mesh.t == node, axis=0)]
+    reach = max(np.linalg.norm(mesh.p[:, around[i]] - mesh.p[:, [node]], axis=0).max()
+                for i in range(around.shape[0]))
+    if distance[node] > reach:
+        raise ValueError(f"{what} = {tuple(point)} m is {distance[node]:.3g} m from the nearest "
+                         f"mesh vertex {mesh.p[:, node].tolist()}: it is not on the body (which "
+                         f"spans {mesh.p.min(axis=1).tolist()} to {mesh.p.max(axis=1).tolist()} m)")
+    return node
 
 
 def load_vector(model, loads) -> np.ndarray:
@@ -174,9 +224,8 @@ def load_vector(model, loads) -> np.ndarray:
             tr = traction.reshape(-1, 1, 1)
             f += t * skfem.LinearForm(lambda v, w: dot(tr + 0 * w.x, v)).assemble(fb)
         elif isinstance(load, PointForce):
-            _check_dim(load.vector, model.dim, "PointForce")
-            p = model.mesh.mesh.p
-            node = int(np.argmin(np.sum((p - np.array(load.point).reshape(-1, 1)) ** 2, axis=0)))
+            _check_dim(load.vector, model.dim, "PointForce.vector")
+            node = nearest_vertex(model, load.point)
             for i, dofs in enumerate(model.basis.nodal_dofs):
                 f[dofs[node]] += load.vector[i]
         elif isinstance(load, (BodyForce, Gravity)):

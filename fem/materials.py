@@ -1,6 +1,7 @@
 """Linear-elastic isotropic materials: a small library with sources, and user-defined ones."""
 from dataclasses import dataclass
 import math
+import numbers
 
 from flexfem.data import load_toml
 
@@ -22,11 +23,13 @@ class Material:
     source: str = "user-defined"
 
     def __post_init__(self):
-        _require(self.E, "E", lambda v: v > 0, "> 0")
-        _require(self.nu, "nu", lambda v: -1.0 < v < 0.5, "in (-1, 0.5)")
-        _require(self.rho, "rho", lambda v: v > 0, "> 0")
-        if not (self.yield_strength > 0):
-            raise ValueError(f"material {self.name!r}: yield_strength = {self.yield_strength} must be > 0")
+        _require(self, "E", lambda v: v > 0, "> 0 (Pa)")
+        _require(self, "nu", lambda v: -1.0 < v < 0.5, "in (-1, 0.5)")
+        _require(self, "rho", lambda v: v > 0, "> 0 (kg/m^3)")
+        if not (_is_number(self.yield_strength) and self.yield_strength > 0):
+            raise ValueError(f"material {self.name!r}: yield_strength = {self.yield_strength!r} "
+                             "must be > 0 (Pa; math.inf for none)")
+        object.__setattr__(self, "yield_strength", float(self.yield_strength))
 
     @property
     def lame(self) -> tuple[float, float]:
@@ -40,9 +43,17 @@ class Material:
                 "yield_strength": self.yield_strength}
 
 
-def _require(value, name, ok, bound):
-    if not (isinstance(value, (int, float)) and math.isfinite(value) and ok(value)):
-        raise ValueError(f"material parameter {name} = {value!r} must be finite and {bound}")
+def _is_number(value) -> bool:
+    return isinstance(value, numbers.Real) and not isinstance(value, bool)
+
+
+def _require(material, name, ok, bound):
+    """Check the field ``name`` of ``material`` and store it as a float."""
+    value = getattr(material, name)
+    if not (_is_number(value) and math.isfinite(value) and ok(value)):
+        raise ValueError(f"material {material.name!r}: {name} = {value!r} must be a finite "
+                         f"number {bound}")
+    object.__setattr__(material, name, float(value))
 
 
 def material_names() -> list[str]:

@@ -5,6 +5,7 @@ meshio's tag parsing, see DESIGN.md), and boundaries are matched to skfem facets
 sorted vertex indices, vectorised.
 """
 from dataclasses import dataclass, field
+from itertools import combinations
 from pathlib import Path
 
 import numpy as np
@@ -35,10 +36,10 @@ class FEMesh:
     def __post_init__(self):
         if self.mesh.t.shape[1] == 0:
             raise ValueError("the mesh has no elements")
-        volumes = _signed_measures(self.mesh)
-        if np.any(np.abs(volumes) <= 1e-14 * np.max(np.abs(volumes))):
-            raise ValueError(f"the mesh has {np.sum(np.abs(volumes) <= 1e-14 * np.max(np.abs(volumes)))} "
-                             "degenerate (zero-area/volume) elements; remesh")
+        if not np.all(np.isfinite(self.mesh.p)):
+            raise ValueError(f"the mesh has {np.sum(~np.all(np.isfinite(self.mesh.p), axis=0))} "
+                             "vertices with non-finite coordinates; fix the geometry")
+        _check_cells(self.mesh)
 
     @property
     def dim(self) -> int:
@@ -50,6 +51,10 @@ class FEMesh:
 
     def facets(self, name: str) -> np.ndarray:
         """Facet indices of boundary group ``name``."""
+        if name in self.subdomains:
+            raise ValueError(f"{name!r} is a subdomain, not a boundary group; loads on a boundary "
+                             f"need one of the boundary groups {sorted(self.boundaries)} (for a "
+                             "load on the volume use BodyForce)")
         if name not in self.boundaries:
             raise ValueError(f"no boundary group {name!r}; boundary groups: {sorted(self.boundaries)}"
                              f", subdomains: {sorted(self.subdomains)}")
@@ -79,18 +84,44 @@ def facets_where(mesh: skfem.Mesh, condition) -> np.ndarray:
     return mesh.facets_satisfying(condition, boundaries_only=True)
 
 
-def _signed_measures(mesh: skfem.Mesh) -> np.ndarray:
-    p, t = mesh.p, mesh.t
-    if isinstance(mesh, skfem.MeshTri):
-        a, b, c = (p[:, t[i]] for i in range(3))
-        return 0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]))
-    if isinstance(mesh, skfem.MeshTet):
-        a, b, c, d = (p[:, t[i]] for i in range(4))
-        return np.einsum("ij,ij->j", b - a, np.cross(c - a, d - a, axis=0)) / 6.0
-    # quads and hexes: the Jacobian determinant at the element centre is enough to spot
-    # degenerate cells
-    basis = skfem.Basis(mesh, mesh.elem(), intorder=1)
-    return basis.dx.sum(axis=1)
+def corner_jacobians(mesh: skfem.Mesh) -> np.ndarray:
+    """(n_elements, n_corners) determinant of the reference-to-physical map at each element's
+    corners (constant per simplex; m^dim per unit reference measure)."""
+    ref = np.asarray(mesh.elem().doflocs, dtype=float)  # (n_corners, dim), coordinates 0 or 1
+    dim = ref.shape[1]
+    simplex = isinstance(mesh, (skfem.MeshTri, skfem.MeshTet))
+    dets = []
+    for c in range(1 if simplex else len(ref)):
+        # the (multi)linear map's Jacobian at a corner is made of its edges to the corners that
+        # differ from it in one reference coordinate
+        columns = []
+        for k in range(dim):
+            target = ref[c].copy()
+            target[k] = 1.0 - target[k]
+            n = int(np.flatnonzero(np.all(ref == target, axis=1))[0])
+            columns.append((mesh.p[:, mesh.t[n]] - mesh.p[:, mesh.t[c]]) * (target[k] - ref[c, k]))
+        dets.append(np.linalg.det(np.stack(columns, axis=-1).transpose(1, 0, 2)))
+    return np.stack(dets, axis=1)
+
+
+def _check_cells(mesh: skfem.Mesh) -> None:
+    """Reject degenerate cells (zero area or volume) and, for quadrilaterals and hexahedra,
+    cells whose map folds over (Jacobian changing sign inside: non-convex, twisted or
+    self-intersecting). A consistently inverted cell is fine: scikit-fem sorts simplex vertices
+    and integrates with |det J|, so vertex order does not matter."""
+    det = corner_jacobians(mesh)
+    # relative to each element's own size, so that strongly graded meshes pass
+    diameter = np.max([np.linalg.norm(mesh.p[:, mesh.t[i]] - mesh.p[:, mesh.t[j]], axis=0)
+                       for i, j in combinations(range(mesh.t.shape[0]), 2)], axis=0)
+    degenerate = np.any(np.abs(det) <= 1e-10 * diameter[:, None] ** mesh.dim(), axis=1)
+    if np.any(degenerate):
+        raise ValueError(f"the mesh has {int(np.sum(degenerate))} degenerate (zero-area/volume) "
+                         f"elements, e.g. element {int(np.flatnonzero(degenerate)[0])}; remesh")
+    folded = np.any(np.sign(det) != np.sign(det[:, :1]), axis=1)
+    if np.any(folded):
+        raise ValueError(f"the mesh has {int(np.sum(folded))} folded elements (Jacobian changes "
+                         f"sign: non-convex or self-intersecting), e.g. element "
+                         f"{int(np.flatnonzero(folded)[0])}; check the vertex order or remesh")
 
 
 def _facet_keys(facet_nodes: np.ndarray, n_vertices: int) -> np.ndarray:

@@ -7,6 +7,7 @@ the same model share them.
 from dataclasses import dataclass
 from functools import cached_property
 import math
+import numbers
 
 import numpy as np
 import skfem
@@ -16,6 +17,12 @@ from flexfem.fem.materials import Material
 from flexfem.fem.mesh import FEMesh
 
 
+def _check_thickness(formulation: str, thickness) -> None:
+    ok = isinstance(thickness, numbers.Real) and not isinstance(thickness, bool)
+    if not (ok and math.isfinite(thickness) and thickness > 0):
+        raise ValueError(f"{formulation} thickness = {thickness!r} must be a finite number > 0 (m)")
+
+
 @dataclass(frozen=True)
 class PlaneStress:
     """2-D plane stress: thin plate of ``thickness`` (m) loaded in its plane."""
@@ -23,8 +30,7 @@ class PlaneStress:
     thickness: float
 
     def __post_init__(self):
-        if not (math.isfinite(self.thickness) and self.thickness > 0):
-            raise ValueError(f"PlaneStress thickness = {self.thickness} m must be finite and > 0")
+        _check_thickness("PlaneStress", self.thickness)
 
 
 @dataclass(frozen=True)
@@ -34,8 +40,7 @@ class PlaneStrain:
     thickness: float = 1.0
 
     def __post_init__(self):
-        if not (math.isfinite(self.thickness) and self.thickness > 0):
-            raise ValueError(f"PlaneStrain thickness = {self.thickness} m must be finite and > 0")
+        _check_thickness("PlaneStrain", self.thickness)
 
 
 @dataclass(frozen=True)

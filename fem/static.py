@@ -4,6 +4,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
+from scipy.sparse.csgraph import connected_components
 import skfem
 
 from flexfem.fem import linsolve
@@ -112,11 +113,42 @@ def check_supports(model: Model, D: np.ndarray) -> None:
     if len(D) == 0:
         raise UnderConstrainedError(f"the model has no supports: all {n_modes} rigid-body modes are "
                                     "free; add a Fixed or Prescribed support")
-    s = np.linalg.svd(modes[D], compute_uv=False)
-    free = int(np.sum(s < 1e-9 * max(np.abs(modes).max(), 1.0) * np.sqrt(len(D))))
-    if free:
-        raise UnderConstrainedError(f"the supports leave {free} of {n_modes} rigid-body modes "
-                                    "free (e.g. a rotation about a line of held nodes); add supports")
+    parts = body_parts(model)
+    held = np.zeros(model.n_dofs, dtype=bool)
+    held[D] = True
+    for k, part in enumerate(parts):
+        rows = modes[part[held[part]]]
+        s = np.linalg.svd(rows, compute_uv=False) if len(rows) else np.zeros(0)
+        free = n_modes - int(np.sum(s >= 1e-9 * max(np.abs(modes).max(), 1.0) * np.sqrt(len(D))))
+        if not free:
+            continue
+        if len(parts) == 1:
+            raise UnderConstrainedError(
+                f"the supports leave {free} of {n_modes} rigid-body modes free (e.g. a "
+                "translation along an unheld axis, or a rotation about a point or line of held "
+                "nodes); add supports")
+        where = model.basis.doflocs[:, part].mean(axis=1)
+        raise UnderConstrainedError(
+            f"the mesh has {len(parts)} disconnected parts and part {k + 1} (centred near "
+            f"{np.round(where, 6).tolist()} m) has {free} of {n_modes} rigid-body modes free: "
+            "connect it to the rest of the body or give it its own supports")
+
+
+def body_parts(model: Model) -> list[np.ndarray]:
+    """DOF indices of each connected part of the mesh (elements sharing a vertex are
+    connected), largest part first."""
+    mesh = model.mesh.mesh
+    n_vertices = mesh.p.shape[1]
+    # a chain through each element's vertices connects them all: enough for the components
+    heads, tails = mesh.t[:-1].ravel(), mesh.t[1:].ravel()
+    chain = sp.coo_matrix((np.ones(heads.size), (heads, tails)), shape=(n_vertices, n_vertices))
+    n_parts, label = connected_components(chain, directed=False)
+    if n_parts == 1:
+        return [np.arange(model.n_dofs)]
+    element_part = label[mesh.t[0]]
+    dofs = model.basis.element_dofs
+    parts = [np.unique(dofs[:, element_part == k]) for k in range(n_parts)]
+    return sorted(parts, key=len, reverse=True)
 
 
 def solve_static(model: Model, supports, loads, solver: str = "auto") -> StaticResult:

@@ -91,3 +91,16 @@ def test_amg_matches_direct(steel):
     assert amg.solver == "amg" and direct.solver == "direct"
     assert np.allclose(amg.u, direct.u, rtol=0, atol=1e-7 * np.abs(direct.u).max())
     assert solve_static(model, *args).solver == "direct"  # small model: auto picks direct
+
+
+def test_auto_switches_to_amg_above_the_threshold(steel, monkeypatch):
+    from flexfem.fem import linsolve
+    model = Model(beam_2d(L, H, H / 3), steel, PlaneStress(W), order=2)
+    args = ([Fixed("fixed")], [Force("tip", (0.0, -P))])
+    direct = solve_static(model, *args, solver="direct")
+    monkeypatch.setattr(linsolve, "AMG_THRESHOLD", {2: 10, 3: 10})
+    auto = solve_static(model, *args)
+    assert auto.solver == "amg"
+    # CG stops at a relative residual of 1e-10; the error is at most cond(K) times that in
+    # theory, in practice ~1e-8 relative on this small, well-conditioned problem
+    assert np.allclose(auto.u, direct.u, rtol=0, atol=1e-6 * np.abs(direct.u).max())

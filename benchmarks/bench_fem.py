@@ -1,0 +1,214 @@
+"""Time flexfem against CalculiX on the same quadratic meshes: assembly, static solve and the
+first 6 modes of a cantilever, with peak memory. Not a test: prints a table (and JSON lines).
+
+    .venv/bin/python benchmarks/bench_fem.py                 # all rows (~15 min on 2 cores)
+    .venv/bin/python benchmarks/bench_fem.py --sizes small   # smallest 2-D and 3-D rows
+
+Each (row, program) runs in its own subprocess so that its peak resident memory is measured
+cleanly: flexfem's from ``getrusage(RUSAGE_SELF)`` of that process, CalculiX's from
+``wait4`` of the ccx process. flexfem's times exclude building the mesh; CalculiX's include
+reading its deck (it cannot be split), not writing it.
+"""
+import argparse
+import json
+import os
+from pathlib import Path
+import resource
+import signal
+import subprocess
+import sys
+import time
+
+import numpy as np
+
+LENGTH, HEIGHT = 1.0, 0.1  # m: cantilever 10:1 (3-D: square section HEIGHT x HEIGHT)
+TIP_FORCE = 100.0          # N, -y on the tip face
+N_MODES = 6
+ROWS = {"2d-50k": (2, 50_000), "2d-200k": (2, 200_000), "2d-1M": (2, 1_000_000),
+        "3d-100k": (3, 100_000), "3d-300k": (3, 300_000)}
+SMALL = ["2d-50k", "3d-100k"]
+
+
+def cantilever_mesh(dim: int, target_dofs: int):
+    """Structured triangle (2-D) or tetrahedron (3-D, 6 per cube) mesh of the cantilever whose
+    P2 vector basis has about ``target_dofs`` DOFs; groups 'fixed' (x = 0) and 'tip' (x = L)."""
+    import skfem
+    from flexfem.fem import FEMesh, facets_where
+
+    # P2 nodes per direction 2 n_cells + 1; cells along x = 10 x cells across
+    n_nodes = target_dofs / dim
+    ny = max(1, int(round((n_nodes / 10) ** (1 / dim) / 2)))
+    nx = 10 * ny
+    if dim == 2:
+        mesh = skfem.MeshTri.init_tensor(np.linspace(0, LENGTH, nx + 1),
+                                         np.linspace(0, HEIGHT, ny + 1))
+    else:
+        y = np.linspace(0, HEIGHT, ny + 1)
+        mesh = skfem.MeshTet.init_tensor(np.linspace(0, LENGTH, nx + 1), y, y)
+    groups = {"fixed": facets_where(mesh, lambda x: np.isclose(x[0], 0.0)),
+              "tip": facets_where(mesh, lambda x: np.isclose(x[0], LENGTH))}
+    return FEMesh(mesh, groups, {"body": np.arange(mesh.t.shape[1])})
+
+
+def cantilever_model(dim: int, target_dofs: int):
+    from flexfem.fem import Material, Model, PlaneStress, Solid3D
+
+    steel = Material("steel", E=200e9, nu=0.3, rho=7800.0)
+    form = PlaneStress(0.01) if dim == 2 else Solid3D()
+    return Model(cantilever_mesh(dim, target_dofs), steel, form, order=2)
+
+
+def _loads(dim):
+    from flexfem.fem import Fixed, Force
+    vector = (0.0, -TIP_FORCE) if dim == 2 else (0.0, -TIP_FORCE, 0.0)
+    return [Fixed("fixed")], [Force("tip", vector)]
+
+
+def run_flexfem(row: str) -> dict:
+    """Times (s) of assembly (K, then M), static solve (incl. stress recovery) and modes."""
+    from flexfem.fem import solve_modes, solve_static
+
+    dim, target = ROWS[row]
+    model = cantilever_model(dim, target)
+    supports, loads = _loads(dim)
+    out = {"row": row, "program": "flexfem", "n_dofs": int(model.n_dofs)}
+    t = time.perf_counter()
+    model.stiffness
+    out["assemble_K_s"] = time.perf_counter() - t
+    t = time.perf_counter()
+    model.mass
+    out["assemble_M_s"] = time.perf_counter() - t
+    t = time.perf_counter()
+    try:
+        result = solve_static(model, supports, loads, solver="direct")
+        out["static_s"] = time.perf_counter() - t
+        out["tip_uy_m"] = float(result.mean_displacement("tip")[1])
+    except Exception as error:  # residual check refused it, or PARDISO ran out of memory
+        # the time until the refusal: factorization, solve and residual check, no stress
+        # recovery (AMG-CG, the other solver, does not converge on the slender 2d-1M row)
+        out["static_error"] = f"after {time.perf_counter() - t:.1f} s: {type(error).__name__} {error}"
+    t = time.perf_counter()
+    try:
+        modes = solve_modes(model, N_MODES, supports)
+        out["modes_s"] = time.perf_counter() - t
+        out["f1_hz"] = float(modes.frequencies_hz[0])
+    except Exception as error:  # e.g. PARDISO out of memory under --mem-gb
+        out["modes_error"] = f"after {time.perf_counter() - t:.0f} s: {type(error).__name__} {error}"
+    out["peak_rss_mb"] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+    return out
+
+
+def run_calculix(row: str, threads: int) -> dict:
+    """Wall times (s) and peak memory of ccx for the static and the frequency deck."""
+    from flexfem.fem.calculix import deck_lines, parse_frequencies, run_ccx
+
+    dim, target = ROWS[row]
+    model = cantilever_model(dim, target)
+    supports, loads = _loads(dim)
+    out = {"row": row, "program": "calculix", "n_dofs": int(model.n_dofs)}
+    static = run_ccx(deck_lines(model, supports, loads), threads=threads)
+    out["static_s"], rss = static.wall_s, static.peak_rss_bytes
+    out["peak_rss_mb"] = rss / 2**20
+    t = time.perf_counter()
+    try:
+        freq = run_ccx(deck_lines(model, supports, n_modes=N_MODES), threads=threads)
+    except RuntimeError as error:  # e.g. out of memory under --mem-gb: keep the static row
+        out["modes_error"] = f"after {time.perf_counter() - t:.0f} s: {error}"
+        return out
+    out["modes_s"] = freq.wall_s
+    out["f1_hz"] = float(parse_frequencies(freq.dat)[0])
+    out["peak_rss_mb"] = max(rss, freq.peak_rss_bytes) / 2**20
+    return out
+
+
+def _in_subprocess(row: str, program: str, threads: int, timeout_s: float, mem_gb: float) -> dict:
+    cmd = [sys.executable, __file__, "--case", row, "--program", program, "--threads", str(threads),
+           "--mem-gb", str(mem_gb)]
+    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, text=True, start_new_session=True)
+    try:
+        stdout, _ = proc.communicate(timeout=timeout_s)
+    except subprocess.TimeoutExpired:
+        os.killpg(proc.pid, signal.SIGKILL)  # the case and the ccx it started
+        proc.communicate()
+        return {"row": row, "program": program, "error": f"timeout after {timeout_s:.0f} s"}
+    if proc.returncode != 0:
+        return {"row": row, "program": program, "error": f"exit {proc.returncode}"}
+    return json.loads(stdout.strip().splitlines()[-1])
+
+
+def _fmt(v, spec=".1f"):
+    return "-" if v is None else format(v, spec)
+
+
+def _cell(value, error, spec=".1f"):
+    return _fmt(value, spec) if value is not None else ("failed" if error else "-")
+
+
+def table(rows: list[dict]) -> str:
+    """Markdown table: one line per row, flexfem beside CalculiX with the ratios; failures and
+    fallbacks in the notes column (details in the JSON lines)."""
+    head = ("| mesh | DOFs | flexfem assembly K+M (s) | flexfem static (s) | ccx static (s) | "
+            "ratio static | flexfem 6 modes (s) | ccx 6 modes (s) | ratio modes | "
+            "flexfem peak MB | ccx peak MB | f1 flexfem / ccx (Hz) | notes |")
+    lines = [head, "|" + "---|" * (head.count("|") - 1)]
+    for f, c in rows:
+        asm = f.get("assemble_K_s", np.nan) + f.get("assemble_M_s", np.nan)
+        # static: K assembly + solve; modes: K + M assembly + eigen solve (ccx's own times
+        # include its assembly)
+        fs = f.get("assemble_K_s", np.nan) + f.get("static_s", np.nan)
+        if "static_error" in f:  # time until the solve was refused
+            fs = f.get("assemble_K_s", np.nan) + float(f["static_error"].split()[1])
+        fm = asm + f.get("modes_s", np.nan)
+        cs, cm = c.get("static_s"), c.get("modes_s")
+        notes = [f"{p}: {e}" for p, e in (("flexfem", f.get("error")), ("ccx", c.get("error")),
+                                           ("flexfem static", f.get("static_error")),
+                                           ("flexfem modes", f.get("modes_error")),
+                                           ("ccx modes", c.get("modes_error"))) if e]
+        lines.append(
+            f"| {f['row']} | {f.get('n_dofs', '-')} | {asm:.1f} | {fs:.1f} | "
+            f"{_cell(cs, c.get('error'))} | {_fmt(fs / cs if cs else None, '.2f')} | "
+            f"{_cell(fm if 'modes_s' in f else None, f.get('modes_error'))} | "
+            f"{_cell(cm, c.get('error') or c.get('modes_error'))} | "
+            f"{_fmt(fm / cm if cm else None, '.2f')} | {_fmt(f.get('peak_rss_mb'), '.0f')} | "
+            f"{_fmt(c.get('peak_rss_mb'), '.0f')} | {_fmt(f.get('f1_hz'), '.3f')} / "
+            f"{_fmt(c.get('f1_hz'), '.3f')} | {'; '.join(notes)[:120]} |")
+    return "\n".join(lines)
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--sizes", choices=["small", "all"], default="all")
+    parser.add_argument("--rows", nargs="*", choices=list(ROWS), help="run only these rows")
+    parser.add_argument("--threads", type=int, default=2, help="ccx OpenMP/solver threads")
+    parser.add_argument("--timeout", type=float, default=600.0, help="per program and row, s")
+    parser.add_argument("--skip-ccx", nargs="*", default=[], choices=list(ROWS),
+                        help="rows where CalculiX is not run")
+    parser.add_argument("--mem-gb", type=float, default=16.0,
+                        help="address-space limit of each measured process (and its ccx), GiB: "
+                             "a row that needs more fails instead of exhausting the machine")
+    parser.add_argument("--case", help=argparse.SUPPRESS)
+    parser.add_argument("--program", help=argparse.SUPPRESS)
+    args = parser.parse_args(argv)
+    if args.case:  # one measurement, in this (sub)process
+        limit = int(args.mem_gb * 2**30)
+        resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
+        fn = run_flexfem if args.program == "flexfem" else lambda r: run_calculix(r, args.threads)
+        print(json.dumps(fn(args.case)))
+        return 0
+    rows = args.rows or (SMALL if args.sizes == "small" else list(ROWS))
+    results = []
+    for row in rows:
+        f = _in_subprocess(row, "flexfem", args.threads, args.timeout, args.mem_gb)
+        print(json.dumps(f), flush=True)
+        if row in args.skip_ccx:
+            c = {"row": row, "program": "calculix", "error": "not run"}
+        else:
+            c = _in_subprocess(row, "calculix", args.threads, args.timeout, args.mem_gb)
+        print(json.dumps(c), flush=True)
+        results.append((f, c))
+    print(table(results))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,64 @@
+"""The eight-bar path study: thesis data, CLI, and reproduce()."""
+import json
+
+import numpy as np
+import pytest
+
+from flexfem.studies.cli import main
+from flexfem.studies.eightbar_path import appendix_a_points, reproduce, thesis_targets
+
+
+def test_appendix_a_data_matches_the_text_summary():
+    pts = appendix_a_points()
+    targets = thesis_targets()
+    assert pts.shape == (251, 2)
+    # Ch. 5: Y between -70.069 and -70.042 mm, a 0.027 mm deviation (values in m here)
+    assert pts[:, 1].max() == pytest.approx(targets["y_max_m"], abs=1e-12)
+    assert pts[:, 1].min() == pytest.approx(targets["y_min_m"], abs=1e-12)
+    assert np.ptp(pts[:, 1]) == pytest.approx(targets["max_deviation_m"], abs=1e-12)
+    # the return sweep retraces the forward sweep
+    assert np.allclose(pts[:126], pts[125:][::-1])
+
+
+def test_cli_linkage_trace_json(capsys):
+    assert main(["linkage", "trace", "peaucellier", "--points", "31", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["deviation_pct"] < 1e-9
+    assert {"travel_m", "max_deviation_m"} <= set(out)
+
+
+def test_cli_eightbar_trace(capsys):
+    assert main(["eightbar", "trace", "--points", "41", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["travel_m"] >= 33e-3 and out["deviation_pct"] < 0.1
+    assert main(["eightbar", "trace", "--points", "41"]) == 0
+    assert "travel" in capsys.readouterr().out
+
+
+def test_cli_bad_point_count_is_exit_code_2(capsys):
+    assert main(["linkage", "trace", "watt", "--points", "2"]) == 2
+    assert "n = 2" in capsys.readouterr().err
+
+
+def test_reproduce_quick_writes_tables_and_figures(tmp_path):
+    summary = reproduce(tmp_path, quick=True)
+    for name in summary["figures"] + summary["tables"]:
+        assert (tmp_path / name).stat().st_size > 0
+    rows = {r["quantity"]: r for r in summary["comparisons"]}
+    assert rows["eight-bar travel (m)"]["rel_diff"] == pytest.approx(0.0, abs=1e-12)
+    assert rows["eight-bar deviation (% of travel, band)"]["flexfem"] < 0.1
+    json.dumps(summary, default=float)
+    assert {r["linkage"] for r in summary["straight_line_linkages"]} >= {"watt", "roberts", "chebyshev",
+                                                                          "peaucellier"}
+
+
+def test_docs_example_runs():
+    # the Python example of docs/eightbar.md runs and gives the numbers the page quotes
+    from pathlib import Path
+    import re
+    page = (Path(__file__).parents[2] / "docs" / "eightbar.md").read_text()
+    block = next(b for b in re.findall(r"```python\n(.*?)```", page, re.S) if "trace_eightbar" in b)
+    scope = {}
+    exec(block, scope)
+    assert scope["tr"].deviation.band_m == pytest.approx(1.53e-6, rel=0.01)
+    assert scope["tr"].deviation.deviation_pct == pytest.approx(0.0026, rel=0.01)
