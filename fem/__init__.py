@@ -4,20 +4,26 @@
     model = Model(mesh, material("structural_steel"), PlaneStress(thickness=0.01), order=2)
     result = solve_static(model, [Fixed("fixed")], [Force("tip", (0.0, -10.0))])
     modes = solve_modes(model, n=6, supports=[Fixed("fixed")])
+    write_result(result, "result.vtu")                  # ParaView; write_mesh for .msh/.inp
+    large = solve_nonlinear(model, [Fixed("fixed")], [Force("tip", (0.0, -1e3))], steps=20)
 """
 from flexfem.fem.boundary import BodyForce, Fixed, Force, Gravity, PointForce, Prescribed, Traction
+from flexfem.fem.export import write_mesh, write_result
 from flexfem.fem.gmsh_session import gmsh_session
 from flexfem.fem.linsolve import SingularSystemError
 from flexfem.fem.materials import Material, material, material_names
 from flexfem.fem.mesh import FEMesh, facets_where, mesh_from_gmsh, read_mesh
 from flexfem.fem.modal import Modes, solve_modes
+from flexfem.fem.nonlinear import NonConvergenceError, NonlinearResult, solve_nonlinear
+from flexfem.fem.rigid_face import RigidFace
 from flexfem.fem.model import Model, PlaneStrain, PlaneStress, Solid3D, von_mises
 from flexfem.fem.static import StaticResult, UnderConstrainedError, solve_static
 
 __all__ = [
     "BodyForce", "FEMesh", "Fixed", "Force", "Gravity", "Material", "Model", "Modes",
-    "PlaneStrain", "PlaneStress", "PointForce", "Prescribed", "SingularSystemError", "Solid3D",
-    "StaticResult", "Traction", "UnderConstrainedError", "facets_where", "gmsh_session",
-    "material", "material_names", "mesh_from_gmsh", "read_mesh", "solve_modes", "solve_static",
-    "von_mises",
+    "NonConvergenceError", "NonlinearResult", "PlaneStrain", "PlaneStress", "PointForce",
+    "Prescribed", "RigidFace", "SingularSystemError", "Solid3D", "StaticResult", "Traction",
+    "UnderConstrainedError", "facets_where", "gmsh_session", "material", "material_names",
+    "mesh_from_gmsh", "read_mesh", "solve_modes", "solve_nonlinear", "solve_static",
+    "von_mises", "write_mesh", "write_result",
 ]

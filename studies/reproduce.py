@@ -30,6 +30,8 @@ SECTIONS = [
      "flexfem.studies.eightbar_fem:reproduce"),
     ("balancing", "Five-bar robot: optimum static balancing and flexure pivots",
      "flexfem.studies.balancing:reproduce"),
+    ("studies_engine", "Study engine: sweep and Richardson convergence checked on a closed form",
+     "flexfem.studies.sweep:reproduce"),
 ]
 
 
