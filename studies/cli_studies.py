@@ -22,6 +22,8 @@ def register(subparsers):
                    help="relative tolerance, '0.5%%' or 0.005 (default 0.5%%)")
     c.add_argument("--levels", type=int, default=4, help="refinement levels, >= 3 (default 4)")
     c.add_argument("--ratio", type=float, default=2.0, help="refinement ratio between levels (default 2)")
+    c.add_argument("--start", type=float, default=None,
+                   help="size_factor of the coarsest level (default: the mechanism's, 4 for dbma)")
     c.add_argument("--params", type=json.loads, default=None,
                    help='design parameters as JSON, e.g. \'{"length_m": 0.05}\' (default: the base design)')
     c.add_argument("--out", help="folder for the log-log plot")
@@ -39,7 +41,8 @@ def _run_sweep(args) -> dict:
 
 def _run_converge(args) -> dict:
     return run_convergence(args.mechanism, args.metric, tol=args.tol, n_levels=args.levels,
-                           ratio=args.ratio, params=args.params, out_dir=args.out)
+                           ratio=args.ratio, params=args.params, out_dir=args.out,
+                           start=args.start)
 
 
 def summarize_sweep(result: dict) -> str:

@@ -208,11 +208,19 @@ def plot_convergence(result: ConvergenceResult, path, theoretical_order: float |
 
 
 def run_convergence(mechanism: str, metric: str, tol="0.5%", n_levels: int = 4, ratio: float = 2.0,
-                    params: dict | None = None, out_dir=None, dim: int = 2) -> dict:
+                    params: dict | None = None, out_dir=None, dim: int = 2,
+                    start: float | None = None) -> dict:
     """A convergence study of a registered mechanism on ``n_levels`` levels of size_factor
-    1, 1/ratio, ...; writes convergence_<metric>.png into ``out_dir`` when given. JSON-able."""
+    start, start/ratio, ... (``start`` defaults to the mechanism's coarsest level, see
+    registry.COARSEST_SIZE_FACTOR); writes convergence_<metric>.png into ``out_dir`` when
+    given. JSON-able."""
+    from flexfem.studies.registry import coarsest_size_factor
     tolerance = parse_tolerance(tol)
-    levels = default_levels(n_levels, ratio)
+    if start is None:
+        start = coarsest_size_factor(mechanism)
+    if not (math.isfinite(start) and start > 0):
+        raise ValueError(f"start = {start!r} must be a finite size_factor > 0")
+    levels = default_levels(n_levels, ratio, start=start)
     result = converge(mechanism, metric, levels, params=params, tol=tolerance, dim=dim)
     summary = {"mechanism": mechanism, **result.to_dict(), "figures": []}
     if out_dir is not None:

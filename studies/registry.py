@@ -15,6 +15,15 @@ MECHANISMS = {
     "eightbar": "flexfem.studies.eightbar_fem:evaluate",
 }
 
+# size_factor of the coarsest level of a convergence study (1 = the mechanism's default mesh):
+# the FEM mechanisms start coarser so that halving the size three times stays affordable.
+COARSEST_SIZE_FACTOR = {"dbma": 4.0, "eightbar": 4.0}
+
+
+def coarsest_size_factor(name: str) -> float:
+    """The size_factor a convergence study of mechanism ``name`` starts from (default 1)."""
+    return COARSEST_SIZE_FACTOR.get(name, 1.0)
+
 
 def is_target(name: str) -> bool:
     """True for a "package.module:function" string (an evaluate given by its import path)."""

@@ -136,3 +136,12 @@ def test_reproduce_quick_writes_its_files_and_agrees_with_theory(tmp_path):
     assert rows["toy tip deflection L = 0.1 m, 8 elements (m)"]["rel_diff"] == pytest.approx(1 / 128, rel=1e-9)
     assert abs(rows["toy taper observed order"]["rel_diff"]) < 0.05
     assert abs(rows["toy taper Richardson tip deflection (m)"]["rel_diff"]) < 1e-6
+
+
+def test_run_convergence_starts_from_the_mechanisms_coarsest_level():
+    from flexfem.studies.registry import coarsest_size_factor
+    assert coarsest_size_factor("dbma") > 1.0  # the FEM mechanisms start coarser than default
+    summary = run_convergence("toy", "tip_deflection", n_levels=3, start=2.0)
+    assert [level["size_factor"] for level in summary["levels"]] == [2.0, 1.0, 0.5]
+    with pytest.raises(ValueError, match="start"):
+        run_convergence("toy", "tip_deflection", n_levels=3, start=0.0)
