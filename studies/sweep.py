@@ -275,7 +275,8 @@ def run_study(study: Study, store_path, workers: int | None = None, scheduler: s
 def plot_metric(cases, metric: str, parameter: str, path, overlay=()) -> Path:
     """PNG of ``metric`` against ``parameter`` over the successful ``cases`` (CaseResult),
     one line per combination of the other varied parameters, ``overlay`` metrics (e.g. the
-    analytical value) dashed in the same colour."""
+    analytical value) dashed or dotted in the same colour; designs that share no line with
+    another (a space-filling sample) as grey points."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -288,8 +289,12 @@ def plot_metric(cases, metric: str, parameter: str, path, overlay=()) -> Path:
     groups = {}
     for case in ok:
         groups.setdefault(tuple(case.params.get(k) for k in others), []).append(case)
+    lines = {k: v for k, v in groups.items() if len(v) > 1}
+    scattered = [c for v in groups.values() if len(v) == 1 for c in v]
+    styles = itertools.cycle(["--", ":", "-."])
+    overlay_styles = {name: next(styles) for name in overlay}
     fig, ax = plt.subplots(figsize=(6.4, 4.4))
-    for (label_values, members), colour in zip(sorted(groups.items(), key=lambda g: repr(g[0])),
+    for (label_values, members), colour in zip(sorted(lines.items(), key=lambda g: repr(g[0])),
                                                itertools.cycle(plt.rcParams["axes.prop_cycle"].by_key()["color"])):
         members.sort(key=lambda c: c.params[parameter])
         x = [c.params[parameter] for c in members]
@@ -298,12 +303,15 @@ def plot_metric(cases, metric: str, parameter: str, path, overlay=()) -> Path:
         ax.plot(x, [c.metrics[metric] for c in members], "o-", color=colour,
                 label=f"{metric} {label}".strip())
         for name in overlay:
-            ax.plot(x, [c.metrics.get(name, math.nan) for c in members], "--", color=colour,
-                    label=f"{name} {label}".strip())
+            ax.plot(x, [c.metrics.get(name, math.nan) for c in members], overlay_styles[name],
+                    color=colour, label=f"{name} {label}".strip())
+    if scattered:  # designs that share no line with another (e.g. a space-filling sample)
+        ax.plot([c.params[parameter] for c in scattered], [c.metrics[metric] for c in scattered],
+                "o", color="0.35", label=f"{metric}, other designs ({len(scattered)})")
+    if len(lines) * (1 + len(overlay)) + bool(scattered) <= 12:
+        ax.legend(fontsize="small")
     ax.set_xlabel(parameter)
     ax.set_ylabel(metric)
-    if len(groups) * (1 + len(overlay)) <= 12:
-        ax.legend(fontsize="small")
     ax.grid(True, alpha=0.3)
     fig.tight_layout()
     fig.savefig(path, dpi=120)
