@@ -285,7 +285,18 @@ def reproduce(out_dir: Path, quick: bool = False) -> dict:
     tables += ["balancing_beyond_paper.csv", "balancing_pivots.csv", "balancing_sensitivity.csv"]
     plot_torques_zero_orientation(out_dir / "balancing_fig10.png", ws, result)
     figures.append("balancing_fig10.png")
-    return {"comparisons": comparisons, "figures": figures, "tables": tables,
+    from flexfem.studies.balancing_pivot_fem import pivot_fem_study  # gmsh: only when run
+    pivot_fem = pivot_fem_study(out_dir, quick=quick, workspace=ws)
+    tables += pivot_fem["tables"]
+    figures += pivot_fem["figures"]
+    notes = [f"pivot FEM, motor {r['motor']} ({r['design']}, {r['formulation']}): stiffness "
+             f"{r['stiffness_linear_Nm_per_rad']:.4g} N m/rad (beam theory "
+             f"{100 * r['stiffness_error_linear']:+.2f} %), peak von Mises "
+             f"{r['stress_fem_peak_Pa'] / 1e6:.0f} MPa (beam theory {r['stress_beam_Pa'] / 1e6:.0f} MPa), "
+             f"safety factor {r['safety_factor_fem']:.2f} (beam theory {r['safety_factor_beam']:.2f})"
+             for r in pivot_fem["rows"]]
+    return {"comparisons": comparisons, "figures": figures, "tables": tables, "notes": notes,
+            "pivot_fem": pivot_fem["rows"],
             "n_samples": result["n_samples"], "results": result["results"],
             "beyond_paper": beyond, "pivots": pivots, "sensitivity": sensitivity,
             "workspace": {"y_range_m": [ws.y_min, ws.y_min + ws.size_y],
