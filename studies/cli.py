@@ -17,6 +17,7 @@ COMMAND_MODULES = [
     "flexfem.studies.cli_dbma",
     "flexfem.studies.cli_linkage",
     "flexfem.studies.cli_balance",
+    "flexfem.studies.cli_optimize",
     "flexfem.studies.cli_studies",
 ]
 
