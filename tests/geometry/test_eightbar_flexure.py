@@ -1,0 +1,107 @@
+"""Flexure suspension geometry: validation, layout, mesh groups and the pseudo-rigid-body model."""
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from flexfem.geometry.eightbar_flexure import (EightBarFlexureParams, HOSTS, eightbar_layout,
+                                               flexure_contacts, flexure_rotational_stiffness,
+                                               joint_rotation_rates, mesh_eightbar_flexure,
+                                               prbm_stiffness)
+from flexfem.geometry.eightbar_rigid import EightBarParams
+
+
+@pytest.fixture(scope="module")
+def params():
+    return EightBarFlexureParams()
+
+
+def test_flexures_are_centred_on_the_joints_and_have_their_sizes(params):
+    layout = eightbar_layout(params)
+    assert len(layout.joints) == 10
+    for fj in layout.joints:
+        part = layout.flexure(fj.name)
+        centre = (np.asarray(part.p0) + np.asarray(part.p1)) / 2
+        assert np.allclose(centre, fj.position, atol=1e-12)
+        assert part.length == pytest.approx(params.flexure_size(fj.name)[0], rel=1e-12)
+        assert part.width == params.flexure_size(fj.name)[1]
+        assert fj.host == HOSTS[fj.name]
+    assert len(layout.fixed) == 4  # one anchor per base joint
+
+
+@pytest.mark.parametrize("name", ["flexure_width", "base_flexure_width"])
+def test_flexure_as_wide_as_the_links_is_rejected(name):
+    with pytest.raises(ValueError, match=name):
+        EightBarFlexureParams(**{name: 5e-3})
+
+
+def test_flexure_longer_than_its_link_segment_is_rejected():
+    # the coupler bar A-M-B is 50 mm: two 50 mm flexures centred on A and B leave nothing
+    with pytest.raises(ValueError, match="too long for link 'coupler"):
+        EightBarFlexureParams(flexure_length=50e-3)
+
+
+def test_flexure_touching_another_link_over_the_travel_is_rejected():
+    # halves 90.4 mm apart with 90 mm ground spacing put the inner pivots C_L, C_R 0.4 mm
+    # apart: the rockers (5 mm bars) swing into the other side's base flexure over the travel
+    rigid = replace(EightBarParams(), travel=33.1e-3, module_spacing=90.4e-3)
+    with pytest.raises(ValueError, match=r"flexure_C_. touches link 'rocker_."):
+        EightBarFlexureParams(rigid=rigid)
+
+
+def test_default_design_is_clear_over_its_travel(params):
+    assert flexure_contacts(params) == []
+
+
+@pytest.mark.parametrize("bad", [0.0, -1e-3, float("nan")])
+def test_non_positive_sizes_raise_naming_the_parameter(bad):
+    with pytest.raises(ValueError, match="thickness"):
+        EightBarFlexureParams(thickness=bad)
+
+
+def test_unknown_material_raises():
+    with pytest.raises(ValueError, match="unobtainium"):
+        EightBarFlexureParams(material="unobtainium")
+
+
+def test_scaled_design_scales_every_length(params):
+    micro = params.scaled(1e-3, "silicon_110")
+    assert micro.flexure_width == pytest.approx(params.flexure_width * 1e-3)
+    assert micro.rigid.crank_length == pytest.approx(params.rigid.crank_length * 1e-3)
+    assert micro.material == "silicon_110"
+    # joint rotation per unit displacement scales as 1 / length
+    r0, r1 = joint_rotation_rates(params), joint_rotation_rates(micro)
+    assert r1["A_L"] == pytest.approx(r0["A_L"] * 1e3, rel=1e-6)
+
+
+def test_prbm_is_the_sum_of_flexure_stiffnesses_times_squared_rates(params):
+    prbm = prbm_stiffness(params)
+    # mirror symmetry: left and right joints contribute the same
+    for j in ("O", "A", "B", "C", "P"):
+        assert prbm["joints"][f"{j}_L"] == pytest.approx(prbm["joints"][f"{j}_R"], rel=1e-6)
+    E, t, w, L = 68.9e9, params.thickness, params.flexure_width, params.flexure_length
+    assert flexure_rotational_stiffness(params, "A_L") == pytest.approx(E * t * w ** 3 / 12 / L)
+    assert prbm["k_x"] == pytest.approx(sum(prbm["joints"].values()))
+
+
+def test_mesh_has_groups_and_three_elements_across_the_thinnest_flexure(params):
+    mesh, sizes = mesh_eightbar_flexure(params, size_factor=2.0)
+    assert {"fixed", "end_effector"} <= set(mesh.boundaries)
+    assert {f"flexure_{j}" for j in HOSTS} <= set(mesh.subdomains)
+    assert {"crank_L", "rocker_R", "coupler_L", "end_effector_link"} <= set(mesh.subdomains)
+    thinnest = min(params.flexure_width, params.base_flexure_width)
+    assert sizes["flexure_size"] <= thinnest / 3 * (1 + 1e-9)
+    # the flexure subdomain's area is L * w (structured grid of the rectangle)
+    m = mesh.mesh
+    el = mesh.subdomains["flexure_A_L"]
+    p = m.p[:, m.t[:, el]]
+    area = 0.5 * np.abs((p[0, 1] - p[0, 0]) * (p[1, 2] - p[1, 0]) - (p[0, 2] - p[0, 0]) * (p[1, 1] - p[1, 0]))
+    assert area.sum() == pytest.approx(params.flexure_length * params.flexure_width, rel=1e-9)
+    # every element's vertices across the flexure: at least 3 element layers
+    ys = np.unique(np.round(m.p[1, np.unique(m.t[:, el])], 12))
+    assert len(ys) >= 4
+
+
+def test_travel_larger_than_the_ground_spacing_is_rejected():
+    with pytest.raises(ValueError, match="travel"):
+        EightBarFlexureParams(rigid=replace(EightBarParams(), travel=0.2))
