@@ -295,8 +295,19 @@ def reproduce(out_dir: Path, quick: bool = False) -> dict:
              f"{r['stress_fem_peak_Pa'] / 1e6:.0f} MPa (beam theory {r['stress_beam_Pa'] / 1e6:.0f} MPa), "
              f"safety factor {r['safety_factor_fem']:.2f} (beam theory {r['safety_factor_beam']:.2f})"
              for r in pivot_fem["rows"]]
+    from flexfem.studies.balancing_negative_pivot import negative_pivot_study  # gmsh: only when run
+    negative = negative_pivot_study(out_dir, quick=quick, workspace=ws)
+    tables += negative["tables"]
+    figures += negative["figures"]
+    notes += [f"negative-stiffness leaf, motor {r['motor']}: K {r['stiffness_at_motor_Nm_per_rad']:.3g} N m/rad at "
+              f"the motor (N = {r['transmission_ratio']:g}), L {r['L_m'] * 1e3:.0f} mm, t {r['t_m'] * 1e3:.2f} mm, "
+              f"w {r['w_m'] * 1e3:.0f} mm, preload {r['P_N']:.0f} N; FEM small-angle K "
+              f"{r['fem_stiffness_fem_small_Nm_per_rad']:.4g} N m/rad at the pivot (beam-column "
+              f"{r['fem_stiffness_closed_Nm_per_rad']:.4g}), peak von Mises {r['fem_stress_fem_peak_nodal_Pa'] / 1e6:.0f} MPa, "
+              f"RMS reduction {r['rms_reduction_leaf_fem_pct']:.1f} % (ideal torsion spring "
+              f"{r['rms_reduction_ideal_torsion_pct']:.1f} %)" for r in negative["rows"]]
     return {"comparisons": comparisons, "figures": figures, "tables": tables, "notes": notes,
-            "pivot_fem": pivot_fem["rows"],
+            "pivot_fem": pivot_fem["rows"], "negative_pivot": negative["rows"],
             "n_samples": result["n_samples"], "results": result["results"],
             "beyond_paper": beyond, "pivots": pivots, "sensitivity": sensitivity,
             "workspace": {"y_range_m": [ws.y_min, ws.y_min + ws.size_y],
