@@ -428,13 +428,18 @@ def run(spec: OptimizeSpec, out_dir=None, quick: bool = False) -> dict:
     return result
 
 
-def reproduce(out_dir, quick: bool = False) -> dict:
-    """The default design search (quick: smoke settings) into ``out_dir``, beside the paper's
-    design on the check mesh. Summary: rows, comparisons (none: no source has a search),
-    tables, figures, notes."""
+def reproduce(out_dir, quick: bool = False, full: bool = False) -> dict:
+    """The design search into ``out_dir``, beside the paper's design on the check mesh: the
+    quick search by default, the default search with ``full``, none with ``quick`` (a smoke run
+    of the report has no time for it; ``flexfem optimize dbma`` runs it). Summary: rows,
+    comparisons (none: no source has a search), tables, figures, notes."""
     from flexfem.studies.dbma_optimize_output import summarize, summary_rows, write_rows_csv
+    if quick:
+        return {"comparisons": [], "tables": [], "figures": [],
+                "notes": ["The design search is not run in a --quick report; run "
+                          "`flexfem reproduce` or `flexfem optimize dbma`."]}
     out = Path(out_dir)
-    result = run(OptimizeSpec(), out, quick)
+    result = run(OptimizeSpec(), out, quick=not full)
     p, spec = paper_design(), OptimizeSpec(**result["spec"])
     ev = Evaluations(fem_metrics, spec.stroke_m, out / "optimize_cache.sqlite")
     try:

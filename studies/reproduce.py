@@ -24,6 +24,8 @@ SECTIONS = [
      "flexfem.studies.dbma_figures:reproduce_analytical"),
     ("dbma_fem", "DBMA: FEM amplification ratio, stress, modes and convergence",
      "flexfem.studies.dbma_fem:reproduce"),
+    ("dbma_optimize", "DBMA: FEM-decided hinge design search (beyond the sources)",
+     "flexfem.studies.dbma_optimize:reproduce"),
     ("eightbar_rigid", "Eight-bar and straight-line linkages: rigid-body paths and synthesis",
      "flexfem.studies.eightbar_path:reproduce"),
     ("eightbar_fem", "Eight-bar flexure suspension: FEM, stress and large-deflection path",

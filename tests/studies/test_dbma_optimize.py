@@ -228,3 +228,11 @@ def test_real_fem_quick_search(tmp_path):
     assert r["metrics"]["working_mode"] == 2  # the in-plane working mode, 2nd in 2-D
     rows = history_rows(r)
     assert len(rows) == r["n_fem_evaluations"]
+
+
+def test_report_section_skips_the_search_in_a_quick_report(tmp_path):
+    from flexfem.studies.dbma_optimize import reproduce
+    summary = reproduce(tmp_path, quick=True)
+    assert summary["comparisons"] == [] and summary["figures"] == []
+    assert "flexfem optimize dbma" in summary["notes"][0]
+    assert not any(tmp_path.iterdir())  # nothing computed, nothing written
