@@ -13,7 +13,7 @@ input members, the arms lift output member 4 and lower output member 11 (Eq. 3).
 and lower halves are the two bow-type amplifiers in series: their outputs add between members 4
 and 11. The part is symmetric about x = 0 and y = 0; the actuator lies along y = 0. Lengths in m.
 """
-from dataclasses import dataclass, fields
+from dataclasses import dataclass
 import math
 import numbers
 
@@ -22,6 +22,8 @@ import numpy as np
 from flexfem.fem.gmsh_session import gmsh_session
 from flexfem.fem.mesh import FEMesh, mesh_from_gmsh
 from flexfem.geometry.dbma_params import DBMAParams
+from flexfem.geometry.hinge_profiles import (ARC_ELEMENTS, add_hinge_surface, check_fits,
+                                            check_hinge_profile, profile_area)
 
 MM = 1e-3
 
@@ -35,19 +37,28 @@ class DBMALayout:
     pad_height : height of the input pads, the faces the actuator's end caps push on; 10 mm.
     pad_depth : how far each input pad stands out of its input member toward the actuator;
         2 mm.
+    hinge_profile : "leaf" (default: a sharp-cornered l x b rectangle), "filleted" (the leaf
+        with root fillets of radius hinge_fillet_radius inside the length l) or "circular"
+        (right-circular notch of minimum thickness b, radius l / 2), see
+        :mod:`flexfem.geometry.hinge_profiles`. The paper names no profile.
+    hinge_fillet_radius : root-fillet radius of the "filleted" profile (m); 0.5 mm.
     """
 
     arm_gap: float = 8.0 * MM
     pad_height: float = 10.0 * MM
     pad_depth: float = 2.0 * MM
+    hinge_profile: str = "leaf"
+    hinge_fillet_radius: float = 0.5 * MM
 
     def __post_init__(self):
-        for f in fields(self):
-            value = getattr(self, f.name)
+        for name in ("arm_gap", "pad_height", "pad_depth"):
+            value = getattr(self, name)
             if not (isinstance(value, numbers.Real) and not isinstance(value, bool)
                     and math.isfinite(value) and value > 0):
-                raise ValueError(f"DBMALayout: {f.name} = {value!r} must be a finite number > 0 (m)")
-            object.__setattr__(self, f.name, float(value))
+                raise ValueError(f"DBMALayout: {name} = {value!r} must be a finite number > 0 (m)")
+            object.__setattr__(self, name, float(value))
+        check_hinge_profile(self.hinge_profile, self.hinge_fillet_radius, "DBMALayout")
+        object.__setattr__(self, "hinge_fillet_radius", float(self.hinge_fillet_radius))
 
 
 @dataclass(frozen=True)
@@ -87,6 +98,11 @@ def check_layout(p: DBMAParams, layout: DBMALayout) -> None:
                          f"= {2 * layout.arm_gap!r} m (the pads sit between the inner rows)")
     if not layout.pad_depth < p.e + 2 * p.l:
         raise ValueError(f"DBMALayout: pad_depth = {layout.pad_depth!r} m must be < e + 2 l")
+    if layout.hinge_profile != "leaf":
+        # the profile's end height b + 2 r, offset h / 2 from the arm's centre line, must stay
+        # within the arm's width c (and so within the members, which are wider)
+        check_fits(layout.hinge_profile, p.l, p.b, layout.hinge_fillet_radius, p.c - p.h,
+                   "DBMALayout")
 
 
 def quarter_rects(p: DBMAParams, layout: DBMALayout) -> list[Rect]:
@@ -142,8 +158,14 @@ def dbma_rects(p: DBMAParams, layout: DBMALayout | None = None) -> list[Rect]:
 
 
 def part_area(p: DBMAParams, layout: DBMALayout | None = None) -> float:
-    """In-plane area of the part (m^2): the rectangles do not overlap."""
-    return float(sum((r.x1 - r.x0) * (r.y1 - r.y0) for r in dbma_rects(p, layout)))
+    """In-plane area of the part (m^2): the rectangles do not overlap; a hinge counts its
+    profile's area (the rectangle l x b for the default leaf)."""
+    layout = layout or DBMALayout()
+    if layout.hinge_profile == "leaf":
+        return float(sum((r.x1 - r.x0) * (r.y1 - r.y0) for r in dbma_rects(p, layout)))
+    hinge = profile_area(layout.hinge_profile, p.l, p.b, layout.hinge_fillet_radius)
+    return float(sum((r.x1 - r.x0) * (r.y1 - r.y0) if r.role != "hinge" else hinge
+                     for r in dbma_rects(p, layout)))
 
 
 def part_mass(p: DBMAParams, layout: DBMALayout | None = None) -> float:
@@ -184,13 +206,18 @@ def draw_dbma(gmsh, p: DBMAParams, layout: DBMALayout | None = None, dim: int = 
               layers: int = 2) -> None:
     """Build the DBMA in the open gmsh session (OpenCASCADE): a conforming set of surfaces
     (2-D), extruded by d in ``layers`` structured layers in 3-D, with physical groups 'body'
-    and 'hinges' (dim) and 'input_a', 'input_b', 'input', 'output', 'fixed' (dim - 1)."""
+    and 'hinges' (dim) and 'input_a', 'input_b', 'input', 'output', 'fixed' (dim - 1). The
+    hinges have the layout's ``hinge_profile``."""
     if dim not in (2, 3):
         raise ValueError(f"dim = {dim!r} must be 2 or 3")
     layout = layout or DBMALayout()
     rects = dbma_rects(p, layout)
     occ = gmsh.model.occ
-    tags = [occ.addRectangle(r.x0, r.y0, 0.0, r.x1 - r.x0, r.y1 - r.y0) for r in rects]
+    leaf = layout.hinge_profile == "leaf"  # the rectangles exactly as before the profiles
+    tags = [occ.addRectangle(r.x0, r.y0, 0.0, r.x1 - r.x0, r.y1 - r.y0)
+            if r.role != "hinge" or leaf
+            else add_hinge_surface(occ, r.x0, r.x1, (r.y0 + r.y1) / 2, p.b, layout.hinge_profile,
+                                   layout.hinge_fillet_radius) for r in rects]
     occ.fragment([(2, t) for t in tags[:1]], [(2, t) for t in tags[1:]])
     occ.synchronize()
     if dim == 3:
@@ -235,7 +262,8 @@ def set_mesh_sizes(gmsh, p: DBMAParams, layout: DBMALayout | None = None, dim: i
                    hinge_elements: int = 4, size_factor: float = 1.0) -> dict:
     """Mesh-size fields: element size b / hinge_elements inside and near every hinge (a Box
     field per hinge), growing to the coarse size c / 2 (2-D) or c (3-D) away from them;
-    both scaled by size_factor. Returns {"hinge_size", "coarse_size"} (m)."""
+    both scaled by size_factor; arcs of non-leaf hinge profiles get ARC_ELEMENTS edges per
+    full circle at most. Returns {"hinge_size", "coarse_size"} (m)."""
     check_mesh_options(dim, hinge_elements, size_factor)
     fine = p.b / hinge_elements * size_factor
     coarse = (p.c / 2 if dim == 2 else p.c) * size_factor
@@ -256,6 +284,10 @@ def set_mesh_sizes(gmsh, p: DBMAParams, layout: DBMALayout | None = None, dim: i
     for key in ("Mesh.MeshSizeExtendFromBoundary", "Mesh.MeshSizeFromPoints",
                 "Mesh.MeshSizeFromCurvature"):
         gmsh.option.setNumber(key, 0)
+    if layout is not None and layout.hinge_profile != "leaf":
+        # arcs of notch and fillet: at most 10 degrees an element edge (chord sag < 0.4 % of
+        # the radius), on top of the size fields
+        gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", ARC_ELEMENTS)
     return {"hinge_size": fine, "coarse_size": coarse}
 
 

@@ -213,10 +213,11 @@ def comparison_rows(result: dict) -> list[dict]:
 
 
 def convergence_study(p: DBMAParams, size_factors=(2.83, 2.0, 1.41, 1.0),
-                      tol: float = 0.01) -> dict:
+                      tol: float = 0.01, out_dir=None) -> dict:
     """Mesh convergence (2-D) of R_fem and the working-mode frequency: observed order,
-    Richardson-extrapolated value, coarsest size_factor within ``tol`` of it."""
-    from flexfem.studies.convergence import converge
+    Richardson-extrapolated value, coarsest size_factor within ``tol`` of it; with ``out_dir``
+    a log-log plot per metric, dbma_convergence_<metric>.png."""
+    from flexfem.studies.convergence import converge, plot_convergence
 
     values = {f.name: getattr(p, f.name) for f in dataclasses.fields(p)}
     outputs = {}
@@ -235,6 +236,8 @@ def convergence_study(p: DBMAParams, size_factors=(2.83, 2.0, 1.41, 1.0),
                          "dofs": r.dofs, "order": r.order, "extrapolated": r.extrapolated,
                          "gci": r.gci, "behaviour": r.behaviour,
                          "recommended_size_factor": None if best is None else size_factors[best]}
+        if out_dir is not None:
+            plot_convergence(r, Path(out_dir) / f"dbma_convergence_{metric}.png")
     return study
 
 
@@ -379,11 +382,23 @@ def reproduce(out_dir, quick: bool = False) -> dict:
                "max_von_mises": result["max_von_mises"], "safety_factor": result["safety_factor"],
                "k_in": result["k_in"]}
     if not quick:
-        conv = convergence_study(p)
+        conv = convergence_study(p, out_dir=out)
         conv_rows = [{"metric": m, "size_factor": f, "value": v, "dofs": d}
                      for m, c in conv.items() for f, v, d in zip(c["size_factors"], c["values"],
                                                                   c["dofs"])]
         tables.append(write_csv(conv_rows, out / "dbma_convergence.csv").name)
+        figures += [f"dbma_convergence_{m}.png" for m in conv]
         summary["convergence"] = conv
+        summary["notes"] = [
+            f"mesh convergence (2-D, size_factor {', '.join(map(str, c['size_factors']))}) of "
+            f"{m}: {', '.join(f'{v:.5g}' for v in c['values'])}; observed order {c['order']:.2f} "
+            f"({c['behaviour']}), Richardson {c['extrapolated']:.5g}, recommended size_factor "
+            f"{c['recommended_size_factor']}" for m, c in conv.items()]
+    from flexfem.studies.dbma_hinges import hinge_profile_study  # hinge-profile sensitivity
+    hinges = hinge_profile_study(out, quick=quick)
+    tables += hinges["tables"]
+    figures += hinges["figures"]
+    summary["hinge_profiles"] = hinges["rows"]
+    summary.setdefault("notes", []).extend(hinges.get("notes", []))
     summary["wall_time_s"] = time.perf_counter() - start
     return summary

@@ -37,6 +37,10 @@ def _read_csv(path: Path) -> list[list[str]]:
         return list(csv.reader(f))
 
 
+def _is_image(name: str) -> bool:
+    return Path(name).suffix.lower() in (".png", ".jpg", ".jpeg", ".svg")
+
+
 def _markdown_table(header, rows) -> str:
     lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
     lines += ["| " + " | ".join(_fmt(c) for c in row) + " |" for row in rows]
@@ -60,7 +64,8 @@ def render_markdown(report: dict) -> str:
             continue
         out += [f"- {note}" for note in s.get("notes", [])] + [""]
         for name in s.get("figures", []):
-            out += [f"![{name}]({s['section']}/{name})", ""]
+            link = f"[{name}]({s['section']}/{name})"
+            out += [f"!{link}" if _is_image(name) else f"Field file {link}", ""]
         for name in s.get("tables", []):
             out += [f"Table [{name}]({s['section']}/{name})", ""]
     return "\n".join(out)
@@ -111,7 +116,11 @@ def render_html(report: dict, out: Path) -> str:
             continue
         parts += [f"<p>{html.escape(note)}</p>" for note in s.get("notes", [])]
         for name in s.get("figures", []):
-            parts.append(f"<figure><img src='{s['section']}/{html.escape(name)}' alt='{html.escape(name)}'>"
+            src = f"{s['section']}/{html.escape(name)}"
+            if not _is_image(name):  # e.g. a VTU field for ParaView: a link, not an <img>
+                parts.append(f"<p>Field file: <a href='{src}'>{html.escape(name)}</a></p>")
+                continue
+            parts.append(f"<figure><img src='{src}' alt='{html.escape(name)}'>"
                          f"<figcaption>{html.escape(name)}</figcaption></figure>")
         for name in s.get("tables", []):
             path = out / s["section"] / name
