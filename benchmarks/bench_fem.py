@@ -3,6 +3,7 @@ first 6 modes of a cantilever, with peak memory. Not a test: prints a table (and
 
     .venv/bin/python benchmarks/bench_fem.py                 # all rows (~15 min on 2 cores)
     .venv/bin/python benchmarks/bench_fem.py --sizes small   # smallest 2-D and 3-D rows
+    .venv/bin/python benchmarks/bench_fem.py --case 3d-300k --program calculix  # one JSON line
 
 Each (row, program) runs in its own subprocess so that its peak resident memory is measured
 cleanly: flexfem's from ``getrusage(RUSAGE_SELF)`` of that process, CalculiX's from
@@ -193,7 +194,11 @@ def main(argv=None) -> int:
         limit = int(args.mem_gb * 2**30)
         resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
         fn = run_flexfem if args.program == "flexfem" else lambda r: run_calculix(r, args.threads)
-        print(json.dumps(fn(args.case)))
+        before = os.getloadavg()[0]
+        out = fn(args.case)
+        # 1-minute load average before and after: above the core count, times are inflated
+        out["load_avg"] = [round(before, 2), round(os.getloadavg()[0], 2)]
+        print(json.dumps(out))
         return 0
     rows = args.rows or (SMALL if args.sizes == "small" else list(ROWS))
     results = []

@@ -13,13 +13,18 @@ import skfem
 
 from flexfem.fem.gmsh_session import gmsh_session
 
-# gmsh element type -> (skfem mesh class, number of corner nodes)
+# gmsh element type -> (skfem mesh class, number of corner nodes). Higher-order types (9 and
+# 11: 6/10-node simplices; 10 and 16: 9/8-node quadrangles; 12 and 17: 27/20-node hexahedra)
+# list their corners first and are read by them.
 _GMSH_CELLS = {
     2: (skfem.MeshTri, 3), 9: (skfem.MeshTri, 3),
-    3: (skfem.MeshQuad, 4), 10: (skfem.MeshQuad, 4),
+    3: (skfem.MeshQuad, 4), 10: (skfem.MeshQuad, 4), 16: (skfem.MeshQuad, 4),
     4: (skfem.MeshTet, 4), 11: (skfem.MeshTet, 4),
-    5: (skfem.MeshHex, 8), 12: (skfem.MeshHex, 8),
+    5: (skfem.MeshHex, 8), 12: (skfem.MeshHex, 8), 17: (skfem.MeshHex, 8),
 }
+# gmsh facet (boundary element) type -> number of corner nodes: lines (1, 8), triangles (2, 9),
+# quadrangles (3, 10, 16)
+_GMSH_FACET_CORNERS = {1: 2, 8: 2, 2: 3, 9: 3, 3: 4, 10: 4, 16: 4}
 # gmsh's (= VTK's) hexahedron vertex order -> skfem's (skfem.io.meshio.HEX_MAPPING)
 _HEX_FROM_GMSH = [0, 4, 3, 1, 7, 5, 2, 6]
 
@@ -192,7 +197,10 @@ def mesh_from_gmsh(gmsh) -> FEMesh:
             for entity in gmsh.model.getEntitiesForPhysicalGroup(gdim, tag):
                 ftypes, _, fnodes = gmsh.model.mesh.getElements(gdim, entity)
                 for ftype, fn in zip(ftypes, fnodes):
-                    n_corner_f = {1: 2, 8: 2, 2: 3, 9: 3, 3: 4, 10: 4}[int(ftype)]
+                    if int(ftype) not in _GMSH_FACET_CORNERS:
+                        raise ValueError(f"boundary group {name!r}: unsupported gmsh facet "
+                                         f"element type {int(ftype)}")
+                    n_corner_f = _GMSH_FACET_CORNERS[int(ftype)]
                     n_per_f = gmsh.model.mesh.getElementProperties(int(ftype))[3]
                     nodes.append(np.asarray(fn, dtype=np.int64).reshape(-1, n_per_f)[:, :n_corner_f])
             if nodes:

@@ -63,9 +63,12 @@ def solve_modes(model: Model, n: int = 6, supports=(), shift_hz: float | None = 
         sigma = -1e-6 * float(K.diagonal().mean() / M.diagonal().mean())
     else:
         sigma = (2 * np.pi * shift_hz) ** 2 * np.sign(shift_hz)
-    solve = linsolve.factorize((K - sigma * M).tocsr())
-    op = spla.LinearOperator(K.shape, matvec=solve, dtype=float)
-    eigvals, vectors = spla.eigsh(K, k=n, M=M, sigma=sigma, which="LM", OPinv=op, tol=1e-10)
+    # one factorization of K - sigma M for every Lanczos step; SPD for sigma < 0 (Cholesky),
+    # indefinite for a positive shift
+    kind = "spd" if sigma < 0 else "symmetric"
+    with linsolve.factorize((K - sigma * M).tocsr(), kind=kind) as solve:
+        op = spla.LinearOperator(K.shape, matvec=solve, matmat=solve, dtype=float)
+        eigvals, vectors = spla.eigsh(K, k=n, M=M, sigma=sigma, which="LM", OPinv=op, tol=1e-10)
     order = np.argsort(eigvals)
     eigvals, vectors = eigvals[order], vectors[:, order]
     # normalise phi.M.phi = 1 exactly (eigsh returns M-orthonormal vectors up to its tolerance)

@@ -64,3 +64,49 @@ def test_missing_file_and_empty_model():
         gmsh.model.occ.synchronize()
         with pytest.raises(ValueError, match="no mesh"):
             mesh_from_gmsh(gmsh)
+
+
+def _serendipity_box(dim, order2):
+    """Transfinite recombined unit square (dim 2) or cube (dim 3), groups fixed (x = 0)/body;
+    with ``order2`` set to gmsh's incomplete second order: 8-node quadrangles (type 16) and
+    20-node hexahedra (type 17). Returns (FEMesh, gmsh element types of the cells)."""
+    with gmsh_session() as gmsh:
+        if dim == 2:
+            e = gmsh.model.occ.addRectangle(0, 0, 0, 1.0, 0.5)
+        else:
+            e = gmsh.model.occ.addBox(0, 0, 0, 1.0, 0.5, 0.5)
+        gmsh.model.occ.synchronize()
+        gmsh.model.addPhysicalGroup(dim, [e], name="body")
+        for _, tag in gmsh.model.getBoundary([(dim, e)], oriented=False):
+            if np.isclose(gmsh.model.occ.getCenterOfMass(dim - 1, tag)[0], 0.0):
+                gmsh.model.addPhysicalGroup(dim - 1, [tag], name="fixed")
+        for _, tag in gmsh.model.getEntities(1):
+            gmsh.model.mesh.setTransfiniteCurve(tag, 4)
+        for _, tag in gmsh.model.getEntities(2):
+            gmsh.model.mesh.setTransfiniteSurface(tag)
+            gmsh.model.mesh.setRecombine(2, tag)
+        if dim == 3:
+            gmsh.model.mesh.setTransfiniteVolume(e)
+        gmsh.model.mesh.generate(dim)
+        if order2:
+            gmsh.option.setNumber("Mesh.SecondOrderIncomplete", 1)
+            gmsh.model.mesh.setOrder(2)
+        types = list(gmsh.model.mesh.getElementTypes(dim))
+        return mesh_from_gmsh(gmsh), types
+
+
+@pytest.mark.parametrize("dim, gmsh_type, cell", [(2, 16, skfem.MeshQuad), (3, 17, skfem.MeshHex)])
+def test_serendipity_cells_are_read_by_their_corners(dim, gmsh_type, cell):
+    quadratic, types = _serendipity_box(dim, order2=True)
+    assert types == [gmsh_type]
+    linear, _ = _serendipity_box(dim, order2=False)
+    assert isinstance(quadratic.mesh, cell)
+    # the same corners and cells as the first-order mesh of the same geometry
+    assert np.allclose(quadratic.mesh.p, linear.mesh.p)
+    assert np.array_equal(quadratic.mesh.t, linear.mesh.t)
+    assert np.array_equal(quadratic.facets("fixed"), linear.facets("fixed"))
+    # positive Jacobians: the cells add up to the area / volume (vertex order is skfem's)
+    element = skfem.ElementQuad1() if dim == 2 else skfem.ElementHex1()
+    assert np.isclose(skfem.Basis(quadratic.mesh, element).dx.sum(), 0.5 if dim == 2 else 0.25)
+    assert np.allclose(quadratic.mesh.p[0, quadratic.nodes("fixed")], 0.0)
+    assert len(quadratic.facets("fixed")) == (9 if dim == 3 else 3)  # 3 x 3 faces, 3 edges
