@@ -223,10 +223,10 @@ def reproduce(out_dir, quick: bool = False, full: bool = False) -> dict:
                           "flexure_length": params.flexure_length,
                           "flexure_width": params.flexure_width, "thickness": params.thickness,
                           "material": params.material}}
-    try:
-        from flexfem.studies.driving_linkage_study import driving_linkage_section
-        summary["driving_linkage"] = driving_linkage_section(out_dir, quick=quick)
-        summary["figures"] += summary["driving_linkage"].get("figures", [])
-    except ImportError:
-        pass
+    from flexfem.studies.eightbar_driving import driving_study  # Chapter 6
+    driving = driving_study(out_dir / "driving", quick=quick)
+    summary["comparisons"] = summary["rows"] = rows + driving["comparisons"]
+    summary["notes"] = driving.get("notes", [])
+    summary["tables"] += [f"driving/{t}" for t in driving["tables"]]
+    summary["figures"] += [f"driving/{f}" for f in driving["figures"]]
     return summary
