@@ -286,16 +286,9 @@ class _Problem:
 
 
 def _solve_direct(A, b) -> np.ndarray:
-    """Direct solve through pypardiso's shared solver where installed (building a new
-    PyPardisoSolver per call, as linsolve.factorize does, searches for the MKL library:
-    about 0.8 s a call), else :func:`linsolve.solve_direct`."""
-    try:
-        import pypardiso
-    except ImportError:
-        return linsolve.solve_direct(A, b)
-    A = sp.csr_matrix(A)
-    A.sort_indices()
-    return pypardiso.spsolve(A, np.asarray(b, dtype=float))
+    """Direct solve of a Newton step: the tangent is symmetric but need not be positive
+    definite (a compressed or buckling flexure), so the symmetric indefinite factorization."""
+    return linsolve.solve_direct(A, np.asarray(b, dtype=float), kind="symmetric")
 
 
 def _newton(problem, z, lam_old, lam, max_iterations, tol, guess=None):

@@ -429,17 +429,17 @@ def run(spec: OptimizeSpec, out_dir=None, quick: bool = False) -> dict:
 
 
 def reproduce(out_dir, quick: bool = False, full: bool = False) -> dict:
-    """The design search into ``out_dir``, beside the paper's design on the check mesh: the
-    quick search by default, the default search with ``full``, none with ``quick`` (a smoke run
-    of the report has no time for it; ``flexfem optimize dbma`` runs it). Summary: rows,
-    comparisons (none: no source has a search), tables, figures, notes."""
+    """The default design search into ``out_dir``, beside the paper's design on the check
+    mesh; none with ``quick`` (a smoke run of the report has no time for it; ``flexfem optimize
+    dbma`` runs it); ``full`` changes nothing. Summary: rows, comparisons (none: no source has
+    a search), tables, figures, notes."""
     from flexfem.studies.dbma_optimize_output import summarize, summary_rows, write_rows_csv
     if quick:
         return {"comparisons": [], "tables": [], "figures": [],
                 "notes": ["The design search is not run in a --quick report; run "
                           "`flexfem reproduce` or `flexfem optimize dbma`."]}
     out = Path(out_dir)
-    result = run(OptimizeSpec(), out, quick=not full)
+    result = run(OptimizeSpec(), out)
     p, spec = paper_design(), OptimizeSpec(**result["spec"])
     ev = Evaluations(fem_metrics, spec.stroke_m, out / "optimize_cache.sqlite")
     try:

@@ -55,8 +55,6 @@ def test_elastica_reference_matches_published():
 def test_small_load_reproduces_linear_solve():
     # tip deflection delta = 1e-4 l: the first geometric correction is the axial shortening,
     # of order delta^2 / l, i.e. relative order delta / l = 1e-4 beside the deflection.
-    # (L / H = 10 here: on the L / H = 50 beam solve_static's own residual check, rtol 1e-8,
-    # rejects pypardiso's solution, see docs/nonlinear.md)
     length = 0.2
     beam = Model(beam_mesh(20, 2, length, H), STEEL, PlaneStress(T), order=2)
     P = 1e-4 * 3 * EI / length ** 2
