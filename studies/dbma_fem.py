@@ -358,12 +358,9 @@ def reproduce(out_dir, quick: bool = False) -> dict:
     tables.append(write_csv(mode_rows, out / "dbma_modes.csv").name)
     figures = [dbma_outline_figure(p, None, out / "dbma_outline.png").name,
                plot_mode_shapes(modes, out / "dbma_modes.png").name]
-    try:
-        from flexfem.fem.export import write_result
-        write_result(modes, out / "dbma_modes.vtu")
-        figures.append("dbma_modes.vtu")
-    except (ImportError, ValueError):
-        pass
+    from flexfem.fem.export import write_result
+    write_result(modes, out / "dbma_modes.vtu")
+    figures.append("dbma_modes.vtu")
     forces = [200.0, 800.0] if quick else [200.0, 400.0, 600.0, 800.0]
     lin = load_linearity(p, forces, 2.0 if quick else 1.0)
     tables.append(write_csv(lin, out / "dbma_fig14_linearity.csv").name)
