@@ -5,7 +5,6 @@ model is in balancing_gravity, the optimal balancers in balancing_optimum and th
 pivots in balancing_pivots; this module runs them over the workspace and compares with the
 paper (docs/balancing.md).
 """
-import csv
 from pathlib import Path
 
 import numpy as np
@@ -17,6 +16,7 @@ from flexfem.studies.balancing_optimum import (
     optimal_spring, optimal_spring_and_torsion, optimal_torsion_spring, rms_reduction_pct)
 from flexfem.studies.balancing_pivots import (
     flexure_material, negative_stiffness_preload, size_flexure_pivot)
+from flexfem.studies.tables import write_rows
 
 METHODS = {"spring": optimal_spring, "torsion": optimal_torsion_spring,
            "counterweight": optimal_counterweight}
@@ -209,15 +209,6 @@ def comparison_rows(result: dict) -> list:
     return rows
 
 
-def _write_csv(path: Path, rows: list):
-    keys = list(rows[0])
-    with open(path, "w", newline="") as f:
-        writer = csv.DictWriter(f, fieldnames=keys)
-        writer.writeheader()
-        for row in rows:
-            writer.writerow({k: row.get(k) for k in keys})
-
-
 def _flat(d: dict, prefix="") -> dict:
     out = {}
     for k, v in d.items():
@@ -272,16 +263,16 @@ def reproduce(out_dir: Path, quick: bool = False) -> dict:
     tables, figures = [], []
     for method in METHODS:
         name = f"balancing_{PAPER_TABLES[method]}.csv"
-        _write_csv(out_dir / name, [r for r in comparisons if f" {method}" in r["quantity"]])
+        write_rows(out_dir / name, [r for r in comparisons if f" {method}" in r["quantity"]])
         tables.append(name)
     beyond = beyond_paper(ws)
-    _write_csv(out_dir / "balancing_beyond_paper.csv", [_flat(r) for r in beyond])
+    write_rows(out_dir / "balancing_beyond_paper.csv", [_flat(r) for r in beyond])
     pivots = pivot_designs(ws)
     pivot_rows = [_flat(r) for r in pivots]
     keys = ["motor"] + sorted({k for r in pivot_rows for k in r} - {"motor"})
-    _write_csv(out_dir / "balancing_pivots.csv", [{k: r.get(k) for k in keys} for r in pivot_rows])
+    write_rows(out_dir / "balancing_pivots.csv", pivot_rows, keys)
     sensitivity = sensitivity_rows(quick)
-    _write_csv(out_dir / "balancing_sensitivity.csv", sensitivity)
+    write_rows(out_dir / "balancing_sensitivity.csv", sensitivity)
     tables += ["balancing_beyond_paper.csv", "balancing_pivots.csv", "balancing_sensitivity.csv"]
     plot_torques_zero_orientation(out_dir / "balancing_fig10.png", ws, result)
     figures.append("balancing_fig10.png")

@@ -34,7 +34,6 @@ Sizing. The leaf's volume for a given |K| and rotation at a given stress grows l
 (k L / sin k L)^2 / |k L cot k L| = 2 k L / |sin 2 k L|, least at k L = 3 pi / 4 (4.71 times a
 pure-bending leaf of the same |K|): the default. SI units throughout.
 """
-import csv
 from dataclasses import dataclass
 import math
 from pathlib import Path
@@ -44,6 +43,7 @@ from scipy.integrate import solve_bvp, solve_ivp
 from scipy.optimize import brentq
 
 from flexfem.studies.balancing_pivots import FlexureMaterial
+from flexfem.studies.tables import write_rows
 
 KL_DEFAULT = 0.75 * math.pi
 
@@ -442,10 +442,7 @@ def negative_pivot_study(out_dir, quick: bool = False, workspace=None) -> dict:
         rows.append(row)
     table = "balancing_negative_pivot.csv"
     keys = [k for k in rows[0] if not k.startswith(("curve", "fem_curve", "fem_newton"))]
-    with open(out_dir / table, "w", newline="") as f:
-        writer = csv.DictWriter(f, fieldnames=keys, extrasaction="ignore")
-        writer.writeheader()
-        writer.writerows(rows)
+    write_rows(out_dir / table, rows, keys)
     figure = "balancing_negative_pivot.png"
     plot_negative_pivots(out_dir / figure, rows)
     return {"rows": rows, "tables": [table], "figures": [figure]}

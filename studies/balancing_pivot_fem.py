@@ -23,7 +23,6 @@ free. Stress: von Mises at theta_max, nodal (L2-projected) and element maximum (
 points), over the whole leaf and over its middle part (more than t from either end, away from
 the clamps' boundary layers), beside E t theta / (2 L). SI units throughout.
 """
-import csv
 import math
 from pathlib import Path
 
@@ -39,6 +38,7 @@ from flexfem.fem.static import nodal_average
 from flexfem.geometry.flexure_pivot import PivotGeometry, mesh_pivot
 from flexfem.studies.balancing_pivots import (
     FlexurePivot, flexure_material, leaf_bending_stress, pivot_stiffness_beam_theory)
+from flexfem.studies.tables import write_rows
 
 FORMULATIONS = ("plane_stress", "plane_strain")
 
@@ -221,10 +221,7 @@ def pivot_fem_study(out_dir, quick: bool = False, workspace=None) -> dict:
                          "transmission_ratio": pivot.transmission_ratio, **check})
     table = "balancing_pivot_fem.csv"
     keys = [k for k in rows[0] if not k.startswith("curve") and k != "newton_iterations"]
-    with open(out_dir / table, "w", newline="") as f:
-        writer = csv.DictWriter(f, fieldnames=keys, extrasaction="ignore")
-        writer.writeheader()
-        writer.writerows(rows)
+    write_rows(out_dir / table, rows, keys)
     figure = "balancing_pivot_fem.png"
     plot_moment_rotation(out_dir / figure, rows)
     return {"rows": rows, "tables": [table], "figures": [figure]}

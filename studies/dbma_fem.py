@@ -8,7 +8,6 @@ test's "input displacement" take (docs/dbma.md). Modal: held on the
 mounting face, with the actuator, axially ~10x stiffer than the DBMA's input stiffness, holding
 the pads along x (docs/dbma.md). Forces in N, lengths in m, stresses in Pa, frequencies in Hz.
 """
-import csv
 import dataclasses
 import math
 from pathlib import Path
@@ -22,6 +21,7 @@ from flexfem.fem import (Fixed, Force, Material, Model, PlaneStress, Prescribed,
 from flexfem.geometry.dbma import DBMALayout, dbma_outline_figure, mesh_dbma, part_mass
 from flexfem.geometry.dbma_params import DBMAParams, paper_design
 from flexfem.studies.dbma_figures import analytical_metrics
+from flexfem.studies.tables import write_rows
 
 OUTPUT_AXIS = 1  # the output moves along y
 
@@ -174,11 +174,8 @@ def fig13_sweep(p: DBMAParams, b_values, h_values, size_factor: float = 1.0) -> 
 
 
 def write_csv(rows: list[dict], path: Path) -> Path:
-    with open(path, "w", newline="") as fh:
-        writer = csv.DictWriter(fh, fieldnames=list(rows[0]))
-        writer.writeheader()
-        writer.writerows(rows)
-    return path
+    """``rows`` to the CSV file ``path`` (see :func:`flexfem.studies.tables.write_rows`)."""
+    return write_rows(path, rows)
 
 
 def rel_diff(value: float, reference: float) -> float:

@@ -9,7 +9,6 @@ the leaf's l / (E I), and the rigid-arm ratio R = 2 (e + l) h / (h^2 + 4 C_a / C
 hinge's axial (C_a) and rotational (C_r) compliances (docs/dbma-analytical.md derives it for
 the leaf, where 4 C_a / C_r = b^2 / 3). SI units: m, N, Pa, Hz.
 """
-import dataclasses
 import math
 from pathlib import Path
 import time

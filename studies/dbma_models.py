@@ -58,7 +58,7 @@ def equivalent_stiffness(p: DBMAParams) -> float:
 
     Ke = E b^3 d (e + 2 l) / (32 b^2 l^2 + 16 e b^2 l + 6 h^2 l^2 + 32 l^4 + 16 e l^3).
     """
-    b, d, e, h, l = p.b, p.d, p.e, p.h, p.l
+    b, d, e, l = p.b, p.d, p.e, p.l
     return p.E * b**3 * d * (e + 2 * l) / _ke_denominator(p)
 
 

@@ -3,7 +3,6 @@
 Thesis: Y. Liu, Flexure Design for Eight-Bar Rectilinear Motion Mechanism, UC Irvine 2015
 (data/eightbar_thesis.toml). Lengths in m, angles in rad.
 """
-import csv
 from dataclasses import replace
 from pathlib import Path
 
@@ -17,6 +16,7 @@ from flexfem.geometry.straight_line import (CLASSIC_LINKAGES, straight_line_devi
                                             trace_straight_line)
 from flexfem.geometry.synthesis import (ThreeRChain, eightbar_constraint_synthesis,
                                         planar_transform, rr_dyad_synthesis, three_r_link_poses)
+from flexfem.studies.tables import write_rows
 
 MM = 1e-3
 
@@ -133,13 +133,6 @@ def _left_chain(pts, task1):
     raise ValueError("no elbow branch of the 3R chain reproduces the drawn pose")
 
 
-def _write_csv(path: Path, rows: list):
-    with open(path, "w", newline="") as f:
-        writer = csv.DictWriter(f, fieldnames=list(rows[0]))
-        writer.writeheader()
-        writer.writerows(rows)
-
-
 def plot_path_vs_appendix_a(tr, out: Path) -> Path:
     """PNG: our end-effector's deviation across its line beside Table A.1's (shapes compare)."""
     import matplotlib
@@ -204,7 +197,7 @@ def reproduce(out_dir: Path, quick: bool = False) -> dict:
     out_dir.mkdir(parents=True, exist_ok=True)
     n = 41 if quick else 201
     classic = classic_linkage_deviations(n)
-    _write_csv(out_dir / "straight_line_linkages.csv", classic)
+    write_rows(out_dir / "straight_line_linkages.csv", classic)
 
     targets = thesis_targets()
     params = replace(EightBarParams(), travel=targets["travel_m"])
@@ -212,7 +205,7 @@ def reproduce(out_dir: Path, quick: bool = False) -> dict:
     summary = eightbar_path_summary(params, 51 if quick else 251)
     thesis = straight_line_deviation(appendix_a_points())
     table_band = float(np.ptp(appendix_a_points()[:, 1]))
-    _write_csv(out_dir / "eightbar_path.csv",
+    write_rows(out_dir / "eightbar_path.csv",
                [{"displacement_m": float(s), "x_m": float(x), "y_m": float(y), "rotation_rad": float(r)}
                 for s, (x, y), r in zip(tr.displacements, tr.points, tr.rotation)])
     figures = [plot_path_vs_appendix_a(tr, out_dir / "eightbar_path_vs_appendix_a.png").name,
