@@ -25,9 +25,12 @@ from flexfem.fem.materials import material as material_named
 from flexfem.geometry.eightbar_rigid import (BASE_JOINTS, EightBarParams, build_eightbar,
                                              eightbar_joints, eightbar_points)
 from flexfem.geometry.flexure_linkage import FlexureLayout, flexure_layout, mesh_layout, polygon_distance
+from flexfem.geometry.flexure_roots import check_root_fillet_radius
 from flexfem.geometry.linkage import trace_from_reference
 
 THESIS_TRAVEL = 33.1e-3  # m, data/eightbar_thesis.toml [design_targets] travel_mm
+# m, our choice (docs/eightbar.md, "Flexure suspension (FEM)"): see the module docstring
+DEFAULT_ROOT_FILLET_RADIUS = 0.3e-3
 
 
 def _thesis_rigid() -> EightBarParams:
@@ -53,6 +56,7 @@ class EightBarFlexureParams:
     flexure_width: float = 0.3e-3
     thickness: float = 6e-3
     material: str = "aluminium_6061_t6"
+    root_fillet_radius: float = DEFAULT_ROOT_FILLET_RADIUS
 
     def __post_init__(self):
         if not isinstance(self.rigid, EightBarParams):
@@ -72,7 +76,9 @@ class EightBarFlexureParams:
             if not getattr(self, name) > getattr(self, name.replace("length", "width")):
                 raise ValueError(f"{name} = {getattr(self, name)} m, must be > its width (a beam "
                                  "flexure is long and thin)")
-        eightbar_layout(self)  # raises if a flexure is longer than its link segment allows
+        layout = eightbar_layout(self)  # raises if a flexure is too long for its link segment
+        object.__setattr__(self, "root_fillet_radius", check_root_fillet_radius(
+            self.root_fillet_radius, layout.parts, self.link_width))
         touching = flexure_contacts(self)
         if touching:
             first = touching[0]
@@ -96,6 +102,7 @@ class EightBarFlexureParams:
         rigid = replace(self.rigid, **{f.name: getattr(self.rigid, f.name) * factor
                                        for f in fields(self.rigid)})
         return replace(self, rigid=rigid, material=material or self.material,
+                       root_fillet_radius=self.root_fillet_radius * factor,
                        **{name: getattr(self, name) * factor for name in _LENGTHS})
 
 
@@ -199,7 +206,8 @@ def mesh_eightbar_flexure(params: EightBarFlexureParams, n_across: int = 3,
     n = max(int(n_across), int(math.ceil(3 / size_factor)))
     return mesh_layout(eightbar_layout(params), n_across=n,
                        aspect=min(20.0, max(0.5, aspect * size_factor)),
-                       coarse=params.link_width / 2 * size_factor, name="eightbar_flexure")
+                       coarse=params.link_width / 2 * size_factor, name="eightbar_flexure",
+                       root_fillet_radius=params.root_fillet_radius)
 
 
 def joint_rotation_rates(params: EightBarFlexureParams, step: float | None = None) -> dict:
@@ -253,3 +261,53 @@ def prbm_peak_stress(params: EightBarFlexureParams, displacement: float) -> dict
     phi = joint_rotations(params, displacement)
     return {j: E * params.flexure_size(j)[1] * abs(p) / (2 * params.flexure_size(j)[0])
             for j, p in phi.items()}
+
+
+def prbm_flexure_loads(params: EightBarFlexureParams, displacement: float) -> dict:
+    """Loads in each flexure of the pseudo-rigid-body model at end-effector displacement
+    ``displacement`` (m) from the middle, linear (small rotations, drawn pose): rigid links,
+    pivots at the flexure centres with springs k_j = E I / L, the end-effector pushed along x.
+
+    The equilibrium of the seven moving links (3 equations each) gives the 10 joint forces and
+    the drive force (21 unknowns). A flexure carries its spring moment M_j = k_j phi_j plus the
+    joint force's component across it, the shear V, whose moment grows to V L / 2 at each end;
+    the component along it, N, is axial. Returns {joint: {"moment_nm", "shear_n", "axial_n",
+    "end_moment_nm" = |M| + |V| L / 2, "bending_stress_pa" = 6 |M| / (t w^2),
+    "root_stress_pa" = 6 end_moment / (t w^2) + |N| / (t w)}} and "drive_force_n" (N)."""
+    linkage = build_eightbar(params.rigid)
+    geo = eightbar_joints(params.rigid, 0.0)
+    layout = eightbar_layout(params)
+    axis = {fj.name: np.asarray(fj.direction) for fj in layout.joints}
+    position = {j["name"]: np.asarray(j["position"]) for j in geo["joints"]}
+    phi = {j: r * displacement for j, r in joint_rotation_rates(params).items()}
+    moving = list(linkage.moving_links)
+    row = {name: 3 * i for i, name in enumerate(moving)}
+    joints = list(linkage.joints)
+    n = 2 * len(joints) + 1
+    A, b = np.zeros((3 * len(moving), n)), np.zeros(3 * len(moving))
+    for k, j in enumerate(joints):
+        p = position[j.point]
+        M = flexure_rotational_stiffness(params, j.point) * phi[j.point]
+        for link, sign in zip(j.links, (1.0, -1.0)):  # force f on links[0], -f on links[1]
+            if link not in row:
+                continue
+            i = row[link]
+            A[i, 2 * k], A[i + 1, 2 * k + 1] = sign, sign
+            A[i + 2, 2 * k], A[i + 2, 2 * k + 1] = -sign * p[1], sign * p[0]
+            b[i + 2] -= -sign * M  # spring moment -k phi on links[0], +k phi on links[1]
+    e = end_effector_point(params)
+    ee = next(name for name in moving if "end_effector" in name)
+    A[row[ee], -1], A[row[ee] + 2, -1] = 1.0, -e[1]  # drive force (F, 0) at the face
+    sol = np.linalg.solve(A, b)
+    t, out = params.thickness, {}
+    for k, j in enumerate(joints):
+        f = sol[2 * k: 2 * k + 2]
+        d = axis[j.point]
+        L, w = params.flexure_size(j.point)
+        M = flexure_rotational_stiffness(params, j.point) * phi[j.point]
+        V, N = float(f @ np.array([-d[1], d[0]])), float(f @ d)
+        end = abs(M) + abs(V) * L / 2
+        out[j.point] = {"moment_nm": float(M), "shear_n": V, "axial_n": N, "end_moment_nm": end,
+                        "bending_stress_pa": 6 * abs(M) / (t * w ** 2),
+                        "root_stress_pa": 6 * end / (t * w ** 2) + abs(N) / (t * w)}
+    return {"joints": out, "drive_force_n": float(sol[-1])}

@@ -15,7 +15,8 @@ Everything here is plain geometry in m (:class:`FlexureLayout`, a list of rectan
 structured grid of ``n_across`` x (L / h_along) quadratic-ready triangles and grades the links
 from the flexure size to a coarse size, and returns a :class:`~flexfem.fem.mesh.FEMesh` with
 subdomains (each link, "flexure_<joint>", "links", "flexures", "body") and boundaries
-("fixed" and the caller's named edges).
+("fixed" and the caller's named edges). ``root_fillet_radius`` (default 0: sharp corners) adds
+quarter-circle root fillets (:mod:`flexfem.geometry.flexure_roots`).
 """
 from dataclasses import dataclass, field
 import math
@@ -24,6 +25,8 @@ import numpy as np
 
 from flexfem.fem.gmsh_session import gmsh_session
 from flexfem.fem.mesh import FEMesh, mesh_from_gmsh
+from flexfem.geometry.flexure_roots import (check_root_fillet_radius, draw_filleted_flexure,
+                                            root_zone_depth)
 
 
 @dataclass(frozen=True)
@@ -264,24 +267,34 @@ def _closest_midpoint(a0, a1, b0, b1) -> tuple:
 # -- gmsh -------------------------------------------------------------------------------------
 
 def draw_layout(gmsh, layout: FlexureLayout, n_across: int = 3, aspect: float = 4.0,
-                coarse: float | None = None) -> dict:
+                coarse: float | None = None, root_fillet_radius: float = 0.0) -> dict:
     """Draw ``layout`` in the open gmsh session with its physical groups and mesh sizes:
     each flexure a structured n_across x n_along grid (element length aspect * w / n_across),
-    the rest graded from the flexure size up to ``coarse`` (default W / 2). Returns
-    {"flexure_size", "coarse_size"} (m)."""
+    the rest graded from the flexure size up to ``coarse`` (default W / 2). With
+    ``root_fillet_radius`` r > 0 (m) each flexure gets four quarter-circle root fillets (see
+    :mod:`flexfem.geometry.flexure_roots`): its root zones are meshed unstructured with size
+    min(w / n_across, r / 3), the middle structured. Returns {"flexure_size", "coarse_size"}
+    and, with fillets, "root_size" (m)."""
+    r = check_root_fillet_radius(root_fillet_radius, layout.parts, layout.link_width)
     occ = gmsh.model.occ
-    tags = []
+    drawn = []  # (part, input surface tag, role): role "root" / "middle" for filleted flexures
     for part in layout.parts:
+        if r > 0 and part.kind == "flexure":
+            drawn += [(part, tag, role) for tag, role in draw_filleted_flexure(occ, part, r)]
+            continue
         c = part.corners()
         pts = [occ.addPoint(x, y, 0.0) for x, y in c]
         lines = [occ.addLine(pts[i], pts[(i + 1) % 4]) for i in range(4)]
-        tags.append(occ.addPlaneSurface([occ.addCurveLoop(lines)]))
+        drawn.append((part, occ.addPlaneSurface([occ.addCurveLoop(lines)]), None))
+    tags = [t for _, t, _ in drawn]
     out, out_map = occ.fragment([(2, tags[0])], [(2, t) for t in tags[1:]])
     occ.synchronize()
-    owner = {}
-    for part, pieces in zip(layout.parts, out_map):
+    owner, role_of = {}, {}
+    for (part, _, role), pieces in zip(drawn, out_map):
         for dim, tag in pieces:
             owner.setdefault(tag, set()).add(part)
+            if role is not None:
+                role_of[tag] = role
     groups = {}
     for tag, parts in owner.items():
         kinds = {p.kind for p in parts}
@@ -320,24 +333,35 @@ def draw_layout(gmsh, layout: FlexureLayout, n_across: int = 3, aspect: float = 
             raise ValueError(f"no boundary found for group {name!r}")
         gmsh.model.addPhysicalGroup(1, found, name=name)
 
-    # structured flexures
+    # structured flexures (with fillets: their middles; the root zones are sized below)
     h_min = math.inf
     end_curves = []
+    root_tags, root_size = [], None
     for part in layout.parts:
         if part.kind != "flexure":
             continue
         tag = groups[f"flexure_{part.name.split('_', 1)[1]}"]
+        h_across = part.width / n_across
+        straight = part.length
+        if r > 0:
+            roots = [t for t in tag if role_of.get(t) == "root"]
+            tag = [t for t in tag if role_of.get(t) == "middle"]
+            if len(roots) != 2:
+                raise ValueError(f"{part.name}'s root zones were split by the boolean union; "
+                                 "check the layout")
+            root_tags += roots
+            straight = part.length - 2 * root_zone_depth(r, part.width)
+            root_size = min(root_size or math.inf, h_across, r / 3)
         if len(tag) != 1:
             raise ValueError(f"{part.name} was split by the boolean union; check the layout")
-        h_across = part.width / n_across
-        n_along = max(2, int(math.ceil(part.length / (aspect * h_across))))
+        n_along = max(2, int(math.ceil(straight / (aspect * h_across))))
         h_min = min(h_min, h_across)
         boundary = [abs(t) for _, t in gmsh.model.getBoundary([(2, tag[0])], oriented=False)]
         if len(boundary) != 4:
             raise ValueError(f"{part.name} has {len(boundary)} edges after the union, not 4")
         for c in boundary:
             a, b = ends[c]
-            along = abs(math.dist(a, b) - part.length) < 1e-6 * part.length
+            along = abs(math.dist(a, b) - straight) < 1e-6 * part.length
             gmsh.model.mesh.setTransfiniteCurve(c, (n_along if along else n_across) + 1)
             if not along:
                 end_curves.append(c)
@@ -353,11 +377,36 @@ def draw_layout(gmsh, layout: FlexureLayout, n_across: int = 3, aspect: float = 
     field_.setNumber(thr, "SizeMax", coarse)
     field_.setNumber(thr, "DistMin", 0.0)
     field_.setNumber(thr, "DistMax", 2.0 * W)
+    if root_tags:
+        # root zones: a constant size, also on their curves (the arcs, the link's face)
+        zone_curves = sorted({abs(c) for t in root_tags
+                              for _, c in gmsh.model.getBoundary([(2, t)], oriented=False)})
+        const = field_.add("Constant")
+        field_.setNumber(const, "VIn", root_size)
+        field_.setNumber(const, "VOut", coarse)
+        field_.setNumbers(const, "SurfacesList", root_tags)
+        field_.setNumbers(const, "CurvesList", zone_curves)
+        # grade the links from the root size: distance to the zones' curves
+        dist_r = field_.add("Distance")
+        field_.setNumbers(dist_r, "CurvesList", zone_curves)
+        field_.setNumber(dist_r, "Sampling", 20)
+        thr_r = field_.add("Threshold")
+        field_.setNumber(thr_r, "InField", dist_r)
+        field_.setNumber(thr_r, "SizeMin", root_size)
+        field_.setNumber(thr_r, "SizeMax", coarse)
+        field_.setNumber(thr_r, "DistMin", 0.0)
+        field_.setNumber(thr_r, "DistMax", 2.0 * W)
+        both = field_.add("Min")
+        field_.setNumbers(both, "FieldsList", [thr, const, thr_r])
+        thr = both
     field_.setAsBackgroundMesh(thr)
     for key in ("Mesh.MeshSizeExtendFromBoundary", "Mesh.MeshSizeFromPoints",
                 "Mesh.MeshSizeFromCurvature"):
         gmsh.option.setNumber(key, 0)
-    return {"flexure_size": h_min, "coarse_size": coarse}
+    sizes = {"flexure_size": h_min, "coarse_size": coarse}
+    if root_size is not None:
+        sizes["root_size"] = root_size
+    return sizes
 
 
 def _curve_ends(gmsh, tag) -> tuple:
@@ -375,10 +424,13 @@ def _on_segment(point, segment, tol) -> bool:
 
 
 def mesh_layout(layout: FlexureLayout, n_across: int = 3, aspect: float = 4.0,
-                coarse: float | None = None, name: str = "flexure_linkage") -> tuple:
+                coarse: float | None = None, name: str = "flexure_linkage",
+                root_fillet_radius: float = 0.0) -> tuple:
     """Mesh ``layout`` (triangles; use order=2 in the Model for quadratic elements) with
-    ``n_across`` (>= 3) elements across every flexure. Returns (FEMesh, {"flexure_size",
-    "coarse_size"} in m). Coordinates in m."""
+    ``n_across`` (>= 3) elements across every flexure and, if ``root_fillet_radius`` r > 0
+    (m), quarter-circle fillets at the flexure roots (element size <= r / 3 there; the
+    fillets belong to the flexure's subdomain). Returns (FEMesh, {"flexure_size",
+    "coarse_size"[, "root_size"]} in m). Coordinates in m."""
     if not (isinstance(n_across, (int, np.integer)) and n_across >= 3):
         raise ValueError(f"n_across = {n_across!r} must be an integer >= 3 (elements across a "
                          "flexure)")
@@ -386,7 +438,7 @@ def mesh_layout(layout: FlexureLayout, n_across: int = 3, aspect: float = 4.0,
         raise ValueError(f"aspect = {aspect!r} must be in [0.5, 20] (element length / width in "
                          "a flexure)")
     with gmsh_session(name) as gmsh:
-        sizes = draw_layout(gmsh, layout, n_across, aspect, coarse)
+        sizes = draw_layout(gmsh, layout, n_across, aspect, coarse, root_fillet_radius)
         gmsh.option.setNumber("Mesh.Algorithm", 6)
         gmsh.model.mesh.generate(2)
         return mesh_from_gmsh(gmsh), sizes

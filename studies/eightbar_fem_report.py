@@ -9,8 +9,8 @@ from flexfem.data import load_toml
 from flexfem.fem import material, write_result
 from flexfem.geometry.design_rules import check_design_rules, fabrication_rules, violation_summary
 from flexfem.geometry.eightbar_flexure import (EightBarFlexureParams, eightbar_layout,
-                                               joint_rotation_rates)
-from flexfem.studies.eightbar_fem import analyze_eightbar, summary_row
+                                               joint_rotation_rates, prbm_flexure_loads)
+from flexfem.studies.eightbar_fem import analyze_eightbar, stress_convergence, summary_row
 
 MICRO = load_toml("fabrication_rules.toml")["thesis_micro_design"]
 
@@ -39,7 +39,8 @@ def mems_check(params: EightBarFlexureParams) -> dict:
         base_flexure_width=max(micro.base_flexure_width, rules.min_beam_width),
         flexure_length=micro.flexure_length,
         flexure_width=max(micro.flexure_width, rules.min_beam_width),
-        thickness=micro.thickness, material=micro.material)
+        thickness=micro.thickness, material=micro.material,
+        root_fillet_radius=micro.root_fillet_radius)
     out = {}
     for name, p in (("scaled", micro), ("widened", widened)):
         v = check_design_rules(eightbar_layout(p).parts, rules)
@@ -48,6 +49,42 @@ def mems_check(params: EightBarFlexureParams) -> dict:
                      "flexure_width_m": p.flexure_width, "base_flexure_width_m": p.base_flexure_width}
     out["published_travel_m"] = MICRO["travel_um"] * 1e-6
     return out
+
+
+def prbm_table(out: dict, params: EightBarFlexureParams) -> list:
+    """Per flexure at half the travel: the PRBM stiffness share, pure-bending stress, shear,
+    axial force, end moment and root stress (:func:`prbm_flexure_loads`), beside the FEM's
+    maximum nodal von Mises in that flexure (linear solve), SI units."""
+    loads = prbm_flexure_loads(params, out["travel_m"] / 2)["joints"]
+    lin = out["linear_result"]
+    mesh = lin.model.mesh
+    rows = []
+    for j, k in out["k_x_prbm_joints"].items():
+        vertices = np.unique(mesh.mesh.t[:3, mesh.subdomains[f"flexure_{j}"]])
+        rows.append({"joint": j, "stiffness_share_n_per_m": k,
+                     "bending_stress_pa": out["prbm_bending_stress"][j],
+                     "spring_moment_nm": loads[j]["moment_nm"], "shear_n": loads[j]["shear_n"],
+                     "axial_n": loads[j]["axial_n"], "end_moment_nm": loads[j]["end_moment_nm"],
+                     "prbm_root_stress_pa": loads[j]["root_stress_pa"],
+                     "fem_max_von_mises_nodal_pa": float(lin.von_mises_nodal[vertices].max())})
+    return rows
+
+
+def convergence_note(rows: list) -> str:
+    """One sentence per fillet radius: the max von Mises (nodal / element, MPa) over the size
+    factors of :func:`stress_convergence`, and where the finest mesh puts it."""
+    parts = []
+    for radius in sorted({r["root_fillet_radius_m"] for r in rows}):
+        sub = [r for r in rows if r["root_fillet_radius_m"] == radius]
+        series = ", ".join(f"{r['max_von_mises_nodal_pa'] / 1e6:.1f}/{r['max_von_mises_element_pa'] / 1e6:.1f}"
+                           for r in sub)
+        last = sub[-1]
+        label = "sharp roots" if radius == 0 else f"root fillets r = {radius * 1e3:.2g} mm"
+        factors = ", ".join(f"{r['size_factor']:g}" for r in sub)
+        parts.append(f"{label}: max von Mises nodal/element {series} MPa at size factors "
+                     f"{factors} (finest: {last['flexure']} "
+                     f"at ({last['x_m'] * 1e3:.2f}, {last['y_m'] * 1e3:.3f}) mm)")
+    return "stress convergence (linear, half travel): " + "; ".join(parts)
 
 
 def _write_csv(path: Path, rows: list) -> str:
@@ -174,10 +211,9 @@ def reproduce(out_dir, quick: bool = False, full: bool = False) -> dict:
                plot_force(out, out_dir / "eightbar_fem_force.png")]
     tables = [_write_csv(out_dir / "eightbar_fem_path.csv", out["path"]),
               _write_csv(out_dir / "eightbar_fem_modes.csv", out["modes"]),
-              _write_csv(out_dir / "eightbar_fem_prbm.csv",
-                         [{"joint": j, "stiffness_share_n_per_m": k,
-                           "bending_stress_pa": out["prbm_bending_stress"][j]}
-                          for j, k in out["k_x_prbm_joints"].items()])]
+              _write_csv(out_dir / "eightbar_fem_prbm.csv", prbm_table(out, params))]
+    convergence = stress_convergence(params, (2.0, 1.0) if quick else (1.0, 0.7, 0.5))
+    tables.append(_write_csv(out_dir / "eightbar_fem_stress_convergence.csv", convergence))
     write_result(out["linear_result"], out_dir / "eightbar_linear.vtu")
     mems = mems_check(params)
     violations = mems["scaled"]["violations"] + mems["widened"]["violations"]
@@ -202,9 +238,11 @@ def reproduce(out_dir, quick: bool = False, full: bool = False) -> dict:
          "note": "our linkage (Ch. 5 rigid design), same measure"},
         {"quantity": "location of the maximum stress", "flexfem": loc["flexure"],
          "published": "the two flexures beside the base link", "rel_diff": None,
-         "note": f"linear, nodal (L2-projected) von Mises {out['max_von_mises'] / 1e6:.0f} MPa at "
-                 f"half travel; the peak along the nonlinear trace is in "
-                 f"{out['peak_von_mises_flexure']}"},
+         "note": f"root fillets r = {params.root_fillet_radius * 1e3:.2g} mm; linear, nodal "
+                 f"(L2-projected) von Mises {out['max_von_mises'] / 1e6:.0f} MPa at half travel "
+                 f"at the fillet's tangent point; the peak along the nonlinear trace is in "
+                 f"{out['peak_von_mises_flexure']}. Not beside the base: the A flexures lie across "
+                 "the cranks, whose axial force shears them (see eightbar_fem_prbm.csv)"},
         {"quantity": "micro version: stress-limited travel, flexures widened to 3 um (m)",
          "flexfem": mems["widened"]["stress_limited_travel_m"],
          "published": mems["published_travel_m"],
@@ -222,11 +260,13 @@ def reproduce(out_dir, quick: bool = False, full: bool = False) -> dict:
                           "base_flexure_width": params.base_flexure_width,
                           "flexure_length": params.flexure_length,
                           "flexure_width": params.flexure_width, "thickness": params.thickness,
+                          "root_fillet_radius": params.root_fillet_radius,
                           "material": params.material}}
     from flexfem.studies.eightbar_driving import driving_study  # Chapter 6
     driving = driving_study(out_dir / "driving", quick=quick)
     summary["comparisons"] = summary["rows"] = rows + driving["comparisons"]
-    summary["notes"] = driving.get("notes", [])
+    summary["notes"] = [convergence_note(convergence)] + driving.get("notes", [])
+    summary["stress_convergence"] = convergence
     summary["tables"] += [f"driving/{t}" for t in driving["tables"]]
     summary["figures"] += [f"driving/{f}" for f in driving["figures"]]
     return summary

@@ -85,6 +85,7 @@ def test_prbm_is_the_sum_of_flexure_stiffnesses_times_squared_rates(params):
 
 
 def test_mesh_has_groups_and_three_elements_across_the_thinnest_flexure(params):
+    params = replace(params, root_fillet_radius=0.0)  # sharp roots: the flexure is a rectangle
     mesh, sizes = mesh_eightbar_flexure(params, size_factor=2.0)
     assert {"fixed", "end_effector"} <= set(mesh.boundaries)
     assert {f"flexure_{j}" for j in HOSTS} <= set(mesh.subdomains)
@@ -105,3 +106,68 @@ def test_mesh_has_groups_and_three_elements_across_the_thinnest_flexure(params):
 def test_travel_larger_than_the_ground_spacing_is_rejected():
     with pytest.raises(ValueError, match="travel"):
         EightBarFlexureParams(rigid=replace(EightBarParams(), travel=0.2))
+
+
+# -- root fillets ------------------------------------------------------------------------------
+
+def _subdomain_area(mesh, name):
+    m = mesh.mesh
+    p = m.p[:, m.t[:3, mesh.subdomains[name]]]
+    return 0.5 * np.abs((p[0, 1] - p[0, 0]) * (p[1, 2] - p[1, 0])
+                        - (p[0, 2] - p[0, 0]) * (p[1, 1] - p[1, 0])).sum()
+
+
+def test_sharp_root_mesh_is_the_rectangle_and_the_default_keyword_changes_nothing():
+    from flexfem.geometry.flexure_linkage import mesh_layout
+    sharp = EightBarFlexureParams(root_fillet_radius=0.0)
+    layout = eightbar_layout(sharp)
+    m0, s0 = mesh_layout(layout, n_across=3, aspect=8.0, coarse=5e-3)
+    m1, s1 = mesh_layout(layout, n_across=3, aspect=8.0, coarse=5e-3, root_fillet_radius=0.0)
+    assert np.array_equal(m0.mesh.p, m1.mesh.p) and np.array_equal(m0.mesh.t, m1.mesh.t)
+    assert s0 == s1 and "root_size" not in s0
+    for j in ("A_L", "O_R"):  # straight-sided: the mesh area is exactly L w (round-off only)
+        L, w = sharp.flexure_size(j)
+        assert _subdomain_area(m0, f"flexure_{j}") == pytest.approx(L * w, rel=1e-9)
+
+
+def test_each_root_fillet_adds_r2_one_minus_pi_over_4():
+    from flexfem.geometry.flexure_roots import fillet_area
+    r = 0.3e-3
+    p = EightBarFlexureParams(root_fillet_radius=r)
+    mesh, sizes = mesh_eightbar_flexure(p, size_factor=2.0)
+    h = sizes["root_size"]
+    assert h <= r / 3 * (1 + 1e-12)
+    for j in ("A_L", "O_R", "P_L"):
+        L, w = p.flexure_size(j)
+        exact = L * w + 4 * fillet_area(r)
+        # the mesh's straight chords cut the arcs: each chord of angle theta = h / r adds the
+        # circular segment r^2 (theta - sin theta) / 2 ~ h^3 / (12 r); (pi / 2) r / h chords per
+        # arc, 4 arcs: at most pi h^2 / 6 more than the exact area, never less
+        excess = _subdomain_area(mesh, f"flexure_{j}") - exact
+        assert 0 <= excess <= np.pi * h ** 2 / 6 * 1.05
+        assert excess < 0.1 * 4 * fillet_area(r)
+
+
+@pytest.mark.parametrize("bad", [-1e-4, float("nan"), 2.4e-3, 5.7e-3])
+def test_bad_root_fillet_radius_is_rejected(bad):
+    # 2.4 mm > (W - w) / 2 = 2.35 mm (the step to the link); 5.7 mm >= L / 2 - w for the
+    # 12 mm base flexures (no straight middle left)
+    with pytest.raises(ValueError, match="root_fillet_radius"):
+        EightBarFlexureParams(root_fillet_radius=bad)
+
+
+def test_scaled_design_scales_the_fillet(params):
+    assert params.scaled(1e-3).root_fillet_radius == pytest.approx(params.root_fillet_radius * 1e-3)
+
+
+def test_prbm_flexure_loads_balance_the_drive_by_virtual_work(params):
+    # the linear PRBM's equilibrium (21 equations) must give the drive force the energy gives,
+    # F = k_x s, to round-off; the A flexures lie across the cranks, so the crank's axial force
+    # shears them and their root moment exceeds the spring moment
+    from flexfem.geometry.eightbar_flexure import prbm_flexure_loads
+    s = params.rigid.travel / 2
+    loads = prbm_flexure_loads(params, s)
+    assert loads["drive_force_n"] == pytest.approx(prbm_stiffness(params)["k_x"] * s, rel=1e-8)
+    a, o = loads["joints"]["A_L"], loads["joints"]["O_L"]
+    assert a["end_moment_nm"] == pytest.approx(abs(a["moment_nm"]) + abs(a["shear_n"]) * 10e-3)
+    assert abs(a["shear_n"]) > abs(a["axial_n"])
