@@ -16,8 +16,10 @@ Mobility. One half (lambda + bar + suspension) has Gruebler count 1. The whole, 
 shuttle, counts 3(24 - 1) - 2 * 34 = 1, but its rigid-body motion is not the symmetric one:
 the shuttle keeps |P_L P_R| = 2e, which the two mirrored lambda paths respect only to their
 straight-line deviation. The rigid trace therefore drives each half by y of its own P (two
-inputs, equal values) and reports the misfit |P_R - P_L| - 2e that the flexures absorb.
-All lengths in m.
+inputs, equal values) and reports the misfit |P_R - P_L| - 2e that the flexures absorb (it
+takes no share of the end-effectors' path: the flexure part without its shuttle traces the
+same one, tested). The suspensions default to the Chapter 5 eight-bar with a longer coupler,
+pre-bowed against its flexures' elastic bow (:func:`compensated_suspension`). All lengths in m.
 """
 from dataclasses import dataclass, field, fields
 import math
@@ -26,8 +28,7 @@ import numbers
 import numpy as np
 
 from flexfem.geometry.eightbar_rigid import EightBarParams, build_eightbar, eightbar_points
-from flexfem.geometry.linkage import (CrankAngle, Joint, Link, Linkage, PointCoordinate, trace,
-                                      trace_from_reference)
+from flexfem.geometry.linkage import CrankAngle, Joint, Link, Linkage, PointCoordinate, trace
 from flexfem.geometry.straight_line import (LineDeviation, StraightLineMechanism,
                                             straight_line_deviation)
 
@@ -51,11 +52,31 @@ def chebyshev_lambda_linkage(h: float = 0.1) -> StraightLineMechanism:
     return StraightLineMechanism("chebyshev_lambda", linkage, ("coupler", "P"), (-np.pi / 2, np.pi / 2))
 
 
+# Coupler length (m) of the suspensions driven here, against the Chapter 5 design's 50 mm.
+# The flexure suspension bows: its large-deflection path is y ~ c2 x^2 with c2 ~ 0.57 /m
+# (suspension alone, FEM), while its rigid-body linkage is straight (c2 balanced against c4).
+# Of the rigid design's dimensions the coupler length moves c2 most (dc2/dh = -116 /m^2 over
+# the driven stroke; p would need -49 mm, h +4.9 mm); two FEM evaluations of the driven path
+# (h = 50 and 54.9 mm, coarse mesh) and the secant through them give c2 = 0 at h = 56.8 mm:
+# the rigid path is pre-bowed by the flexures' elastic bow (docs/eightbar.md, "Driving
+# linkage"; tests/geometry/test_driving_linkage.py checks the driven c2 stays near zero).
+FLEXURE_COMPENSATED_COUPLER_LENGTH = 56.8e-3
+
+
+def compensated_suspension() -> EightBarParams:
+    """The Chapter 5 eight-bar with its coupler lengthened to
+    :data:`FLEXURE_COMPENSATED_COUPLER_LENGTH` (m), so that its *flexure* version, driven here,
+    runs straight; its rigid-body path bows the other way (c2 = -0.86 /m: 0.31 % of a 22.4 mm
+    stroke; the flexures' elastic bow grows with h too)."""
+    return EightBarParams(coupler_length=FLEXURE_COMPENSATED_COUPLER_LENGTH)
+
+
 @dataclass(frozen=True)
 class DrivingParams:
     """The driving linkage with its two suspensions, m.
 
-    suspension : the eight-bar of each side (right one as drawn, left its mirror image);
+    suspension : the eight-bar of each side (right one as drawn, left its mirror image;
+    default :func:`compensated_suspension`, ``EightBarParams()`` for the Chapter 5 design);
     lambda_crank a : |OA| of each lambda (its straight stretch is 4a long); lever_length r :
     |OQ|, the crank extended beyond A (r > a) to the bar; shuttle_half_width e : P_R at x = e;
     clearance : x gap between a lambda's ground line and its suspension's outer pivot;
@@ -63,7 +84,7 @@ class DrivingParams:
     stroke along y traced, centred on the drawn pose (< 4a).
     """
 
-    suspension: EightBarParams = field(default_factory=EightBarParams)
+    suspension: EightBarParams = field(default_factory=compensated_suspension)
     lambda_crank: float = 30e-3
     lever_length: float = 75e-3
     shuttle_half_width: float = 25e-3
@@ -280,16 +301,31 @@ def _is_base(joint: str) -> bool:
     return joint.split("_", 1)[1][0] in "OC"
 
 
-def driving_layout(params: DrivingParams, flexure) -> "FlexureLayout":
+def _end_cap(link: str, point, W: float):
+    """Edge callable: the square end (width W, m) of ``link``'s bar that runs W/2 past ``point``."""
+    def cap(parts):
+        for part in parts:
+            a, b = np.asarray(part.p0), np.asarray(part.p1)
+            d = (b - a) / np.linalg.norm(b - a)
+            if part.link == link and part.kind == "bar" and np.allclose(b, np.asarray(point) + W / 2 * d):
+                n = np.array([-d[1], d[0]]) * W / 2
+                return tuple(b - n), tuple(b + n)
+        raise ValueError(f"no bar of {link!r} ends at {point}")
+    return cap
+
+
+def driving_layout(params: DrivingParams, flexure, shuttle: bool = True) -> "FlexureLayout":
     """The flexure part's rectangles (m) in the drawn pose, with the flexure sizes, link width,
     of ``flexure`` (an :class:`~flexfem.geometry.eightbar_flexure.EightBarFlexureParams`, whose
     ``rigid`` is ignored: the suspensions are ``params.suspension``). Edges: "fixed" (anchors),
     "input" (top face of the shuttle's stem), "ee_L", "ee_R" (bottom faces of the two
-    suspensions' end-effector bars)."""
+    suspensions' end-effector bars). Without ``shuttle`` the two halves are separate parts, each
+    lambda's coupler ending W/2 past P in a free end face "input_L" / "input_R" (to drive each
+    half by its own coupler point, as :func:`trace_driving` does: no misfit to take up)."""
     from flexfem.geometry.flexure_linkage import flexure_layout
 
     W, L = flexure.link_width, flexure.flexure_length
-    linkage = build_driving_linkage(params, shuttle=True, d_offset=L / 2 + W / 2)
+    linkage = build_driving_linkage(params, shuttle=shuttle, d_offset=L / 2 + W / 2)
     polylines = {link.name: [[tuple(link.points[n]) for n in line] for line in link.polylines]
                  for link in linkage.links if link.name != "ground"}
     joints = [{"name": j.point, "position": tuple(linkage.link(j.links[1]).points[j.point]),
@@ -300,23 +336,45 @@ def driving_layout(params: DrivingParams, flexure) -> "FlexureLayout":
     (xl, y), xr = ee["susR_E_L"], ee["susR_E_R"][0]
     bottom_r = ((xl - W / 2, y - W / 2), (xr + W / 2, y - W / 2))
     bottom_l = tuple(_mirror(p) for p in bottom_r[::-1])
-    tx, ty = linkage.link("shuttle").points["T"]
-    edges = {"input": ((tx - W / 2, ty + W / 2), (tx + W / 2, ty + W / 2)),
-             "ee_R": bottom_r, "ee_L": bottom_l}
+    edges = {"ee_R": bottom_r, "ee_L": bottom_l}
+    if shuttle:
+        tx, ty = linkage.link("shuttle").points["T"]
+        edges["input"] = ((tx - W / 2, ty + W / 2), (tx + W / 2, ty + W / 2))
+    else:
+        for side in ("L", "R"):
+            edges[f"input_{side}"] = _end_cap(f"lam{side}_coupler",
+                                              linkage.link(f"lam{side}_coupler").points[f"lam{side}_P"], W)
     return flexure_layout(polylines, joints, {j["name"]: _host(j["name"]) for j in joints}, sizes, W,
                           edges=edges)
 
 
 def mesh_driving_flexure(params: DrivingParams, flexure, n_across: int = 3, size_factor: float = 1.0,
-                         aspect: float = 4.0):
-    """Mesh the driving linkage's flexure part (see :func:`driving_layout`): triangles (use
-    order=2), as :func:`flexfem.geometry.eightbar_flexure.mesh_eightbar_flexure` meshes the
-    suspension. Returns (FEMesh, sizes dict, m)."""
+                         aspect: float = 4.0, shuttle: bool = True):
+    """Mesh the driving linkage's flexure part (see :func:`driving_layout`, with or without the
+    ``shuttle``): triangles (use order=2), as
+    :func:`flexfem.geometry.eightbar_flexure.mesh_eightbar_flexure` meshes the suspension.
+    Returns (FEMesh, sizes dict, m)."""
     from flexfem.geometry.eightbar_flexure import check_mesh_options
     from flexfem.geometry.flexure_linkage import mesh_layout
 
     check_mesh_options(n_across, size_factor)
     n = max(int(n_across), int(math.ceil(3 / size_factor)))
-    return mesh_layout(driving_layout(params, flexure), n_across=n,
+    return mesh_layout(driving_layout(params, flexure, shuttle), n_across=n,
                        aspect=min(20.0, max(0.5, aspect * size_factor)),
                        coarse=flexure.link_width / 2 * size_factor, name="driving_flexure")
+
+
+def lever_shear_rate(params: DrivingParams, flexure) -> float:
+    """Pseudo-rigid-body y force (N) on each end-effector per metre of its x motion, N/m.
+
+    The crank turns by dx / r (the bar, level in the drawn pose, does not turn), so the flexure
+    at Q bends and its moment k_Q dx / r (k_Q = E t w^3 / 12 L) is balanced by a shear force
+    across the bar Q-D: k_Q / (r |QD|) per metre. Divided by the suspension's k_y it tilts the
+    end-effector's path by that many radians (odd in the stroke, so a tilt, not a curvature)."""
+    from flexfem.fem.materials import material
+
+    E = material(flexure.material).E
+    k_q = E * flexure.thickness * flexure.flexure_width**3 / (12 * flexure.flexure_length)
+    pts = driving_points(params, flexure.flexure_length / 2 + flexure.link_width / 2)
+    bar = float(np.hypot(*np.subtract(pts["lamR_D"], pts["lamR_Q"])))
+    return k_q / (params.lever_length * bar)

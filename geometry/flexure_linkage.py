@@ -24,7 +24,7 @@ import math
 import numpy as np
 
 from flexfem.fem.gmsh_session import gmsh_session
-from flexfem.fem.mesh import FEMesh, mesh_from_gmsh
+from flexfem.fem.mesh import mesh_from_gmsh
 from flexfem.geometry.flexure_roots import (check_root_fillet_radius, draw_filleted_flexure,
                                             root_zone_depth)
 

@@ -8,25 +8,42 @@ along y (x free). Linear: the end-effector faces' mean displacements per unit in
 (default, not quick): the input face as a RigidFace (y prescribed, x and rotation free) and the
 end-effector faces as free RigidFaces whose motion is read at each step, over +-half the
 rigid trace's stroke.
+
+Where the nonlinear path deviation comes from (docs/eightbar.md, tests/geometry/
+test_driving_linkage.py): it is the suspension's own elastic bow, y ~ c2 x^2 (deviation ~
+stroke^2), which the suspension alone, x prescribed with no y force and no moment, shows over the
+same stroke (:func:`suspension_alone_path`); the bar adds about 8 % (its end flexures
+resist Q's rise x^2 / 2r and push the end-effector across its motion) and tilts the path by
+the lever flexure's shear (:func:`flexfem.geometry.driving_linkage.lever_shear_rate`, odd: a
+tilt, not a deviation); the lambdas' misfit takes no share (the part without its shuttle,
+each half driven by its own coupler point, traces the same path). The default suspensions
+therefore have their coupler lengthened (geometry/driving_linkage.py,
+FLEXURE_COMPENSATED_COUPLER_LENGTH) so that the flexure path, not the rigid one, runs straight;
+``DrivingParams(suspension=EightBarParams())`` gives the Chapter 5 design.
 """
+from dataclasses import replace
 from pathlib import Path
-import csv
 
 import numpy as np
 
 from flexfem.fem import Fixed, Model, PlaneStress, Prescribed, RigidFace, material, solve_nonlinear, solve_static
-from flexfem.geometry.driving_linkage import (DrivingParams, build_driving_linkage,
-                                              half_mobility, mesh_driving_flexure, trace_driving,
-                                              transmission_ratio)
+from flexfem.geometry.driving_linkage import (FLEXURE_COMPENSATED_COUPLER_LENGTH, DrivingParams,
+                                              build_driving_linkage,
+                                              half_mobility, lever_shear_rate, mesh_driving_flexure,
+                                              trace_driving, transmission_ratio)
 from flexfem.geometry.eightbar_flexure import EightBarFlexureParams
 from flexfem.geometry.straight_line import straight_line_deviation
+from flexfem.studies.tables import write_rows
 
 NEWTON_TOL = 1e-5   # as studies/eightbar_fem.py: the stiff links' round-off floor
 
 
-def build_model(params: DrivingParams, flexure: EightBarFlexureParams, size_factor: float = 2.0):
-    """(Model (plane stress, P2), mesh sizes) of the driving linkage's flexure part."""
-    mesh, sizes = mesh_driving_flexure(params, flexure, size_factor=size_factor)
+def build_model(params: DrivingParams, flexure: EightBarFlexureParams, size_factor: float = 2.0,
+                shuttle: bool = True):
+    """(Model (plane stress, P2), mesh sizes) of the driving linkage's flexure part; without
+    ``shuttle``, the two halves apart, with input faces "input_L", "input_R" at the coupler
+    points (see :func:`flexfem.geometry.driving_linkage.driving_layout`)."""
+    mesh, sizes = mesh_driving_flexure(params, flexure, size_factor=size_factor, shuttle=shuttle)
     return Model(mesh, material(flexure.material), PlaneStress(flexure.thickness), order=2), sizes
 
 
@@ -51,27 +68,72 @@ def linear_drive(model: Model, displacement: float) -> dict:
 
 
 def nonlinear_drive(model: Model, end: float, steps: int = 6) -> list:
-    """Input face driven from 0 to ``end`` (m) along y with large deflection: rows per step of
-    the end-effector faces' centroid motion (m, rad) and the input force (N)."""
-    faces = [RigidFace("input", y=end), RigidFace("ee_L"), RigidFace("ee_R")]
+    """Input face driven from 0 to ``end`` (m) along y with large deflection (x and rotation
+    free): rows per step of the end-effector faces' centroid motion (m, rad) and the input
+    force (N). A model without the shuttle has its two input faces driven alike (input force:
+    their sum)."""
+    inputs = ["input"] if "input" in model.mesh.boundaries else ["input_L", "input_R"]
+    faces = [RigidFace(name, y=end) for name in inputs] + [RigidFace("ee_L"), RigidFace("ee_R")]
     res = solve_nonlinear(model, [Fixed("fixed")], [], steps=steps, tol=NEWTON_TOL, rigid_faces=faces)
     rows = []
     for motion, force in zip(res.face_motion, res.face_reactions):
-        rows.append({"input_m": float(motion["input"][1]),
+        rows.append({"input_m": float(motion[inputs[0]][1]),
                      "x_left_m": float(motion["ee_L"][0]), "y_left_m": float(motion["ee_L"][1]),
                      "rot_left_rad": float(motion["ee_L"][2]),
                      "x_right_m": float(motion["ee_R"][0]), "y_right_m": float(motion["ee_R"][1]),
                      "rot_right_rad": float(motion["ee_R"][2]),
-                     "input_force_n": float(force["input"][1])})
+                     "input_force_n": float(sum(force[name][1] for name in inputs))})
     return rows
 
 
+def path_shape(points) -> dict:
+    """Fit y = y0 + a x + c2 x^2 (+ c3 x^3 + c4 x^4 with 7 points or more) to a path (n, 2), m,
+    x measured from the middle point: {"tilt_rad": atan(a), "c2_per_m": c2, "c4_per_m3": c4
+    (nan if not fitted)}. An even path's deviation from its best line is the c2 x^2 bow."""
+    pts = np.asarray(points, float)
+    x = pts[:, 0] - pts[len(pts) // 2, 0]
+    coef = np.polynomial.polynomial.polyfit(x, pts[:, 1], 4 if len(pts) >= 7 else 2)
+    return {"tilt_rad": float(np.arctan(coef[1])), "c2_per_m": float(coef[2]),
+            "c4_per_m3": float(coef[4]) if len(coef) > 4 else float("nan")}
+
+
+def suspension_model(flexure: EightBarFlexureParams, size_factor: float = 2.0) -> Model:
+    """The eight-bar suspension alone, same flexures and mesh rules as the driving linkage's
+    (:func:`flexfem.studies.eightbar_fem.build_model`; its face "end_effector")."""
+    from flexfem.studies.eightbar_fem import build_model as build_suspension
+
+    return build_suspension(flexure, size_factor=size_factor)[0]
+
+
+def suspension_alone_path(model: Model, x_end: float, steps: int = 4,
+                          both_halves: bool = True) -> np.ndarray:
+    """The suspension alone (:func:`suspension_model`), its end-effector face's x prescribed
+    from -``x_end`` to ``x_end`` (m) through the middle, y and rotation free (no y force, no
+    moment): (2 steps + 1, 3) centroid motion (m, m, rad), sorted by x. With ``both_halves``
+    False the -x half is the +x half's mirror image (the part is mirror-symmetric: y even,
+    x and rotation odd)."""
+    from flexfem.studies.eightbar_fem import NEWTON_TOL as TOL
+
+    halves = []
+    for end in ((-x_end, x_end) if both_halves else (x_end,)):
+        res = solve_nonlinear(model, [Fixed("fixed")], [], steps=steps, tol=TOL,
+                              rigid_faces=[RigidFace("end_effector", x=end)])
+        halves.append(np.array([m["end_effector"] for m in res.face_motion]))
+    if not both_halves:
+        halves.insert(0, halves[0] * np.array([-1.0, 1.0, -1.0]))
+    return np.concatenate([halves[0][::-1], halves[1][1:]])
+
+
+def k_y_alone(model: Model) -> float:
+    """Linear stiffness (N/m) of the suspension alone (:func:`suspension_model`) across its
+    motion (y, x held)."""
+    probe = 1e-6
+    res = solve_static(model, [Fixed("fixed"), Prescribed("end_effector", x=0.0, y=probe)], [])
+    return float(res.reactions["end_effector"][1] / probe)
+
+
 def _write_csv(path: Path, rows: list) -> str:
-    with open(path, "w", newline="") as f:
-        writer = csv.DictWriter(f, fieldnames=list(rows[0]))
-        writer.writeheader()
-        writer.writerows(rows)
-    return path.name
+    return write_rows(path, rows).name
 
 
 def _draw_rigid(path: Path, tr, params: DrivingParams) -> str:
@@ -152,7 +214,8 @@ def driving_study(out_dir, quick: bool = False, params: DrivingParams | None = N
                   for s, l, r, m in zip(tr.s, tr.ee_left, tr.ee_right, tr.misfit)]
     tables = [_write_csv(out / "driving_rigid.csv", rigid_rows)]
     figures = [_draw_rigid(out / "driving_rigid.png", tr, params)]
-    model, sizes = build_model(params, flexure, size_factor=3.0 if quick else 1.5)
+    size_factor = 3.0 if quick else 1.5
+    model, sizes = build_model(params, flexure, size_factor=size_factor)
     probe = 1e-6
     lin = linear_drive(model, probe)
     umax = float(np.max(np.hypot(*lin["result"].displacement.T)))
@@ -170,6 +233,7 @@ def driving_study(out_dir, quick: bool = False, params: DrivingParams | None = N
                "input_travel_m": params.input_travel, "dofs": int(model.n_dofs),
                **{k: v for k, v in lin.items() if k != "result"}}
     fem_rows = [{k: v for k, v in lin.items() if k != "result"}]
+    extra_notes = []
     if not quick:
         half = params.input_travel / 4
         rows = nonlinear_drive(model, -half, 4)[::-1] + nonlinear_drive(model, half, 4)[1:]
@@ -177,12 +241,35 @@ def driving_study(out_dir, quick: bool = False, params: DrivingParams | None = N
         left = np.array([[r["x_left_m"], r["y_left_m"]] for r in rows])
         right = np.array([[r["x_right_m"], r["y_right_m"]] for r in rows])
         dl, dr = straight_line_deviation(left), straight_line_deviation(right)
+        # the suspension alone (x prescribed, no y force, no moment) over the same x stroke,
+        # sampled alike (9 points): what the driven deviation is measured against
+        alone_model = suspension_model(replace(flexure, rigid=replace(
+            params.suspension, travel=flexure.rigid.travel)), size_factor)
+        alone = suspension_alone_path(alone_model, float(np.max(np.abs(right[:, 0]))), 4)
+        da, shape, shape_alone = (straight_line_deviation(alone[:, :2]), path_shape(right),
+                                  path_shape(alone[:, :2]))
         summary.update({"fem_nl_stroke_right_m": float(np.ptp(right[:, 0])),
                         "fem_nl_ratio_end": rows[-1]["x_left_m"] / rows[-1]["x_right_m"],
                         "fem_nl_deviation_right_m": dr.max_deviation_m,
                         "fem_nl_deviation_right_pct": dr.deviation_pct,
                         "fem_nl_deviation_left_pct": dl.deviation_pct,
-                        "fem_nl_max_rotation_rad": float(max(abs(r["rot_right_rad"]) for r in rows))})
+                        "fem_nl_max_rotation_rad": float(max(abs(r["rot_right_rad"]) for r in rows)),
+                        "fem_nl_tilt_right_rad": shape["tilt_rad"],
+                        "fem_nl_c2_right_per_m": shape["c2_per_m"],
+                        "lever_tilt_prbm_rad": float(np.arctan(lever_shear_rate(params, flexure)
+                                                               / k_y_alone(alone_model))),
+                        "alone_deviation_m": da.max_deviation_m,
+                        "alone_deviation_pct": da.deviation_pct,
+                        "alone_c2_per_m": shape_alone["c2_per_m"]})
+        extra_notes.append(
+            f"Nonlinear path deviation {summary['fem_nl_deviation_right_pct']:.3f} % "
+            f"({summary['fem_nl_deviation_right_m'] * 1e6:.1f} um over "
+            f"{summary['fem_nl_stroke_right_m'] * 1e3:.1f} mm, c2 "
+            f"{summary['fem_nl_c2_right_per_m']:.3f} /m); the suspension alone (no load across its "
+            f"motion) over the same stroke: {summary['alone_deviation_pct']:.4f} % (c2 "
+            f"{summary['alone_c2_per_m']:.3f} /m), the difference being the bar's shear. Path tilt "
+            f"{summary['fem_nl_tilt_right_rad'] * 1e3:.2f} mrad (lever flexure's shear / k_y: "
+            f"{summary['lever_tilt_prbm_rad'] * 1e3:.2f} mrad), removed by the best-line fit.")
     tables.append(_write_csv(out / "driving_fem.csv", fem_rows))
     # the report's row format; the thesis states only "opposite directions" (Ch. 6, Fig. 6.3),
     # so the symmetric value -1 stands in the published column, marked as such
@@ -203,7 +290,11 @@ def driving_study(out_dir, quick: bool = False, params: DrivingParams | None = N
         f"Gruebler count of the whole mechanism {summary['gruebler_whole']}, of one half "
         f"{summary['gruebler_half']}; the symmetric rigid motion holds only to the lambdas' "
         f"straight-line deviation (misfit |P_R P_L| - 2e up to {summary['max_misfit_m'] * 1e6:.1f} um), "
-        "which the flexures take up.",
-    ]
+        "which the flexures take up (without the shuttle, each half driven by its own coupler "
+        "point, the end-effector path is the same: tested).",
+        f"Suspension coupler length {params.suspension.coupler_length * 1e3:.1f} mm (Chapter 5 "
+        f"design: 50 mm; {FLEXURE_COMPENSATED_COUPLER_LENGTH * 1e3:.1f} mm cancels the flexures' "
+        f"elastic bow): rigid-body path deviation {summary['rigid_deviation_right_pct']:.4f} %.",
+    ] + extra_notes
     return {"comparisons": comparisons, "tables": tables, "figures": figures, "notes": notes,
             "summary": summary}

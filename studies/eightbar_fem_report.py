@@ -1,7 +1,6 @@
 """``reproduce()`` of the eight-bar flexure suspension: figures, tables, a VTU and the
 comparisons with the thesis (Chapters 5-8), and the MEMS scaling with its design-rule check."""
 from pathlib import Path
-import csv
 
 import numpy as np
 
@@ -11,6 +10,7 @@ from flexfem.geometry.design_rules import check_design_rules, fabrication_rules,
 from flexfem.geometry.eightbar_flexure import (EightBarFlexureParams, eightbar_layout,
                                                joint_rotation_rates, prbm_flexure_loads)
 from flexfem.studies.eightbar_fem import analyze_eightbar, stress_convergence, summary_row
+from flexfem.studies.tables import write_rows
 
 MICRO = load_toml("fabrication_rules.toml")["thesis_micro_design"]
 
@@ -88,11 +88,7 @@ def convergence_note(rows: list) -> str:
 
 
 def _write_csv(path: Path, rows: list) -> str:
-    with open(path, "w", newline="") as f:
-        writer = csv.DictWriter(f, fieldnames=list(rows[0]))
-        writer.writeheader()
-        writer.writerows(rows)
-    return path.name
+    return write_rows(path, rows).name
 
 
 def _rel(value, published):

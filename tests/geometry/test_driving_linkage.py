@@ -5,6 +5,7 @@ import pytest
 from flexfem.geometry.driving_linkage import (DrivingParams, build_driving_linkage,
                                               chebyshev_lambda_linkage, half_mobility,
                                               trace_driving, transmission_ratio)
+from flexfem.geometry.eightbar_rigid import EightBarParams
 from flexfem.geometry.straight_line import chebyshev_linkage, straight_line_deviation
 from flexfem.geometry.linkage import PointCoordinate, Linkage, trace_from_reference
 
@@ -70,9 +71,12 @@ def test_mobility_counts():
     assert build_driving_linkage(params, shuttle=False).mobility == 2   # two halves, two inputs
 
 
+CHAPTER5 = DrivingParams(suspension=EightBarParams())   # the suspension as designed rigid-straight
+
+
 @pytest.fixture(scope="module")
 def driving_trace():
-    return trace_driving(DrivingParams(), n=41)
+    return trace_driving(CHAPTER5, n=41)
 
 
 def test_suspensions_move_in_opposite_straight_lines(driving_trace):
@@ -134,3 +138,124 @@ def test_flexure_fem_opposite_motion(tmp_path):
     assert s["cross_motion_right"] < 0.01
     for name in out["figures"] + out["tables"]:
         assert (tmp_path / name).stat().st_size > 0
+
+
+# -- where the nonlinear path deviation comes from (docs/eightbar.md, "Driving linkage") --------
+# Coarse meshes (size_factor 3, the quick study's), input +-3 mm in 4 steps each way: 9 points,
+# x from the middle ~ +-5.6 mm of end-effector travel.
+SF, STROKE, STEPS = 3.0, 3e-3, 4
+
+
+def _driven_path(model, steps=STEPS):
+    from flexfem.studies.eightbar_driving import nonlinear_drive
+    rows = nonlinear_drive(model, -STROKE, steps)[::-1] + nonlinear_drive(model, STROKE, steps)[1:]
+    return np.array([[r["x_right_m"], r["y_right_m"]] for r in rows])[::-1]   # sorted by x
+
+
+@pytest.fixture(scope="module")
+def nonlinear_paths():
+    from flexfem.geometry.eightbar_flexure import EightBarFlexureParams
+    from flexfem.studies.eightbar_driving import (build_model, k_y_alone, suspension_alone_path,
+                                                  suspension_model)
+    params, flexure = CHAPTER5, EightBarFlexureParams()
+    driven = _driven_path(build_model(params, flexure, size_factor=SF)[0])
+    # half the steps: compared with every other point of the driven path
+    free = _driven_path(build_model(params, flexure, size_factor=SF, shuttle=False)[0], STEPS // 2)
+    alone_model = suspension_model(flexure, SF)   # flexure.rigid: the Chapter 5 suspension
+    alone = suspension_alone_path(alone_model, float(np.max(np.abs(driven[:, 0]))), STEPS,
+                                  both_halves=False)[:, :2]
+    # the default: suspensions with the flexure-compensated coupler, half the steps
+    compensated = _driven_path(build_model(DrivingParams(), flexure, size_factor=SF)[0], STEPS // 2)
+    return {"driven": driven, "no_shuttle": free, "alone": alone, "k_y": k_y_alone(alone_model),
+            "params": params, "flexure": flexure, "compensated": compensated}
+
+
+def test_nonlinear_deviation_grows_as_stroke_squared(nonlinear_paths):
+    """The driven path is even in the stroke, y = c2 x^2 + c4 x^4 about its best line: the
+    deviation over the inner half of the stroke (5 points at 0, +-T/4, +-T/2 of its travel T)
+    and over the whole (every other point: the same relative sampling) differ by (T2/T1)^n with
+    n = 2 (1 + O(c4 x^2 / c2)); with the rigid design's c4 ~ 80 /m^3 and c2 ~ 0.6 /m at
+    x = 5.6 mm the correction is < 0.01, so |n - 2| < 0.05."""
+    pts = nonlinear_paths["driven"]
+    inner, outer = straight_line_deviation(pts[2:7]), straight_line_deviation(pts[::2])
+    n = np.log(outer.max_deviation_m / inner.max_deviation_m) / np.log(outer.travel_m / inner.travel_m)
+    assert abs(n - 2) < 0.05
+
+
+def test_nonlinear_deviation_is_the_suspension_own(nonlinear_paths):
+    """The claim pinned: at least 90 % of the driven bow is the suspension's own. The suspension
+    alone (x prescribed, no y force, no moment) over the same x stroke bows as much but for
+    the drive's load across the motion, whose even part comes from the bar: its end flexures
+    resist Q's rise x^2 / 2r, a shear ~ k_Q x^2 / (r |QD|^2), i.e. ~0.03 /m of c2 over k_y
+    (5 % of c2 by this pivot model; doubling |QD| cuts the excess about fourfold). A drive
+    share above 10 % would mean another cause."""
+    from flexfem.studies.eightbar_driving import path_shape
+    driven, alone = nonlinear_paths["driven"], nonlinear_paths["alone"]
+    c2_driven, c2_alone = path_shape(driven)["c2_per_m"], path_shape(alone)["c2_per_m"]
+    assert c2_alone > 0 and abs(c2_driven / c2_alone - 1) < 0.10
+    dev_driven, dev_alone = straight_line_deviation(driven), straight_line_deviation(alone)
+    assert abs(dev_driven.deviation_pct / dev_alone.deviation_pct - 1) < 0.10
+
+
+def test_lambda_misfit_takes_no_share(nonlinear_paths):
+    """Without the shuttle each half is driven by its own coupler point (no misfit to take up):
+    the end-effector path keeps its curvature and tilt; 1 % allows for the two meshes (equal
+    rules, different parts) and the Newton tolerance."""
+    from flexfem.studies.eightbar_driving import path_shape
+    with_shuttle = path_shape(nonlinear_paths["driven"][::2])
+    without = path_shape(nonlinear_paths["no_shuttle"])
+    assert abs(without["c2_per_m"] / with_shuttle["c2_per_m"] - 1) < 0.01
+    assert abs(without["tilt_rad"] / with_shuttle["tilt_rad"] - 1) < 0.01
+
+
+def test_path_tilt_is_the_lever_flexure_shear(nonlinear_paths):
+    """The odd part of the path (a tilt, removed by the best-line fit) is the lever flexure Q's
+    moment carried as shear by the bar, over the suspension's k_y (lever_shear_rate). Pivots at
+    the flexure centres; a beam flexure's effective pivot shifts by ~0.15 of its length
+    (20 mm flexures on a 62.5 mm bar): 10 %."""
+    from flexfem.geometry.driving_linkage import lever_shear_rate
+    from flexfem.studies.eightbar_driving import path_shape
+    tilt = path_shape(nonlinear_paths["driven"])["tilt_rad"]
+    expected = np.arctan(lever_shear_rate(nonlinear_paths["params"], nonlinear_paths["flexure"])
+                         / nonlinear_paths["k_y"])
+    assert tilt > 0 and abs(tilt / expected - 1) < 0.10
+
+
+def test_lever_shear_rate_closed_form():
+    from flexfem.geometry.driving_linkage import lever_shear_rate
+    from flexfem.geometry.eightbar_flexure import EightBarFlexureParams
+    f, p = EightBarFlexureParams(), DrivingParams()
+    k_q = 68.9e9 * f.thickness * f.flexure_width**3 / (12 * f.flexure_length)   # 6061-T6, E
+    # bar Q-D: from the lambda's ground line (x = e + 4a) to L/2 + W/2 short of the
+    # end-effector's corner E_L; doubling the clearance lengthens it by that much
+    base = lever_shear_rate(p, f)
+    longer = lever_shear_rate(DrivingParams(clearance=2 * p.clearance), f)
+    bar = k_q / (p.lever_length * base)
+    assert np.isclose(k_q / (p.lever_length * longer), bar + p.clearance, rtol=1e-12)
+
+
+def test_compensated_suspension_runs_straight(nonlinear_paths):
+    """The default suspensions' coupler length was set from the coarse-mesh driven path so
+    that c2 = 0 (geometry/driving_linkage.py, FLEXURE_COMPENSATED_COUPLER_LENGTH). What must
+    hold on any mesh: the compensation removes the bow to the elastic c2's mesh dependence
+    (a few per cent between size factors 1.5 and 3) and the 0.1 mm rounding of h (dc2/dh ~
+    -0.09 /m per mm, 1.5 % of c2): |c2| < 10 % of the Chapter 5 suspension's, and the deviation
+    likewise (what is left is the c4 x^4 term, < 1 % at this stroke)."""
+    from flexfem.studies.eightbar_driving import path_shape
+    before, after = nonlinear_paths["driven"][::2], nonlinear_paths["compensated"]
+    assert abs(path_shape(after)["c2_per_m"]) < 0.1 * path_shape(before)["c2_per_m"]
+    dev_before, dev_after = straight_line_deviation(before), straight_line_deviation(after)
+    assert dev_after.max_deviation_m < 0.1 * dev_before.max_deviation_m
+    # same stroke: the suspensions' change leaves the lambdas and levers as they were
+    assert np.isclose(dev_after.travel_m, dev_before.travel_m, rtol=0.01)
+
+
+def test_compensated_default_rigid_path_bows_the_other_way():
+    """The default's rigid-body path is pre-bowed against the flexures' elastic bow (which
+    curves the flexure path up, c2 > 0): curved down, more than ten times the Chapter 5
+    design's residual c2 (balanced against c4, nearly straight); still mirror-opposite motion."""
+    from flexfem.studies.eightbar_driving import path_shape
+    tr = trace_driving(DrivingParams(), n=41)
+    c2, c2_chapter5 = (path_shape(t.ee_right)["c2_per_m"] for t in (tr, trace_driving(CHAPTER5, n=41)))
+    assert c2 < 0 and abs(c2) > 10 * abs(c2_chapter5)
+    assert np.max(np.abs(tr.dx_left + tr.dx_right)) < 1e-9 * np.ptp(tr.dx_right)
