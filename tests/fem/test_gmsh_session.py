@@ -1,0 +1,41 @@
+"""gmsh sessions: one at a time, and a process that used gmsh still survives a broken pipe."""
+import subprocess
+import sys
+
+import pytest
+
+from flexfem.fem import gmsh_session
+
+BROKEN_PIPE_AFTER_GMSH = """
+import os
+from flexfem.fem import gmsh_session
+with gmsh_session() as gmsh:
+    read, write = os.pipe()
+    os.close(read)
+    try:
+        os.write(write, b"x")      # SIGPIPE at its default action would kill us here
+    except BrokenPipeError:
+        print("inside: BrokenPipeError")
+read, write = os.pipe()
+os.close(read)
+try:
+    os.write(write, b"x")
+except BrokenPipeError:
+    print("after: BrokenPipeError")
+"""
+
+
+def test_a_broken_pipe_raises_instead_of_killing_the_process():
+    # gmsh.initialize() resets SIGPIPE to "terminate"; a process pool whose worker died would
+    # then kill the parent process on its next write to that worker (seen in CI)
+    run = subprocess.run([sys.executable, "-c", BROKEN_PIPE_AFTER_GMSH], capture_output=True,
+                         text=True, timeout=60)
+    assert run.returncode == 0, (run.returncode, run.stderr)
+    assert run.stdout.split("\n")[:2] == ["inside: BrokenPipeError", "after: BrokenPipeError"]
+
+
+def test_sessions_do_not_nest():
+    with gmsh_session():
+        with pytest.raises(RuntimeError, match="already open"):
+            with gmsh_session():
+                pass
