@@ -73,7 +73,10 @@ def _start_sweep(tmp_path: Path, text: str = SLOW_STUDY) -> tuple[subprocess.Pop
     process = subprocess.Popen(
         [sys.executable, "-m", "flexfem.studies.cli", "sweep", str(toml), "--out", str(out),
          "--workers", "2"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env,
-        start_new_session=True)  # its own process group: the kill reaches its workers too
+        start_new_session=True,  # its own process group: the kill reaches its workers too
+        # a shell without job control starts background jobs with SIGINT ignored, and Python
+        # keeps it ignored: give the study the default a user's terminal gives it
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     return process, out / "results.sqlite"
 
 
