@@ -13,7 +13,8 @@ import math
 import numpy as np
 
 from flexfem.data import load_toml
-from flexfem.geometry.flexure_linkage import _inside, _segment_distance, polygon_distance
+from flexfem.geometry.flexure_linkage import _inside, polygon_distance
+from flexfem.geometry.linkage import segment_distance
 
 UM = 1e-6
 
@@ -67,7 +68,7 @@ def _distance(P, Q) -> float:
     """Distance (m) between two convex polygons, 0 where they touch or overlap."""
     if _inside(P[0], Q) or _inside(Q[0], P):
         return 0.0
-    return min(_segment_distance(a0, a1, b0, b1)
+    return min(segment_distance(a0, a1, b0, b1)
                for a0, a1 in zip(P, np.roll(P, -1, axis=0))
                for b0, b1 in zip(Q, np.roll(Q, -1, axis=0)))
 

@@ -27,6 +27,7 @@ from flexfem.fem.gmsh_session import gmsh_session
 from flexfem.fem.mesh import mesh_from_gmsh
 from flexfem.geometry.flexure_roots import (check_root_fillet_radius, draw_filleted_flexure,
                                             root_zone_depth)
+from flexfem.geometry.linkage import segment_distance
 
 
 @dataclass(frozen=True)
@@ -213,25 +214,6 @@ def flexure_layout(polylines: dict, joints: list, hosts: dict, sizes: dict, link
 
 # -- convex polygon distances (rectangles), for clearance checks ------------------------------
 
-def _segment_distance(a0, a1, b0, b1) -> float:
-    def cross(u, v):
-        return u[0] * v[1] - u[1] * v[0]
-
-    d1, d2, w = a1 - a0, b1 - b0, b0 - a0
-    den = cross(d1, d2)
-    if den != 0:
-        s, t = cross(w, d2) / den, cross(w, d1) / den
-        if 0 <= s <= 1 and 0 <= t <= 1:
-            return 0.0
-
-    def ps(p, a, b):
-        ab = b - a
-        t = np.clip(np.dot(p - a, ab) / max(np.dot(ab, ab), 1e-300), 0.0, 1.0)
-        return float(np.linalg.norm(a + t * ab - p))
-
-    return min(ps(a0, b0, b1), ps(a1, b0, b1), ps(b0, a0, a1), ps(b1, a0, a1))
-
-
 def _inside(point, poly) -> bool:
     """Point inside (or on) a counter-clockwise convex polygon."""
     for a, b in zip(poly, np.roll(poly, -1, axis=0)):
@@ -246,7 +228,7 @@ def polygon_distance(P: np.ndarray, Q: np.ndarray) -> tuple:
     best, where = math.inf, None
     for a0, a1 in zip(P, np.roll(P, -1, axis=0)):
         for b0, b1 in zip(Q, np.roll(Q, -1, axis=0)):
-            d = _segment_distance(a0, a1, b0, b1)
+            d = segment_distance(a0, a1, b0, b1)
             if d < best:
                 best, where = d, _closest_midpoint(a0, a1, b0, b1)
     if _inside(P[0], Q) or _inside(Q[0], P):

@@ -113,7 +113,7 @@ def hinge_profile_study(out_dir, quick: bool = False) -> dict:
     circular one also on a coarser mesh (size_factor 2; 4 in quick mode) as a mesh check,
     beside the closed forms. Writes dbma_hinge_profiles.csv, dbma_hinge_closed_form.csv and
     dbma_hinge_profiles.png; returns {"rows", "closed_form", "tables", "figures", "notes"}."""
-    from flexfem.studies.dbma_fem import write_csv
+    from flexfem.studies.tables import write_rows
 
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
@@ -129,8 +129,8 @@ def hinge_profile_study(out_dir, quick: bool = False) -> dict:
         r["R_change_vs_leaf"] = r["R_fem_per_side"] / leaf["R_fem_per_side"] - 1
         r["k_in_change_vs_leaf"] = r["k_in_N_per_m"] / leaf["k_in_N_per_m"] - 1
     closed = closed_form_rows(p)
-    tables = [write_csv(rows, out / "dbma_hinge_profiles.csv").name,
-              write_csv(closed, out / "dbma_hinge_closed_form.csv").name]
+    tables = [write_rows(out / "dbma_hinge_profiles.csv", rows).name,
+              write_rows(out / "dbma_hinge_closed_form.csv", closed).name]
     figures = [plot_profiles(rows, closed, out / "dbma_hinge_profiles.png").name]
     circ, coarse = rows[2], rows[3]
     mesh_change = circ["R_fem_per_side"] / coarse["R_fem_per_side"] - 1
