@@ -7,17 +7,17 @@
     write_result(result, "result.vtu")                  # ParaView; write_mesh for .msh/.inp
     large = solve_nonlinear(model, [Fixed("fixed")], [Force("tip", (0.0, -1e3))], steps=20)
 """
-from flexfem.fem.boundary import BodyForce, Fixed, Force, Gravity, PointForce, Prescribed, Traction
-from flexfem.fem.export import write_mesh, write_result
-from flexfem.fem.gmsh_session import gmsh_session
-from flexfem.fem.linsolve import SingularSystemError
-from flexfem.fem.materials import Material, material, material_names
-from flexfem.fem.mesh import FEMesh, facets_where, mesh_from_gmsh, read_mesh
-from flexfem.fem.modal import Modes, solve_modes
-from flexfem.fem.nonlinear import NonConvergenceError, NonlinearResult, solve_nonlinear
-from flexfem.fem.rigid_face import RigidFace
-from flexfem.fem.model import Model, PlaneStrain, PlaneStress, Solid3D, von_mises
-from flexfem.fem.static import StaticResult, UnderConstrainedError, solve_static
+from .boundary import BodyForce, Fixed, Force, Gravity, PointForce, Prescribed, Traction
+from .export import write_mesh, write_result
+from .gmsh_session import gmsh_session
+from .linsolve import SingularSystemError
+from .materials import Material, material, material_names
+from .mesh import FEMesh, facets_where, mesh_from_gmsh, read_mesh
+from .modal import Modes, solve_modes
+from .nonlinear import NonConvergenceError, NonlinearResult, solve_nonlinear
+from .rigid_face import RigidFace
+from .model import Model, PlaneStrain, PlaneStress, Solid3D, von_mises
+from .static import StaticResult, UnderConstrainedError, solve_static
 
 __all__ = [
     "BodyForce", "FEMesh", "Fixed", "Force", "Gravity", "Material", "Model", "Modes",

@@ -16,8 +16,8 @@ import re
 import numpy as np
 import skfem
 
-from flexfem.fem.mesh import FEMesh
-from flexfem.fem.model import scalar_element
+from .mesh import FEMesh
+from .model import scalar_element
 
 # (skfem mesh type, order) -> (CalculiX element, corner pairs of its mid-edge nodes, 0-based)
 _TRI_EDGES = [(0, 1), (1, 2), (2, 0)]

@@ -18,9 +18,9 @@ import time
 
 import numpy as np
 
-from flexfem.fem.abaqus import abaqus_mesh, inp_lines, set_name
-from flexfem.fem.boundary import Fixed, load_vector
-from flexfem.fem.model import Model, PlaneStrain, PlaneStress
+from .abaqus import abaqus_mesh, inp_lines, set_name
+from .boundary import Fixed, load_vector
+from .model import Model, PlaneStrain, PlaneStress
 
 _FLOAT = r"[-+]?\d\.\d+E[-+]\d+"
 
@@ -172,8 +172,8 @@ def compare_with_calculix(model: Model, supports, loads, n_modes: int = 6,
     (m) at the common nodes and the ``n_modes`` lowest frequencies (Hz). Returns
     ``{"comparisons": [{"quantity", "flexfem", "calculix", "rel_diff", "note"}, ...],
     "element": ..., "n_dofs": ...}``; JSON-able."""
-    from flexfem.fem.modal import solve_modes
-    from flexfem.fem.static import solve_static
+    from .modal import solve_modes
+    from .static import solve_static
 
     u = flexfem_nodal_displacement(model, solve_static(model, supports, loads).u)
     u_ccx, _ = calculix_static(model, supports, loads, threads=threads)

@@ -3,7 +3,7 @@ from dataclasses import dataclass
 import math
 import numbers
 
-from flexfem.data import load_toml
+from ..data import load_toml
 
 
 @dataclass(frozen=True)

@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 import skfem
 
-from flexfem.fem.gmsh_session import gmsh_session
+from .gmsh_session import gmsh_session
 
 # gmsh element type -> (skfem mesh class, number of corner nodes). Higher-order types (9 and
 # 11: 6/10-node simplices; 10 and 16: 9/8-node quadrangles; 12 and 17: 27/20-node hexahedra)

@@ -9,10 +9,10 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse.linalg as spla
 
-from flexfem.fem import linsolve
-from flexfem.fem.boundary import component_indices, constrained_dofs
-from flexfem.fem.model import Model
-from flexfem.fem.static import vertex_displacement
+from . import linsolve
+from .boundary import component_indices, constrained_dofs
+from .model import Model
+from .static import vertex_displacement
 
 
 @dataclass(frozen=True, eq=False)

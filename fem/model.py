@@ -14,8 +14,8 @@ import scipy.sparse as sp
 import skfem
 from skfem.helpers import sym_grad, trace, eye
 
-from flexfem.fem.materials import Material
-from flexfem.fem.mesh import FEMesh
+from .materials import Material
+from .mesh import FEMesh
 
 
 def _check_thickness(formulation: str, thickness) -> None:

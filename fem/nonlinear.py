@@ -18,11 +18,11 @@ import scipy.sparse as sp
 import skfem
 from skfem.helpers import ddot, eye, grad, mul, transpose, trace
 
-from flexfem.fem import linsolve
-from flexfem.fem.boundary import component_indices, constrained_dofs, group_dofs, load_vector
-from flexfem.fem.model import Model, PlaneStrain, von_mises
-from flexfem.fem.rigid_face import ReducedSpace
-from flexfem.fem.static import (UnderConstrainedError, check_supports, mean_field, nodal_average,
+from . import linsolve
+from .boundary import component_indices, constrained_dofs, group_dofs, load_vector
+from .model import Model, PlaneStrain, von_mises
+from .rigid_face import ReducedSpace
+from .static import (UnderConstrainedError, check_supports, mean_field, nodal_average,
                                 rigid_body_dof_modes)
 
 

@@ -19,8 +19,8 @@ import numpy as np
 import scipy.sparse as sp
 import skfem
 
-from flexfem.fem.boundary import group_dofs
-from flexfem.fem.model import rigid_body_modes
+from .boundary import group_dofs
+from .model import rigid_body_modes
 
 _COORDS = ("x", "y", "rotation")
 

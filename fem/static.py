@@ -7,9 +7,9 @@ import scipy.sparse.linalg as spla
 from scipy.sparse.csgraph import connected_components
 import skfem
 
-from flexfem.fem import linsolve
-from flexfem.fem.boundary import component_indices, constrained_dofs, load_vector
-from flexfem.fem.model import Model, rigid_body_modes, scalar_element, von_mises
+from . import linsolve
+from .boundary import component_indices, constrained_dofs, load_vector
+from .model import Model, rigid_body_modes, scalar_element, von_mises
 
 
 class UnderConstrainedError(linsolve.SingularSystemError):

@@ -19,10 +19,10 @@ import numbers
 
 import numpy as np
 
-from flexfem.fem.gmsh_session import gmsh_session
-from flexfem.fem.mesh import FEMesh, mesh_from_gmsh
-from flexfem.geometry.dbma_params import DBMAParams
-from flexfem.geometry.hinge_profiles import (ARC_ELEMENTS, add_hinge_surface, check_fits,
+from ..fem.gmsh_session import gmsh_session
+from ..fem.mesh import FEMesh, mesh_from_gmsh
+from .dbma_params import DBMAParams
+from .hinge_profiles import (ARC_ELEMENTS, add_hinge_surface, check_fits,
                                             check_hinge_profile, profile_area)
 
 MM = 1e-3

@@ -8,7 +8,7 @@ from dataclasses import dataclass, fields
 import math
 import numbers
 
-from flexfem.data import load_toml
+from ..data import load_toml
 
 MM = 1e-3  # metres per millimetre
 

@@ -12,9 +12,9 @@ import math
 
 import numpy as np
 
-from flexfem.data import load_toml
-from flexfem.geometry.flexure_linkage import _inside, polygon_distance
-from flexfem.geometry.linkage import segment_distance
+from ..data import load_toml
+from .flexure_linkage import _inside, polygon_distance
+from .linkage import segment_distance
 
 UM = 1e-6
 

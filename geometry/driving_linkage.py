@@ -27,9 +27,9 @@ import numbers
 
 import numpy as np
 
-from flexfem.geometry.eightbar_rigid import EightBarParams, build_eightbar, eightbar_points
-from flexfem.geometry.linkage import CrankAngle, Joint, Link, Linkage, PointCoordinate, trace
-from flexfem.geometry.straight_line import (LineDeviation, StraightLineMechanism,
+from .eightbar_rigid import EightBarParams, build_eightbar, eightbar_points
+from .linkage import CrankAngle, Joint, Link, Linkage, PointCoordinate, trace
+from .straight_line import (LineDeviation, StraightLineMechanism,
                                             straight_line_deviation)
 
 
@@ -322,7 +322,7 @@ def driving_layout(params: DrivingParams, flexure, shuttle: bool = True) -> "Fle
     suspensions' end-effector bars). Without ``shuttle`` the two halves are separate parts, each
     lambda's coupler ending W/2 past P in a free end face "input_L" / "input_R" (to drive each
     half by its own coupler point, as :func:`trace_driving` does: no misfit to take up)."""
-    from flexfem.geometry.flexure_linkage import flexure_layout
+    from .flexure_linkage import flexure_layout
 
     W, L = flexure.link_width, flexure.flexure_length
     linkage = build_driving_linkage(params, shuttle=shuttle, d_offset=L / 2 + W / 2)
@@ -354,8 +354,8 @@ def mesh_driving_flexure(params: DrivingParams, flexure, n_across: int = 3, size
     ``shuttle``): triangles (use order=2), as
     :func:`flexfem.geometry.eightbar_flexure.mesh_eightbar_flexure` meshes the suspension.
     Returns (FEMesh, sizes dict, m)."""
-    from flexfem.geometry.eightbar_flexure import check_mesh_options
-    from flexfem.geometry.flexure_linkage import mesh_layout
+    from .eightbar_flexure import check_mesh_options
+    from .flexure_linkage import mesh_layout
 
     check_mesh_options(n_across, size_factor)
     n = max(int(n_across), int(math.ceil(3 / size_factor)))
@@ -371,7 +371,7 @@ def lever_shear_rate(params: DrivingParams, flexure) -> float:
     at Q bends and its moment k_Q dx / r (k_Q = E t w^3 / 12 L) is balanced by a shear force
     across the bar Q-D: k_Q / (r |QD|) per metre. Divided by the suspension's k_y it tilts the
     end-effector's path by that many radians (odd in the stroke, so a tilt, not a curvature)."""
-    from flexfem.fem.materials import material
+    from ..fem.materials import material
 
     E = material(flexure.material).E
     k_q = E * flexure.thickness * flexure.flexure_width**3 / (12 * flexure.flexure_length)

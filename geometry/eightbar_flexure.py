@@ -21,12 +21,12 @@ import numbers
 
 import numpy as np
 
-from flexfem.fem.materials import material as material_named
-from flexfem.geometry.eightbar_rigid import (BASE_JOINTS, EightBarParams, build_eightbar,
+from ..fem.materials import material as material_named
+from .eightbar_rigid import (BASE_JOINTS, EightBarParams, build_eightbar,
                                              eightbar_joints, eightbar_points)
-from flexfem.geometry.flexure_linkage import FlexureLayout, flexure_layout, mesh_layout, polygon_distance
-from flexfem.geometry.flexure_roots import check_root_fillet_radius
-from flexfem.geometry.linkage import trace_from_reference
+from .flexure_linkage import FlexureLayout, flexure_layout, mesh_layout, polygon_distance
+from .flexure_roots import check_root_fillet_radius
+from .linkage import trace_from_reference
 
 THESIS_TRAVEL = 33.1e-3  # m, data/eightbar_thesis.toml [design_targets] travel_mm
 # m, our choice (docs/eightbar.md, "Flexure suspension (FEM)"): see the module docstring
@@ -183,7 +183,7 @@ def flexure_contacts(params: EightBarFlexureParams, n: int = 5) -> list:
 
 def _segment_gap(P, Q) -> float:
     """Distance (m) between the centre-lines of two rectangles given by their corners."""
-    from flexfem.geometry.linkage import segment_distance
+    from .linkage import segment_distance
     return segment_distance((P[0] + P[3]) / 2, (P[1] + P[2]) / 2, (Q[0] + Q[3]) / 2, (Q[1] + Q[2]) / 2)
 
 

@@ -18,8 +18,8 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 
-from flexfem.geometry.linkage import Joint, Link, Linkage, PointCoordinate, trace_from_reference
-from flexfem.geometry.straight_line import LineDeviation, straight_line_deviation
+from .linkage import Joint, Link, Linkage, PointCoordinate, trace_from_reference
+from .straight_line import LineDeviation, straight_line_deviation
 
 
 @dataclass(frozen=True)

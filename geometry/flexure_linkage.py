@@ -23,11 +23,11 @@ import math
 
 import numpy as np
 
-from flexfem.fem.gmsh_session import gmsh_session
-from flexfem.fem.mesh import mesh_from_gmsh
-from flexfem.geometry.flexure_roots import (check_root_fillet_radius, draw_filleted_flexure,
+from ..fem.gmsh_session import gmsh_session
+from ..fem.mesh import mesh_from_gmsh
+from .flexure_roots import (check_root_fillet_radius, draw_filleted_flexure,
                                             root_zone_depth)
-from flexfem.geometry.linkage import segment_distance
+from .linkage import segment_distance
 
 
 @dataclass(frozen=True)

@@ -24,8 +24,8 @@ import numbers
 
 import numpy as np
 
-from flexfem.fem.gmsh_session import gmsh_session
-from flexfem.fem.mesh import FEMesh, mesh_from_gmsh
+from ..fem.gmsh_session import gmsh_session
+from ..fem.mesh import FEMesh, mesh_from_gmsh
 
 KINDS = ("cross", "single")
 

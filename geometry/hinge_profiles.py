@@ -121,8 +121,8 @@ def mesh_hinge_specimen(l: float, b: float, profile: str = "leaf",
     in the hinge's core l x b, growing to H / 4 (both times size_factor). Groups: 'body',
     'hinges' (cells), 'fixed' (left end), 'tip' (right end), 'top' and 'bottom' (the right
     block's faces y = +-H/2)."""
-    from flexfem.fem.gmsh_session import gmsh_session
-    from flexfem.fem.mesh import mesh_from_gmsh
+    from ..fem.gmsh_session import gmsh_session
+    from ..fem.mesh import mesh_from_gmsh
 
     check_hinge_profile(profile, fillet_radius, "mesh_hinge_specimen")
     for name, value in (("l", l), ("b", b), ("block_length", block_length),

@@ -10,7 +10,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from flexfem.geometry.linkage import (CrankAngle, Joint, Link, Linkage, PointCoordinate,
+from .linkage import (CrankAngle, Joint, Link, Linkage, PointCoordinate,
                                       trace_from_reference)
 
 

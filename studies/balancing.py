@@ -9,14 +9,14 @@ from pathlib import Path
 
 import numpy as np
 
-from flexfem.data import load_toml
-from flexfem.studies.balancing_gravity import Workspace, load_robot, workspace_torques
-from flexfem.studies.balancing_optimum import (
+from ..data import load_toml
+from .balancing_gravity import Workspace, load_robot, workspace_torques
+from .balancing_optimum import (
     max_reduction_pct, optimal_counterweight, optimal_coupled_springs,
     optimal_spring, optimal_spring_and_torsion, optimal_torsion_spring, rms_reduction_pct)
-from flexfem.studies.balancing_pivots import (
+from .balancing_pivots import (
     flexure_material, negative_stiffness_preload, size_flexure_pivot)
-from flexfem.studies.tables import write_rows
+from .tables import write_rows
 
 METHODS = {"spring": optimal_spring, "torsion": optimal_torsion_spring,
            "counterweight": optimal_counterweight}
@@ -276,7 +276,7 @@ def reproduce(out_dir: Path, quick: bool = False) -> dict:
     tables += ["balancing_beyond_paper.csv", "balancing_pivots.csv", "balancing_sensitivity.csv"]
     plot_torques_zero_orientation(out_dir / "balancing_fig10.png", ws, result)
     figures.append("balancing_fig10.png")
-    from flexfem.studies.balancing_pivot_fem import pivot_fem_study  # gmsh: only when run
+    from .balancing_pivot_fem import pivot_fem_study  # gmsh: only when run
     pivot_fem = pivot_fem_study(out_dir, quick=quick, workspace=ws)
     tables += pivot_fem["tables"]
     figures += pivot_fem["figures"]
@@ -286,7 +286,7 @@ def reproduce(out_dir: Path, quick: bool = False) -> dict:
              f"{r['stress_fem_peak_Pa'] / 1e6:.0f} MPa (beam theory {r['stress_beam_Pa'] / 1e6:.0f} MPa), "
              f"safety factor {r['safety_factor_fem']:.2f} (beam theory {r['safety_factor_beam']:.2f})"
              for r in pivot_fem["rows"]]
-    from flexfem.studies.balancing_negative_pivot import negative_pivot_study  # gmsh: only when run
+    from .balancing_negative_pivot import negative_pivot_study  # gmsh: only when run
     negative = negative_pivot_study(out_dir, quick=quick, workspace=ws)
     tables += negative["tables"]
     figures += negative["figures"]

@@ -10,7 +10,7 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 
-from flexfem.data import load_toml
+from ..data import load_toml
 
 
 @dataclass(frozen=True)

@@ -42,8 +42,8 @@ import numpy as np
 from scipy.integrate import solve_bvp, solve_ivp
 from scipy.optimize import brentq
 
-from flexfem.studies.balancing_pivots import FlexureMaterial
-from flexfem.studies.tables import write_rows
+from .balancing_pivots import FlexureMaterial
+from .tables import write_rows
 
 KL_DEFAULT = 0.75 * math.pi
 
@@ -266,8 +266,8 @@ def size_negative_pivot(K, theta_range_rad, material: FlexureMaterial, safety_fa
 # ---------------------------------------------------------------- FEM check (large deflection)
 
 def _leaf_model(pivot: CompressedLeafPivot, formulation, elements_through_thickness, nu):
-    from flexfem.geometry.flexure_pivot import PivotGeometry
-    from flexfem.studies.balancing_pivot_fem import pivot_model
+    from ..geometry.flexure_pivot import PivotGeometry
+    from .balancing_pivot_fem import pivot_model
 
     geometry = PivotGeometry("single", pivot.L, pivot.t)
     return pivot_model(pivot, formulation, elements_through_thickness, nu, geometry)
@@ -277,8 +277,8 @@ def _hub_state(model, P, theta, steps):
     """(moment (N m), (dx, dy) (m), result) with the hub turned by theta under the dead load P;
     preload and rotation grow together (a conservative system: the end state is that of
     preloading first, on the branch the Jacobi test shows to be the only stable one)."""
-    from flexfem.fem import Fixed, RigidFace
-    from flexfem.fem.nonlinear import solve_nonlinear
+    from ..fem import Fixed, RigidFace
+    from ..fem.nonlinear import solve_nonlinear
 
     result = solve_nonlinear(model, [Fixed("fixed")], [], steps=steps,
                              rigid_faces=[RigidFace("hub", rotation=theta, force=(-P, 0.0))])
@@ -360,7 +360,7 @@ def motor_rms_reductions(q, tau, K, q_k, pivot: CompressedLeafPivot, theta, mome
     the ideal torsion spring K (q_k - q), and the compressed leaf neutral at mid-range whose
     hub moment (N m) is known at pivot rotations theta (rad; odd in theta, mirrored and
     interpolated), plus the constant K (q_k - q_mid) supplied apart."""
-    from flexfem.studies.balancing_optimum import rms_reduction_pct
+    from .balancing_optimum import rms_reduction_pct
 
     q_mid = 0.5 * (q.min() + q.max())
     N = pivot.transmission_ratio
@@ -378,10 +378,10 @@ def negative_pivot_designs(workspace=None, material="spring_steel_aisi1095", saf
     """(motor, K, q_k, q, tau, CompressedLeafPivot) of every motor whose RMS-optimal torsion
     spring has K < 0: the leaf straight at mid-range, the smallest integer N keeping the pivot
     rotation <= max_pivot_rotation_rad (as studies.balancing.pivot_designs does for K > 0)."""
-    from flexfem.studies.balancing import default_workspace
-    from flexfem.studies.balancing_gravity import load_robot, workspace_torques
-    from flexfem.studies.balancing_optimum import optimal_torsion_spring
-    from flexfem.studies.balancing_pivots import flexure_material
+    from .balancing import default_workspace
+    from .balancing_gravity import load_robot, workspace_torques
+    from .balancing_optimum import optimal_torsion_spring
+    from .balancing_pivots import flexure_material
 
     wt = workspace_torques(load_robot(), workspace or default_workspace())
     out = []

@@ -29,16 +29,16 @@ from pathlib import Path
 import numpy as np
 import scipy.sparse.linalg as spla
 
-from flexfem.data import load_toml
-from flexfem.fem import Fixed, Material, Model, PlaneStrain, PlaneStress, RigidFace, von_mises
-from flexfem.fem.boundary import constrained_dofs
-from flexfem.fem.nonlinear import solve_nonlinear
-from flexfem.fem.rigid_face import ReducedSpace
-from flexfem.fem.static import nodal_average
-from flexfem.geometry.flexure_pivot import PivotGeometry, mesh_pivot
-from flexfem.studies.balancing_pivots import (
+from ..data import load_toml
+from ..fem import Fixed, Material, Model, PlaneStrain, PlaneStress, RigidFace, von_mises
+from ..fem.boundary import constrained_dofs
+from ..fem.nonlinear import solve_nonlinear
+from ..fem.rigid_face import ReducedSpace
+from ..fem.static import nodal_average
+from ..geometry.flexure_pivot import PivotGeometry, mesh_pivot
+from .balancing_pivots import (
     FlexurePivot, flexure_material, leaf_bending_stress, pivot_stiffness_beam_theory)
-from flexfem.studies.tables import write_rows
+from .tables import write_rows
 
 FORMULATIONS = ("plane_stress", "plane_strain")
 
@@ -193,7 +193,7 @@ def pivot_from_dict(row: dict) -> FlexurePivot:
 def positive_stiffness_pivots(workspace=None) -> list:
     """(motor, reading, FlexurePivot) of every feasible design of studies.balancing's
     pivot_designs for the motors with K > 0 (readings "at_q_k", "at_mid_range")."""
-    from flexfem.studies.balancing import pivot_designs
+    from .balancing import pivot_designs
 
     out = []
     for row in pivot_designs(workspace):

@@ -20,7 +20,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from flexfem.data import load_toml
+from ..data import load_toml
 
 
 @dataclass(frozen=True)

@@ -10,7 +10,7 @@ import importlib
 import json
 import sys
 
-from flexfem.studies.serialize import jsonable
+from .serialize import jsonable
 
 COMMAND_MODULES = [
     "flexfem.studies.cli_reproduce",

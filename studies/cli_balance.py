@@ -1,5 +1,5 @@
 """``flexfem balance``: RMS-optimal static balancing of the five-bar robot's motors 2-5."""
-from flexfem.studies.balancing import METHODS, balance_robot
+from .balancing import METHODS, balance_robot
 
 
 def run(args) -> dict:

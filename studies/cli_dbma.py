@@ -2,7 +2,7 @@
 import dataclasses
 from pathlib import Path
 
-from flexfem.geometry.dbma_params import paper_design
+from ..geometry.dbma_params import paper_design
 
 MESH_SUFFIXES = (".msh", ".vtu", ".xdmf", ".inp")
 
@@ -14,7 +14,7 @@ def _params(args):
 
 
 def run_analyze(args) -> dict:
-    from flexfem.studies.dbma_fem import analyze_dbma
+    from .dbma_fem import analyze_dbma
 
     return analyze_dbma(_params(args), dim=args.dim, size_factor=args.size_factor)
 
@@ -38,8 +38,8 @@ def summarize_analyze(r: dict) -> str:
 
 
 def run_mesh(args) -> dict:
-    from flexfem.fem.export import write_mesh
-    from flexfem.geometry.dbma import mesh_dbma
+    from ..fem.export import write_mesh
+    from ..geometry.dbma import mesh_dbma
 
     path = Path(args.out)
     if path.suffix not in MESH_SUFFIXES:

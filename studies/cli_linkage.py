@@ -1,7 +1,7 @@
 """``flexfem linkage trace NAME``, ``flexfem eightbar trace`` (rigid-body straight-line paths),
 ``flexfem eightbar analyze`` (FEM of the flexure suspension) and ``flexfem eightbar mesh OUT``."""
-from flexfem.geometry.straight_line import CLASSIC_LINKAGES
-from flexfem.studies.eightbar_path import eightbar_path_summary, trace_classic
+from ..geometry.straight_line import CLASSIC_LINKAGES
+from .eightbar_path import eightbar_path_summary, trace_classic
 
 LINKAGE_CHOICES = ["watt", "roberts", "chebyshev", "peaucellier", "modified_peaucellier"]
 
@@ -28,7 +28,7 @@ def _summarize_eightbar_trace(result: dict) -> str:
 
 
 def _run_eightbar_analyze(args) -> dict:
-    from flexfem.studies.eightbar_fem import analyze_eightbar, summary_row
+    from .eightbar_fem import analyze_eightbar, summary_row
     out = analyze_eightbar(travel=args.travel, size_factor=2.0 if args.quick else 1.0,
                            steps=4 if args.quick else 8, both_halves=not args.quick,
                            n_modes=2)
@@ -49,8 +49,8 @@ def _summarize_eightbar_analyze(r: dict) -> str:
 
 
 def _run_eightbar_mesh(args) -> dict:
-    from flexfem.fem import write_mesh
-    from flexfem.geometry.eightbar_flexure import EightBarFlexureParams, mesh_eightbar_flexure
+    from ..fem import write_mesh
+    from ..geometry.eightbar_flexure import EightBarFlexureParams, mesh_eightbar_flexure
     mesh, sizes = mesh_eightbar_flexure(EightBarFlexureParams(), size_factor=args.size_factor)
     path = write_mesh(mesh, args.out, order=args.order) if args.order != 1 else write_mesh(mesh, args.out)
     return {"path": str(path), "vertices": int(mesh.mesh.p.shape[1]),

@@ -1,5 +1,5 @@
 """``flexfem optimize dbma``: FEM-decided search of the DBMA hinge dimensions (SI units)."""
-from flexfem.studies.dbma_optimize import OptimizeSpec
+from .dbma_optimize import OptimizeSpec
 
 # option -> OptimizeSpec field
 SPEC_OPTIONS = {
@@ -34,13 +34,13 @@ def register(subparsers):
 
 
 def run_optimize(args) -> dict:
-    from flexfem.studies.dbma_optimize import run
+    from .dbma_optimize import run
     values = {name: getattr(args, name) for name in SPEC_OPTIONS.values()}
     spec = OptimizeSpec(**values, max_evaluations=args.max_evaluations)
     return run(spec, args.out, quick=args.quick)
 
 
 def summarize_optimize(result: dict) -> str:
-    from flexfem.studies.dbma_optimize_output import summarize
+    from .dbma_optimize_output import summarize
     files = ", ".join(result.get("tables", []) + result.get("figures", []))
     return summarize(result) + (f"\nresults in {result['out']}: {files}" if "out" in result else "")

@@ -1,7 +1,7 @@
 """``flexfem reproduce``: the main job, every comparison with the source documents."""
 import sys
 
-from flexfem.studies.reproduce import SECTIONS, reproduce
+from .reproduce import SECTIONS, reproduce
 
 
 def register(subparsers):

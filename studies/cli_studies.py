@@ -1,8 +1,8 @@
 """``flexfem sweep`` and ``flexfem converge``: parameter and mesh-convergence studies."""
 import json
 
-from flexfem.studies.convergence import parse_tolerance, run_convergence
-from flexfem.studies.sweep import sweep
+from .convergence import parse_tolerance, run_convergence
+from .sweep import sweep
 
 
 def register(subparsers):

@@ -137,7 +137,7 @@ def converge(evaluate, metric: str, levels: list, mesh_size_key: str | None = No
     the design (default: the mechanism's); ``mesh_size_key``: "h" or "dofs" (default: "h" when
     returned); ``dim``: the dimension relating dofs to h; ``tol``: relative tolerance."""
     if isinstance(evaluate, str):
-        from flexfem.studies.registry import get_evaluator
+        from .registry import get_evaluator
         evaluate = get_evaluator(evaluate)
     if len(levels) < 3:
         raise ValueError(f"levels has {len(levels)} entries; the observed order needs >= 3")
@@ -214,7 +214,7 @@ def run_convergence(mechanism: str, metric: str, tol="0.5%", n_levels: int = 4, 
     start, start/ratio, ... (``start`` defaults to the mechanism's coarsest level, see
     registry.COARSEST_SIZE_FACTOR); writes convergence_<metric>.png into ``out_dir`` when
     given. JSON-able."""
-    from flexfem.studies.registry import coarsest_size_factor
+    from .registry import coarsest_size_factor
     tolerance = parse_tolerance(tol)
     if start is None:
         start = coarsest_size_factor(mechanism)

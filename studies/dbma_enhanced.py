@@ -19,8 +19,8 @@ All quantities in SI units (m, Pa, N/m).
 """
 import numpy as np
 
-from flexfem.data import load_toml
-from flexfem.geometry.dbma_params import DBMAParams
+from ..data import load_toml
+from ..geometry.dbma_params import DBMAParams
 
 ROWS = 2  # bow-type rows whose outputs add (Section 2, Figure 3)
 # Timoshenko shear coefficient of a rectangular section (data/literature_models.toml)

@@ -15,13 +15,13 @@ import time
 
 import numpy as np
 
-from flexfem.data import load_toml
-from flexfem.fem import (Fixed, Force, Material, Model, PlaneStress, Prescribed, Solid3D,
+from ..data import load_toml
+from ..fem import (Fixed, Force, Material, Model, PlaneStress, Prescribed, Solid3D,
                          material, solve_modes, solve_static)
-from flexfem.geometry.dbma import DBMALayout, dbma_outline_figure, mesh_dbma, part_mass
-from flexfem.geometry.dbma_params import DBMAParams, paper_design
-from flexfem.studies.dbma_figures import analytical_metrics
-from flexfem.studies.tables import write_rows
+from ..geometry.dbma import DBMALayout, dbma_outline_figure, mesh_dbma, part_mass
+from ..geometry.dbma_params import DBMAParams, paper_design
+from .dbma_figures import analytical_metrics
+from .tables import write_rows
 
 OUTPUT_AXIS = 1  # the output moves along y
 
@@ -209,7 +209,7 @@ def convergence_study(p: DBMAParams, size_factors=(2.83, 2.0, 1.41, 1.0),
     """Mesh convergence (2-D) of R_fem and the working-mode frequency: observed order,
     Richardson-extrapolated value, coarsest size_factor within ``tol`` of it; with ``out_dir``
     a log-log plot per metric, dbma_convergence_<metric>.png."""
-    from flexfem.studies.convergence import converge, plot_convergence
+    from .convergence import converge, plot_convergence
 
     values = {f.name: getattr(p, f.name) for f in dataclasses.fields(p)}
     outputs = {}
@@ -350,7 +350,7 @@ def reproduce(out_dir, quick: bool = False) -> dict:
     tables.append(write_rows(out / "dbma_modes.csv", mode_rows).name)
     figures = [dbma_outline_figure(p, None, out / "dbma_outline.png").name,
                plot_mode_shapes(modes, out / "dbma_modes.png").name]
-    from flexfem.fem.export import write_result
+    from ..fem.export import write_result
     write_result(modes, out / "dbma_modes.vtu")
     figures.append("dbma_modes.vtu")
     forces = [200.0, 800.0] if quick else [200.0, 400.0, 600.0, 800.0]
@@ -383,7 +383,7 @@ def reproduce(out_dir, quick: bool = False) -> dict:
             f"{m}: {', '.join(f'{v:.5g}' for v in c['values'])}; observed order {c['order']:.2f} "
             f"({c['behaviour']}), Richardson {c['extrapolated']:.5g}, recommended size_factor "
             f"{c['recommended_size_factor']}" for m, c in conv.items()]
-    from flexfem.studies.dbma_hinges import hinge_profile_study  # hinge-profile sensitivity
+    from .dbma_hinges import hinge_profile_study  # hinge-profile sensitivity
     hinges = hinge_profile_study(out, quick=quick)
     tables += hinges["tables"]
     figures += hinges["figures"]

@@ -12,10 +12,10 @@ from pathlib import Path
 
 import numpy as np
 
-from flexfem.data import load_toml
-from flexfem.geometry.dbma_params import DBMAParams, paper_design
-from flexfem.studies import dbma_enhanced as enhanced
-from flexfem.studies import dbma_models as prbm
+from ..data import load_toml
+from ..geometry.dbma_params import DBMAParams, paper_design
+from . import dbma_enhanced as enhanced
+from . import dbma_models as prbm
 
 MM = 1e-3
 

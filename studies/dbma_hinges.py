@@ -15,9 +15,9 @@ import time
 
 import numpy as np
 
-from flexfem.geometry.dbma import DBMALayout
-from flexfem.geometry.dbma_params import DBMAParams, paper_design
-from flexfem.geometry.hinge_profiles import HINGE_PROFILES, profile_thickness
+from ..geometry.dbma import DBMALayout
+from ..geometry.dbma_params import DBMAParams, paper_design
+from ..geometry.hinge_profiles import HINGE_PROFILES, profile_thickness
 
 FORCE = 800.0            # N, the top of the paper's Fig. 14 load range
 FILLET_RADIUS = 0.5e-3   # m, the filleted profile's root radius (a typical milling radius)
@@ -91,7 +91,7 @@ def profile_metrics(p: DBMAParams, layout: DBMALayout, size_factor: float,
     """2-D FEM of the DBMA with ``layout``'s hinges: R_fem_per_side, R_fem, k_in (N/m), max
     von Mises at ``force`` (Pa, nodal L2-projected and element), the working-mode frequency
     (Hz, 2-D, pads held along x), DOFs and the wall time (s)."""
-    from flexfem.studies.dbma_fem import build_model, modal_response, static_response
+    from .dbma_fem import build_model, modal_response, static_response
 
     start = time.perf_counter()
     model = build_model(p, layout, 2, size_factor)
@@ -113,7 +113,7 @@ def hinge_profile_study(out_dir, quick: bool = False) -> dict:
     circular one also on a coarser mesh (size_factor 2; 4 in quick mode) as a mesh check,
     beside the closed forms. Writes dbma_hinge_profiles.csv, dbma_hinge_closed_form.csv and
     dbma_hinge_profiles.png; returns {"rows", "closed_form", "tables", "figures", "notes"}."""
-    from flexfem.studies.tables import write_rows
+    from .tables import write_rows
 
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)

@@ -9,7 +9,7 @@ import math
 
 import numpy as np
 
-from flexfem.geometry.dbma_params import DBMAParams
+from ..geometry.dbma_params import DBMAParams
 
 
 def hinge_second_moment(p: DBMAParams) -> float:

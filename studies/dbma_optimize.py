@@ -28,9 +28,9 @@ import time
 
 import numpy as np
 
-from flexfem.data import load_toml
-from flexfem.geometry.dbma_params import DBMAParams, paper_design
-from flexfem.studies.store import CaseResult, ResultStore, case_key
+from ..data import load_toml
+from ..geometry.dbma_params import DBMAParams, paper_design
+from .store import CaseResult, ResultStore, case_key
 
 NAMES = ("b", "h", "l")
 FORCE = 100.0  # N, the actuator force of the linear solves (results are scaled to the stroke)
@@ -118,7 +118,7 @@ def quick_spec(spec: OptimizeSpec) -> OptimizeSpec:
 def check_box(spec: OptimizeSpec, base: DBMAParams) -> None:
     """ValueError unless every (b, h, l) in the box builds a DBMA: the limits (h + b < c, h + b
     < ls, b < a, l < e, ll > 2 c + b + arm_gap) bind at the largest corner."""
-    from flexfem.geometry.dbma import DBMALayout, check_layout
+    from ..geometry.dbma import DBMALayout, check_layout
     try:
         check_layout(replace(base, b=spec.b_max, h=spec.h_max, l=spec.l_max), DBMALayout())
     except ValueError as error:
@@ -160,7 +160,7 @@ def analytical_estimates(p: DBMAParams, stroke: float) -> dict:
     (= R_enhanced / 2, output over elongation), k_out (input blocked, N/m), fn_working (Eq. 11
     with k_out and Eq. 19's mass at R_enhanced, Hz), von_mises_at_stroke: the largest
     N / (b d) + 6 M / (d b^2) in the two hinges of a quarter at the stroke (Pa)."""
-    from flexfem.studies import dbma_enhanced as en, dbma_models as prbm
+    from . import dbma_enhanced as en, dbma_models as prbm
     R = en.amplification_ratio_enhanced(p)
     k_out = en.output_stiffness_enhanced(p)
     fn = prbm.natural_frequency(k_out, prbm.equivalent_mass(R, **prbm.arm_masses(p)))
@@ -224,8 +224,8 @@ def infeasible_message(rows: list[dict], constraints: list[tuple]) -> str:
 def fem_metrics(params: dict, size_factor: float) -> dict:
     """Raw 2-D FEM metrics of the paper's design with ``params`` (b, h, l in m) replaced: the
     static response at FORCE (N), k_out (N/m, module docstring), the working mode (Hz)."""
-    from flexfem.fem import Force, solve_static
-    from flexfem.studies import dbma_fem
+    from ..fem import Force, solve_static
+    from . import dbma_fem
     p = replace(paper_design(), **params)
     model = dbma_fem.build_model(p, None, 2, size_factor)
     static = dbma_fem.static_response(model, FORCE)
@@ -327,7 +327,7 @@ def optimize(spec: OptimizeSpec | None = None, store_path=None, evaluator=None,
     evaluator, estimator = evaluator or fem_metrics, estimator or analytical_estimates
     base = paper_design()
     check_box(spec, base)
-    from flexfem.studies.dbma_fem import dbma_material
+    from .dbma_fem import dbma_material
     cons = constraints_of(spec, dbma_material(base).yield_strength)
     start = time.perf_counter()
     designs = sobol_designs(spec)
@@ -421,7 +421,7 @@ def run(spec: OptimizeSpec, out_dir=None, quick: bool = False) -> dict:
         out.mkdir(parents=True, exist_ok=True)
     result = optimize(spec, None if out is None else out / "optimize_cache.sqlite")
     if out is not None:
-        from flexfem.studies.dbma_optimize_output import plot_history, write_history_csv
+        from .dbma_optimize_output import plot_history, write_history_csv
         result["tables"] = [write_history_csv(result, out / "optimize_history.csv").name]
         result["figures"] = [plot_history(result, out / "optimize_history.png").name]
         result["out"] = str(out)
@@ -433,7 +433,7 @@ def reproduce(out_dir, quick: bool = False, full: bool = False) -> dict:
     mesh; none with ``quick`` (a smoke run of the report has no time for it; ``flexfem optimize
     dbma`` runs it); ``full`` changes nothing. Summary: rows, comparisons (none: no source has
     a search), tables, figures, notes."""
-    from flexfem.studies.dbma_optimize_output import summarize, summary_rows, write_rows_csv
+    from .dbma_optimize_output import summarize, summary_rows, write_rows_csv
     if quick:
         return {"comparisons": [], "tables": [], "figures": [],
                 "notes": ["The design search is not run in a --quick report; run "

@@ -2,7 +2,7 @@
 import csv
 from pathlib import Path
 
-from flexfem.studies.dbma_optimize import OptimizeSpec, constraints_of, margins
+from .dbma_optimize import OptimizeSpec, constraints_of, margins
 
 
 HISTORY_COLUMNS = ("evaluation", "stage", "size_factor", "b", "h", "l", "R_fem", "R_fem_per_side",

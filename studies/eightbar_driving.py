@@ -26,14 +26,14 @@ from pathlib import Path
 
 import numpy as np
 
-from flexfem.fem import Fixed, Model, PlaneStress, Prescribed, RigidFace, material, solve_nonlinear, solve_static
-from flexfem.geometry.driving_linkage import (FLEXURE_COMPENSATED_COUPLER_LENGTH, DrivingParams,
+from ..fem import Fixed, Model, PlaneStress, Prescribed, RigidFace, material, solve_nonlinear, solve_static
+from ..geometry.driving_linkage import (FLEXURE_COMPENSATED_COUPLER_LENGTH, DrivingParams,
                                               build_driving_linkage,
                                               half_mobility, lever_shear_rate, mesh_driving_flexure,
                                               trace_driving, transmission_ratio)
-from flexfem.geometry.eightbar_flexure import EightBarFlexureParams
-from flexfem.geometry.straight_line import straight_line_deviation
-from flexfem.studies.tables import write_rows
+from ..geometry.eightbar_flexure import EightBarFlexureParams
+from ..geometry.straight_line import straight_line_deviation
+from .tables import write_rows
 
 NEWTON_TOL = 1e-5   # as studies/eightbar_fem.py: the stiff links' round-off floor
 
@@ -100,7 +100,7 @@ def path_shape(points) -> dict:
 def suspension_model(flexure: EightBarFlexureParams, size_factor: float = 2.0) -> Model:
     """The eight-bar suspension alone, same flexures and mesh rules as the driving linkage's
     (:func:`flexfem.studies.eightbar_fem.build_model`; its face "end_effector")."""
-    from flexfem.studies.eightbar_fem import build_model as build_suspension
+    from .eightbar_fem import build_model as build_suspension
 
     return build_suspension(flexure, size_factor=size_factor)[0]
 
@@ -112,7 +112,7 @@ def suspension_alone_path(model: Model, x_end: float, steps: int = 4,
     moment): (2 steps + 1, 3) centroid motion (m, m, rad), sorted by x. With ``both_halves``
     False the -x half is the +x half's mirror image (the part is mirror-symmetric: y even,
     x and rotation odd)."""
-    from flexfem.studies.eightbar_fem import NEWTON_TOL as TOL
+    from .eightbar_fem import NEWTON_TOL as TOL
 
     halves = []
     for end in ((-x_end, x_end) if both_halves else (x_end,)):

@@ -2,7 +2,7 @@
 modes and the large-deflection path over the whole travel, beside the rigid-body linkage and
 the pseudo-rigid-body model.
 
-    from flexfem.geometry.eightbar_flexure import EightBarFlexureParams
+    from ..geometry.eightbar_flexure import EightBarFlexureParams
     out = analyze_eightbar(EightBarFlexureParams())
     out["k_x"], out["max_stress_location"], out["fem_deviation_pct"]
 
@@ -19,15 +19,15 @@ import math
 
 import numpy as np
 
-from flexfem.fem import (Fixed, Model, PlaneStress, Prescribed, RigidFace, material, solve_modes,
+from ..fem import (Fixed, Model, PlaneStress, Prescribed, RigidFace, material, solve_modes,
                          solve_nonlinear, solve_static)
-from flexfem.fem.nonlinear import cauchy_stress, deformation, green_lagrange, svk_stress
-from flexfem.fem.model import von_mises
-from flexfem.geometry.eightbar_flexure import (EightBarFlexureParams, end_effector_point,
+from ..fem.nonlinear import cauchy_stress, deformation, green_lagrange, svk_stress
+from ..fem.model import von_mises
+from ..geometry.eightbar_flexure import (EightBarFlexureParams, end_effector_point,
                                                mesh_eightbar_flexure, prbm_peak_stress,
                                                prbm_stiffness)
-from flexfem.geometry.eightbar_rigid import EightBarParams, trace_eightbar
-from flexfem.geometry.straight_line import straight_line_deviation
+from ..geometry.eightbar_rigid import EightBarParams, trace_eightbar
+from ..geometry.straight_line import straight_line_deviation
 
 # Newton tolerance (relative to the reaction): the residual of this part stagnates near 3e-6
 # of the drive force -- round-off in the internal forces of the stiff links (E t ~ 4e8 N/m)
@@ -257,5 +257,5 @@ def summary_row(out: dict) -> dict:
 def reproduce(out_dir, quick: bool = False, full: bool = False) -> dict:
     """Figures, tables and comparisons of the flexure suspension (see
     :func:`flexfem.studies.eightbar_fem_report.reproduce`)."""
-    from flexfem.studies.eightbar_fem_report import reproduce as _reproduce
+    from .eightbar_fem_report import reproduce as _reproduce
     return _reproduce(out_dir, quick=quick, full=full)

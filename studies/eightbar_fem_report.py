@@ -4,13 +4,13 @@ from pathlib import Path
 
 import numpy as np
 
-from flexfem.data import load_toml
-from flexfem.fem import material, write_result
-from flexfem.geometry.design_rules import check_design_rules, fabrication_rules, violation_summary
-from flexfem.geometry.eightbar_flexure import (EightBarFlexureParams, eightbar_layout,
+from ..data import load_toml
+from ..fem import material, write_result
+from ..geometry.design_rules import check_design_rules, fabrication_rules, violation_summary
+from ..geometry.eightbar_flexure import (EightBarFlexureParams, eightbar_layout,
                                                joint_rotation_rates, prbm_flexure_loads)
-from flexfem.studies.eightbar_fem import analyze_eightbar, stress_convergence, summary_row
-from flexfem.studies.tables import write_rows
+from .eightbar_fem import analyze_eightbar, stress_convergence, summary_row
+from .tables import write_rows
 
 MICRO = load_toml("fabrication_rules.toml")["thesis_micro_design"]
 
@@ -192,7 +192,7 @@ def plot_force(out: dict, path: Path) -> str:
 def reproduce(out_dir, quick: bool = False, full: bool = False) -> dict:
     """Run the analysis (quick: coarse mesh, half the stroke mirrored; full: a finer mesh) and
     write figures, CSV tables, the linear VTU; return the summary with comparison rows."""
-    from flexfem.geometry.eightbar_rigid import trace_eightbar
+    from ..geometry.eightbar_rigid import trace_eightbar
 
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
@@ -258,7 +258,7 @@ def reproduce(out_dir, quick: bool = False, full: bool = False) -> dict:
                           "flexure_width": params.flexure_width, "thickness": params.thickness,
                           "root_fillet_radius": params.root_fillet_radius,
                           "material": params.material}}
-    from flexfem.studies.eightbar_driving import driving_study  # Chapter 6
+    from .eightbar_driving import driving_study  # Chapter 6
     driving = driving_study(out_dir / "driving", quick=quick)
     summary["comparisons"] = rows + driving["comparisons"]
     summary["notes"] = [convergence_note(convergence)] + driving.get("notes", [])

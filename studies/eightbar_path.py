@@ -8,15 +8,15 @@ from pathlib import Path
 
 import numpy as np
 
-from flexfem.data import load_toml
-from flexfem.geometry.eightbar_rigid import (EightBarParams, build_eightbar, overall_size,
+from ..data import load_toml
+from ..geometry.eightbar_rigid import (EightBarParams, build_eightbar, overall_size,
                                              trace_eightbar)
-from flexfem.geometry.linkage import Trace, overlapping_links_along, trace_from_reference
-from flexfem.geometry.straight_line import (CLASSIC_LINKAGES, straight_line_deviation,
+from ..geometry.linkage import Trace, overlapping_links_along, trace_from_reference
+from ..geometry.straight_line import (CLASSIC_LINKAGES, straight_line_deviation,
                                             trace_straight_line)
-from flexfem.geometry.synthesis import (ThreeRChain, eightbar_constraint_synthesis,
+from ..geometry.synthesis import (ThreeRChain, eightbar_constraint_synthesis,
                                         planar_transform, rr_dyad_synthesis, three_r_link_poses)
-from flexfem.studies.tables import write_rows
+from .tables import write_rows
 
 MM = 1e-3
 

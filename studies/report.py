@@ -9,7 +9,7 @@ import html
 import json
 from pathlib import Path
 
-from flexfem.studies.serialize import jsonable
+from .serialize import jsonable
 
 MAX_TABLE_ROWS = 40
 

@@ -15,8 +15,8 @@ import sys
 import time
 import traceback
 
-from flexfem.studies.report import write_report
-from flexfem.studies.serialize import jsonable
+from .report import write_report
+from .serialize import jsonable
 
 # (section folder, title, "module:function") in report order
 SECTIONS = [

@@ -18,10 +18,10 @@ import time
 import tomllib
 import traceback
 
-from flexfem.studies.executors import make_executor
-from flexfem.studies.progress import Progress
-from flexfem.studies.registry import check_mechanism, get_evaluator
-from flexfem.studies.store import (CaseResult, ResultStore, case_key, export_csv,
+from .executors import make_executor
+from .progress import Progress
+from .registry import check_mechanism, get_evaluator
+from .store import (CaseResult, ResultStore, case_key, export_csv,
                                    export_parquet, flexfem_version, parquet_available)
 
 SAMPLE_METHODS = ("lhs", "sobol")
@@ -350,8 +350,8 @@ def reproduce(out_dir, quick: bool = False) -> dict:
     against the closed form, and a convergence study against the known order 2 and the exact
     taper integral. Writes CSV tables and PNG figures into ``out_dir``."""
     import csv
-    from flexfem.studies.convergence import converge, default_levels, plot_convergence
-    from flexfem.studies.toy import CantileverParams, tip_deflection_exact
+    from .convergence import converge, default_levels, plot_convergence
+    from .toy import CantileverParams, tip_deflection_exact
 
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
