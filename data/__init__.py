@@ -4,8 +4,9 @@ Every number a source document gives lives in a TOML file here, never in code. L
 files are in the units the source prints (the key says which, e.g. ``l_mm``); loaders convert
 them to SI once.
 """
-import tomllib
 from importlib import resources
+
+import tomllib
 
 
 def load_toml(name: str) -> dict:

@@ -14,9 +14,9 @@ from .linsolve import SingularSystemError
 from .materials import Material, material, material_names
 from .mesh import FEMesh, facets_where, mesh_from_gmsh, read_mesh
 from .modal import Modes, solve_modes
+from .model import Model, PlaneStrain, PlaneStress, Solid3D, von_mises
 from .nonlinear import NonConvergenceError, NonlinearResult, solve_nonlinear
 from .rigid_face import RigidFace
-from .model import Model, PlaneStrain, PlaneStress, Solid3D, von_mises
 from .static import StaticResult, UnderConstrainedError, solve_static
 
 __all__ = [

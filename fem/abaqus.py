@@ -10,8 +10,8 @@ nodes. For quadrilaterals and hexahedra the face and centre nodes of scikit-fem'
 27-node hexahedron are dropped: CalculiX knows only the 8-node CPS8 and the 20-node C3D20
 (serendipity), a different element on the same nodes.
 """
-from dataclasses import dataclass
 import re
+from dataclasses import dataclass
 
 import numpy as np
 import skfem

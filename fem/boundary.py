@@ -1,7 +1,7 @@
 """Supports and loads, addressed by group name, and how they become DOFs and load vectors."""
-from dataclasses import dataclass
 import math
 import numbers
+from dataclasses import dataclass
 
 import numpy as np
 import skfem

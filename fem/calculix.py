@@ -7,20 +7,22 @@ material, a solid section, the supports as ``*BOUNDARY`` on their NSETs and the 
 discrete problem where their elements agree (C3D4/C3D10 vs P1/P2 tetrahedra, C3D8 vs the
 trilinear hexahedron with full integration). Results are read from the ``.dat`` file.
 """
-from dataclasses import dataclass
 import os
-from pathlib import Path
 import re
 import shutil
 import subprocess
 import tempfile
 import time
+from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
 from .abaqus import abaqus_mesh, inp_lines, set_name
 from .boundary import Fixed, load_vector
+from .modal import solve_modes
 from .model import Model, PlaneStrain, PlaneStress
+from .static import solve_static
 
 _FLOAT = r"[-+]?\d\.\d+E[-+]\d+"
 
@@ -172,8 +174,6 @@ def compare_with_calculix(model: Model, supports, loads, n_modes: int = 6,
     (m) at the common nodes and the ``n_modes`` lowest frequencies (Hz). Returns
     ``{"comparisons": [{"quantity", "flexfem", "calculix", "rel_diff", "note"}, ...],
     "element": ..., "n_dofs": ...}``; JSON-able."""
-    from .modal import solve_modes
-    from .static import solve_static
 
     u = flexfem_nodal_displacement(model, solve_static(model, supports, loads).u)
     u_ccx, _ = calculix_static(model, supports, loads, threads=threads)

@@ -16,8 +16,16 @@ import meshio
 import numpy as np
 import skfem
 
-from .abaqus import abaqus_mesh, group_nodes, mid_edge_nodes, oriented_corners, write_inp
+from .abaqus import (
+    abaqus_mesh,
+    group_nodes,
+    mid_edge_nodes,
+    oriented_corners,
+    write_inp,
+)
 from .mesh import FEMesh
+from .modal import Modes
+from .static import StaticResult
 
 # skfem mesh type -> (meshio cell type of the element for order 1, 2; meshio facet cell type)
 _MESHIO_CELLS = {
@@ -177,8 +185,6 @@ def result_fields(result_or_modes) -> tuple[dict, dict, dict]:
     ``displacement`` (m), ``von_mises`` (Pa, nodal), ``von_mises_element_max`` (Pa, per element);
     or one field per mode, named by :func:`mode_field_name` (mass-normalised, m/sqrt(kg)).
     meshio's VTU writer drops field data, so each mode's frequency is in its field's name."""
-    from .modal import Modes
-    from .static import StaticResult
 
     if isinstance(result_or_modes, StaticResult):
         r = result_or_modes

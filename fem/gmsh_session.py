@@ -10,9 +10,9 @@ ignores it: a write to a closed pipe -- to a worker of a process pool that died,
 then kill the process instead of raising BrokenPipeError. The session restores Python's
 disposition.
 """
-from contextlib import contextmanager
 import signal
 import threading
+from contextlib import contextmanager
 
 
 @contextmanager

@@ -1,7 +1,7 @@
 """Linear-elastic isotropic materials: a small library with sources, and user-defined ones."""
-from dataclasses import dataclass
 import math
 import numbers
+from dataclasses import dataclass
 
 from ..data import load_toml
 

@@ -4,15 +4,15 @@ The stiffness and mass matrices are assembled on first use and kept on the model
 explicit, named cache: ``model.stiffness``, ``model.mass``), so a static and a modal solve of
 the same model share them.
 """
-from dataclasses import dataclass
-from functools import cached_property
 import math
 import numbers
+from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 import scipy.sparse as sp
 import skfem
-from skfem.helpers import sym_grad, trace, eye
+from skfem.helpers import eye, sym_grad, trace
 
 from .materials import Material
 from .mesh import FEMesh

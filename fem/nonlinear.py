@@ -10,20 +10,25 @@ K(du, v) = t int [(grad du S) : grad v + (F dS(du)) : grad v] dX, dS = C : sym(F
 All loads, prescribed displacements and rigid-face motions are dead and scale with the
 load factor, stepped from 0 to 1 by Newton's method, halving a step that fails.
 """
-from dataclasses import dataclass, field
 import math
+from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.sparse as sp
 import skfem
-from skfem.helpers import ddot, eye, grad, mul, transpose, trace
+from skfem.helpers import ddot, eye, grad, mul, trace, transpose
 
 from . import linsolve
 from .boundary import component_indices, constrained_dofs, group_dofs, load_vector
 from .model import Model, PlaneStrain, von_mises
 from .rigid_face import ReducedSpace
-from .static import (UnderConstrainedError, check_supports, mean_field, nodal_average,
-                                rigid_body_dof_modes)
+from .static import (
+    UnderConstrainedError,
+    check_supports,
+    mean_field,
+    nodal_average,
+    rigid_body_dof_modes,
+)
 
 
 class NonConvergenceError(ValueError):

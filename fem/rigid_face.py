@@ -11,9 +11,9 @@ Jacobian ``T = du/dz`` and the second-derivative (geometric) term of the rotatio
 A face rotation is carried as ``s = ell * theta`` (m), with ``ell`` the face's RMS arm
 (m), so that all unknowns are lengths and all residuals forces (N).
 """
-from dataclasses import dataclass
 import math
 import numbers
+from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp

@@ -4,8 +4,8 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
-from scipy.sparse.csgraph import connected_components
 import skfem
+from scipy.sparse.csgraph import connected_components
 
 from . import linsolve
 from .boundary import component_indices, constrained_dofs, load_vector

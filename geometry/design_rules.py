@@ -7,8 +7,8 @@ thesis p. 38): every beam at least ``min_beam_width`` wide; no two parts closer 
 trench it faces) at most ``max_gap`` -- our reading of "the gap width is between 0.7 micron
 and 50 microns" for a layout with open space (docs/eightbar.md).
 """
-from dataclasses import dataclass
 import math
+from dataclasses import dataclass
 
 import numpy as np
 

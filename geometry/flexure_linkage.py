@@ -18,15 +18,18 @@ subdomains (each link, "flexure_<joint>", "links", "flexures", "body") and bound
 ("fixed" and the caller's named edges). ``root_fillet_radius`` (default 0: sharp corners) adds
 quarter-circle root fillets (:mod:`flexfem.geometry.flexure_roots`).
 """
-from dataclasses import dataclass, field
 import math
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from ..fem.gmsh_session import gmsh_session
 from ..fem.mesh import mesh_from_gmsh
-from .flexure_roots import (check_root_fillet_radius, draw_filleted_flexure,
-                                            root_zone_depth)
+from .flexure_roots import (
+    check_root_fillet_radius,
+    draw_filleted_flexure,
+    root_zone_depth,
+)
 from .linkage import segment_distance
 
 
@@ -117,7 +120,7 @@ def flexure_layout(polylines: dict, joints: list, hosts: dict, sizes: dict, link
 
     polylines : {link: [[(x, y), ...], ...]} centre-lines of the moving links (m), passing
         through their joints' positions; joints : [{"name", "position", "links"}] (as
-        :func:`flexfem.geometry.eightbar_rigid.eightbar_joints` gives them); hosts : {joint:
+        :func:`flexfem.geometry.eightbar.rigid.eightbar_joints` gives them); hosts : {joint:
         host link}; sizes : {joint: (length, width)} of its flexure (m); link_width : W (m);
         edges : {name: callable(layout parts) -> segment} or {name: segment}, extra boundary
         groups. Raises ValueError if a flexure's host segment is too short to carry it.

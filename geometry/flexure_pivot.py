@@ -18,9 +18,9 @@ assumes. ``block_length > 0`` adds elastic blocks (a monolithic part) whose oute
 "fixed" and "hub"; their re-entrant corners at the leaf roots are sharp, so stresses there are
 singular. Subdomains: "leaves", "leaf_1", "leaf_2" (cross only) and "blocks". Lengths in m.
 """
-from dataclasses import dataclass
 import math
 import numbers
+from dataclasses import dataclass
 
 import numpy as np
 

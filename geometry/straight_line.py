@@ -10,8 +10,14 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .linkage import (CrankAngle, Joint, Link, Linkage, PointCoordinate,
-                                      trace_from_reference)
+from .linkage import (
+    CrankAngle,
+    Joint,
+    Link,
+    Linkage,
+    PointCoordinate,
+    trace_from_reference,
+)
 
 
 @dataclass(frozen=True)

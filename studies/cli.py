@@ -2,37 +2,38 @@
 
 Each command module registers its sub-command with ``register(subparsers)`` and sets two
 defaults on its parser: ``run(args) -> dict`` (JSON-able, computed by one public function) and
-``summarize(result) -> str`` (the human summary). This module only dispatches: with ``--json`` it
-prints the dict as one JSON object and nothing else on stdout, otherwise the summary.
+``summarize(result) -> str`` (the human summary). The mechanisms' commands come from the
+registry (studies/mechanisms.py); this module only dispatches: with ``--json`` it prints the
+dict as one JSON object and nothing else on stdout, otherwise the summary.
 """
 import argparse
-import importlib
 import json
 import sys
 
-from .serialize import jsonable
+from . import run_cli
+from .engine.serialize import jsonable
+from .mechanisms import command_modules, optimizers
+from .report import cli as report_cli
 
-COMMAND_MODULES = [
-    "flexfem.studies.cli_reproduce",
-    "flexfem.studies.cli_dbma",
-    "flexfem.studies.cli_linkage",
-    "flexfem.studies.cli_balance",
-    "flexfem.studies.cli_optimize",
-    "flexfem.studies.cli_studies",
-]
+
+def register_optimize(subparsers) -> None:
+    """``flexfem optimize MECHANISM``: the design search of each mechanism that has one."""
+    parser = subparsers.add_parser("optimize", help="design search of a mechanism's dimensions")
+    choices = parser.add_subparsers(dest="mechanism", required=True, metavar="MECHANISM")
+    for name, module in optimizers().items():
+        sub = choices.add_parser(name, help=module.HELP)
+        module.add_arguments(sub)
+        sub.set_defaults(run=module.run, summarize=module.summarize)
 
 
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="flexfem", description=__doc__.splitlines()[0])
     subparsers = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
-    for name in COMMAND_MODULES:
-        try:
-            module = importlib.import_module(name)
-        except ModuleNotFoundError as error:
-            if error.name != name:
-                raise
-            continue
+    report_cli.register(subparsers)
+    for module in command_modules():
         module.register(subparsers)
+    register_optimize(subparsers)
+    run_cli.register(subparsers)
     return parser
 
 

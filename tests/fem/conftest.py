@@ -1,7 +1,6 @@
 """Small meshes for the FEM tests, built with gmsh and read back with their named groups."""
 import numpy as np
 import pytest
-
 from flexfem.fem import gmsh_session, mesh_from_gmsh
 
 

@@ -3,10 +3,9 @@ assembly, and has the physics a stiffness and a mass matrix must have."""
 import numpy as np
 import pytest
 import skfem
-from skfem.helpers import ddot, dot, sym_grad, trace
-
 from flexfem.fem import FEMesh, Model, PlaneStrain, PlaneStress, Solid3D
 from flexfem.fem.static import rigid_body_dof_modes
+from skfem.helpers import ddot, dot, sym_grad, trace
 
 
 def _distorted(mesh, amount):

@@ -4,12 +4,28 @@ import math
 import numpy as np
 import pytest
 import skfem
-
-from flexfem.fem import (BodyForce, FEMesh, Fixed, Force, Gravity, Material, Model, PlaneStrain,
-                         PlaneStress, PointForce, Prescribed, SingularSystemError, Solid3D,
-                         Traction, UnderConstrainedError, facets_where, solve_modes, solve_static)
-from flexfem.fem.mesh import corner_jacobians
 from conftest import beam_2d, beam_3d
+from flexfem.fem import (
+    BodyForce,
+    FEMesh,
+    Fixed,
+    Force,
+    Gravity,
+    Material,
+    Model,
+    PlaneStrain,
+    PlaneStress,
+    PointForce,
+    Prescribed,
+    SingularSystemError,
+    Solid3D,
+    Traction,
+    UnderConstrainedError,
+    facets_where,
+    solve_modes,
+    solve_static,
+)
+from flexfem.fem.mesh import corner_jacobians
 
 
 @pytest.fixture(scope="module")

@@ -7,14 +7,28 @@ results agree to solver tolerance; the 0.5 % of the brief is far wider than need
 assert 1e-4 (ccx prints 7 significant digits; its eigen tolerance is ~1e-8)."""
 import numpy as np
 import pytest
-
 from conftest import beam_2d, beam_3d
-from flexfem.fem import Fixed, Force, Model, PlaneStrain, PlaneStress, Prescribed, Solid3D
-from flexfem.fem import solve_modes, solve_static
-from flexfem.fem.calculix import (calculix_frequencies, calculix_static, ccx_path,
-                                  compare_with_calculix, deck_lines,
-                                  flexfem_nodal_displacement, parse_displacements,
-                                  parse_frequencies)
+from flexfem.fem import (
+    Fixed,
+    Force,
+    Model,
+    PlaneStrain,
+    PlaneStress,
+    Prescribed,
+    Solid3D,
+    solve_modes,
+    solve_static,
+)
+from flexfem.fem.calculix import (
+    calculix_frequencies,
+    calculix_static,
+    ccx_path,
+    compare_with_calculix,
+    deck_lines,
+    flexfem_nodal_displacement,
+    parse_displacements,
+    parse_frequencies,
+)
 
 needs_ccx = pytest.mark.skipif(ccx_path() is None,
                                reason="CalculiX (ccx) not on PATH: apt-get install calculix-ccx")

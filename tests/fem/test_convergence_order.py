@@ -9,9 +9,16 @@ it the exact solution of the discrete problem's continuous counterpart.
 import numpy as np
 import pytest
 import skfem
+from flexfem.fem import (
+    FEMesh,
+    Model,
+    PlaneStress,
+    Prescribed,
+    gmsh_session,
+    mesh_from_gmsh,
+    solve_static,
+)
 from skfem.helpers import ddot
-
-from flexfem.fem import FEMesh, Model, PlaneStress, Prescribed, gmsh_session, mesh_from_gmsh, solve_static
 
 L, C, P = 1.0, 0.25, 1e4  # length (m), half depth (m), end load (N per m of thickness)
 

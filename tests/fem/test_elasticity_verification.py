@@ -1,10 +1,19 @@
 """Static elasticity against beam theory, and reactions against applied loads."""
 import numpy as np
 import pytest
-
-from flexfem.fem import (Fixed, Force, Gravity, Model, PlaneStrain, PlaneStress, PointForce,
-                         Solid3D, Traction, solve_static)
 from conftest import beam_2d, beam_3d
+from flexfem.fem import (
+    Fixed,
+    Force,
+    Gravity,
+    Model,
+    PlaneStrain,
+    PlaneStress,
+    PointForce,
+    Solid3D,
+    Traction,
+    solve_static,
+)
 
 L, H, W, P = 1.0, 0.1, 0.05, 1000.0
 

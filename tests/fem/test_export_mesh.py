@@ -5,11 +5,15 @@ import meshio
 import numpy as np
 import pytest
 import skfem
-
 from conftest import beam_2d, beam_3d
 from flexfem.fem import read_mesh
-from flexfem.fem.abaqus import (abaqus_mesh, edge_nodes, element_type, oriented_corners,
-                                 write_inp)
+from flexfem.fem.abaqus import (
+    abaqus_mesh,
+    edge_nodes,
+    element_type,
+    oriented_corners,
+    write_inp,
+)
 from flexfem.fem.export import MESH_FORMATS, group_tags, write_mesh
 
 

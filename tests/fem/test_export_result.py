@@ -2,9 +2,16 @@
 import meshio
 import numpy as np
 import pytest
-
 from conftest import beam_2d, beam_3d
-from flexfem.fem import Fixed, Force, Model, PlaneStress, Solid3D, solve_modes, solve_static
+from flexfem.fem import (
+    Fixed,
+    Force,
+    Model,
+    PlaneStress,
+    Solid3D,
+    solve_modes,
+    solve_static,
+)
 from flexfem.fem.export import write_result
 
 

@@ -3,7 +3,6 @@ import subprocess
 import sys
 
 import pytest
-
 from flexfem.fem import gmsh_session
 
 BROKEN_PIPE_AFTER_GMSH = """

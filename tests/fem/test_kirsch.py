@@ -3,8 +3,15 @@ model with symmetry supports."""
 import numpy as np
 import pytest
 import skfem
-
-from flexfem.fem import Model, PlaneStress, Prescribed, Traction, gmsh_session, mesh_from_gmsh, solve_static
+from flexfem.fem import (
+    Model,
+    PlaneStress,
+    Prescribed,
+    Traction,
+    gmsh_session,
+    mesh_from_gmsh,
+    solve_static,
+)
 
 A_HOLE = 0.005       # hole radius a (m)
 HALF_WIDTH = 0.05    # plate width W = 0.1 m: W / d = 10

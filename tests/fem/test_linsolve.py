@@ -6,10 +6,19 @@ import numpy as np
 import pytest
 import scipy.sparse as sp
 import skfem
-
-from flexfem.fem import (FEMesh, Fixed, Force, Material, Model, PlaneStress, SingularSystemError,
-                         facets_where, solve_modes, solve_static)
-from flexfem.fem import linsolve
+from flexfem.fem import (
+    FEMesh,
+    Fixed,
+    Force,
+    Material,
+    Model,
+    PlaneStress,
+    SingularSystemError,
+    facets_where,
+    linsolve,
+    solve_modes,
+    solve_static,
+)
 
 HAS_PARDISO = linsolve._mkl_pardiso() is not None
 STEEL = Material("steel", E=200e9, nu=0.3, rho=7800.0)

@@ -3,10 +3,16 @@ import math
 
 import numpy as np
 import pytest
-
-from flexfem.data import load_toml
-from flexfem.fem import Material, Model, PlaneStrain, PlaneStress, Solid3D, material, material_names
 from conftest import beam_2d
+from flexfem.data import load_toml
+from flexfem.fem import (
+    Material,
+    Model,
+    PlaneStrain,
+    PlaneStress,
+    material,
+    material_names,
+)
 
 
 def test_library_entries_are_valid_and_sourced():

@@ -2,9 +2,8 @@
 import numpy as np
 import pytest
 import skfem
-
-from flexfem.fem import gmsh_session, mesh_from_gmsh, read_mesh
 from conftest import beam_2d, beam_3d
+from flexfem.fem import gmsh_session, mesh_from_gmsh, read_mesh
 
 
 @pytest.mark.parametrize("build, cell", [

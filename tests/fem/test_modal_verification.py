@@ -2,9 +2,8 @@
 and the algebra of the modal solution (M-orthonormal shapes, effective masses)."""
 import numpy as np
 import pytest
-
-from flexfem.fem import Fixed, Model, PlaneStress, Solid3D, solve_modes
 from conftest import beam_2d, beam_3d
+from flexfem.fem import Fixed, Model, PlaneStress, Solid3D, solve_modes
 
 L, H, W = 1.0, 0.05, 0.03  # L/H = 20, L/W = 33: slender, so the Timoshenko terms are small
 BETA_L = np.array([1.875104, 4.694091, 7.854757])  # cantilever roots of cos(bL) cosh(bL) = -1

@@ -3,13 +3,20 @@ faces (flexfem.fem.rigid_face) on slender cantilevers (L/H = 50, plane stress, Q
 import numpy as np
 import pytest
 import skfem
-from scipy.integrate import solve_bvp
-
-from flexfem.fem import Fixed, Force, Material, Model, PlaneStress, Solid3D, solve_static
+from flexfem.fem import (
+    Fixed,
+    Force,
+    Material,
+    Model,
+    PlaneStress,
+    Solid3D,
+    solve_static,
+)
 from flexfem.fem.mesh import FEMesh, facets_where
 from flexfem.fem.nonlinear import NonConvergenceError, solve_nonlinear
 from flexfem.fem.rigid_face import RigidFace
 from flexfem.fem.static import UnderConstrainedError
+from scipy.integrate import solve_bvp
 
 L, H, T = 1.0, 0.02, 0.01  # m: slender, L / H = 50
 E_MOD = 200e9  # Pa

@@ -3,12 +3,18 @@ import dataclasses
 
 import numpy as np
 import pytest
-
-from flexfem.geometry import dbma
-from flexfem.geometry.dbma import (DBMALayout, arm_masses_reconstructed, dbma_rects, hinge_boxes,
-                                   mesh_dbma, part_area, part_mass)
-from flexfem.geometry.dbma_params import paper_design
-from flexfem.studies.dbma_models import equivalent_mass
+from flexfem.geometry.dbma import drawing as dbma
+from flexfem.geometry.dbma.drawing import (
+    DBMALayout,
+    arm_masses_reconstructed,
+    dbma_rects,
+    hinge_boxes,
+    mesh_dbma,
+    part_area,
+    part_mass,
+)
+from flexfem.geometry.dbma.params import paper_design
+from flexfem.studies.dbma.prbm import equivalent_mass
 
 P = paper_design()
 

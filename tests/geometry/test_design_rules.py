@@ -1,9 +1,12 @@
 """Design-rule check on hand-made rectangles (exact gaps) and on the scaled eight-bar."""
 import pytest
-
-from flexfem.geometry.design_rules import (FabricationRules, check_design_rules, fabrication_rules,
-                                           violation_summary)
-from flexfem.geometry.eightbar_flexure import EightBarFlexureParams, eightbar_layout
+from flexfem.geometry.design_rules import (
+    FabricationRules,
+    check_design_rules,
+    fabrication_rules,
+    violation_summary,
+)
+from flexfem.geometry.eightbar.flexure import EightBarFlexureParams, eightbar_layout
 from flexfem.geometry.flexure_linkage import Part
 
 UM = 1e-6

@@ -1,13 +1,17 @@
 """The Chapter 6 driving linkage: Chebyshev lambda, mobility, opposite motion, flexure FEM."""
 import numpy as np
 import pytest
-
-from flexfem.geometry.driving_linkage import (DrivingParams, build_driving_linkage,
-                                              chebyshev_lambda_linkage, half_mobility,
-                                              trace_driving, transmission_ratio)
-from flexfem.geometry.eightbar_rigid import EightBarParams
+from flexfem.geometry.eightbar.driving import (
+    DrivingParams,
+    build_driving_linkage,
+    chebyshev_lambda_linkage,
+    half_mobility,
+    trace_driving,
+    transmission_ratio,
+)
+from flexfem.geometry.eightbar.rigid import EightBarParams
+from flexfem.geometry.linkage import Linkage, PointCoordinate, trace_from_reference
 from flexfem.geometry.straight_line import chebyshev_linkage, straight_line_deviation
-from flexfem.geometry.linkage import PointCoordinate, Linkage, trace_from_reference
 
 H = 0.1
 
@@ -128,7 +132,7 @@ def test_bad_lambda_and_trace_inputs():
 
 
 def test_flexure_fem_opposite_motion(tmp_path):
-    from flexfem.studies.eightbar_driving import driving_study
+    from flexfem.studies.eightbar.driving import driving_study
     out = driving_study(tmp_path, quick=True)
     s = out["summary"]
     # the part is mirror-symmetric; only the unstructured mesh is not: ratio -1 to mesh level
@@ -147,16 +151,20 @@ SF, STROKE, STEPS = 3.0, 3e-3, 4
 
 
 def _driven_path(model, steps=STEPS):
-    from flexfem.studies.eightbar_driving import nonlinear_drive
+    from flexfem.studies.eightbar.driving import nonlinear_drive
     rows = nonlinear_drive(model, -STROKE, steps)[::-1] + nonlinear_drive(model, STROKE, steps)[1:]
     return np.array([[r["x_right_m"], r["y_right_m"]] for r in rows])[::-1]   # sorted by x
 
 
 @pytest.fixture(scope="module")
 def nonlinear_paths():
-    from flexfem.geometry.eightbar_flexure import EightBarFlexureParams
-    from flexfem.studies.eightbar_driving import (build_model, k_y_alone, suspension_alone_path,
-                                                  suspension_model)
+    from flexfem.geometry.eightbar.flexure import EightBarFlexureParams
+    from flexfem.studies.eightbar.driving import (
+        build_model,
+        k_y_alone,
+        suspension_alone_path,
+        suspension_model,
+    )
     params, flexure = CHAPTER5, EightBarFlexureParams()
     driven = _driven_path(build_model(params, flexure, size_factor=SF)[0])
     # half the steps: compared with every other point of the driven path
@@ -189,7 +197,7 @@ def test_nonlinear_deviation_is_the_suspension_own(nonlinear_paths):
     resist Q's rise x^2 / 2r, a shear ~ k_Q x^2 / (r |QD|^2), i.e. ~0.03 /m of c2 over k_y
     (5 % of c2 by this pivot model; doubling |QD| cuts the excess about fourfold). A drive
     share above 10 % would mean another cause."""
-    from flexfem.studies.eightbar_driving import path_shape
+    from flexfem.studies.eightbar.driving import path_shape
     driven, alone = nonlinear_paths["driven"], nonlinear_paths["alone"]
     c2_driven, c2_alone = path_shape(driven)["c2_per_m"], path_shape(alone)["c2_per_m"]
     assert c2_alone > 0 and abs(c2_driven / c2_alone - 1) < 0.10
@@ -201,7 +209,7 @@ def test_lambda_misfit_takes_no_share(nonlinear_paths):
     """Without the shuttle each half is driven by its own coupler point (no misfit to take up):
     the end-effector path keeps its curvature and tilt; 1 % allows for the two meshes (equal
     rules, different parts) and the Newton tolerance."""
-    from flexfem.studies.eightbar_driving import path_shape
+    from flexfem.studies.eightbar.driving import path_shape
     with_shuttle = path_shape(nonlinear_paths["driven"][::2])
     without = path_shape(nonlinear_paths["no_shuttle"])
     assert abs(without["c2_per_m"] / with_shuttle["c2_per_m"] - 1) < 0.01
@@ -213,8 +221,8 @@ def test_path_tilt_is_the_lever_flexure_shear(nonlinear_paths):
     moment carried as shear by the bar, over the suspension's k_y (lever_shear_rate). Pivots at
     the flexure centres; a beam flexure's effective pivot shifts by ~0.15 of its length
     (20 mm flexures on a 62.5 mm bar): 10 %."""
-    from flexfem.geometry.driving_linkage import lever_shear_rate
-    from flexfem.studies.eightbar_driving import path_shape
+    from flexfem.geometry.eightbar.driving import lever_shear_rate
+    from flexfem.studies.eightbar.driving import path_shape
     tilt = path_shape(nonlinear_paths["driven"])["tilt_rad"]
     expected = np.arctan(lever_shear_rate(nonlinear_paths["params"], nonlinear_paths["flexure"])
                          / nonlinear_paths["k_y"])
@@ -222,8 +230,8 @@ def test_path_tilt_is_the_lever_flexure_shear(nonlinear_paths):
 
 
 def test_lever_shear_rate_closed_form():
-    from flexfem.geometry.driving_linkage import lever_shear_rate
-    from flexfem.geometry.eightbar_flexure import EightBarFlexureParams
+    from flexfem.geometry.eightbar.driving import lever_shear_rate
+    from flexfem.geometry.eightbar.flexure import EightBarFlexureParams
     f, p = EightBarFlexureParams(), DrivingParams()
     k_q = 68.9e9 * f.thickness * f.flexure_width**3 / (12 * f.flexure_length)   # 6061-T6, E
     # bar Q-D: from the lambda's ground line (x = e + 4a) to L/2 + W/2 short of the
@@ -241,7 +249,7 @@ def test_compensated_suspension_runs_straight(nonlinear_paths):
     (a few per cent between size factors 1.5 and 3) and the 0.1 mm rounding of h (dc2/dh ~
     -0.09 /m per mm, 1.5 % of c2): |c2| < 10 % of the Chapter 5 suspension's, and the deviation
     likewise (what is left is the c4 x^4 term, < 1 % at this stroke)."""
-    from flexfem.studies.eightbar_driving import path_shape
+    from flexfem.studies.eightbar.driving import path_shape
     before, after = nonlinear_paths["driven"][::2], nonlinear_paths["compensated"]
     assert abs(path_shape(after)["c2_per_m"]) < 0.1 * path_shape(before)["c2_per_m"]
     dev_before, dev_after = straight_line_deviation(before), straight_line_deviation(after)
@@ -254,7 +262,7 @@ def test_compensated_default_rigid_path_bows_the_other_way():
     """The default's rigid-body path is pre-bowed against the flexures' elastic bow (which
     curves the flexure path up, c2 > 0): curved down, more than ten times the Chapter 5
     design's residual c2 (balanced against c4, nearly straight); still mirror-opposite motion."""
-    from flexfem.studies.eightbar_driving import path_shape
+    from flexfem.studies.eightbar.driving import path_shape
     tr = trace_driving(DrivingParams(), n=41)
     c2, c2_chapter5 = (path_shape(t.ee_right)["c2_per_m"] for t in (tr, trace_driving(CHAPTER5, n=41)))
     assert c2 < 0 and abs(c2) > 10 * abs(c2_chapter5)

@@ -3,12 +3,17 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
-
-from flexfem.geometry.eightbar_flexure import (EightBarFlexureParams, HOSTS, eightbar_layout,
-                                               flexure_contacts, flexure_rotational_stiffness,
-                                               joint_rotation_rates, mesh_eightbar_flexure,
-                                               prbm_stiffness)
-from flexfem.geometry.eightbar_rigid import EightBarParams
+from flexfem.geometry.eightbar.flexure import (
+    HOSTS,
+    EightBarFlexureParams,
+    eightbar_layout,
+    flexure_contacts,
+    flexure_rotational_stiffness,
+    joint_rotation_rates,
+    mesh_eightbar_flexure,
+    prbm_stiffness,
+)
+from flexfem.geometry.eightbar.rigid import EightBarParams
 
 
 @pytest.fixture(scope="module")
@@ -164,7 +169,7 @@ def test_prbm_flexure_loads_balance_the_drive_by_virtual_work(params):
     # the linear PRBM's equilibrium (21 equations) must give the drive force the energy gives,
     # F = k_x s, to round-off; the A flexures lie across the cranks, so the crank's axial force
     # shears them and their root moment exceeds the spring moment
-    from flexfem.geometry.eightbar_flexure import prbm_flexure_loads
+    from flexfem.geometry.eightbar.flexure import prbm_flexure_loads
     s = params.rigid.travel / 2
     loads = prbm_flexure_loads(params, s)
     assert loads["drive_force_n"] == pytest.approx(prbm_stiffness(params)["k_x"] * s, rel=1e-8)

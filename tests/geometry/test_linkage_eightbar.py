@@ -3,10 +3,15 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
-
-from flexfem.geometry.eightbar_rigid import (BASE_JOINTS, EightBarParams, build_eightbar,
-                                             eightbar_joints, eightbar_points, overall_size,
-                                             trace_eightbar)
+from flexfem.geometry.eightbar.rigid import (
+    BASE_JOINTS,
+    EightBarParams,
+    build_eightbar,
+    eightbar_joints,
+    eightbar_points,
+    overall_size,
+    trace_eightbar,
+)
 from flexfem.geometry.linkage import Trace, overlapping_links_along
 
 

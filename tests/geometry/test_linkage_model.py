@@ -1,10 +1,19 @@
 """The planar linkage model: Gruebler count, loop closure, continuation, errors, overlaps."""
 import numpy as np
 import pytest
-
-from flexfem.geometry.linkage import (AssemblyError, CrankAngle, Joint, Link, Linkage, assemble,
-                                      gruebler_mobility, overlapping_links, segment_distance, trace,
-                                      trace_from_reference)
+from flexfem.geometry.linkage import (
+    AssemblyError,
+    CrankAngle,
+    Joint,
+    Link,
+    Linkage,
+    assemble,
+    gruebler_mobility,
+    overlapping_links,
+    segment_distance,
+    trace,
+    trace_from_reference,
+)
 from flexfem.geometry.straight_line import chebyshev_linkage
 
 

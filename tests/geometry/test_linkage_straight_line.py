@@ -1,12 +1,16 @@
 """The Chapter 2 straight-line linkages traced with the linkage model, against their theory."""
 import numpy as np
 import pytest
-
 from flexfem.geometry.linkage import trace_from_reference
-from flexfem.geometry.straight_line import (chebyshev_linkage, modified_peaucellier_linkage,
-                                            peaucellier_linkage, roberts_linkage,
-                                            straight_line_deviation, trace_straight_line,
-                                            watt_linkage)
+from flexfem.geometry.straight_line import (
+    chebyshev_linkage,
+    modified_peaucellier_linkage,
+    peaucellier_linkage,
+    roberts_linkage,
+    straight_line_deviation,
+    trace_straight_line,
+    watt_linkage,
+)
 
 
 def test_straight_line_deviation_of_a_known_parabola():

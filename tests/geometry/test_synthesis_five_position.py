@@ -2,13 +2,18 @@
 checked by recovering the joints of linkages that generated the task positions."""
 import numpy as np
 import pytest
-
-from flexfem.geometry.synthesis import (ThreeRChain, eightbar_constraint_synthesis,
-                                        planar_transform, rr_constraint_residual,
-                                        rr_dyad_synthesis, relative_displacements,
-                                        three_r_inverse_kinematics, three_r_link_poses)
 from flexfem.geometry.linkage import CrankAngle, Joint, Link, Linkage, trace
-from flexfem.studies.eightbar_path import synthesis_check
+from flexfem.geometry.synthesis import (
+    ThreeRChain,
+    eightbar_constraint_synthesis,
+    planar_transform,
+    relative_displacements,
+    rr_constraint_residual,
+    rr_dyad_synthesis,
+    three_r_inverse_kinematics,
+    three_r_link_poses,
+)
+from flexfem.studies.eightbar.path import synthesis_check
 
 
 def four_bar_coupler_frames(O, C, a, h, b, angles):

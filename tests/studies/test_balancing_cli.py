@@ -3,8 +3,7 @@ import json
 
 import numpy as np
 import pytest
-
-from flexfem.studies.balancing import balance_robot, default_workspace, reproduce
+from flexfem.studies.balancing.report import balance_robot, default_workspace, reproduce
 from flexfem.studies.cli import main
 
 

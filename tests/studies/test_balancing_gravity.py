@@ -1,12 +1,22 @@
 """Gravity torques of the five-bar robot (Lessard et al. 2007, Eqs. 2-12 and Appendix 1)."""
 import numpy as np
 import pytest
-
-from flexfem.studies.balancing import default_workspace
-from flexfem.studies.balancing_gravity import (
-    FiveBarRobot, Workspace, assembly_mode, distal_point, input_torques,
-    input_torques_appendix1, leg_angles, load_robot, potential_energy, proximal_angle,
-    tool_reactions, workspace_samples, workspace_torques)
+from flexfem.studies.balancing.gravity import (
+    FiveBarRobot,
+    Workspace,
+    assembly_mode,
+    distal_point,
+    input_torques,
+    input_torques_appendix1,
+    leg_angles,
+    load_robot,
+    potential_energy,
+    proximal_angle,
+    tool_reactions,
+    workspace_samples,
+    workspace_torques,
+)
+from flexfem.studies.balancing.report import default_workspace
 
 ROBOT = load_robot()
 

@@ -7,13 +7,21 @@ import math
 
 import numpy as np
 import pytest
-
-from flexfem.studies.balancing_negative_pivot import (
-    CompressedLeafPivot, KL_DEFAULT, beam_column_rotational_stiffness, bending_stress_factor,
-    compressed_leaf_elastica, compressed_leaf_stress, kL_for_stiffness_factor,
-    negative_pivot_fem_check, negative_pivot_study, preload_for_stiffness,
-    size_negative_pivot, stiffness_factor)
-from flexfem.studies.balancing_pivots import flexure_material
+from flexfem.studies.balancing.negative_pivot import (
+    KL_DEFAULT,
+    CompressedLeafPivot,
+    beam_column_rotational_stiffness,
+    bending_stress_factor,
+    compressed_leaf_elastica,
+    compressed_leaf_stress,
+    kL_for_stiffness_factor,
+    negative_pivot_fem_check,
+    negative_pivot_study,
+    preload_for_stiffness,
+    size_negative_pivot,
+    stiffness_factor,
+)
+from flexfem.studies.balancing.pivots import flexure_material
 
 STEEL = flexure_material("spring_steel_aisi1095")
 E, L, T, W = STEEL.E, 0.1, 1.25e-3, 0.05
@@ -118,7 +126,7 @@ def test_sizing_meets_stiffness_stress_and_buckling_margin():
 
 
 def test_quick_study_motors_2_and_4(tmp_path):
-    from flexfem.studies.balancing import default_workspace
+    from flexfem.studies.balancing.report import default_workspace
 
     summary = negative_pivot_study(tmp_path, quick=True, workspace=default_workspace(quick=True))
     assert (tmp_path / "balancing_negative_pivot.csv").exists()

@@ -1,13 +1,22 @@
 """RMS-optimal balancers (Eqs. 13-26, Appendix 2) against brute-force minimisation."""
 import numpy as np
 import pytest
-
-from flexfem.studies.balancing import default_workspace
-from flexfem.studies.balancing_gravity import load_robot, workspace_torques
-from flexfem.studies.balancing_optimum import (
-    counterweight_torque, max_reduction_pct, minimise_rms_numerically, optimal_counterweight,
-    optimal_coupled_springs, optimal_spring, optimal_spring_and_torsion, optimal_torsion_spring,
-    rms_reduction_pct, spring_polynomial, spring_torque, torsion_spring_torque)
+from flexfem.studies.balancing.gravity import load_robot, workspace_torques
+from flexfem.studies.balancing.optimum import (
+    counterweight_torque,
+    max_reduction_pct,
+    minimise_rms_numerically,
+    optimal_counterweight,
+    optimal_coupled_springs,
+    optimal_spring,
+    optimal_spring_and_torsion,
+    optimal_torsion_spring,
+    rms_reduction_pct,
+    spring_polynomial,
+    spring_torque,
+    torsion_spring_torque,
+)
+from flexfem.studies.balancing.report import default_workspace
 
 WT = workspace_torques(load_robot(), default_workspace(quick=True))
 MOTORS = range(4)

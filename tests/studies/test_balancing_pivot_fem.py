@@ -7,12 +7,16 @@ import math
 
 import numpy as np
 import pytest
-
 from flexfem.geometry.flexure_pivot import PivotGeometry, mesh_pivot
-from flexfem.studies.balancing_pivot_fem import (
-    linear_moment_solve, pivot_fem_check, pivot_fem_study, pivot_geometry, pivot_model,
-    poisson_ratio)
-from flexfem.studies.balancing_pivots import FlexurePivot, flexure_material
+from flexfem.studies.balancing.pivot_fem import (
+    linear_moment_solve,
+    pivot_fem_check,
+    pivot_fem_study,
+    pivot_geometry,
+    pivot_model,
+    poisson_ratio,
+)
+from flexfem.studies.balancing.pivots import FlexurePivot, flexure_material
 
 STEEL = flexure_material("spring_steel_aisi1095")
 L, T, W = 0.02, 0.67e-3, 0.074  # m

@@ -1,10 +1,15 @@
 """Cross-spring flexure pivots sized by beam theory to replace the torsion springs."""
 import pytest
-
-from flexfem.studies.balancing_pivots import (
-    FlexureMaterial, FlexurePivot, cross_spring_stiffness, flexure_material,
-    leaf_bending_stress, negative_stiffness_preload, pivot_stiffness_beam_theory,
-    size_flexure_pivot)
+from flexfem.studies.balancing.pivots import (
+    FlexureMaterial,
+    FlexurePivot,
+    cross_spring_stiffness,
+    flexure_material,
+    leaf_bending_stress,
+    negative_stiffness_preload,
+    pivot_stiffness_beam_theory,
+    size_flexure_pivot,
+)
 
 STEEL = flexure_material("spring_steel_aisi1095")
 

@@ -4,13 +4,20 @@ import json
 import math
 
 import pytest
-
 from flexfem.studies.cli import main
-from flexfem.studies.convergence import (coarsest_within, converge, default_levels,
-                                         observed_order, parse_tolerance, plot_convergence,
-                                         richardson_extrapolate, run_convergence)
-from flexfem.studies.sweep import reproduce
-from flexfem.studies.toy import CantileverParams, tip_deflection_exact
+from flexfem.studies.engine.convergence import (
+    coarsest_within,
+    converge,
+    default_levels,
+    observed_order,
+    parse_tolerance,
+    plot_convergence,
+    richardson_extrapolate,
+)
+from flexfem.studies.run import run_convergence
+from flexfem.studies.toy.model import CantileverParams, tip_deflection_exact
+from flexfem.studies.toy.model import evaluate as toy_evaluate
+from flexfem.studies.toy.report import reproduce
 
 
 def power_law(f_exact, c, p):
@@ -43,7 +50,7 @@ def test_non_constant_refinement_ratio_is_solved_exactly():
 
 def test_toy_uniform_beam_extrapolates_to_the_closed_form():
     # uniform beam: the trapezoid error is exactly delta h^2 / (2 L^2), a pure power law
-    result = converge("toy", "tip_deflection", default_levels(4))
+    result = converge(toy_evaluate, "tip_deflection", default_levels(4))
     exact = tip_deflection_exact(CantileverParams())
     assert result.order == pytest.approx(2.0, abs=1e-6)
     assert result.extrapolated == pytest.approx(exact, rel=1e-10)
@@ -53,14 +60,14 @@ def test_toy_taper_observed_order_is_two():
     # tapered beam: the integrand is not polynomial, the error is h^2 + O(h^4); on 8..64
     # elements the observed order must be within 0.1 of the trapezoid rule's 2
     taper = {"thickness_tip_m": 0.001}
-    result = converge("toy", "tip_deflection", default_levels(4), params=taper, tol="0.5%")
+    result = converge(toy_evaluate, "tip_deflection", default_levels(4), params=taper, tol="0.5%")
     exact = tip_deflection_exact(CantileverParams(**taper))
     assert abs(result.order - 2.0) < 0.1
     # the GCI error band (safety factor 1.25) must contain the exact value
     assert abs(result.extrapolated - exact) <= result.error_estimate
     assert result.coarsest_within_tol == 0  # 8 elements are within 0.5 % already
     # sized by dofs (n + 1 nodes in 1-D) the order is still close to 2
-    by_dofs = converge("toy", "tip_deflection", default_levels(4), params=taper,
+    by_dofs = converge(toy_evaluate, "tip_deflection", default_levels(4), params=taper,
                        mesh_size_key="dofs", dim=1)
     assert abs(by_dofs.order - 2.0) < 0.1 and by_dofs.size_key == "dofs"
 
@@ -139,7 +146,7 @@ def test_reproduce_quick_writes_its_files_and_agrees_with_theory(tmp_path):
 
 
 def test_run_convergence_starts_from_the_mechanisms_coarsest_level():
-    from flexfem.studies.registry import coarsest_size_factor
+    from flexfem.studies.mechanisms import coarsest_size_factor
     assert coarsest_size_factor("dbma") > 1.0  # the FEM mechanisms start coarser than default
     summary = run_convergence("toy", "tip_deflection", n_levels=3, start=2.0)
     assert [level["size_factor"] for level in summary["levels"]] == [2.0, 1.0, 0.5]

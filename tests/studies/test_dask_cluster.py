@@ -1,14 +1,14 @@
 """The same study on a real local Dask cluster (a scheduler and two workers on loopback,
 started here as subprocesses) gives the results of the local run."""
 import os
-from pathlib import Path
 import socket
 import subprocess
 import sys
+from pathlib import Path
 
 import pytest
-
-from flexfem.studies.sweep import Study, run_study
+from flexfem.studies.engine.sweep import Study
+from flexfem.studies.run import run_study
 
 distributed = pytest.importorskip("distributed", reason="Dask 'distributed' is not installed "
                                   "(pip install 'dask[distributed]'); the cluster test needs it")
@@ -76,7 +76,7 @@ def test_dask_cluster_matches_the_local_run(tmp_path, dask_cluster, monkeypatch)
 
 def test_unreachable_scheduler_is_a_clear_error(tmp_path, monkeypatch):
     monkeypatch.delenv("FLEXFEM_SCHEDULER", raising=False)
-    from flexfem.studies.executors import DaskExecutor
+    from flexfem.studies.engine.executors import DaskExecutor
     executor = DaskExecutor(f"tcp://127.0.0.1:{_free_port()}", timeout_s=0.5)
     with pytest.raises(ValueError, match="cannot reach the Dask scheduler"):
         with executor:

@@ -3,10 +3,9 @@ import json
 
 import numpy as np
 import pytest
-
-from flexfem.geometry.dbma_params import paper_design
-from flexfem.studies import dbma_fem
+from flexfem.geometry.dbma.params import paper_design
 from flexfem.studies.cli import main
+from flexfem.studies.dbma import analysis as dbma_fem
 
 P = paper_design()
 COARSE = 2.0  # size_factor: keeps every solve here to about a second

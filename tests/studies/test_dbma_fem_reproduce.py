@@ -2,8 +2,7 @@
 import math
 
 import pytest
-
-from flexfem.studies.dbma_fem import reproduce
+from flexfem.studies.dbma.report import reproduce
 
 
 @pytest.mark.slow

@@ -5,15 +5,18 @@ import math
 
 import numpy as np
 import pytest
-
 from flexfem.fem import Fixed, Force, Model, PlaneStress, solve_static
-from flexfem.geometry import dbma
-from flexfem.geometry.dbma import DBMALayout, mesh_dbma, part_area
-from flexfem.geometry.dbma_params import paper_design
-from flexfem.geometry.hinge_profiles import ARC_SEGMENT_ANGLE, mesh_hinge_specimen, profile_area
-from flexfem.studies import dbma_hinges as hs
-from flexfem.studies.dbma_enhanced import amplification_ratio_rigid_arm
-from flexfem.studies.dbma_fem import dbma_material
+from flexfem.geometry.dbma import drawing as dbma
+from flexfem.geometry.dbma.drawing import DBMALayout, mesh_dbma, part_area
+from flexfem.geometry.dbma.params import paper_design
+from flexfem.geometry.hinge_profiles import (
+    ARC_SEGMENT_ANGLE,
+    mesh_hinge_specimen,
+    profile_area,
+)
+from flexfem.studies.dbma import hinges as hs
+from flexfem.studies.dbma.analysis import dbma_material
+from flexfem.studies.dbma.enhanced import amplification_ratio_rigid_arm
 
 P = paper_design()
 

@@ -3,9 +3,8 @@ import dataclasses
 
 import numpy as np
 import pytest
-
-from flexfem.geometry.dbma_params import paper_design
-from flexfem.studies import dbma_enhanced as en
+from flexfem.geometry.dbma.params import paper_design
+from flexfem.studies.dbma import enhanced as en
 
 # Rigid arms are exact constraints; axially rigid hinges are RIGID = 1e6 times stiffer, so the
 # kinematic limit is met to ~1e-6 relative; 1e-5 leaves room for round-off in the solve.

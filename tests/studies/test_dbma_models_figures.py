@@ -5,10 +5,9 @@ import math
 
 import numpy as np
 import pytest
-
-from flexfem.geometry.dbma_params import paper_design
-from flexfem.studies import dbma_figures as figs
-from flexfem.studies import dbma_models as m
+from flexfem.geometry.dbma.params import paper_design
+from flexfem.studies.dbma import figures as figs
+from flexfem.studies.dbma import prbm as m
 
 
 @pytest.fixture(scope="module")

@@ -5,11 +5,10 @@ import re
 
 import numpy as np
 import pytest
-
 from flexfem.data import load_toml
-from flexfem.geometry.dbma_params import DBMAParams, paper_design
-from flexfem.studies import dbma_models as m
-from flexfem.studies.dbma_figures import FIG9_FIG10_RANGES_MM
+from flexfem.geometry.dbma.params import paper_design
+from flexfem.studies.dbma import prbm as m
+from flexfem.studies.dbma.figures import FIG9_FIG10_RANGES_MM
 
 
 @pytest.fixture(scope="module")

@@ -7,11 +7,12 @@ import sqlite3
 
 import numpy as np
 import pytest
+from flexfem.geometry.dbma.params import paper_design
+from flexfem.studies import cli
+from flexfem.studies.dbma import enhanced as dbma_enhanced
+from flexfem.studies.dbma import optimize as opt
+from flexfem.studies.dbma.optimize_output import history_rows
 from scipy.optimize import linprog
-
-from flexfem.geometry.dbma_params import paper_design
-from flexfem.studies import cli, dbma_enhanced, dbma_optimize as opt
-from flexfem.studies.dbma_optimize_output import history_rows
 
 P = paper_design()
 REF = np.array([0.6e-3, 2.6e-3, 4.41e-3])  # the surrogate's reference design (b, h, l), m
@@ -175,9 +176,6 @@ def test_hinge_stress_estimate_matches_the_rigid_arm_closed_form():
 
 
 def _main(argv, monkeypatch):
-    modules = list(cli.COMMAND_MODULES)
-    if "flexfem.studies.cli_optimize" not in modules:
-        monkeypatch.setattr(cli, "COMMAND_MODULES", modules + ["flexfem.studies.cli_optimize"])
     return cli.main(argv)
 
 
@@ -203,7 +201,7 @@ def test_cli_json_and_outputs(tmp_path, monkeypatch, capsys):
 
 def test_fem_metrics_of_the_paper_design_coarse():
     # the same model and load as dbma_fem.evaluate: identical R, k_in and stress
-    from flexfem.studies.dbma_fem import evaluate
+    from flexfem.studies.dbma.analysis import evaluate
     params = {n: getattr(P, n) for n in opt.NAMES}
     raw = opt.fem_metrics(params, 2.83)
     ref = evaluate(params, 2, 2.83, modes=True, force=100.0)
@@ -231,7 +229,7 @@ def test_real_fem_quick_search(tmp_path):
 
 
 def test_report_section_skips_the_search_in_a_quick_report(tmp_path):
-    from flexfem.studies.dbma_optimize import reproduce
+    from flexfem.studies.dbma.optimize_output import reproduce
     summary = reproduce(tmp_path, quick=True)
     assert summary["comparisons"] == [] and summary["figures"] == []
     assert "flexfem optimize dbma" in summary["notes"][0]

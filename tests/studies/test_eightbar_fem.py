@@ -2,14 +2,18 @@
 model, first nonlinear step against the linear solve, symmetry, stress location, CLI."""
 import json
 
-import numpy as np
 import pytest
-
 from flexfem.fem import Fixed, Prescribed, solve_nonlinear, solve_static
-from flexfem.geometry.eightbar_flexure import EightBarFlexureParams, prbm_stiffness
+from flexfem.geometry.eightbar.flexure import EightBarFlexureParams, prbm_stiffness
 from flexfem.studies.cli import main
-from flexfem.studies.eightbar_fem import (NEWTON_TOL, analyze_eightbar, build_model, evaluate,
-                                          linear_analysis, params_from_dict)
+from flexfem.studies.eightbar.analysis import (
+    NEWTON_TOL,
+    analyze_eightbar,
+    build_model,
+    evaluate,
+    linear_analysis,
+    params_from_dict,
+)
 
 
 @pytest.fixture(scope="module")

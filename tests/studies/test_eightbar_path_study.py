@@ -3,9 +3,8 @@ import json
 
 import numpy as np
 import pytest
-
 from flexfem.studies.cli import main
-from flexfem.studies.eightbar_path import appendix_a_points, reproduce, thesis_targets
+from flexfem.studies.eightbar.path import appendix_a_points, reproduce, thesis_targets
 
 
 def test_appendix_a_data_matches_the_text_summary():
@@ -54,8 +53,8 @@ def test_reproduce_quick_writes_tables_and_figures(tmp_path):
 
 def test_docs_example_runs():
     # the Python example of docs/eightbar.md runs and gives the numbers the page quotes
-    from pathlib import Path
     import re
+    from pathlib import Path
     page = (Path(__file__).parents[2] / "docs" / "eightbar.md").read_text()
     block = next(b for b in re.findall(r"```python\n(.*?)```", page, re.S) if "trace_eightbar" in b)
     scope = {}

@@ -2,9 +2,8 @@
 from pathlib import Path
 
 import pytest
-
-from flexfem.studies.dbma_fem import params_from_dict
-from flexfem.studies.sweep import design_points, load_study
+from flexfem.studies.dbma.analysis import params_from_dict
+from flexfem.studies.engine.sweep import design_points, load_study
 
 EXAMPLES = sorted((Path(__file__).resolve().parents[2] / "examples").glob("*.toml"))
 DESIGN_CHECKS = {"dbma": params_from_dict}

@@ -9,9 +9,9 @@ import types
 
 import numpy as np
 import pytest
-
-from flexfem.studies import reproduce as reproduce_module
 from flexfem.studies.cli import main
+from flexfem.studies.mechanisms import Mechanism, Section
+from flexfem.studies.report import reproduce as reproduce_module
 
 
 def _fake_section(out_dir, quick=False):
@@ -36,13 +36,14 @@ def _broken_section(out_dir, quick=False):
 
 @pytest.fixture
 def fake_sections(monkeypatch):
-    module = types.ModuleType("flexfem_fake_sections")
+    module = types.ModuleType("flexfem.studies.fake.sections")
     module.good, module.bad = _fake_section, _broken_section
-    monkeypatch.setitem(sys.modules, "flexfem_fake_sections", module)
-    monkeypatch.setattr(reproduce_module, "SECTIONS", [
-        ("good", "A good section", "flexfem_fake_sections:good"),
-        ("bad", "A broken section", "flexfem_fake_sections:bad"),
-    ])
+    monkeypatch.setitem(sys.modules, "flexfem.studies.fake.sections", module)
+    fake = Mechanism("fake", "A fake mechanism", "fake",
+                     sections=(Section("good", "A good section", "sections:good"),
+                               Section("bad", "A broken section", "sections:bad")))
+    monkeypatch.setattr(reproduce_module, "report_sections",
+                        lambda: [(fake, s) for s in fake.sections])
 
 
 def test_failing_section_is_reported_and_others_kept(tmp_path, fake_sections):

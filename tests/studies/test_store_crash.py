@@ -1,17 +1,17 @@
 """The SQLite store: case keys, round trips, and a study killed for real (SIGKILL, SIGINT)."""
 import math
 import os
-from pathlib import Path
 import signal
 import sqlite3
 import subprocess
 import sys
 import time
+from pathlib import Path
 
 import pytest
-
-from flexfem.studies.store import CaseResult, ResultStore, case_key
-from flexfem.studies.sweep import load_study, run_study
+from flexfem.studies.engine.store import CaseResult, ResultStore, case_key
+from flexfem.studies.engine.sweep import load_study
+from flexfem.studies.run import run_study
 
 
 @pytest.fixture(autouse=True)

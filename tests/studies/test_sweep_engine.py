@@ -5,14 +5,13 @@ import json
 import os
 
 import pytest
-
 from flexfem.studies.cli import main
-from flexfem.studies.progress import Progress, format_duration, format_progress
-from flexfem.studies.registry import MECHANISMS, get_evaluator
-from flexfem.studies.store import ResultStore, export_csv
-from flexfem.studies.sweep import (Sample, Study, design_points, load_study, plot_metric,
-                                   run_study, study_from_dict)
-from flexfem.studies import toy
+from flexfem.studies.engine.progress import Progress, format_duration, format_progress
+from flexfem.studies.engine.store import ResultStore, export_csv
+from flexfem.studies.engine.sweep import Sample, Study, design_points, plot_metric
+from flexfem.studies.mechanisms import MECHANISMS, get_evaluator
+from flexfem.studies.run import load_study, run_study, study_from_dict
+from flexfem.studies.toy import model as toy
 
 
 @pytest.fixture(autouse=True)
@@ -129,7 +128,7 @@ def test_local_processes_match_in_process_and_limit_threads(tmp_path):
     assert parallel.executor == "2 local processes"
     # same arithmetic in every process: bit-identical metrics
     assert {c.key: c.metrics for c in serial.cases} == {c.key: c.metrics for c in parallel.cases}
-    probe = Study("flexfem.studies.toy:environment_probe", grid={"sleep_s": [0.5, 0.51, 0.52, 0.53]})
+    probe = Study("flexfem.studies.toy.model:environment_probe", grid={"sleep_s": [0.5, 0.51, 0.52, 0.53]})
     cases = run_study(probe, tmp_path / "c.sqlite", workers=2, progress=False).cases
     pids = {c.metrics["pid"] for c in cases}
     assert os.getpid() not in pids and len(pids) == 2  # 4 sleeping cases spread on 2 workers

@@ -2,8 +2,7 @@
 import csv
 
 import pytest
-
-from flexfem.studies.tables import write_rows
+from flexfem.studies.engine.tables import write_rows
 
 
 def read(path):

@@ -1,0 +1,27 @@
+"""``flexfem balance``: RMS-optimal static balancing of the five-bar robot's motors 2-5."""
+from .report import METHODS, balance_robot
+
+
+def run(args) -> dict:
+    """Optimal balancers for ``args.method`` over the default workspace (SI params)."""
+    return balance_robot(args.method)
+
+
+def summarize(result: dict) -> str:
+    lines = [f"{'motor':>5}  {'method':<13} {'RMS red. %':>10} {'max red. %':>10}  parameters (SI)"]
+    for r in result["results"]:
+        params = ", ".join(f"{k} = {v:.4g}" for k, v in r["params"].items())
+        lines.append(f"{r['motor']:>5}  {r['method']:<13} {r['rms_reduction_pct']:>10.1f} "
+                     f"{r['max_reduction_pct']:>10.1f}  {params}")
+    lines.append(f"({result['n_samples']} workspace samples)")
+    return "\n".join(lines)
+
+
+def register(subparsers):
+    parser = subparsers.add_parser(
+        "balance", help="optimum static balancing of the five-bar robot (springs, torsion "
+                        "springs, counterweights)")
+    parser.add_argument("--method", choices=[*METHODS, "all"], default="all",
+                        help="balancer to optimise (default: all)")
+    parser.add_argument("--json", action="store_true", help="print one JSON object")
+    parser.set_defaults(run=run, summarize=summarize)

@@ -1,0 +1,214 @@
+"""FEM analysis of the DBMA (Micromachines 2020, 11(3), 312, Section 4) beside its formulas.
+
+Static: the actuator is a pair of equal and opposite forces on the input pads; the part is held
+on its mounting face (bottom of output member 11). R_fem = output displacement (top of member
+4, along y) / actuator elongation (change of the distance between the pads); R_fem_per_side =
+output / one pad's motion = 2 R_fem, the reading that the paper's R = 4 dy/dx (Eq. 7) and its
+test's "input displacement" take (docs/dbma.md). Modal: held on the
+mounting face, with the actuator, axially ~10x stiffer than the DBMA's input stiffness, holding
+the pads along x (docs/dbma.md). Forces in N, lengths in m, stresses in Pa, frequencies in Hz.
+"""
+import dataclasses
+import math
+from pathlib import Path
+
+import numpy as np
+
+from ...data import load_toml
+from ...fem import (
+    Fixed,
+    Force,
+    Material,
+    Model,
+    PlaneStress,
+    Prescribed,
+    Solid3D,
+    material,
+    solve_modes,
+    solve_static,
+)
+from ...geometry.dbma.drawing import (
+    DBMALayout,
+    mesh_dbma,
+    part_mass,
+)
+from ...geometry.dbma.params import DBMAParams, paper_design
+from ..engine.convergence import converge, plot_convergence
+from .figures import analytical_metrics
+
+OUTPUT_AXIS = 1  # the output moves along y
+
+
+def published() -> dict:
+    """The paper's numbers (data/dbma_paper.toml), as printed."""
+    return load_toml("dbma_paper.toml")
+
+
+def dbma_material(p: DBMAParams) -> Material:
+    """Steel with the paper's E and the assumed nu, rho; the yield strength is not in the paper:
+    that of structural steel (data/materials.toml) is used for the safety factor."""
+    return Material("dbma_steel", p.E, p.nu, p.rho, material("structural_steel").yield_strength,
+                    "E: DBMA paper Table 1 (215 GPa); nu, rho, yield: structural_steel")
+
+
+def actuator_loads(force: float, dim: int) -> list:
+    """Equal and opposite forces (N) pushing the two input pads apart."""
+    z = (0.0,) if dim == 3 else ()
+    return [Force("input_a", (-force, 0.0) + z), Force("input_b", (force, 0.0) + z)]
+
+
+def static_supports() -> list:
+    return [Fixed("fixed")]
+
+
+def modal_supports() -> list:
+    """Mounting face held; pads held along x by the (much stiffer) actuator."""
+    return [Fixed("fixed"), Prescribed("input", x=0.0)]
+
+
+def build_model(p: DBMAParams, layout: DBMALayout | None = None, dim: int = 2,
+                size_factor: float = 1.0, hinge_elements: int | None = None) -> Model:
+    """Quadratic-element model of the DBMA: plane stress of thickness d (2-D) or solid (3-D)."""
+    mesh = mesh_dbma(p, layout, dim, hinge_elements, size_factor)
+    formulation = PlaneStress(p.d) if dim == 2 else Solid3D()
+    return Model(mesh, dbma_material(p), formulation, order=2)
+
+
+def static_response(model: Model, force: float) -> dict:
+    """R (-), elongation and output displacement (m), input stiffness k_in = F / elongation
+    (N/m), max von Mises (Pa, nodal and element) and where (m), safety factor against yield.
+
+    R_fem = output / elongation; R_fem_per_side = output / (elongation / 2), the output over
+    one pad's motion relative to the symmetry plane (the paper's reading, docs/dbma.md): the
+    two pads move equally by symmetry, and using their mean removes the mesh's asymmetry."""
+    result = solve_static(model, static_supports(), actuator_loads(force, model.dim))
+    u_a = result.mean_displacement("input_a")
+    u_b = result.mean_displacement("input_b")
+    u_out = result.mean_displacement("output")[OUTPUT_AXIS]
+    elongation = u_b[0] - u_a[0]
+    vm = result.max_von_mises
+    return {"force": force, "elongation": elongation, "output_displacement": u_out,
+            "R_fem": u_out / elongation, "R_fem_per_side": 2 * u_out / elongation,
+            "input_a_x": u_a[0], "input_b_x": u_b[0],
+            "k_in": force / elongation, "max_von_mises": vm,
+            "max_von_mises_element": result.max_von_mises_element,
+            "max_von_mises_location": [float(v) for v in result.max_von_mises_location],
+            "safety_factor": model.material.yield_strength / vm}
+
+
+def working_mode(modes) -> int:
+    """1-based index of the mode with the largest effective mass along the output axis (y)."""
+    return int(np.argmax(modes.effective_mass[:, OUTPUT_AXIS])) + 1
+
+
+def modal_response(model: Model, n_modes: int = 6) -> tuple[dict, object]:
+    """First n_modes frequencies (Hz), effective masses (kg, n x dim), the working mode."""
+    modes = solve_modes(model, n=n_modes, supports=modal_supports())
+    k = working_mode(modes)
+    return {"frequencies_hz": [float(f) for f in modes.frequencies_hz],
+            "effective_mass": modes.effective_mass.tolist(), "total_mass": modes.total_mass,
+            "working_mode": k, "fn_working": float(modes.frequencies_hz[k - 1])}, modes
+
+
+def analyze_dbma(params: DBMAParams | None = None, layout: DBMALayout | None = None,
+                 dim: int = 3, size_factor: float = 1.0, n_modes: int = 6,
+                 force: float | None = None, return_modes: bool = False) -> dict:
+    """Static and modal FEM of one DBMA beside the analytical models (SI units).
+
+    Keys: R_fem, R_eq7, R_enhanced, Ke_eq14, me_eq19, fn_eq20, k_in, max_von_mises (at
+    ``force``, default the 800 N top of Fig. 14), safety_factor, frequencies_hz, working_mode
+    (1-based), fn_working, material {E, nu, rho}, dofs, mass (kg) and the static details."""
+    p = params or paper_design()
+    force = float(published()["loading"]["force_max_N"] if force is None else force)
+    if not (math.isfinite(force) and force > 0):
+        raise ValueError(f"force = {force!r} must be a finite number > 0 (N)")
+    model = build_model(p, layout, dim, size_factor)
+    out = {**analytical_metrics(p), **static_response(model, force)}
+    modal, modes = modal_response(model, n_modes)
+    out.update(modal)
+    out.update({"dim": dim, "size_factor": size_factor, "dofs": int(model.n_dofs),
+                "mass": part_mass(p, layout),
+                "material": {"E": p.E, "nu": p.nu, "rho": p.rho,
+                             "yield_strength": model.material.yield_strength}})
+    if return_modes:
+        out["_modes"] = modes
+    return out
+
+
+def params_from_dict(values: dict) -> DBMAParams:
+    """The paper's design with the given fields (SI) replaced; unknown keys raise ValueError."""
+    known = {f.name for f in dataclasses.fields(DBMAParams)}
+    unknown = sorted(set(values) - known)
+    if unknown:
+        raise ValueError(f"unknown DBMA parameter(s) {unknown}; known: {sorted(known)}")
+    return dataclasses.replace(paper_design(), **{k: float(v) for k, v in values.items()})
+
+
+def evaluate(params_dict: dict, dim: int = 2, size_factor: float = 1.0,
+             modes: bool = False, force: float = 100.0) -> dict:
+    """Metrics for the sweep engine: R_fem, k_in (N/m), max_von_mises (Pa, at ``force`` N),
+    dofs, h (hinge element size, m), the analytical metrics, and with ``modes`` fn_working
+    (Hz) and working_mode."""
+    p = params_from_dict(params_dict)
+    model = build_model(p, None, dim, size_factor)
+    static = static_response(model, force)
+    out = {k: v for k, v in analytical_metrics(p).items() if isinstance(v, (int, float))}
+    out.update({k: static[k] for k in ("R_fem", "R_fem_per_side", "k_in", "max_von_mises")})
+    out.update({"dofs": int(model.n_dofs), "h": p.b / (4 if dim == 2 else 2) * size_factor})
+    if modes:
+        modal, _ = modal_response(model)
+        out.update({"fn_working": modal["fn_working"], "working_mode": modal["working_mode"]})
+    return out
+
+
+def load_linearity(p: DBMAParams, forces, size_factor: float = 1.0) -> list[dict]:
+    """Fig. 14: input (elongation) and output displacement (m) at each force (N), 2-D."""
+    model = build_model(p, None, 2, size_factor)
+    rows = [{"force_N": 0.0, "elongation_m": 0.0, "output_m": 0.0, "R": math.nan}]
+    for f in forces:
+        s = static_response(model, float(f))
+        rows.append({"force_N": float(f), "elongation_m": s["elongation"],
+                     "output_m": s["output_displacement"], "R": s["R_fem"]})
+    return rows
+
+
+def fig13_sweep(p: DBMAParams, b_values, h_values, size_factor: float = 1.0) -> list[dict]:
+    """Fig. 13: R against b and against h, 2-D FEM beside Eq. 7 and the enhanced model."""
+    rows = []
+    for name, values in (("b", b_values), ("h", h_values)):
+        for v in values:
+            q = dataclasses.replace(p, **{name: float(v)})
+            a = analytical_metrics(q)
+            r = evaluate({f.name: getattr(q, f.name) for f in dataclasses.fields(q)}, 2, size_factor)
+            rows.append({"parameter": name, "value_m": float(v), "R_fem": r["R_fem"],
+                         "R_fem_per_side": r["R_fem_per_side"], "R_eq7": a["R_eq7"],
+                         "R_enhanced": a.get("R_enhanced", math.nan)})
+    return rows
+
+
+def convergence_study(p: DBMAParams, size_factors=(2.83, 2.0, 1.41, 1.0),
+                      tol: float = 0.01, out_dir=None) -> dict:
+    """Mesh convergence (2-D) of R_fem and the working-mode frequency: observed order,
+    Richardson-extrapolated value, coarsest size_factor within ``tol`` of it; with ``out_dir``
+    a log-log plot per metric, dbma_convergence_<metric>.png."""
+    values = {f.name: getattr(p, f.name) for f in dataclasses.fields(p)}
+    outputs = {}
+
+    def cached(params, size_factor):  # one static + modal solve per level, for both metrics
+        if size_factor not in outputs:
+            outputs[size_factor] = evaluate(params, 2, size_factor, modes=True)
+        return outputs[size_factor]
+
+    levels = [{"size_factor": s} for s in size_factors]
+    study = {}
+    for metric in ("R_fem", "fn_working"):
+        r = converge(cached, metric, levels, "h", values, tol=tol)
+        best = r.coarsest_within_tol
+        study[metric] = {"size_factors": list(size_factors), "values": r.values,
+                         "dofs": r.dofs, "order": r.order, "extrapolated": r.extrapolated,
+                         "gci": r.gci, "behaviour": r.behaviour,
+                         "recommended_size_factor": None if best is None else size_factors[best]}
+        if out_dir is not None:
+            plot_convergence(r, Path(out_dir) / f"dbma_convergence_{metric}.png")
+    return study
+

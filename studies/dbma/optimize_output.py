@@ -1,0 +1,163 @@
+"""A DBMA design search with its outputs: tables, figure and text of ``optimize.optimize``'s
+result, and the report section."""
+import csv
+from pathlib import Path
+
+from ...geometry.dbma.params import paper_design
+from .optimize import (
+    NAMES,
+    Evaluations,
+    OptimizeSpec,
+    constraint_table,
+    constraints_of,
+    fem_metrics,
+    margins,
+    optimize,
+    quick_spec,
+)
+
+HISTORY_COLUMNS = ("evaluation", "stage", "size_factor", "b", "h", "l", "R_fem", "R_fem_per_side",
+                   "fn_working", "k_out", "von_mises_at_stroke", "von_mises_element_at_stroke",
+                   "actuator_force", "free_output", "blocked_output_force", "feasible", "cached",
+                   "wall_time_s")
+
+
+def history_rows(result: dict) -> list[dict]:
+    """The history with 'feasible': the row's own-mesh metrics meet every constraint."""
+    spec = OptimizeSpec(**result["spec"])
+    out = []
+    for r in result["history"]:
+        cons = constraints_of(spec, r["yield_strength"])
+        out.append({**{k: r[k] for k in HISTORY_COLUMNS if k in r},
+                     "feasible": bool(margins(r, cons).min() >= 0)})
+    return out
+
+
+def write_history_csv(result: dict, path) -> Path:
+    """optimize_history.csv: one row per FEM evaluation (SI units)."""
+    with open(path, "w", newline="") as fh:
+        writer = csv.DictWriter(fh, fieldnames=list(HISTORY_COLUMNS))
+        writer.writeheader()
+        writer.writerows(history_rows(result))
+    return Path(path)
+
+
+def plot_history(result: dict, path) -> Path:
+    """R_fem_per_side against the evaluation number: filled where the design meets every
+    constraint on its own mesh, hollow where not; search circles, checks squares."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    rows = history_rows(result)
+    fig, ax = plt.subplots(figsize=(6.5, 4))
+    for stages, mesh, marker, label in (
+            (("seed", "search"), result["search_size_factor"], "o", "search"),
+            (("calibration", "check"), result["check_size_factor"], "s", "check")):
+        for ok, face in ((True, None), (False, "none")):
+            sel = [r for r in rows if r["stage"] in stages and r["feasible"] == ok]
+            if not sel:
+                continue
+            ax.scatter([r["evaluation"] for r in sel], [r["R_fem_per_side"] for r in sel],
+                       marker=marker, facecolors=face if face else ("tab:blue" if marker == "o" else "tab:red"),
+                       edgecolors="tab:blue" if marker == "o" else "tab:red",
+                       label=f"{label}, size_factor {mesh:g}, {'feasible' if ok else 'infeasible'}")
+    ax.axhline(result["R_fem_per_side"], color="0.4", ls=":", lw=1,
+               label=f"optimum R = {result['R_fem_per_side']:.3f}")
+    ax.set_xlabel("FEM evaluation")
+    ax.set_ylabel("R (output / one pad's motion)")
+    ax.legend(fontsize=7)
+    ax.grid(alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return Path(path)
+
+
+def summary_rows(result: dict) -> list[dict]:
+    """The optimum as a table: design (m), R, each constraint with its bound and activity."""
+    rows = [{"quantity": f"{n} (m)", "value": v, "bound": None, "active": None}
+            for n, v in result["optimum"].items()]
+    rows += [{"quantity": "R_fem (output / elongation)", "value": result["R_fem"], "bound": None, "active": None},
+             {"quantity": "R_fem_per_side", "value": result["R_fem_per_side"], "bound": None, "active": None}]
+    rows += [{"quantity": f"{c['constraint']}: {c['metric']} {c['kind']}", "value": c["value"],
+              "bound": c["bound"], "active": c["active"]} for c in result["constraints"]]
+    return rows
+
+
+def summarize(result: dict) -> str:
+    """Human summary of ``optimize``'s result."""
+    o, m = result["optimum"], result["metrics"]
+    lines = [f"optimum b = {o['b'] * 1e3:.4f} mm, h = {o['h'] * 1e3:.4f} mm, l = {o['l'] * 1e3:.4f} mm: "
+             f"R_fem = {result['R_fem']:.4f} (per side {result['R_fem_per_side']:.4f}), "
+             f"check mesh size_factor {result['check_size_factor']:g}"]
+    for c in result["constraints"]:
+        lines.append(f"  {c['constraint']:17s} {c['metric']} = {c['value']:.4g} {c['kind']} {c['bound']:.4g}"
+                     f" ({100 * c['margin']:+.2f} %){'  ACTIVE' if c['active'] else ''}")
+    lines.append(f"  actuator force at the stroke {m['actuator_force']:.4g} N, free output "
+                 f"{m['free_output'] * 1e6:.4g} um, blocked output force {m['blocked_output_force']:.4g} N")
+    s = result["seed"]
+    lines.append(f"analytical seed {', '.join(f'{n} = {v * 1e3:.3f} mm' for n, v in s['design'].items())}: "
+                 + ", ".join(f"{k} {100 * d:+.1f} %" for k, d in s["analytical_vs_fem"].items())
+                 + " vs FEM; optimum R "
+                 f"{100 * result['R_gain_over_seed']:+.1f} % over the seed")
+    lines.append(f"{result['n_fem_evaluations']} FEM evaluations ({result['n_search_evaluations']} search, "
+                 f"{result['n_check_evaluations']} check, {result['n_fem_computed']} computed, the rest "
+                 f"from the store) in {result['wall_time_s']:.1f} s"
+                 + (f", at bounds: {', '.join(result['at_bounds'])}" if result["at_bounds"] else ""))
+    return "\n".join(lines)
+
+
+def write_rows_csv(rows: list[dict], path) -> Path:
+    """A table of summary_rows as CSV (quantity, value, bound, active)."""
+    with open(path, "w", newline="") as fh:
+        writer = csv.DictWriter(fh, fieldnames=["quantity", "value", "bound", "active"])
+        writer.writeheader()
+        writer.writerows(rows)
+    return Path(path)
+
+
+def run(spec: OptimizeSpec, out_dir=None, quick: bool = False) -> dict:
+    """``optimize`` with its store, optimize_history.csv and optimize_history.png in
+    ``out_dir`` (when given); quick: ``quick_spec``."""
+    spec = quick_spec(spec) if quick else spec
+    out = None if out_dir is None else Path(out_dir)
+    if out is not None:
+        out.mkdir(parents=True, exist_ok=True)
+    result = optimize(spec, None if out is None else out / "optimize_cache.sqlite")
+    if out is not None:
+        result["tables"] = [write_history_csv(result, out / "optimize_history.csv").name]
+        result["figures"] = [plot_history(result, out / "optimize_history.png").name]
+        result["out"] = str(out)
+    return result
+
+
+def reproduce(out_dir, quick: bool = False, full: bool = False) -> dict:
+    """The default design search into ``out_dir``, beside the paper's design on the check
+    mesh; none with ``quick`` (a smoke run of the report has no time for it; ``flexfem optimize
+    dbma`` runs it); ``full`` changes nothing. Summary: rows, comparisons (none: no source has
+    a search), tables, figures, notes."""
+    if quick:
+        return {"comparisons": [], "tables": [], "figures": [],
+                "notes": ["The design search is not run in a --quick report; run "
+                          "`flexfem reproduce` or `flexfem optimize dbma`."]}
+    out = Path(out_dir)
+    result = run(OptimizeSpec(), out)
+    p, spec = paper_design(), OptimizeSpec(**result["spec"])
+    ev = Evaluations(fem_metrics, spec.stroke_m, out / "optimize_cache.sqlite")
+    try:
+        paper = ev([getattr(p, n) for n in NAMES], spec.check_size_factor, "paper design")
+    finally:
+        ev.close()
+    paper_table = constraint_table(paper, constraints_of(spec, ev.history[-1]["yield_strength"]))
+    rows = summary_rows(result)
+    rows.append({"quantity": "paper design (b 0.6, h 2.6, l 4.41 mm) R_fem_per_side",
+                 "value": paper["R_fem_per_side"], "bound": None, "active": None})
+    write_rows_csv(rows, out / "optimize_optimum.csv")
+    notes = [summarize(result).replace("\n", "; "),
+             "Beyond the sources: the paper has no design search; nothing here is compared "
+             "with a published number."]
+    return {"rows": rows, "comparisons": [], "tables": result["tables"] + ["optimize_optimum.csv"],
+            "figures": result["figures"], "notes": notes, "optimum": result["optimum"],
+            "R_fem": result["R_fem"], "active_constraints": result["active_constraints"],
+            "n_fem_evaluations": result["n_fem_evaluations"], "paper_design": paper,
+            "paper_design_constraints": paper_table}

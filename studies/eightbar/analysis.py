@@ -1,0 +1,268 @@
+"""FEM of the eight-bar flexure suspension (eight-bar thesis, Chapter 5): stiffness, stress,
+modes and the large-deflection path over the whole travel, beside the rigid-body linkage and
+the pseudo-rigid-body model.
+
+    from ..geometry.eightbar_flexure import EightBarFlexureParams
+    out = analyze_eightbar(EightBarFlexureParams())
+    out["k_x"], out["max_stress_location"], out["fem_deviation_pct"]
+
+Drive: the "end_effector" face (bottom face of the end-effector bar). Linear stiffness along
+the motion k_x: the face's x prescribed (y free), k_x = reaction / displacement (the force-
+driven solve has the mechanism's near-zero mode in it and is too ill-conditioned for the direct
+solver's residual check); across the motion k_y: y prescribed with x held (by the mirror
+symmetry of the part, a y force moves the end-effector neither in x nor in rotation, so
+holding x changes nothing). Large deflection: the face as a RigidFace, x prescribed, y and
+rotation free, from the middle to each end of the travel.
+"""
+import math
+from dataclasses import fields, replace
+
+import numpy as np
+
+from ...fem import (
+    Fixed,
+    Model,
+    PlaneStress,
+    Prescribed,
+    RigidFace,
+    material,
+    solve_modes,
+    solve_nonlinear,
+    solve_static,
+)
+from ...fem.model import von_mises
+from ...fem.nonlinear import cauchy_stress, deformation, green_lagrange, svk_stress
+from ...geometry.eightbar.flexure import (
+    EightBarFlexureParams,
+    end_effector_point,
+    mesh_eightbar_flexure,
+    prbm_peak_stress,
+    prbm_stiffness,
+)
+from ...geometry.eightbar.rigid import EightBarParams, trace_eightbar
+from ...geometry.straight_line import straight_line_deviation
+
+# Newton tolerance (relative to the reaction): the residual of this part stagnates near 3e-6
+# of the drive force -- round-off in the internal forces of the stiff links (E t ~ 4e8 N/m)
+# against a mechanism reaction of ~1 N -- so the default 1e-8 cannot be reached.
+NEWTON_TOL = 1e-5
+
+
+def build_model(params: EightBarFlexureParams, size_factor: float = 1.0, n_across: int = 3):
+    """(Model (plane stress, P2), mesh sizes dict) of the flexure suspension."""
+    mesh, sizes = mesh_eightbar_flexure(params, n_across=n_across, size_factor=size_factor)
+    return Model(mesh, material(params.material), PlaneStress(params.thickness), order=2), sizes
+
+
+def group_at_vertex(model: Model, vertex: int) -> str:
+    """Name of the flexure (or link) holding mesh vertex ``vertex``: flexures first."""
+    mesh = model.mesh
+    elements = np.flatnonzero(np.any(mesh.mesh.t == vertex, axis=0))
+    names = [n for n in mesh.subdomains if n not in ("body", "links", "flexures", "anchors")]
+    names.sort(key=lambda n: (not n.startswith("flexure_"), n))
+    for name in names:
+        if np.intersect1d(mesh.subdomains[name], elements).size:
+            return name
+    return "unknown"
+
+
+def linear_analysis(model: Model, displacement: float) -> dict:
+    """k_x, k_y (N/m), and the von Mises stress (Pa) with the end-effector moved by
+    ``displacement`` (m) along x, linearly: nodal maximum, its location and flexure, and the
+    quadrature-point maximum. Returns the StaticResult as "result"."""
+    probe = displacement
+    fixed = Fixed("fixed")
+    along = solve_static(model, [fixed, Prescribed("end_effector", x=probe)], [])
+    across = solve_static(model, [fixed, Prescribed("end_effector", x=0.0, y=probe)], [])
+    k_x = float(along.reactions["end_effector"][0] / probe)
+    k_y = float(across.reactions["end_effector"][1] / probe)
+    vertex = int(np.argmax(along.von_mises_nodal))
+    where = model.mesh.mesh.p[:, vertex]
+    return {"k_x": k_x, "k_y": k_y, "max_von_mises": along.max_von_mises,
+            "max_von_mises_element": along.max_von_mises_element,
+            "max_stress_location": {"x": float(where[0]), "y": float(where[1]),
+                                    "flexure": group_at_vertex(model, vertex)},
+            "stress_displacement_m": probe, "result": along}
+
+
+def stress_convergence(params: EightBarFlexureParams, size_factors=(1.0, 0.7, 0.5),
+                       radii: tuple | None = None, displacement: float | None = None) -> list:
+    """Max von Mises (Pa) of the linear solve with the end-effector moved ``displacement`` (m,
+    default half the travel) along x, for each root fillet radius in ``radii`` (m, default
+    sharp and ``params.root_fillet_radius``) and mesh ``size_factor``: [{"root_fillet_radius_m",
+    "size_factor", "dofs", "root_size_m", "k_x", "max_von_mises_nodal_pa",
+    "max_von_mises_element_pa", "x_m", "y_m", "flexure"}] (location of the nodal maximum).
+    A sharp re-entrant corner is a singularity (stress ~ rho^-0.46 near it): its maximum grows
+    as the mesh is refined; a filleted root's converges."""
+    displacement = params.rigid.travel / 2 if displacement is None else float(displacement)
+    radii = (0.0, params.root_fillet_radius) if radii is None else tuple(radii)
+    rows = []
+    for radius in radii:
+        p = replace(params, root_fillet_radius=radius)
+        for size_factor in size_factors:
+            model, sizes = build_model(p, size_factor)
+            res = solve_static(model, [Fixed("fixed"), Prescribed("end_effector", x=displacement)], [])
+            vertex = int(np.argmax(res.von_mises_nodal))
+            where = model.mesh.mesh.p[:, vertex]
+            rows.append({"root_fillet_radius_m": float(radius), "size_factor": float(size_factor),
+                         "dofs": int(model.n_dofs), "root_size_m": sizes.get("root_size"),
+                         "k_x": float(res.reactions["end_effector"][0] / displacement),
+                         "max_von_mises_nodal_pa": res.max_von_mises,
+                         "max_von_mises_element_pa": res.max_von_mises_element,
+                         "x_m": float(where[0]), "y_m": float(where[1]),
+                         "flexure": group_at_vertex(model, vertex)})
+    return rows
+
+
+def modal_analysis(model: Model, n: int = 4) -> list:
+    """First ``n`` modes: [{"f_hz", "m_eff_x_kg", "m_eff_y_kg"}] with the base fixed."""
+    # a shift just below zero: the default (1e-6 of the stiffness/mass scale) sits far above
+    # this mechanism's few-Hz modes and Lanczos then needs tens of seconds
+    modes = solve_modes(model, n=n, supports=[Fixed("fixed")], shift_hz=-1.0)
+    return [{"f_hz": float(f), "m_eff_x_kg": float(m[0]), "m_eff_y_kg": float(m[1])}
+            for f, m in zip(modes.frequencies_hz, modes.effective_mass)]
+
+
+def element_peak_stress(model: Model, u: np.ndarray) -> tuple:
+    """(max Cauchy von Mises at the quadrature points (Pa), element index) at state ``u``."""
+    basis = model.basis
+    lam, mu = model.lame
+    F = deformation(basis, u)
+    sig = cauchy_stress(F, svk_stress(green_lagrange(F), lam, mu))
+    full = np.zeros((3, 3) + sig.shape[2:])
+    full[:2, :2] = sig
+    vm = von_mises(full).max(axis=1)
+    k = int(np.argmax(vm))
+    return float(vm[k]), k
+
+
+def _half_stroke(model, end, steps):
+    """One nonlinear solve from the middle to ``end`` (m): rows per converged step."""
+    face = RigidFace("end_effector", x=end)
+    result = solve_nonlinear(model, [Fixed("fixed")], [], steps=steps, tol=NEWTON_TOL,
+                             rigid_faces=[face])
+    rows = []
+    for u, motion, force in zip(result.u, result.face_motion, result.face_reactions):
+        peak, element = element_peak_stress(model, u)
+        vertex = int(model.mesh.mesh.t[0, element])
+        rows.append({"x_m": float(motion["end_effector"][0]), "y_m": float(motion["end_effector"][1]),
+                     "rotation_rad": float(motion["end_effector"][2]),
+                     "force_x_n": float(force["end_effector"][0]),
+                     "force_y_n": float(force["end_effector"][1]),
+                     "peak_von_mises_pa": peak, "peak_flexure": group_at_vertex(model, vertex)})
+    return rows, result
+
+
+def large_deflection(model: Model, params: EightBarFlexureParams, travel: float, steps: int = 8,
+                     both_halves: bool = True) -> dict:
+    """Displacement-controlled trace of the end-effector over ``travel`` (m), centred on the
+    drawn pose. With ``both_halves=False`` only the +x half is solved and the -x half is its
+    mirror image (the part is mirror-symmetric about x = 0: y(-s) = y(s), rotation(-s) =
+    -rotation(s), force(-s) = -force(s)). Returns the path rows (sorted by x), the FEM and
+    rigid-body straightness and the peak stress along the travel against yield."""
+    rows_plus, last = _half_stroke(model, travel / 2, steps)
+    if both_halves:
+        rows_minus, _ = _half_stroke(model, -travel / 2, steps)
+    else:
+        rows_minus = [{**r, "x_m": -r["x_m"], "rotation_rad": -r["rotation_rad"],
+                       "force_x_n": -r["force_x_n"],
+                       "peak_flexure": _mirror_name(r["peak_flexure"])} for r in rows_plus]
+    rows = sorted(rows_minus[1:] + rows_plus, key=lambda r: r["x_m"])
+    e0 = end_effector_point(params)
+    points = np.array([[e0[0] + r["x_m"], e0[1] + r["y_m"]] for r in rows])
+    fem = straight_line_deviation(points)
+    rigid = trace_eightbar(replace(params.rigid, travel=travel), n=101).deviation
+    peak = max(rows, key=lambda r: r["peak_von_mises_pa"])
+    yield_strength = material(params.material).yield_strength
+    return {"rows": rows, "fem_deviation_m": fem.max_deviation_m, "fem_band_m": fem.band_m,
+            "fem_deviation_pct": fem.deviation_pct, "fem_travel_m": fem.travel_m,
+            "rigid_deviation_m": rigid.max_deviation_m, "rigid_band_m": rigid.band_m,
+            "rigid_deviation_pct": rigid.deviation_pct,
+            "max_rotation_rad": float(max(abs(r["rotation_rad"]) for r in rows)),
+            "peak_von_mises_travel": peak["peak_von_mises_pa"],
+            "peak_von_mises_flexure": peak["peak_flexure"], "yield_strength": yield_strength,
+            "safety_factor": yield_strength / peak["peak_von_mises_pa"],
+            "first_step_k_x": rows_plus[1]["force_x_n"] / rows_plus[1]["x_m"],
+            "end_force_n": rows_plus[-1]["force_x_n"], "final_result": last}
+
+
+def _mirror_name(name: str) -> str:
+    return name[:-1] + {"L": "R", "R": "L"}[name[-1]] if name[-2:] in ("_L", "_R") else name
+
+
+def analyze_eightbar(params: EightBarFlexureParams | None = None, travel: float | None = None,
+                     size_factor: float = 1.0, steps: int = 8, n_modes: int = 4,
+                     both_halves: bool = True, nonlinear: bool = True) -> dict:
+    """Linear stiffness and stress, modes, pseudo-rigid-body estimate and (``nonlinear``) the
+    large-deflection trace over ``travel`` (m, default the rigid design's travel). SI units.
+    The linear stress is at half the travel (the end of the stroke from the middle)."""
+    params = params or EightBarFlexureParams()
+    travel = params.rigid.travel if travel is None else float(travel)
+    if not (math.isfinite(travel) and 0 < travel < params.rigid.ground_spacing):
+        raise ValueError(f"travel = {travel!r} m must be in (0, ground_spacing = "
+                         f"{params.rigid.ground_spacing} m)")
+    model, sizes = build_model(params, size_factor)
+    lin = linear_analysis(model, travel / 2)
+    prbm = prbm_stiffness(params)
+    prbm_stress = prbm_peak_stress(params, travel / 2)
+    out = {"k_x": lin["k_x"], "k_y": lin["k_y"], "k_x_prbm": prbm["k_x"],
+           "k_x_prbm_joints": prbm["joints"], "max_von_mises": lin["max_von_mises"],
+           "max_von_mises_element": lin["max_von_mises_element"],
+           "max_stress_location": lin["max_stress_location"],
+           "prbm_bending_stress": prbm_stress, "travel_m": travel,
+           "dofs": model.n_dofs, "h": sizes["flexure_size"], "mesh_sizes": sizes,
+           "n_elements": int(model.mesh.mesh.t.shape[1]), "linear_result": lin["result"]}
+    if n_modes:
+        out["modes"] = modal_analysis(model, n_modes)
+    if nonlinear:
+        nl = large_deflection(model, params, travel, steps, both_halves)
+        out.update({k: v for k, v in nl.items() if k != "rows"})
+        out["path"] = nl["rows"]
+    return out
+
+
+def params_from_dict(values: dict) -> EightBarFlexureParams:
+    """EightBarFlexureParams from a flat dict: its own fields and EightBarParams' fields
+    (unknown keys raise ValueError)."""
+    own = {f.name for f in fields(EightBarFlexureParams)} - {"rigid"}
+    rigid_names = {f.name for f in fields(EightBarParams)}
+    unknown = set(values) - own - rigid_names
+    if unknown:
+        raise ValueError(f"unknown eight-bar parameter(s) {sorted(unknown)}; known: "
+                         f"{sorted(own | rigid_names)}")
+    base = EightBarFlexureParams()
+    rigid = replace(base.rigid, **{k: v for k, v in values.items() if k in rigid_names})
+    return replace(base, rigid=rigid, **{k: v for k, v in values.items() if k in own})
+
+
+def evaluate(params: dict | None = None, size_factor: float = 1.0, nonlinear: bool = False,
+             steps: int = 6, **options) -> dict:
+    """Study-registry entry: flat float metrics of the design ``params`` (a flat dict, see
+    :func:`params_from_dict`), plus "h" (flexure element size, m) and "dofs". The nonlinear
+    trace (fem_deviation_pct, peak stress) only with ``nonlinear=True``."""
+    if options:
+        raise ValueError(f"unknown option(s) {sorted(options)}; known: size_factor, nonlinear, steps")
+    out = analyze_eightbar(params_from_dict(params or {}), size_factor=size_factor, steps=steps,
+                           n_modes=1, both_halves=False, nonlinear=nonlinear)
+    metrics = {k: float(out[k]) for k in ("k_x", "k_y", "k_x_prbm", "max_von_mises",
+                                          "max_von_mises_element", "h", "dofs")}
+    metrics["f1_hz"] = out["modes"][0]["f_hz"]
+    if nonlinear:
+        for k in ("fem_deviation_pct", "rigid_deviation_pct", "peak_von_mises_travel",
+                  "safety_factor", "max_rotation_rad"):
+            metrics[k] = float(out[k])
+    return metrics
+
+
+def summary_row(out: dict) -> dict:
+    """The CLI keys of an analysis: k_x, k_y, max_von_mises, max_stress_location,
+    fem_deviation_pct, rigid_deviation_pct and a few more (SI)."""
+    keys = ("k_x", "k_y", "k_x_prbm", "max_von_mises", "max_stress_location", "travel_m",
+            "fem_deviation_pct", "fem_deviation_m", "fem_band_m", "rigid_deviation_pct",
+            "rigid_deviation_m", "peak_von_mises_travel", "peak_von_mises_flexure",
+            "safety_factor", "max_rotation_rad", "end_force_n", "dofs")
+    row = {k: out[k] for k in keys if k in out}
+    if "modes" in out:
+        row["modes"] = out["modes"]
+    return row
+

@@ -1,0 +1,97 @@
+"""``flexfem linkage trace NAME``, ``flexfem eightbar trace`` (rigid-body straight-line paths),
+``flexfem eightbar analyze`` (FEM of the flexure suspension) and ``flexfem eightbar mesh OUT``."""
+from ...fem import write_mesh
+from ...geometry.eightbar.flexure import EightBarFlexureParams, mesh_eightbar_flexure
+from ...geometry.straight_line import CLASSIC_LINKAGES
+from .analysis import analyze_eightbar, summary_row
+from .path import eightbar_path_summary, trace_classic
+
+LINKAGE_CHOICES = ["watt", "roberts", "chebyshev", "peaucellier", "modified_peaucellier"]
+
+
+def _run_linkage_trace(args) -> dict:
+    return trace_classic(args.name, n=args.points)
+
+
+def _summarize_linkage_trace(result: dict) -> str:
+    return (f"{result['linkage']}: travel {result['travel_m'] * 1e3:.3f} mm, max deviation "
+            f"{result['max_deviation_m'] * 1e6:.4g} um = {result['deviation_pct']:.4g} % of travel")
+
+
+def _run_eightbar_trace(args) -> dict:
+    return eightbar_path_summary(n=args.points)
+
+
+def _summarize_eightbar_trace(result: dict) -> str:
+    return (f"eight-bar (rigid body): travel {result['travel_m'] * 1e3:.2f} mm, max deviation "
+            f"{result['max_deviation_m'] * 1e6:.3g} um = {result['deviation_pct']:.3g} % of travel "
+            f"(band {result['band_m'] * 1e6:.3g} um), size {result['width_m'] * 1e3:.0f} x "
+            f"{result['height_m'] * 1e3:.0f} mm, overlapping links: "
+            f"{result['overlapping_links'] or 'none'}")
+
+
+def _run_eightbar_analyze(args) -> dict:
+    out = analyze_eightbar(travel=args.travel, size_factor=2.0 if args.quick else 1.0,
+                           steps=4 if args.quick else 8, both_halves=not args.quick,
+                           n_modes=2)
+    return summary_row(out)
+
+
+def _summarize_eightbar_analyze(r: dict) -> str:
+    loc = r["max_stress_location"]
+    return (f"eight-bar flexure suspension ({r['dofs']} DOFs): k_x = {r['k_x']:.4g} N/m "
+            f"(pseudo-rigid-body {r['k_x_prbm']:.4g}), k_y = {r['k_y']:.4g} N/m; linear max von "
+            f"Mises {r['max_von_mises'] / 1e6:.4g} MPa at x = {r['travel_m'] / 2 * 1e3:.4g} mm, in "
+            f"{loc['flexure']} ({loc['x'] * 1e3:.2f}, {loc['y'] * 1e3:.2f}) mm\n"
+            f"large deflection over {r['travel_m'] * 1e3:.4g} mm: path deviation "
+            f"{r['fem_deviation_m'] * 1e6:.4g} um = {r['fem_deviation_pct']:.3g} % (rigid body "
+            f"{r['rigid_deviation_pct']:.3g} %), peak von Mises {r['peak_von_mises_travel'] / 1e6:.4g}"
+            f" MPa in {r['peak_von_mises_flexure']} (yield / peak = {r['safety_factor']:.3g}), end "
+            f"force {r['end_force_n']:.3g} N, first mode {r['modes'][0]['f_hz']:.3g} Hz")
+
+
+def _run_eightbar_mesh(args) -> dict:
+    mesh, sizes = mesh_eightbar_flexure(EightBarFlexureParams(), size_factor=args.size_factor)
+    path = write_mesh(mesh, args.out, order=args.order) if args.order != 1 else write_mesh(mesh, args.out)
+    return {"path": str(path), "vertices": int(mesh.mesh.p.shape[1]),
+            "elements": int(mesh.mesh.t.shape[1]), "groups": mesh.group_names, **sizes}
+
+
+def _summarize_eightbar_mesh(r: dict) -> str:
+    return (f"wrote {r['path']}: {r['elements']} triangles, {r['vertices']} vertices, flexure "
+            f"element {r['flexure_size'] * 1e3:.3g} mm; groups {', '.join(r['groups'])}")
+
+
+def add_eightbar_commands(eb_sub) -> None:
+    """Add ``trace``, ``analyze`` and ``mesh`` to the ``eightbar`` sub-command parsers."""
+    p = eb_sub.add_parser("trace", help="trace the rigid-body eight-bar's end-effector path")
+    p.add_argument("--points", type=int, default=251, help="points along the travel")
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.set_defaults(run=_run_eightbar_trace, summarize=_summarize_eightbar_trace)
+    p = eb_sub.add_parser("analyze", help="FEM of the flexure suspension: stiffness, stress, "
+                          "large-deflection path")
+    p.add_argument("--travel", type=float, default=None,
+                   help="end-to-end travel in m (default 0.0331, the thesis')")
+    p.add_argument("--quick", action="store_true", help="coarse mesh, half stroke mirrored")
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.set_defaults(run=_run_eightbar_analyze, summarize=_summarize_eightbar_analyze)
+    p = eb_sub.add_parser("mesh", help="write the flexure suspension's mesh (.msh .vtu .xdmf .inp)")
+    p.add_argument("out", help="output file; the format follows the extension")
+    p.add_argument("--size-factor", type=float, default=1.0, help="element size factor")
+    p.add_argument("--order", type=int, default=1, choices=(1, 2), help="element order written")
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.set_defaults(run=_run_eightbar_mesh, summarize=_summarize_eightbar_mesh)
+
+
+def register(subparsers) -> None:
+    lk = subparsers.add_parser("linkage", help="classic straight-line linkages (thesis Ch. 2)")
+    lk_sub = lk.add_subparsers(dest="linkage_command", required=True)
+    p = lk_sub.add_parser("trace", help="trace a straight-line linkage and report its deviation")
+    p.add_argument("name", choices=sorted(set(LINKAGE_CHOICES) & set(CLASSIC_LINKAGES)))
+    p.add_argument("--points", type=int, default=201, help="points along the input range")
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.set_defaults(run=_run_linkage_trace, summarize=_summarize_linkage_trace)
+
+    eb = subparsers.add_parser("eightbar", help="the symmetric rectilinear eight-bar (thesis Ch. 5)")
+    eb_sub = eb.add_subparsers(dest="eightbar_command", required=True)
+    add_eightbar_commands(eb_sub)

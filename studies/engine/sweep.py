@@ -1,0 +1,327 @@
+"""Parameter studies of any mechanism: a grid, a list of cases or a space-filling sample.
+
+A ``Study`` names a mechanism (studies/mechanisms.py resolves the name), a base design (parameters that override the
+mechanism's own defaults), the evaluate options, and the designs to evaluate: the union of a
+``grid`` (cartesian product of value lists), explicit ``cases`` and a ``sample`` (Latin
+hypercube or Sobol, seeded, over [low, high] ranges). ``run_study`` evaluates the cases not
+yet in the SQLite store (store.py), in parallel (executors.py), recording each as it completes;
+a failing case is recorded with its error and never stops the study. Failed cases are not
+re-run unless asked (``retry_failed``): a deterministic error would only fail again.
+"""
+import itertools
+import math
+import os
+import socket
+import time
+import traceback
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import tomllib
+
+from .executors import make_executor
+from .progress import Progress
+from .store import (
+    CaseResult,
+    ResultStore,
+    case_key,
+    flexfem_version,
+)
+
+SAMPLE_METHODS = ("lhs", "sobol")
+STUDY_KEYS = {"mechanism", "name", "base", "options", "grid", "cases", "sample", "plots"}
+SAMPLE_KEYS = {"method", "n", "seed", "ranges"}
+PLOT_KEYS = {"metric", "parameter", "overlay"}
+
+
+def _check_keys(table: dict, allowed: set, where: str) -> None:
+    if not isinstance(table, dict):
+        raise ValueError(f"{where or 'study'} must be a table, got {table!r}")
+    unknown = sorted(set(table) - allowed)
+    if unknown:
+        prefix = f"{where}." if where else ""
+        raise ValueError(f"unknown key {prefix}{unknown[0]}; allowed: {sorted(allowed)}")
+
+
+@dataclass(frozen=True)
+class Sample:
+    """A space-filling sample of ``n`` designs over ``ranges`` ({name: (low, high)}, SI),
+    by scipy.stats.qmc Latin hypercube ("lhs") or scrambled Sobol ("sobol"), seeded."""
+
+    ranges: dict
+    n: int
+    method: str = "lhs"
+    seed: int = 0
+
+    def __post_init__(self):
+        if self.method not in SAMPLE_METHODS:
+            raise ValueError(f"sample.method = {self.method!r} must be one of {SAMPLE_METHODS}")
+        if not isinstance(self.n, int) or self.n < 1:
+            raise ValueError(f"sample.n = {self.n!r} must be an integer >= 1")
+        if not self.ranges:
+            raise ValueError("sample.ranges is empty: give at least one parameter range")
+        for name, bounds in self.ranges.items():
+            if not (isinstance(bounds, (list, tuple)) and len(bounds) == 2
+                    and all(isinstance(b, (int, float)) for b in bounds)):
+                raise ValueError(f"sample.ranges.{name} = {bounds!r} must be [low, high]")
+            if not bounds[0] < bounds[1]:
+                raise ValueError(f"sample.ranges.{name} = {list(bounds)!r}: lower bound "
+                                 f"{bounds[0]} must be < upper bound {bounds[1]} (empty range)")
+
+    def points(self) -> list[dict]:
+        """The ``n`` sampled designs, {name: value}."""
+        import warnings
+
+        from scipy.stats import qmc
+
+        names = list(self.ranges)
+        if self.method == "lhs":
+            sampler = qmc.LatinHypercube(d=len(names), seed=self.seed)
+        else:
+            sampler = qmc.Sobol(d=len(names), scramble=True, seed=self.seed)
+        with warnings.catch_warnings():  # Sobol balance warning when n is not a power of 2
+            warnings.simplefilter("ignore", UserWarning)
+            unit = sampler.random(self.n)
+        low = [self.ranges[k][0] for k in names]
+        high = [self.ranges[k][1] for k in names]
+        scaled = qmc.scale(unit, low, high)
+        return [{k: float(v) for k, v in zip(names, row)} for row in scaled]
+
+
+@dataclass(frozen=True)
+class PlotSpec:
+    """A figure of a study: ``metric`` against ``parameter``, with ``overlay`` metrics dashed."""
+
+    metric: str
+    parameter: str
+    overlay: tuple = ()
+
+
+@dataclass(frozen=True)
+class Study:
+    """A mechanism, its base design, evaluate options and the designs to vary (see module)."""
+
+    mechanism: str
+    name: str = "study"
+    base: dict = field(default_factory=dict)
+    options: dict = field(default_factory=dict)
+    grid: dict = field(default_factory=dict)
+    cases: tuple = ()
+    sample: Sample | None = None
+    plots: tuple = ()
+
+    def __post_init__(self):
+        if not isinstance(self.mechanism, str) or not self.mechanism.strip():
+            raise ValueError(f"mechanism = {self.mechanism!r} must be a mechanism's name")
+        if not isinstance(self.name, str) or not self.name.strip() or "/" in self.name:
+            raise ValueError(f"name = {self.name!r} must be a non-empty name without '/'")
+        for name, values in self.grid.items():
+            if not isinstance(values, (list, tuple)):
+                raise ValueError(f"grid.{name} = {values!r} must be a list of values")
+            if len(values) == 0:
+                raise ValueError(f"grid.{name} is empty: give at least one value")
+        for i, case in enumerate(self.cases):
+            if not isinstance(case, dict):
+                raise ValueError(f"cases[{i}] = {case!r} must be a table of parameters")
+
+
+def study_from_dict(data: dict) -> Study:
+    """A Study from the parsed TOML layout (see docs/studies.md); ValueError names bad keys."""
+    _check_keys(data, STUDY_KEYS, "")
+    if "mechanism" not in data:
+        raise ValueError("missing key mechanism (a registered name or 'module:function')")
+    for key in ("base", "options", "grid"):
+        _check_keys(data.get(key, {}), set(data.get(key, {})), key)
+    sample = None
+    if "sample" in data:
+        table = data["sample"]
+        _check_keys(table, SAMPLE_KEYS, "sample")
+        for key in ("n", "ranges"):
+            if key not in table:
+                raise ValueError(f"missing key sample.{key}")
+        sample = Sample(ranges=dict(table["ranges"]), n=table["n"],
+                        method=table.get("method", "lhs"), seed=table.get("seed", 0))
+    plots = []
+    for i, table in enumerate(data.get("plots", [])):
+        _check_keys(table, PLOT_KEYS, f"plots[{i}]")
+        if "metric" not in table or "parameter" not in table:
+            raise ValueError(f"plots[{i}] needs both metric and parameter")
+        plots.append(PlotSpec(table["metric"], table["parameter"], tuple(table.get("overlay", ()))))
+    return Study(mechanism=data["mechanism"], name=data.get("name", "study"),
+                 base=dict(data.get("base", {})), options=dict(data.get("options", {})),
+                 grid=dict(data.get("grid", {})), cases=tuple(data.get("cases", ())),
+                 sample=sample, plots=tuple(plots))
+
+
+def load_study(path) -> Study:
+    """Read a study TOML file (FileNotFoundError if missing, ValueError if invalid)."""
+    path = Path(path)
+    with path.open("rb") as f:
+        try:
+            data = tomllib.load(f)
+        except tomllib.TOMLDecodeError as error:
+            raise ValueError(f"{path}: not valid TOML: {error}") from error
+    data.setdefault("name", path.stem)
+    return study_from_dict(data)
+
+
+def design_points(study: Study) -> list[dict]:
+    """Every design of the study, each the base merged with its varied values; duplicates
+    kept (the runner drops them by key). Only the base when nothing is varied."""
+    varied = []
+    if study.grid:
+        names = list(study.grid)
+        varied += [dict(zip(names, values)) for values in itertools.product(*study.grid.values())]
+    varied += [dict(case) for case in study.cases]
+    if study.sample is not None:
+        varied += study.sample.points()
+    return [{**study.base, **point} for point in varied] or [dict(study.base)]
+
+
+def study_tasks(study: Study, version: str | None = None) -> list[dict]:
+    """One task {key, mechanism, params, options} per distinct design, in design order."""
+    version = flexfem_version() if version is None else version
+    tasks = {}
+    for params in design_points(study):
+        key = case_key(study.mechanism, params, study.options, version)
+        tasks.setdefault(key, {"key": key, "mechanism": study.mechanism, "params": params,
+                               "options": dict(study.options), "flexfem_version": version})
+    return list(tasks.values())
+
+
+def _as_metric(value):
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        return str(value)
+
+
+def run_case(task: dict) -> dict:
+    """Evaluate one task (in whatever process runs it); never raises for a failing case.
+
+    Returns {status, metrics, error ("Type: message"), wall_time_s (s), dofs, worker}.
+    """
+    start = time.perf_counter()
+    try:
+        metrics = {str(k): _as_metric(v) for k, v in task["evaluate"](dict(task["params"]),
+                                                                      **task["options"]).items()}
+        status, error = "ok", None
+    except Exception as exc:  # a failing case is a result, not the end of the study
+        metrics, status = {}, "failed"
+        error = f"{type(exc).__name__}: {exc}"
+        last = traceback.extract_tb(exc.__traceback__)[-1:]
+        if last:
+            error += f" (at {Path(last[0].filename).name}:{last[0].lineno})"
+    dofs = metrics.get("dofs")
+    return {"status": status, "metrics": metrics, "error": error,
+            "wall_time_s": time.perf_counter() - start,
+            "dofs": int(dofs) if isinstance(dofs, float) and math.isfinite(dofs) else None,
+            "worker": f"{socket.gethostname()}:{os.getpid()}"}
+
+
+def _case_result(task: dict, result: dict | None, lost: str | None) -> CaseResult:
+    if result is None:
+        result = {"status": "failed", "metrics": {}, "error": lost}
+    return CaseResult(key=task["key"], mechanism=task["mechanism"], params=task["params"],
+                      options=task["options"], flexfem_version=task["flexfem_version"], **result)
+
+
+@dataclass(frozen=True)
+class StudyResult:
+    """The cases of a study (stored earlier or now), how many were computed this run, how
+    many were reused from the store, the executor used and the wall time (s)."""
+
+    study: Study
+    store_path: Path
+    cases: list
+    computed: int
+    reused: int
+    executor: str
+    wall_time_s: float
+
+    @property
+    def failed(self) -> list:
+        return [c for c in self.cases if not c.ok]
+
+
+def run_study(study: Study, store_path, evaluate, workers: int | None = None,
+              scheduler: str | None = None, retry_failed: bool = False,
+              progress: bool | None = None) -> StudyResult:
+    """Evaluate the study's cases missing from the store at ``store_path`` (and the failed
+    ones when ``retry_failed``) with ``evaluate(params, **options) -> metrics`` (a module-level
+    function, so that worker processes can import it), recording each as it completes.
+
+    ``workers``: local processes (None: one per CPU; 1: in this process). ``scheduler``:
+    a Dask address "tcp://HOST:PORT" (default: the FLEXFEM_SCHEDULER variable). ``progress``:
+    draw a progress line on stderr (None: when stderr is a terminal). On Ctrl-C the cases in
+    flight are stopped and KeyboardInterrupt propagates; what completed stays stored.
+    """
+    start = time.perf_counter()
+    tasks = [{**task, "evaluate": evaluate} for task in study_tasks(study)]
+    executor = make_executor(workers, scheduler)
+    with ResultStore(store_path) as store:
+        statuses = store.statuses()
+        todo = [t for t in tasks if t["key"] not in statuses
+                or (retry_failed and statuses[t["key"]] == "failed")]
+        bar = Progress(len(todo), enabled=progress)
+        try:
+            if todo:
+                with executor:
+                    for task, result, lost in executor.run(run_case, todo):
+                        case = _case_result(task, result, lost)
+                        store.record(case)
+                        bar.update(case.ok)
+        finally:
+            bar.close()
+        cases = store.results([t["key"] for t in tasks])
+    return StudyResult(study=study, store_path=Path(store_path), cases=cases, computed=len(todo),
+                       reused=len(tasks) - len(todo), executor=executor.description,
+                       wall_time_s=time.perf_counter() - start)
+
+
+def plot_metric(cases, metric: str, parameter: str, path, overlay=()) -> Path:
+    """PNG of ``metric`` against ``parameter`` over the successful ``cases`` (CaseResult),
+    one line per combination of the other varied parameters, ``overlay`` metrics (e.g. the
+    analytical value) dashed or dotted in the same colour; designs that share no line with
+    another (a space-filling sample) as grey points."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    ok = [c for c in cases if c.ok and parameter in c.params and metric in c.metrics]
+    if not ok:
+        raise ValueError(f"no successful case has both parameter {parameter!r} and metric {metric!r}")
+    others = sorted({k for c in ok for k in c.params if k != parameter
+                     and len({repr(d.params.get(k)) for d in ok}) > 1})
+    groups = {}
+    for case in ok:
+        groups.setdefault(tuple(case.params.get(k) for k in others), []).append(case)
+    lines = {k: v for k, v in groups.items() if len(v) > 1}
+    scattered = [c for v in groups.values() if len(v) == 1 for c in v]
+    styles = itertools.cycle(["--", ":", "-."])
+    overlay_styles = {name: next(styles) for name in overlay}
+    fig, ax = plt.subplots(figsize=(6.4, 4.4))
+    for (label_values, members), colour in zip(sorted(lines.items(), key=lambda g: repr(g[0])),
+                                               itertools.cycle(plt.rcParams["axes.prop_cycle"].by_key()["color"])):
+        members.sort(key=lambda c: c.params[parameter])
+        x = [c.params[parameter] for c in members]
+        label = ", ".join(f"{k}={v:.4g}" if isinstance(v, float) else f"{k}={v}"
+                          for k, v in zip(others, label_values))
+        ax.plot(x, [c.metrics[metric] for c in members], "o-", color=colour,
+                label=f"{metric} {label}".strip())
+        for name in overlay:
+            ax.plot(x, [c.metrics.get(name, math.nan) for c in members], overlay_styles[name],
+                    color=colour, label=f"{name} {label}".strip())
+    if scattered:  # designs that share no line with another (e.g. a space-filling sample)
+        ax.plot([c.params[parameter] for c in scattered], [c.metrics[metric] for c in scattered],
+                "o", color="0.35", label=f"{metric}, other designs ({len(scattered)})")
+    if len(lines) * (1 + len(overlay)) + bool(scattered) <= 12:
+        ax.legend(fontsize="small")
+    ax.set_xlabel(parameter)
+    ax.set_ylabel(metric)
+    ax.grid(True, alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+    return Path(path)
+

@@ -1,0 +1,161 @@
+"""The mechanisms flexfem knows: one entry each, and the only place that names them.
+
+A mechanism is a frozen parameter dataclass (in geometry/<name>/ where it has a geometry),
+its closed-form models, an ``evaluate(params: dict, **options) -> dict[str, float]`` for
+studies, its report sections and its CLI commands, all in the package studies/<name>/. The
+study engine (sweep, convergence), the optimiser, the report and the CLI find mechanisms only
+here. Targets are ``"module:attribute"`` strings inside the mechanism's package, imported when
+first used, as Python entry points are: a study of the toy never imports gmsh.
+
+``evaluate`` fills defaults for the parameters it is not given (the base design is the
+mechanism's own) and returns its metrics, FEM and analytical side by side; it may also return
+``"h"`` (a characteristic element size, m) and ``"dofs"`` (the number of unknowns) for
+convergence studies.
+"""
+import importlib
+from dataclasses import dataclass
+
+
+@dataclass(frozen=True)
+class Section:
+    """One report section: its folder, its title and ``"module:function"``, a
+    ``reproduce(out_dir, quick=False[, full=False]) -> summary``."""
+
+    folder: str
+    title: str
+    target: str
+
+
+@dataclass(frozen=True)
+class Mechanism:
+    """One registry entry; targets are relative to ``flexfem.studies.<package>``.
+
+    evaluate : "module:function" for studies ("" when the mechanism has no study metrics)
+    commands : module with ``register(subparsers)`` adding its CLI commands
+    optimizer : module with ``add_arguments(parser)``, ``run(args)`` and ``summarize(result)``
+        for ``flexfem optimize <name>`` ("" when it has none)
+    coarsest_size_factor : size_factor of the coarsest level of its convergence studies
+        (1 = its default mesh)
+    """
+
+    name: str
+    title: str
+    package: str
+    evaluate: str = ""
+    commands: str = ""
+    optimizer: str = ""
+    sections: tuple = ()
+    coarsest_size_factor: float = 1.0
+
+    def load(self, target: str):
+        """The object a ``"module:attribute"`` (or ``"module"``) target of this entry names."""
+        module_name, _, attribute = target.partition(":")
+        module = importlib.import_module(f"flexfem.studies.{self.package}.{module_name}")
+        return getattr(module, attribute) if attribute else module
+
+
+BUILTIN = (
+    Mechanism(
+        "dbma", "Double-row bow-type micro-displacement amplifier (servo valve)", "dbma",
+        evaluate="analysis:evaluate", commands="cli", optimizer="cli_optimize",
+        # coarser start: halving the size three times from 4x stays affordable
+        coarsest_size_factor=4.0,
+        sections=(
+            Section("dbma_analytical", "DBMA: pseudo-rigid-body and enhanced analytical models",
+                    "figures:reproduce_analytical"),
+            Section("dbma_fem", "DBMA: FEM amplification ratio, stress, modes and convergence",
+                    "report:reproduce"),
+            Section("dbma_optimize", "DBMA: FEM-decided hinge design search (beyond the sources)",
+                    "optimize_output:reproduce"),
+        )),
+    Mechanism(
+        "eightbar", "Symmetric rectilinear eight-bar flexure suspension", "eightbar",
+        evaluate="analysis:evaluate", commands="cli",
+        sections=(
+            Section("eightbar_rigid",
+                    "Eight-bar and straight-line linkages: rigid-body paths and synthesis",
+                    "path:reproduce"),
+            Section("eightbar_fem",
+                    "Eight-bar flexure suspension: FEM, stress and large-deflection path",
+                    "report:reproduce"),
+        )),
+    Mechanism(
+        "balancing", "Five-bar parallel robot: optimum static balancing and flexure pivots",
+        "balancing", commands="cli",
+        sections=(
+            Section("balancing", "Five-bar robot: optimum static balancing and flexure pivots",
+                    "report:reproduce"),
+        )),
+    Mechanism(
+        "toy", "Tapered cantilever (closed form): the study engine's own check", "toy",
+        evaluate="model:evaluate",
+        sections=(
+            Section("studies_engine",
+                    "Study engine: sweep and Richardson convergence checked on a closed form",
+                    "report:reproduce"),
+        )),
+)
+
+MECHANISMS = {m.name: m for m in BUILTIN}
+
+
+def is_target(name: str) -> bool:
+    """True for a "package.module:function" string (an evaluate given by its import path)."""
+    module, sep, function = name.partition(":")
+    return bool(sep) and bool(module) and function.isidentifier()
+
+
+def _known() -> list[str]:
+    return sorted(n for n, m in MECHANISMS.items() if m.evaluate)
+
+
+def check_mechanism(name: str, key: str = "mechanism") -> str:
+    """Return ``name`` if it is a registered mechanism with an evaluate, or a
+    "module:function" target, without importing anything; else ValueError naming ``key``."""
+    known = isinstance(name, str) and name in MECHANISMS and MECHANISMS[name].evaluate
+    if not (known or (isinstance(name, str) and is_target(name))):
+        raise ValueError(f"{key} = {name!r} is not a known mechanism; known: {_known()}"
+                         " (or a 'package.module:function' evaluate)")
+    return name
+
+
+def get_evaluator(name: str):
+    """The evaluate function of mechanism ``name`` (a registered name or "module:function").
+
+    Raises ValueError listing the known names when the name is unknown, or when its module
+    cannot be imported or lacks the function.
+    """
+    check_mechanism(name)
+    if name in MECHANISMS:
+        return MECHANISMS[name].load(MECHANISMS[name].evaluate)
+    module_name, _, function_name = name.partition(":")
+    try:
+        module = importlib.import_module(module_name)
+    except ModuleNotFoundError as error:
+        raise ValueError(f"mechanism {name!r}: module {module_name!r} is not importable "
+                         f"({error}); known: {_known()}") from error
+    evaluate = getattr(module, function_name, None)
+    if not callable(evaluate):
+        raise ValueError(f"mechanism {name!r}: {module_name} has no function {function_name!r}; "
+                         f"known: {_known()}")
+    return evaluate
+
+
+def coarsest_size_factor(name: str) -> float:
+    """The size_factor a convergence study of mechanism ``name`` starts from (default 1)."""
+    return MECHANISMS[name].coarsest_size_factor if name in MECHANISMS else 1.0
+
+
+def report_sections() -> list[tuple[Mechanism, Section]]:
+    """Every report section, in report order (registry order, then each entry's own)."""
+    return [(m, s) for m in BUILTIN for s in m.sections]
+
+
+def command_modules() -> list:
+    """The CLI modules of the registered mechanisms (each has ``register(subparsers)``)."""
+    return [m.load(m.commands) for m in BUILTIN if m.commands]
+
+
+def optimizers() -> dict:
+    """{name: module} of the mechanisms that have a design search (``flexfem optimize``)."""
+    return {m.name: m.load(m.optimizer) for m in BUILTIN if m.optimizer}

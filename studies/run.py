@@ -1,0 +1,85 @@
+"""Studies of registered mechanisms by name: a study file or a convergence study, its
+mechanism found in the registry (studies/mechanisms.py), run by the engine (studies/engine/)."""
+import math
+from pathlib import Path
+
+from .engine import sweep as engine
+from .engine.convergence import (
+    converge,
+    default_levels,
+    parse_tolerance,
+    plot_convergence,
+)
+from .engine.store import export_csv, export_parquet, parquet_available
+from .engine.sweep import Study, plot_metric
+from .mechanisms import check_mechanism, coarsest_size_factor, get_evaluator
+
+
+def study_from_dict(data: dict) -> Study:
+    """The engine's ``study_from_dict``, its mechanism checked against the registry."""
+    study = engine.study_from_dict(data)
+    check_mechanism(study.mechanism)
+    return study
+
+
+def load_study(path) -> Study:
+    """The engine's ``load_study``, its mechanism checked against the registry."""
+    study = engine.load_study(path)
+    check_mechanism(study.mechanism)
+    return study
+
+
+def run_study(study: Study, store_path, **options) -> engine.StudyResult:
+    """The engine's ``run_study`` with the study's mechanism resolved by name (ValueError
+    listing the known names for an unknown one); ``options`` as the engine's."""
+    check_mechanism(study.mechanism)
+    return engine.run_study(study, store_path, get_evaluator(study.mechanism), **options)
+
+
+def sweep(study, out_dir=None, workers: int | None = None, scheduler: str | None = None,
+          retry_failed: bool = False, progress: bool | None = None) -> dict:
+    """Run a study (a Study or the path of its TOML file) into ``out_dir`` (default: a folder
+    named after the study): results.sqlite, results.csv (and .parquet with pyarrow), the
+    study's plots. Returns a JSON-able summary with every case's row."""
+    if not isinstance(study, Study):
+        study = load_study(study)
+    out = Path(out_dir if out_dir is not None else study.name)
+    result = run_study(study, out / "results.sqlite", workers=workers, scheduler=scheduler,
+                       retry_failed=retry_failed, progress=progress)
+    tables = [export_csv(result.cases, out / "results.csv").name]
+    if parquet_available():
+        tables.append(export_parquet(result.cases, out / "results.parquet").name)
+    figures = []
+    for spec in study.plots:
+        path = out / f"{spec.metric}_vs_{spec.parameter}.png"
+        figures.append(plot_metric(result.cases, spec.metric, spec.parameter, path, spec.overlay).name)
+    return {"name": study.name, "mechanism": study.mechanism, "out": str(out),
+            "store": str(result.store_path), "executor": result.executor,
+            "cases": len(result.cases), "computed": result.computed, "reused": result.reused,
+            "failed": len(result.failed), "wall_time_s": result.wall_time_s,
+            "tables": tables, "figures": figures,
+            "failures": [{"params": c.params, "error": c.error} for c in result.failed],
+            "results": [c.to_row() for c in result.cases]}
+
+
+
+def run_convergence(mechanism: str, metric: str, tol="0.5%", n_levels: int = 4, ratio: float = 2.0,
+                    params: dict | None = None, out_dir=None, dim: int = 2,
+                    start: float | None = None) -> dict:
+    """A convergence study of a registered mechanism on ``n_levels`` levels of size_factor
+    start, start/ratio, ... (``start`` defaults to the mechanism's coarsest level, see
+    the registry's coarsest_size_factor); writes convergence_<metric>.png into ``out_dir`` when
+    given. JSON-able."""
+    tolerance = parse_tolerance(tol)
+    if start is None:
+        start = coarsest_size_factor(mechanism)
+    if not (math.isfinite(start) and start > 0):
+        raise ValueError(f"start = {start!r} must be a finite size_factor > 0")
+    levels = default_levels(n_levels, ratio, start=start)
+    result = converge(get_evaluator(mechanism), metric, levels, params=params, tol=tolerance, dim=dim)
+    summary = {"mechanism": mechanism, **result.to_dict(), "figures": []}
+    if out_dir is not None:
+        Path(out_dir).mkdir(parents=True, exist_ok=True)
+        figure = plot_convergence(result, Path(out_dir) / f"convergence_{metric}.png")
+        summary["figures"].append(str(figure))
+    return summary

@@ -1,0 +1,68 @@
+"""``flexfem sweep`` and ``flexfem converge``: parameter and mesh-convergence studies."""
+import json
+
+from .engine.convergence import parse_tolerance
+from .run import run_convergence, sweep
+
+
+def register(subparsers):
+    p = subparsers.add_parser("sweep", help="run a parameter study declared in a TOML file")
+    p.add_argument("study", help="study file (TOML): mechanism, base, grid / cases / sample")
+    p.add_argument("--out", help="output folder (default: ./<study name>)")
+    p.add_argument("--workers", type=int, help="local worker processes (default: one per CPU; 1: in-process)")
+    p.add_argument("--scheduler", help="Dask scheduler tcp://HOST:PORT (default: $FLEXFEM_SCHEDULER)")
+    p.add_argument("--retry-failed", action="store_true", help="re-run cases stored as failed")
+    p.add_argument("--json", action="store_true", help="print the summary as one JSON object")
+    p.set_defaults(run=_run_sweep, summarize=summarize_sweep)
+
+    c = subparsers.add_parser("converge", help="mesh-convergence study of one metric of a mechanism")
+    c.add_argument("mechanism", help="registered mechanism name (toy, dbma, eightbar)")
+    c.add_argument("--metric", required=True, help="metric returned by the mechanism's evaluate")
+    c.add_argument("--tol", default="0.5%", type=parse_tolerance,
+                   help="relative tolerance, '0.5%%' or 0.005 (default 0.5%%)")
+    c.add_argument("--levels", type=int, default=4, help="refinement levels, >= 3 (default 4)")
+    c.add_argument("--ratio", type=float, default=2.0, help="refinement ratio between levels (default 2)")
+    c.add_argument("--start", type=float, default=None,
+                   help="size_factor of the coarsest level (default: the mechanism's, 4 for dbma)")
+    c.add_argument("--params", type=json.loads, default=None,
+                   help='design parameters as JSON, e.g. \'{"length_m": 0.05}\' (default: the base design)')
+    c.add_argument("--out", help="folder for the log-log plot")
+    c.add_argument("--json", action="store_true", help="print the result as one JSON object")
+    c.set_defaults(run=_run_converge, summarize=summarize_convergence)
+
+
+def _run_sweep(args) -> dict:
+    try:
+        return sweep(args.study, args.out, workers=args.workers, scheduler=args.scheduler,
+                     retry_failed=args.retry_failed)
+    except KeyboardInterrupt:
+        raise ValueError("interrupted; completed cases are stored, run again to resume") from None
+
+
+def _run_converge(args) -> dict:
+    return run_convergence(args.mechanism, args.metric, tol=args.tol, n_levels=args.levels,
+                           ratio=args.ratio, params=args.params, out_dir=args.out,
+                           start=args.start)
+
+
+def summarize_sweep(result: dict) -> str:
+    lines = [f"study {result['name']} ({result['mechanism']}): {result['cases']} cases, "
+             f"{result['computed']} computed, {result['reused']} reused, {result['failed']} failed "
+             f"on {result['executor']} in {result['wall_time_s']:.1f} s"]
+    lines += [f"  failed {f['params']}: {f['error']}" for f in result["failures"][:10]]
+    files = result["tables"] + result["figures"]
+    lines.append(f"results in {result['out']}: {', '.join(files)}")
+    return "\n".join(lines)
+
+
+def summarize_convergence(result: dict) -> str:
+    lines = [f"{result['mechanism']} {result['metric']}: level, h or dofs, value"]
+    for i, (size, dofs, value) in enumerate(zip(result["sizes"], result["dofs"], result["values"])):
+        lines.append(f"  {i}  {size:.4g}  {dofs}  {value:.8g}")
+    lines.append(f"observed order {result['order']:.3f} ({result['behaviour']}); extrapolated "
+                 f"{result['extrapolated']:.8g} +- {result['error_estimate']:.2g} "
+                 f"(GCI {100 * result['gci']:.3g} %)")
+    within = result["coarsest_within_tol"]
+    lines.append(f"coarsest level within {100 * result['tol']:.3g} %: "
+                 + (f"{within} {result['levels'][within]}" if within is not None else "none"))
+    return "\n".join(lines)

@@ -1,0 +1,149 @@
+"""The package's shape: no import loops (function-level imports and the registry's targets
+included), small modules and functions, relative imports inside the package, and no path
+outside the repository in code or docs."""
+import ast
+import re
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+PACKAGES = ("fem", "geometry", "studies", "data")
+MAX_MODULE_LINES = 400
+MAX_FUNCTION_LINES = 80
+
+
+def package_files() -> list[Path]:
+    return sorted(p for top in PACKAGES for p in (ROOT / top).rglob("*.py"))
+
+
+def module_name(path: Path) -> str:
+    parts = list(path.relative_to(ROOT).with_suffix("").parts)
+    if parts[-1] == "__init__":
+        parts = parts[:-1]
+    return ".".join(parts)
+
+
+def _resolve(path: Path, node: ast.ImportFrom) -> str:
+    """Absolute module (without 'flexfem.') that a relative ``from`` import names."""
+    package = module_name(path).split(".")
+    if path.name != "__init__.py":
+        package = package[:-1]
+    base = package[:len(package) - node.level + 1]
+    return ".".join(base + ([node.module] if node.module else []))
+
+
+def _registry_edges(modules: set) -> dict:
+    """studies.mechanisms -> every module its registry targets name."""
+    from flexfem.studies.mechanisms import BUILTIN
+    targets = set()
+    for m in BUILTIN:
+        for target in (m.evaluate, m.commands, m.optimizer, *(s.target for s in m.sections)):
+            if target:
+                targets.add(f"studies.{m.package}.{target.partition(':')[0]}")
+    missing = targets - modules
+    assert not missing, f"registry targets name no module: {sorted(missing)}"
+    return {"studies.mechanisms": targets}
+
+
+def import_graph() -> dict:
+    """module -> set of package modules it imports, at any depth of the file."""
+    modules = {module_name(p) for p in package_files()}
+    graph = {}
+    for path in package_files():
+        edges = set()
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.ImportFrom) and node.level:
+                target = _resolve(path, node)
+                for alias in node.names:
+                    child = f"{target}.{alias.name}"
+                    edges.add(child if child in modules else target)
+        graph[module_name(path)] = {e for e in edges if e in modules}
+    for module, targets in _registry_edges(modules).items():
+        graph[module] |= targets
+    return graph
+
+
+def cycles(graph: dict) -> list[list[str]]:
+    """Strongly connected components with more than one module (Tarjan)."""
+    index, low, stack, on_stack, found = {}, {}, [], set(), []
+
+    def visit(v):
+        index[v] = low[v] = len(index)
+        stack.append(v)
+        on_stack.add(v)
+        for w in graph.get(v, ()):
+            if w not in index:
+                visit(w)
+                low[v] = min(low[v], low[w])
+            elif w in on_stack:
+                low[v] = min(low[v], index[w])
+        if low[v] == index[v]:
+            component = []
+            while True:
+                w = stack.pop()
+                on_stack.discard(w)
+                component.append(w)
+                if w == v:
+                    break
+            if len(component) > 1:
+                found.append(sorted(component))
+
+    for v in sorted(graph):
+        if v not in index:
+            visit(v)
+    return found
+
+
+def test_no_import_loops():
+    assert cycles(import_graph()) == []
+
+
+def test_the_cycle_finder_finds_a_loop():
+    assert cycles({"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}) == [["a", "b", "c"]]
+
+
+def test_fem_knows_no_mechanism_and_the_engine_no_mechanism_by_name():
+    graph = import_graph()
+    for module, targets in graph.items():
+        if module.startswith("fem"):
+            assert not {t for t in targets if not t.startswith(("fem", "data"))}, module
+        if module.startswith(("studies.engine", "studies.report")):
+            named = {t for t in targets if t.startswith("studies.")
+                     and not t.startswith(("studies.engine", "studies.report", "studies.mechanisms"))}
+            assert not named, f"{module} imports mechanisms {sorted(named)}"
+
+
+def test_imports_inside_the_package_are_relative():
+    offenders = [f"{p.relative_to(ROOT)}:{n.lineno}" for p in package_files()
+                 for n in ast.walk(ast.parse(p.read_text()))
+                 if isinstance(n, ast.Import) and any(a.name.startswith("flexfem") for a in n.names)
+                 or isinstance(n, ast.ImportFrom) and (n.module or "").startswith("flexfem")]
+    assert offenders == []
+
+
+def test_modules_and_functions_stay_small():
+    long_modules = [f"{p.relative_to(ROOT)} ({n})" for p in package_files()
+                    if (n := len(p.read_text().splitlines())) > MAX_MODULE_LINES]
+    long_functions = [f"{p.relative_to(ROOT)}:{f.name} ({f.end_lineno - f.lineno + 1})"
+                      for p in package_files() for f in ast.walk(ast.parse(p.read_text()))
+                      if isinstance(f, (ast.FunctionDef, ast.AsyncFunctionDef))
+                      and f.end_lineno - f.lineno + 1 > MAX_FUNCTION_LINES]
+    assert long_modules == [] and long_functions == []
+
+
+TEXT_FILES = ("*.py", "*.md", "*.toml", "*.sh", "*.geo")
+OUTSIDE = re.compile(r"\.\./shared|/work/|/home/\w+|/root/|/tmp/bash_jobs|[A-Z]:\\\\Users")
+
+
+@pytest.mark.parametrize("pattern", TEXT_FILES)
+def test_no_path_outside_the_repository(pattern):
+    skip = {".git", ".venv", "report", "node_modules"}
+    hits = []
+    for path in ROOT.rglob(pattern):
+        if skip & set(path.relative_to(ROOT).parts) or path == Path(__file__):
+            continue
+        for k, line in enumerate(path.read_text(errors="replace").splitlines(), 1):
+            if OUTSIDE.search(line):
+                hits.append(f"{path.relative_to(ROOT)}:{k}: {line.strip()}")
+    assert hits == []
