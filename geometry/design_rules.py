@@ -14,7 +14,7 @@ import numpy as np
 
 from ..data import load_toml
 from .flexure_linkage import _inside, polygon_distance
-from .linkage import segment_distance
+from .linkage_clearance import segment_distance
 
 UM = 1e-6
 

@@ -30,7 +30,7 @@ from .flexure_roots import (
     draw_filleted_flexure,
     root_zone_depth,
 )
-from .linkage import segment_distance
+from .linkage_clearance import segment_distance
 
 
 @dataclass(frozen=True)

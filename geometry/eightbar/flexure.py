@@ -29,7 +29,8 @@ from ..flexure_linkage import (
     polygon_distance,
 )
 from ..flexure_roots import check_root_fillet_radius
-from ..linkage import segment_distance, trace_from_reference
+from ..linkage import trace_from_reference
+from ..linkage_clearance import segment_distance
 from .rigid import (
     BASE_JOINTS,
     EightBarParams,

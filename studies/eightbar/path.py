@@ -15,7 +15,8 @@ from ...geometry.eightbar.rigid import (
     overall_size,
     trace_eightbar,
 )
-from ...geometry.linkage import Trace, overlapping_links_along, trace_from_reference
+from ...geometry.linkage import Trace, trace_from_reference
+from ...geometry.linkage_clearance import overlapping_links_along
 from ...geometry.straight_line import (
     CLASSIC_LINKAGES,
     straight_line_deviation,

@@ -12,7 +12,8 @@ from flexfem.geometry.eightbar.rigid import (
     overall_size,
     trace_eightbar,
 )
-from flexfem.geometry.linkage import Trace, overlapping_links_along
+from flexfem.geometry.linkage import Trace
+from flexfem.geometry.linkage_clearance import overlapping_links_along
 
 
 @pytest.fixture(scope="module")

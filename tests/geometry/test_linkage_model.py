@@ -9,11 +9,10 @@ from flexfem.geometry.linkage import (
     Linkage,
     assemble,
     gruebler_mobility,
-    overlapping_links,
-    segment_distance,
     trace,
     trace_from_reference,
 )
+from flexfem.geometry.linkage_clearance import overlapping_links, overlapping_links_along, segment_distance
 from flexfem.geometry.straight_line import chebyshev_linkage
 
 
@@ -138,7 +137,6 @@ def test_coarse_steps_land_on_the_same_branch_as_fine_steps():
 
 
 def test_chebyshev_crossed_cranks_overlap_and_watt_does_not():
-    from flexfem.geometry.linkage import overlapping_links_along
     from flexfem.geometry.straight_line import watt_linkage
     cheb = chebyshev_linkage(h=0.1)
     tr = trace_from_reference(cheb.linkage, *cheb.input_range, 11)
