@@ -36,6 +36,7 @@ class Mechanism:
         for ``flexfem optimize <name>`` ("" when it has none)
     coarsest_size_factor : size_factor of the coarsest level of its convergence studies
         (1 = its default mesh)
+    document : key of the source document it reproduces (data/sources.toml), "" for none
     """
 
     name: str
@@ -46,6 +47,7 @@ class Mechanism:
     optimizer: str = ""
     sections: tuple = ()
     coarsest_size_factor: float = 1.0
+    document: str = ""
 
     def load(self, target: str):
         """The object a ``"module:attribute"`` (or ``"module"``) target of this entry names."""
@@ -57,7 +59,7 @@ class Mechanism:
 BUILTIN = (
     Mechanism(
         "dbma", "Double-row bow-type micro-displacement amplifier (servo valve)", "dbma",
-        evaluate="analysis:evaluate", commands="cli", optimizer="cli_optimize",
+        evaluate="analysis:evaluate", commands="cli", optimizer="cli_optimize", document="dbma",
         # coarser start: halving the size three times from 4x stays affordable
         coarsest_size_factor=4.0,
         sections=(
@@ -70,7 +72,7 @@ BUILTIN = (
         )),
     Mechanism(
         "eightbar", "Symmetric rectilinear eight-bar flexure suspension", "eightbar",
-        evaluate="analysis:evaluate", commands="cli",
+        evaluate="analysis:evaluate", commands="cli", document="eightbar",
         sections=(
             Section("eightbar_rigid",
                     "Eight-bar and straight-line linkages: rigid-body paths and synthesis",
@@ -81,7 +83,7 @@ BUILTIN = (
         )),
     Mechanism(
         "balancing", "Five-bar parallel robot: optimum static balancing and flexure pivots",
-        "balancing", commands="cli",
+        "balancing", commands="cli", document="balancing",
         sections=(
             Section("balancing", "Five-bar robot: optimum static balancing and flexure pivots",
                     "report:reproduce"),

@@ -15,10 +15,12 @@ from pathlib import Path
 
 import numpy as np
 
+from ...data import load_toml
 from ...geometry.dbma.drawing import DBMALayout
 from ...geometry.dbma.params import DBMAParams, paper_design
 from ...geometry.hinge_profiles import HINGE_PROFILES, profile_thickness
 from ..engine.tables import write_rows
+from ..report.figures import pyplot, save
 from .analysis import build_model, modal_response, static_response
 
 FORCE = 800.0            # N, the top of the paper's Fig. 14 load range
@@ -131,7 +133,7 @@ def hinge_profile_study(out_dir, quick: bool = False) -> dict:
     closed = closed_form_rows(p)
     tables = [write_rows(out / "dbma_hinge_profiles.csv", rows).name,
               write_rows(out / "dbma_hinge_closed_form.csv", closed).name]
-    figures = [plot_profiles(rows, closed, out / "dbma_hinge_profiles.png").name]
+    figures = [plot_profiles(rows, closed, out / "dbma_hinge_profiles.png")]
     circ, coarse = rows[2], rows[3]
     mesh_change = circ["R_fem_per_side"] / coarse["R_fem_per_side"] - 1
     notes = [
@@ -150,13 +152,11 @@ def hinge_profile_study(out_dir, quick: bool = False) -> dict:
             "notes": notes}
 
 
-def plot_profiles(rows: list[dict], closed: list[dict], path: Path) -> Path:
+def plot_profiles(rows: list[dict], closed: list[dict], path: Path) -> dict:
     """Bars of R per side, k_in, peak stress and working mode per profile (FEM), the
     rigid-arm closed form's R beside R, the paper's FEM and measured R as lines."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
+    plt = pyplot()
+    amp = load_toml("dbma_paper.toml")["amplification"]
     main = rows[:len(HINGE_PROFILES)]
     names = [r["profile"] for r in main]
     x = np.arange(len(names))
@@ -164,8 +164,9 @@ def plot_profiles(rows: list[dict], closed: list[dict], path: Path) -> Path:
     ax = axes[0]
     ax.bar(x - 0.2, [r["R_fem_per_side"] for r in main], 0.4, label="FEM 2-D")
     ax.bar(x + 0.2, [c["R_rigid_arm"] for c in closed], 0.4, label="rigid-arm closed form")
-    ax.axhline(15.3, color="k", ls="--", lw=1, label="paper FEM 15.3")
-    ax.axhspan(15.43, 16.25, color="tab:green", alpha=0.2, label="measured 15.43-16.25")
+    ax.axhline(amp["R_fem"], color="k", ls="--", lw=1, label=f"paper FEM {amp['R_fem']:g}")
+    ax.axhspan(amp["R_measured_min"], amp["R_measured_max"], color="tab:green", alpha=0.2,
+               label=f"measured {amp['R_measured_min']:g}-{amp['R_measured_max']:g}")
     ax.set_ylabel("R (output / one pad's motion)")
     ax.set_ylim(10, 20)
     ax.legend(fontsize=7)
@@ -179,6 +180,7 @@ def plot_profiles(rows: list[dict], closed: list[dict], path: Path) -> Path:
         ax.grid(alpha=0.3, axis="y")
     fig.suptitle("DBMA hinge-profile sensitivity (paper design, same l and minimum thickness b)")
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
+    return save(fig, path, "Hinge-profile sensitivity of the paper's design (2-D FEM): R per "
+                "side beside the rigid-arm closed form and the paper's FEM and measured R, the "
+                "input stiffness, the peak stress at 800 N and the working mode, for leaf, "
+                "filleted and circular-notch hinges of the same length and minimum thickness.")

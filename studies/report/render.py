@@ -1,135 +1,183 @@
 """The reproduction report: report.md, index.html and summary.json from the sections' summaries.
 
-A section summary is a dict with "comparisons" (rows {quantity, flexfem, published, rel_diff,
-note}), "figures" and "tables" (file names inside the section folder), optional "notes"
-(list of str) and, for a failed section, "error".
+The report answers first and justifies second: a design summary per source document (its
+headline comparisons with their verdicts and what they mean), then the audit (every section:
+what was done, its figures with captions, its comparisons and links to its full tables).
+
+A section summary is a dict with "comparisons" (rows of :class:`~.comparison.Comparison`),
+"figures" ({"file", "caption"} entries, or bare file names), "tables" (CSV files inside the
+section folder: linked, not printed), optional "paragraph" (what was done and what it means),
+"key_tables" ({"title", "columns", "rows"}: small tables printed rounded), "notes" (list of
+str) and, for a failed section, "error".
 """
-import csv
 import html
 import json
 from pathlib import Path
 
+from ...data import load_toml
 from ..engine.serialize import jsonable
+from .format import (difference_text, figure_entries, is_image, number, reference_of,
+                     tolerance_text)
 
-MAX_TABLE_ROWS = 40
-
-
-def _fmt(value) -> str:
-    if isinstance(value, float):
-        return f"{value:.4g}"
-    if value is None:
-        return "-"
-    return str(value)
+HEADLINE_COLUMNS = ["quantity", "flexfem", "reference", "source", "difference", "tolerance",
+                    "verdict"]
 
 
-def _pct(value) -> str:
-    return "-" if value is None or not isinstance(value, (int, float)) else f"{100 * value:+.1f} %"
+def documents() -> dict:
+    """{key: citation fields} of the source documents (data/sources.toml)."""
+    return load_toml("sources.toml")
 
 
-def comparison_rows(report: dict) -> list[dict]:
-    """All comparison rows of all sections, each tagged with its section."""
-    return [{"section": s["section"], **row}
-            for s in report["sections"] for row in s.get("comparisons", [])]
+def citation(doc: dict) -> str:
+    """'Authors, *Title*, venue, DOI ...' of a source document."""
+    where = (f"doi:{doc['doi']}" if "doi" in doc else doc.get("hal") or doc.get("url", ""))
+    return f"{doc['authors']}, *{doc['title']}*, {doc['venue']}, {where}"
 
 
-def _read_csv(path: Path) -> list[list[str]]:
-    with path.open(newline="") as f:
-        return list(csv.reader(f))
+def comparison_cells(row: dict) -> list[str]:
+    """The headline columns of one comparison row, formatted."""
+    unit = row.get("unit", "")
+    return [row.get("quantity", ""), number(row.get("flexfem"), unit),
+            number(reference_of(row), unit), row.get("source", row.get("note", "")),
+            difference_text(row), tolerance_text(row), row.get("verdict", "not judged")]
 
 
-def _is_image(name: str) -> bool:
-    return Path(name).suffix.lower() in (".png", ".jpg", ".jpeg", ".svg")
+def headline_groups(report: dict) -> list[tuple[str, dict, list, list, list]]:
+    """[(key, document, paragraphs, headline rows, calibrated rows)] per source document, in
+    report order; sections without a document (the engine's own checks) are left out."""
+    docs, groups = documents(), {}
+    for s in report["sections"]:
+        key = s.get("document")
+        if not key or key not in docs:
+            continue
+        _, _, paragraphs, rows, calibrated = groups.setdefault(key, (key, docs[key], [], [], []))
+        if s.get("paragraph"):
+            paragraphs.append(s["paragraph"])
+        for row in s.get("comparisons", []):
+            if row.get("kind") == "calibrated":
+                calibrated.append(row)
+            elif row.get("headline") and row.get("kind") != "input":
+                rows.append(row)
+    return list(groups.values())
 
 
-def _markdown_table(header, rows) -> str:
+def _md_table(header, rows) -> str:
     lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
-    lines += ["| " + " | ".join(_fmt(c) for c in row) + " |" for row in rows]
+    lines += ["| " + " | ".join(str(c).replace("|", "/") for c in row) + " |" for row in rows]
     return "\n".join(lines)
+
+
+def _md_section(s: dict) -> list[str]:
+    out = [f"### {s['title']}", ""]
+    if "error" in s:
+        return out + [f"**This section failed:** `{s['error']}`", ""]
+    if s.get("paragraph"):
+        out += [s["paragraph"], ""]
+    out += [f"- {note}" for note in s.get("notes", [])] + [""]
+    for fig in figure_entries(s.get("figures", [])):
+        link = f"{s['section']}/{fig['file']}"
+        out += ([f"![{fig['caption']}]({link})", "", f"*{fig['caption']}*", ""] if is_image(fig["file"])
+                else [f"Field file [{fig['file']}]({link}): {fig['caption']}", ""])
+    if s.get("comparisons"):
+        out += [_md_table(HEADLINE_COLUMNS, [comparison_cells(r) for r in s["comparisons"]]), ""]
+    for table in s.get("key_tables", []):
+        out += [f"**{table['title']}**", "",
+                _md_table(table["columns"], [[number(c) for c in r] for r in table["rows"]]), ""]
+    if s.get("tables"):
+        out += ["Full tables: " + ", ".join(f"[{n}]({s['section']}/{n})" for n in s["tables"]), ""]
+    return out
 
 
 def render_markdown(report: dict) -> str:
     env = report["environment"]
     out = ["# flexfem reproduction report", "",
-           f"flexfem {env['flexfem']}, Python {env['python']}, {env['cpus']} CPUs, "
-           f"settings {report['settings']}, total {report['wall_time_s']:.0f} s.", "",
-           "## Summary: flexfem beside the published values", "",
-           _markdown_table(["section", "quantity", "flexfem", "published", "difference", "note"],
-                           [[r["section"], r.get("quantity"), r.get("flexfem"), r.get("published"),
-                             _pct(r.get("rel_diff")), r.get("note", "")]
-                            for r in comparison_rows(report)]), ""]
+           f"flexfem {env['flexfem']}, Python {env['python']}, {env['cpus']} CPUs, settings "
+           f"{json.dumps(report['settings'])}, total {report['wall_time_s']:.0f} s.", "",
+           "## Design summary", ""]
+    for _, doc, paragraphs, rows, calibrated in headline_groups(report):
+        out += [f"### {doc['title']}", "", citation(doc), ""] + [p + "\n" for p in paragraphs]
+        out += [_md_table(HEADLINE_COLUMNS, [comparison_cells(r) for r in rows]), ""]
+        if calibrated:
+            out += ["Calibrated on the source (shown apart, not agreement):", "",
+                    _md_table(HEADLINE_COLUMNS, [comparison_cells(r) for r in calibrated]), ""]
+    out += ["## Audit", ""]
     for s in report["sections"]:
-        out += [f"## {s['title']}", ""]
-        if "error" in s:
-            out += [f"**This section failed:** `{s['error']}`", ""]
-            continue
-        out += [f"- {note}" for note in s.get("notes", [])] + [""]
-        for name in s.get("figures", []):
-            link = f"[{name}]({s['section']}/{name})"
-            out += [f"!{link}" if _is_image(name) else f"Field file {link}", ""]
-        for name in s.get("tables", []):
-            out += [f"Table [{name}]({s['section']}/{name})", ""]
+        out += _md_section(s)
     return "\n".join(out)
 
 
 def _html_table(header, rows, cls="") -> str:
     head = "".join(f"<th>{html.escape(str(h))}</th>" for h in header)
-    body = "".join("<tr>" + "".join(f"<td>{html.escape(_fmt(c))}</td>" for c in row) + "</tr>"
+    body = "".join("<tr>" + "".join(f"<td>{html.escape(str(c))}</td>" for c in row) + "</tr>"
                    for row in rows)
-    return f'<table class="{cls}"><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>'
+    return (f'<div class="table"><table class="{cls}"><thead><tr>{head}</tr></thead>'
+            f"<tbody>{body}</tbody></table></div>")
 
 
-# On load the page counts its images that decoded and its tables that have rows, and writes
-# both into <body data-...>: a headless browser's DOM dump then shows whether it rendered.
-_CHECK_SCRIPT = """<script>
-window.addEventListener('load', function () {
-  var imgs = Array.from(document.images);
-  document.body.dataset.imagesTotal = imgs.length;
-  document.body.dataset.imagesLoaded = imgs.filter(function (i) {
-    return i.complete && i.naturalWidth > 0; }).length;
-  var tables = Array.from(document.querySelectorAll('table'));
-  document.body.dataset.tablesTotal = tables.length;
-  document.body.dataset.tablesWithRows = tables.filter(function (t) {
-    return t.tBodies.length && t.tBodies[0].rows.length > 0; }).length;
-});
-</script>"""
+def _verdict_table(rows, cls="comparisons") -> str:
+    cells = [comparison_cells(r) for r in rows]
+    table = _html_table(HEADLINE_COLUMNS, cells, cls)
+    for verdict in ("agrees", "differs", "calibrated"):
+        table = table.replace(f"<td>{verdict}</td>", f"<td class='{verdict}'>{verdict}</td>")
+    return table
 
 
-def render_html(report: dict, out: Path) -> str:
-    env = report["environment"]
-    parts = ["<!DOCTYPE html><html><head><meta charset='utf-8'><title>flexfem reproduction report</title>",
-             "<style>body{font-family:sans-serif;max-width:70em;margin:auto}table{border-collapse:collapse;"
-             "margin:1em 0}td,th{border:1px solid #ccc;padding:2px 6px;font-size:90%}"
-             "img{max-width:100%}.error{color:#b00}</style>", _CHECK_SCRIPT, "</head><body>",
-             "<h1>flexfem reproduction report</h1>",
-             f"<p>flexfem {html.escape(env['flexfem'])}, Python {env['python']}, {env['cpus']} CPUs, "
-             f"settings {html.escape(json.dumps(report['settings']))}, total "
-             f"{report['wall_time_s']:.0f} s.</p>",
-             "<h2>Summary: flexfem beside the published values</h2>",
-             _html_table(["section", "quantity", "flexfem", "published", "difference", "note"],
-                         [[r["section"], r.get("quantity"), r.get("flexfem"), r.get("published"),
-                           _pct(r.get("rel_diff")), r.get("note", "")]
-                          for r in comparison_rows(report)], "summary")]
+def _html_section(s: dict) -> list[str]:
+    parts = [f"<h3 id='{s['section']}'>{html.escape(s['title'])}</h3>"]
+    if "error" in s:
+        return parts + [f"<p class='error'>This section failed: <code>{html.escape(s['error'])}</code></p>"]
+    if s.get("paragraph"):
+        parts.append(f"<p>{html.escape(s['paragraph'])}</p>")
+    if s.get("notes"):
+        parts.append("<ul>" + "".join(f"<li>{html.escape(n)}</li>" for n in s["notes"]) + "</ul>")
+    for fig in figure_entries(s.get("figures", [])):
+        src, caption = f"{s['section']}/{html.escape(fig['file'])}", html.escape(fig["caption"])
+        if is_image(fig["file"]):
+            parts.append(f"<figure><img src='{src}' alt='{caption}'><figcaption>{caption}"
+                         "</figcaption></figure>")
+        else:  # e.g. a VTU field for ParaView: a link, not an <img>
+            parts.append(f"<p>Field file: <a href='{src}'>{html.escape(fig['file'])}</a>: {caption}</p>")
+    if s.get("comparisons"):
+        parts.append(_verdict_table(s["comparisons"]))
+    for table in s.get("key_tables", []):
+        parts.append(f"<h4>{html.escape(table['title'])}</h4>")
+        parts.append(_html_table(table["columns"], [[number(c) for c in r] for r in table["rows"]]))
+    if s.get("tables"):
+        links = ", ".join(f"<a href='{s['section']}/{html.escape(n)}'>{html.escape(n)}</a>"
+                          for n in s["tables"])
+        parts.append(f"<p class='tables'>Full tables: {links}</p>")
+    return parts
+
+
+def _contents(groups, sections) -> str:
+    docs = "".join(f"<li><a href='#doc-{key}'>{html.escape(doc['title'])}</a></li>"
+                   for key, doc, *_ in groups)
+    audit = "".join(f"<li><a href='#{s['section']}'>{html.escape(s['title'])}</a></li>"
+                    for s in sections)
+    return (f"<nav><h2>Contents</h2><ol><li><a href='#summary'>Design summary</a><ol>{docs}</ol>"
+            f"</li><li><a href='#audit'>Audit</a><ol>{audit}</ol></li></ol></nav>")
+
+
+def render_html(report: dict, out: Path | None = None) -> str:
+    env, groups = report["environment"], headline_groups(report)
+    parts = ["<!DOCTYPE html><html><head><meta charset='utf-8'>",
+             "<title>flexfem reproduction report</title>", f"<style>{STYLE}</style>",
+             CHECK_SCRIPT, "</head><body>", "<h1>flexfem reproduction report</h1>",
+             f"<p class='run'>flexfem {html.escape(env['flexfem'])}, Python {env['python']}, "
+             f"{env['cpus']} CPUs, settings {html.escape(json.dumps(report['settings']))}, "
+             f"total {report['wall_time_s']:.0f} s.</p>",
+             _contents(groups, report["sections"]), "<h2 id='summary'>Design summary</h2>"]
+    for key, doc, paragraphs, rows, calibrated in groups:
+        parts += [f"<h3 id='doc-{key}'>{html.escape(doc['title'])}</h3>",
+                  f"<p class='citation'>{html.escape(citation(doc).replace('*', ''))}</p>"]
+        parts += [f"<p>{html.escape(p)}</p>" for p in paragraphs]
+        parts.append(_verdict_table(rows, "headline"))
+        if calibrated:
+            parts += ["<p>Calibrated on the source (shown apart, not agreement):</p>",
+                      _verdict_table(calibrated, "calibrated")]
+    parts.append("<h2 id='audit'>Audit</h2>")
     for s in report["sections"]:
-        parts.append(f"<h2 id='{s['section']}'>{html.escape(s['title'])}</h2>")
-        if "error" in s:
-            parts.append(f"<p class='error'>This section failed: <code>{html.escape(s['error'])}</code></p>")
-            continue
-        parts += [f"<p>{html.escape(note)}</p>" for note in s.get("notes", [])]
-        for name in s.get("figures", []):
-            src = f"{s['section']}/{html.escape(name)}"
-            if not _is_image(name):  # e.g. a VTU field for ParaView: a link, not an <img>
-                parts.append(f"<p>Field file: <a href='{src}'>{html.escape(name)}</a></p>")
-                continue
-            parts.append(f"<figure><img src='{src}' alt='{html.escape(name)}'>"
-                         f"<figcaption>{html.escape(name)}</figcaption></figure>")
-        for name in s.get("tables", []):
-            path = out / s["section"] / name
-            if path.suffix != ".csv" or not path.exists():
-                continue
-            rows = _read_csv(path)
-            if rows:
-                parts.append(f"<h3><a href='{s['section']}/{html.escape(name)}'>{html.escape(name)}</a></h3>")
-                parts.append(_html_table(rows[0], rows[1:MAX_TABLE_ROWS + 1]))
+        parts += _html_section(s)
     parts.append("</body></html>")
     return "\n".join(parts)
 
@@ -140,3 +188,38 @@ def write_report(out: Path, report: dict) -> None:
     (out / "summary.json").write_text(json.dumps(report, indent=1))
     (out / "report.md").write_text(render_markdown(report))
     (out / "index.html").write_text(render_html(report, out))
+
+
+STYLE = """
+body{font-family:sans-serif;max-width:62em;margin:auto;padding:0 1em;line-height:1.35}
+.table{max-width:100%;overflow-x:auto}
+table{border-collapse:collapse;margin:.6em 0;width:100%}
+td,th{border:1px solid #ccc;padding:2px 5px;font-size:85%;vertical-align:top;
+      overflow-wrap:anywhere}
+th{background:#f2f2f2;text-align:left}
+td.agrees{color:#060}td.differs{color:#a00;font-weight:bold}td.calibrated{color:#555}
+figure{margin:.8em 0}figure img{max-width:100%;max-height:28em}
+figcaption{font-size:85%;color:#333}
+.error{color:#b00}.citation{font-style:italic}.run,.tables{font-size:85%;color:#444}
+@media print{body{max-width:none;font-size:9pt}figure{page-break-inside:avoid}
+  figure img{max-height:8cm}h2,h3{page-break-after:avoid}nav{page-break-after:always}}
+"""
+
+# On load the page counts its images that decoded, its tables that have rows and the tables
+# wider than the page, and writes them into <body data-...>: a headless browser's DOM dump
+# then shows whether it rendered and whether anything runs off the page.
+CHECK_SCRIPT = """<script>
+window.addEventListener('load', function () {
+  var imgs = Array.from(document.images);
+  document.body.dataset.imagesTotal = imgs.length;
+  document.body.dataset.imagesLoaded = imgs.filter(function (i) {
+    return i.complete && i.naturalWidth > 0; }).length;
+  var tables = Array.from(document.querySelectorAll('table'));
+  document.body.dataset.tablesTotal = tables.length;
+  document.body.dataset.tablesWithRows = tables.filter(function (t) {
+    return t.tBodies.length && t.tBodies[0].rows.length > 0; }).length;
+  var width = document.body.clientWidth;
+  document.body.dataset.tablesOverflowing = tables.filter(function (t) {
+    return t.getBoundingClientRect().width > width + 1; }).length;
+});
+</script>"""

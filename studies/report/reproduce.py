@@ -103,7 +103,7 @@ def reproduce(out_dir, quick: bool = False, full: bool = False, resume: bool = F
             status = "failed: " + summary["error"] if "error" in summary else "done"
             progress(f"{section.folder} {status} ({summary['wall_time_s']:.1f} s)")
         results.append({"section": section.folder, "title": section.title,
-                        "mechanism": mechanism.name, **summary})
+                        "mechanism": mechanism.name, "document": mechanism.document, **summary})
     report = {"settings": {"quick": quick, "full": full}, "environment": environment(),
               "wall_time_s": time.perf_counter() - start, "sections": results}
     write_report(out, report)

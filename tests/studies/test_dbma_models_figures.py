@@ -5,6 +5,8 @@ import math
 
 import numpy as np
 import pytest
+
+from flexfem.data import load_toml
 from flexfem.geometry.dbma.params import paper_design
 from flexfem.studies.dbma import figures as figs
 from flexfem.studies.dbma import prbm as m
@@ -46,17 +48,12 @@ def test_parameter_sweep_follows_the_formulas():
     assert np.all(np.diff(sweep["Ke_eq14"]) > 0)  # Eq. 15: dKe/db > 0
 
 
-def test_reproduce_contract(summary):
+def test_reproduce_contract(summary, section_contract):
     out, result = summary
-    json.dumps(result)
-    assert {"comparisons", "figures", "tables", "metrics"} <= set(result)
-    for name in result["figures"] + result["tables"]:
-        assert (out / name).stat().st_size > 0, name
-    assert {"fig9_R.png", "fig10_Ke.png", "fig13_analytical.png"} <= set(result["figures"])
-    for row in result["comparisons"]:
-        assert set(row) == {"quantity", "flexfem", "published", "rel_diff", "note"}
-        assert row["rel_diff"] == pytest.approx(
-            (row["flexfem"] - row["published"]) / row["published"], rel=1e-12)
+    section_contract(out, result)
+    assert {"comparisons", "figures", "tables", "metrics", "paragraph"} <= set(result)
+    assert {"fig9_R.png", "fig10_Ke.png", "fig13_analytical.png"} <= {
+        f["file"] for f in result["figures"]}
 
 
 def test_fig13_tables_span_the_published_ranges(summary):
@@ -72,7 +69,12 @@ def test_fig13_tables_span_the_published_ranges(summary):
 def test_comparisons_report_the_paper_discrepancies(summary):
     _, result = summary
     rows = {r["quantity"]: r for r in result["comparisons"]}
-    implied = rows["R, Eq. 7 vs theory implied by '6.06 %' from FEM 15.3"]
-    # 15.3 / (1 - 0.0606) = 16.29: Eq. 7 as printed falls ~21 % short of it
-    assert implied["published"] == pytest.approx(16.287, abs=1e-3)
-    assert implied["rel_diff"] == pytest.approx(-0.214, abs=0.002)
+    implied = rows["R, Eq. 7 vs the theory value implied by FEM 15.3 and '6.06 %'"]
+    # the paper prints FEM R and its difference from theory, not the theory value:
+    # R_fem / (1 - 6.06 %) is that value, recomputed here from data/
+    amp = load_toml("dbma_paper.toml")["amplification"]
+    assert implied["reference"] == pytest.approx(
+        amp["R_fem"] / (1 - amp["R_fem_vs_theory_rel_diff_pct"] / 100), rel=1e-12)
+    assert implied["kind"] == "derived"
+    # Eq. 7 as printed falls ~21 % short of it: reported, not hidden
+    assert implied["difference"] < -0.15 and implied["verdict"] == "differs"
