@@ -1,0 +1,62 @@
+"""How the report writes numbers: meaningful digits, units, differences and tolerances."""
+import math
+from pathlib import Path
+
+SIGNIFICANT = 4
+
+
+def number(value, unit: str = "") -> str:
+    """A value to 4 significant digits (no exponent between 1e-3 and 1e6), with its unit;
+    '-' for None, NaN or infinity; other types as text."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        return "-" if value is None else str(value)
+    if not math.isfinite(value):
+        return "-"
+    if isinstance(value, int) or float(value).is_integer() and abs(value) < 1e6:
+        text = f"{int(value)}"
+    elif value != 0 and not 1e-3 <= abs(value) < 1e6:
+        text = f"{value:.{SIGNIFICANT - 1}e}"
+    else:
+        text = f"{value:.{SIGNIFICANT}g}"
+    return f"{text} {unit}" if unit and unit != "-" else text
+
+
+def reference_of(row: dict):
+    """The reference value of a comparison row (older rows call it 'published')."""
+    return row.get("reference", row.get("published"))
+
+
+def _absolute(row: dict) -> bool:
+    return row.get("difference_kind") == "absolute"
+
+
+def difference_text(row: dict) -> str:
+    """'+1.2 %' (relative) or '+0.3 deg' / '+1.5 pp' (absolute) or '-'."""
+    d = row.get("difference", row.get("rel_diff"))
+    if not isinstance(d, (int, float)) or not math.isfinite(d):
+        return "-"
+    if _absolute(row):
+        unit = "pp" if row.get("unit") == "%" else row.get("unit", "")
+        return f"{d:+.3g} {unit}"
+    return f"{100 * d:+.2g} %" if abs(d) < 0.01 else f"{100 * d:+.1f} %"
+
+
+def tolerance_text(row: dict) -> str:
+    """'±5 %' (relative) or '±1 deg' (absolute) or '-' when not judged."""
+    t = row.get("tolerance")
+    if not isinstance(t, (int, float)):
+        return "-"
+    if _absolute(row):
+        unit = "pp" if row.get("unit") == "%" else row.get("unit", "")
+        return f"±{t:g} {unit}"
+    return f"±{100 * t:g} %"
+
+
+def is_image(name: str) -> bool:
+    return Path(name).suffix.lower() in (".png", ".jpg", ".jpeg", ".svg")
+
+
+def figure_entries(figures) -> list[dict]:
+    """{"file", "caption"} entries from a section's figures (a bare name gets no caption but
+    its name)."""
+    return [f if isinstance(f, dict) else {"file": f, "caption": f} for f in figures]
