@@ -1,4 +1,4 @@
-"""A planar linkage with its revolute joints replaced by beam flexures, as a 2-D gmsh part.
+"""A planar linkage with its revolute joints replaced by beam flexures, laid out as rectangles.
 
 Each joint J joins a *host* link and an *other* link (or the ground). The flexure is a thin
 rectangle of length L and width w centred on J and lying along the host's centre-line at J
@@ -10,26 +10,14 @@ and its bar is redirected to the hub's centre, W from the flexure. For a joint t
 the hub is the *anchor*, whose far face is the "fixed" boundary. Rigid links are bars of
 width W along their centre-lines.
 
-Everything here is plain geometry in m (:class:`FlexureLayout`, a list of rectangles) until
-:func:`mesh_layout`, which draws it in gmsh (OpenCASCADE), meshes each flexure with a
-structured grid of ``n_across`` x (L / h_along) quadratic-ready triangles and grades the links
-from the flexure size to a coarse size, and returns a :class:`~flexfem.fem.mesh.FEMesh` with
-subdomains (each link, "flexure_<joint>", "links", "flexures", "body") and boundaries
-("fixed" and the caller's named edges). ``root_fillet_radius`` (default 0: sharp corners) adds
-quarter-circle root fillets (:mod:`flexfem.geometry.flexure_roots`).
+Everything here is plain geometry in m (:class:`FlexureLayout`, a list of rectangles);
+:func:`flexfem.geometry.flexure_drawing.mesh_layout` draws and meshes it in gmsh.
 """
 import math
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..fem.gmsh_session import gmsh_session
-from ..fem.mesh import mesh_from_gmsh
-from .flexure_roots import (
-    check_root_fillet_radius,
-    draw_filleted_flexure,
-    root_zone_depth,
-)
 from .linkage_clearance import segment_distance
 
 
@@ -131,7 +119,20 @@ def flexure_layout(polylines: dict, joints: list, hosts: dict, sizes: dict, link
         if hosts[j["name"]] not in j["links"]:
             raise ValueError(f"host of joint {j['name']!r} = {hosts[j['name']]!r} is not one of "
                              f"its links {j['links']}")
-    # the host's neighbouring point at each joint: the other end of its segment ending there
+    neighbour = _host_neighbours(polylines, joints, hosts, position, W)
+    flex, attach = _place_flexures(joints, hosts, sizes, position, neighbour, W)
+    parts, fixed = _flexures_and_hubs(flex, W, ground)
+    for link, lines in polylines.items():
+        parts += _bars(link, lines, position, attach, W)
+    named = {}
+    for name, edge in (edges or {}).items():
+        named[name] = edge(parts) if callable(edge) else edge
+    return FlexureLayout(tuple(parts), tuple(flex.values()), tuple(fixed), named, W, ground)
+
+
+def _host_neighbours(polylines, joints, hosts, position, W) -> dict:
+    """{joint: the host's neighbouring point (m)}: the other end of the host's first centre-line
+    segment ending at the joint. Raises ValueError for a joint off its host's centre-line."""
     neighbour = {}
     for j in joints:
         host = hosts[j["name"]]
@@ -142,21 +143,17 @@ def flexure_layout(polylines: dict, joints: list, hosts: dict, sizes: dict, link
                     neighbour[j["name"]] = pts[k - 1] if k > 0 else pts[k + 1]
         if j["name"] not in neighbour:
             raise ValueError(f"joint {j['name']!r} is not on a centre-line of its host {host!r}")
-    # effective attachment point of each link at each joint (m); hubs of the other links are
-    # placed after the host directions, which may depend on other hubs: iterate to a fixed point
+    return neighbour
+
+
+def _place_flexures(joints, hosts, sizes, position, neighbour, W) -> tuple:
+    """({joint: FlexureJoint}, {(link, joint): attachment point (m)}). A flexure lies along its
+    host towards the joint from the neighbouring point, or from that point's attachment where
+    it is itself a joint (a hub of another link); the hubs are placed after the host
+    directions, so this iterates to a fixed point (at most 4 passes)."""
     attach = {}
     for _ in range(4):
-        flex = {}
-        for j in joints:
-            name, host = j["name"], hosts[j["name"]]
-            other = next(link for link in j["links"] if link != host)
-            L, w = sizes[name]
-            nb = neighbour[name]
-            for (lk, jn), pt in attach.items():
-                if lk == host and np.allclose(position[jn], nb):
-                    nb = pt
-            d = _unit(position[name] - nb)
-            flex[name] = FlexureJoint(name, host, other, tuple(position[name]), tuple(d), L, w)
+        flex = _flexure_joints(joints, hosts, sizes, position, neighbour, attach)
         new = {}
         for fj in flex.values():
             c, d = np.asarray(fj.position), np.asarray(fj.direction)
@@ -165,6 +162,28 @@ def flexure_layout(polylines: dict, joints: list, hosts: dict, sizes: dict, link
         if attach and all(np.allclose(new[k], attach[k], atol=1e-15) for k in new):
             break
         attach = new
+    return flex, attach
+
+
+def _flexure_joints(joints, hosts, sizes, position, neighbour, attach) -> dict:
+    """One pass of :func:`_place_flexures`: {joint: FlexureJoint} given the attachments so far."""
+    flex = {}
+    for j in joints:
+        name, host = j["name"], hosts[j["name"]]
+        other = next(link for link in j["links"] if link != host)
+        L, w = sizes[name]
+        nb = neighbour[name]
+        for (lk, jn), pt in attach.items():
+            if lk == host and np.allclose(position[jn], nb):
+                nb = pt
+        d = _unit(position[name] - nb)
+        flex[name] = FlexureJoint(name, host, other, tuple(position[name]), tuple(d), L, w)
+    return flex
+
+
+def _flexures_and_hubs(flex: dict, W: float, ground: str) -> tuple:
+    """([flexure, hub or anchor parts], [fixed segments (m)]): a hub W wide and 2 W long beyond
+    each flexure's other end; for a joint to the ground an anchor, whose far face is fixed."""
     parts, fixed = [], []
     for fj in flex.values():
         a, b = fj.ends()
@@ -177,42 +196,38 @@ def flexure_layout(polylines: dict, joints: list, hosts: dict, sizes: dict, link
         if fj.other == ground:
             n = np.array([-d[1], d[0]]) * W / 2
             fixed.append((tuple(hub1 - n), tuple(hub1 + n)))
-    # bars: each centre-line segment with joint points replaced by attachment points; a bar
-    # ending at a flexure is flush with it, one ending at a hub ends at the hub's centre (W
-    # from the flexure), one ending elsewhere runs W/2 past its end point (square corners)
-    for link, lines in polylines.items():
-        count = 0
-        for line in lines:
-            pts = [np.asarray(p, float) for p in line]
-            for p, q in zip(pts[:-1], pts[1:]):
-                ends, flush = [], []
-                for pt in (p, q):
-                    jn = next((n for n, x in position.items() if np.allclose(x, pt)
-                               and (link, n) in attach), None)
-                    if jn is None:
-                        ends.append(pt)
-                        flush.append(False)
-                    else:
-                        ends.append(attach[(link, jn)])
-                        flush.append(True)
-                e0, e1 = ends
-                seg_len = float(np.linalg.norm(e1 - e0))
-                if any(flush) and seg_len < W:
-                    jn = [n for n, x in position.items() if (np.allclose(x, p) or np.allclose(x, q))
-                          and (link, n) in attach]
-                    raise ValueError(
-                        f"flexure(s) {['flexure_' + n for n in jn]} too long for link {link!r}: the "
-                        f"bar left between them is {seg_len:.4g} m, must be >= link width {W:.4g} "
-                        "m (shorten the flexures)")
-                d = _unit(e1 - e0)
-                e0 = e0 if flush[0] else e0 - W / 2 * d
-                e1 = e1 if flush[1] else e1 + W / 2 * d
-                parts.append(Part(f"{link}:bar{count}", link, "bar", tuple(e0), tuple(e1), W))
-                count += 1
-    named = {}
-    for name, edge in (edges or {}).items():
-        named[name] = edge(parts) if callable(edge) else edge
-    return FlexureLayout(tuple(parts), tuple(flex.values()), tuple(fixed), named, W, ground)
+    return parts, fixed
+
+
+def _bars(link, lines, position, attach, W) -> list:
+    """The bar parts (W wide, m) of one link: each centre-line segment with its joint points
+    replaced by attachment points. A bar ending at a flexure is flush with it, one ending at a
+    hub ends at the hub's centre (W from the flexure), one ending elsewhere runs W/2 past its
+    end point (square corners). Raises ValueError where flexures leave a bar shorter than W."""
+    parts = []
+    for line in lines:
+        pts = [np.asarray(p, float) for p in line]
+        for p, q in zip(pts[:-1], pts[1:]):
+            ends, flush = [], []
+            for pt in (p, q):
+                jn = next((n for n, x in position.items() if np.allclose(x, pt)
+                           and (link, n) in attach), None)
+                ends.append(pt if jn is None else attach[(link, jn)])
+                flush.append(jn is not None)
+            e0, e1 = ends
+            seg_len = float(np.linalg.norm(e1 - e0))
+            if any(flush) and seg_len < W:
+                jn = [n for n, x in position.items() if (np.allclose(x, p) or np.allclose(x, q))
+                      and (link, n) in attach]
+                raise ValueError(
+                    f"flexure(s) {['flexure_' + n for n in jn]} too long for link {link!r}: the "
+                    f"bar left between them is {seg_len:.4g} m, must be >= link width {W:.4g} "
+                    "m (shorten the flexures)")
+            d = _unit(e1 - e0)
+            e0 = e0 if flush[0] else e0 - W / 2 * d
+            e1 = e1 if flush[1] else e1 + W / 2 * d
+            parts.append(Part(f"{link}:bar{len(parts)}", link, "bar", tuple(e0), tuple(e1), W))
+    return parts
 
 
 # -- convex polygon distances (rectangles), for clearance checks ------------------------------
@@ -247,183 +262,3 @@ def _closest_midpoint(a0, a1, b0, b1) -> tuple:
     d = np.linalg.norm(A[:, None] - B[None], axis=2)
     i, k = np.unravel_index(np.argmin(d), d.shape)
     return tuple((A[i] + B[k]) / 2)
-
-
-# -- gmsh -------------------------------------------------------------------------------------
-
-def draw_layout(gmsh, layout: FlexureLayout, n_across: int = 3, aspect: float = 4.0,
-                coarse: float | None = None, root_fillet_radius: float = 0.0) -> dict:
-    """Draw ``layout`` in the open gmsh session with its physical groups and mesh sizes:
-    each flexure a structured n_across x n_along grid (element length aspect * w / n_across),
-    the rest graded from the flexure size up to ``coarse`` (default W / 2). With
-    ``root_fillet_radius`` r > 0 (m) each flexure gets four quarter-circle root fillets (see
-    :mod:`flexfem.geometry.flexure_roots`): its root zones are meshed unstructured with size
-    min(w / n_across, r / 3), the middle structured. Returns {"flexure_size", "coarse_size"}
-    and, with fillets, "root_size" (m)."""
-    r = check_root_fillet_radius(root_fillet_radius, layout.parts, layout.link_width)
-    occ = gmsh.model.occ
-    drawn = []  # (part, input surface tag, role): role "root" / "middle" for filleted flexures
-    for part in layout.parts:
-        if r > 0 and part.kind == "flexure":
-            drawn += [(part, tag, role) for tag, role in draw_filleted_flexure(occ, part, r)]
-            continue
-        c = part.corners()
-        pts = [occ.addPoint(x, y, 0.0) for x, y in c]
-        lines = [occ.addLine(pts[i], pts[(i + 1) % 4]) for i in range(4)]
-        drawn.append((part, occ.addPlaneSurface([occ.addCurveLoop(lines)]), None))
-    tags = [t for _, t, _ in drawn]
-    out, out_map = occ.fragment([(2, tags[0])], [(2, t) for t in tags[1:]])
-    occ.synchronize()
-    owner, role_of = {}, {}
-    for (part, _, role), pieces in zip(drawn, out_map):
-        for dim, tag in pieces:
-            owner.setdefault(tag, set()).add(part)
-            if role is not None:
-                role_of[tag] = role
-    groups = {}
-    for tag, parts in owner.items():
-        kinds = {p.kind for p in parts}
-        if "flexure" in kinds and len(parts) > 1:
-            names = sorted(p.name for p in parts)
-            raise ValueError(f"flexure overlaps another part: {names}; the layout's flexures "
-                             "must only touch the links at their ends")
-        links = {("flexure_" + p.name.split("_", 1)[1]) if p.kind == "flexure" else p.link
-                 for p in parts}
-        if len(links) > 1:
-            raise ValueError(f"parts of different links overlap: {sorted(p.name for p in parts)}")
-        groups.setdefault(links.pop(), []).append(tag)
-    flexure_tags = []
-    for name, surfaces in sorted(groups.items()):
-        # a link named like a boundary edge (e.g. "end_effector") gets its subdomain "<name>_link"
-        gmsh.model.addPhysicalGroup(2, surfaces, name=name + "_link" if name in layout.edges else name)
-        if name.startswith("flexure_"):
-            flexure_tags += surfaces
-    link_tags = [t for n, s in groups.items() if not n.startswith("flexure_") and n != layout.ground
-                 for t in s]
-    ground_tags = groups.get(layout.ground, [])
-    gmsh.model.addPhysicalGroup(2, flexure_tags, name="flexures")
-    gmsh.model.addPhysicalGroup(2, link_tags, name="links")
-    if ground_tags:
-        gmsh.model.addPhysicalGroup(2, ground_tags, name="anchors")
-    gmsh.model.addPhysicalGroup(2, sorted(owner), name="body")
-
-    W = layout.link_width
-    curves = gmsh.model.getEntities(1)
-    ends = {t: _curve_ends(gmsh, t) for _, t in curves}
-    scale = 1e-6 * max(np.ptp(np.array(layout.bounding_box()).reshape(2, 2), axis=0))
-    for name, segments in [("fixed", layout.fixed)] + [(k, [v]) for k, v in layout.edges.items()]:
-        found = [t for t, (a, b) in ends.items()
-                 if any(_on_segment(a, s, scale) and _on_segment(b, s, scale) for s in segments)]
-        if not found:
-            raise ValueError(f"no boundary found for group {name!r}")
-        gmsh.model.addPhysicalGroup(1, found, name=name)
-
-    # structured flexures (with fillets: their middles; the root zones are sized below)
-    h_min = math.inf
-    end_curves = []
-    root_tags, root_size = [], None
-    for part in layout.parts:
-        if part.kind != "flexure":
-            continue
-        tag = groups[f"flexure_{part.name.split('_', 1)[1]}"]
-        h_across = part.width / n_across
-        straight = part.length
-        if r > 0:
-            roots = [t for t in tag if role_of.get(t) == "root"]
-            tag = [t for t in tag if role_of.get(t) == "middle"]
-            if len(roots) != 2:
-                raise ValueError(f"{part.name}'s root zones were split by the boolean union; "
-                                 "check the layout")
-            root_tags += roots
-            straight = part.length - 2 * root_zone_depth(r, part.width)
-            root_size = min(root_size or math.inf, h_across, r / 3)
-        if len(tag) != 1:
-            raise ValueError(f"{part.name} was split by the boolean union; check the layout")
-        n_along = max(2, int(math.ceil(straight / (aspect * h_across))))
-        h_min = min(h_min, h_across)
-        boundary = [abs(t) for _, t in gmsh.model.getBoundary([(2, tag[0])], oriented=False)]
-        if len(boundary) != 4:
-            raise ValueError(f"{part.name} has {len(boundary)} edges after the union, not 4")
-        for c in boundary:
-            a, b = ends[c]
-            along = abs(math.dist(a, b) - straight) < 1e-6 * part.length
-            gmsh.model.mesh.setTransfiniteCurve(c, (n_along if along else n_across) + 1)
-            if not along:
-                end_curves.append(c)
-        gmsh.model.mesh.setTransfiniteSurface(tag[0], "Alternate")
-    coarse = (W / 2 if coarse is None else coarse)
-    field_ = gmsh.model.mesh.field
-    dist = field_.add("Distance")
-    field_.setNumbers(dist, "CurvesList", end_curves)
-    field_.setNumber(dist, "Sampling", 20)
-    thr = field_.add("Threshold")
-    field_.setNumber(thr, "InField", dist)
-    field_.setNumber(thr, "SizeMin", 2.0 * h_min)
-    field_.setNumber(thr, "SizeMax", coarse)
-    field_.setNumber(thr, "DistMin", 0.0)
-    field_.setNumber(thr, "DistMax", 2.0 * W)
-    if root_tags:
-        # root zones: a constant size, also on their curves (the arcs, the link's face)
-        zone_curves = sorted({abs(c) for t in root_tags
-                              for _, c in gmsh.model.getBoundary([(2, t)], oriented=False)})
-        const = field_.add("Constant")
-        field_.setNumber(const, "VIn", root_size)
-        field_.setNumber(const, "VOut", coarse)
-        field_.setNumbers(const, "SurfacesList", root_tags)
-        field_.setNumbers(const, "CurvesList", zone_curves)
-        # grade the links from the root size: distance to the zones' curves
-        dist_r = field_.add("Distance")
-        field_.setNumbers(dist_r, "CurvesList", zone_curves)
-        field_.setNumber(dist_r, "Sampling", 20)
-        thr_r = field_.add("Threshold")
-        field_.setNumber(thr_r, "InField", dist_r)
-        field_.setNumber(thr_r, "SizeMin", root_size)
-        field_.setNumber(thr_r, "SizeMax", coarse)
-        field_.setNumber(thr_r, "DistMin", 0.0)
-        field_.setNumber(thr_r, "DistMax", 2.0 * W)
-        both = field_.add("Min")
-        field_.setNumbers(both, "FieldsList", [thr, const, thr_r])
-        thr = both
-    field_.setAsBackgroundMesh(thr)
-    for key in ("Mesh.MeshSizeExtendFromBoundary", "Mesh.MeshSizeFromPoints",
-                "Mesh.MeshSizeFromCurvature"):
-        gmsh.option.setNumber(key, 0)
-    sizes = {"flexure_size": h_min, "coarse_size": coarse}
-    if root_size is not None:
-        sizes["root_size"] = root_size
-    return sizes
-
-
-def _curve_ends(gmsh, tag) -> tuple:
-    pts = gmsh.model.getBoundary([(1, tag)], oriented=False)
-    xy = [tuple(gmsh.model.getValue(0, abs(p), [])[:2]) for _, p in pts]
-    return (xy[0], xy[-1])
-
-
-def _on_segment(point, segment, tol) -> bool:
-    a, b = np.asarray(segment[0]), np.asarray(segment[1])
-    p = np.asarray(point)
-    ab = b - a
-    t = np.dot(p - a, ab) / np.dot(ab, ab)
-    return -1e-9 <= t <= 1 + 1e-9 and np.linalg.norm(a + t * ab - p) <= tol
-
-
-def mesh_layout(layout: FlexureLayout, n_across: int = 3, aspect: float = 4.0,
-                coarse: float | None = None, name: str = "flexure_linkage",
-                root_fillet_radius: float = 0.0) -> tuple:
-    """Mesh ``layout`` (triangles; use order=2 in the Model for quadratic elements) with
-    ``n_across`` (>= 3) elements across every flexure and, if ``root_fillet_radius`` r > 0
-    (m), quarter-circle fillets at the flexure roots (element size <= r / 3 there; the
-    fillets belong to the flexure's subdomain). Returns (FEMesh, {"flexure_size",
-    "coarse_size"[, "root_size"]} in m). Coordinates in m."""
-    if not (isinstance(n_across, (int, np.integer)) and n_across >= 3):
-        raise ValueError(f"n_across = {n_across!r} must be an integer >= 3 (elements across a "
-                         "flexure)")
-    if not (math.isfinite(aspect) and 0.5 <= aspect <= 20):
-        raise ValueError(f"aspect = {aspect!r} must be in [0.5, 20] (element length / width in "
-                         "a flexure)")
-    with gmsh_session(name) as gmsh:
-        sizes = draw_layout(gmsh, layout, n_across, aspect, coarse, root_fillet_radius)
-        gmsh.option.setNumber("Mesh.Algorithm", 6)
-        gmsh.model.mesh.generate(2)
-        return mesh_from_gmsh(gmsh), sizes

@@ -28,7 +28,8 @@ from dataclasses import dataclass, field, fields
 import numpy as np
 
 from ...fem.materials import material
-from ..flexure_linkage import FlexureLayout, flexure_layout, mesh_layout
+from ..flexure_drawing import mesh_layout
+from ..flexure_linkage import FlexureLayout, flexure_layout
 from ..linkage import CrankAngle, Joint, Link, Linkage, PointCoordinate, trace
 from ..straight_line import (
     LineDeviation,

@@ -22,10 +22,10 @@ from dataclasses import dataclass, field, fields, replace
 import numpy as np
 
 from ...fem.materials import material as material_named
+from ..flexure_drawing import mesh_layout
 from ..flexure_linkage import (
     FlexureLayout,
     flexure_layout,
-    mesh_layout,
     polygon_distance,
 )
 from ..flexure_roots import check_root_fillet_radius

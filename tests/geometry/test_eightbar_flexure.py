@@ -123,7 +123,7 @@ def _subdomain_area(mesh, name):
 
 
 def test_sharp_root_mesh_is_the_rectangle_and_the_default_keyword_changes_nothing():
-    from flexfem.geometry.flexure_linkage import mesh_layout
+    from flexfem.geometry.flexure_drawing import mesh_layout
     sharp = EightBarFlexureParams(root_fillet_radius=0.0)
     layout = eightbar_layout(sharp)
     m0, s0 = mesh_layout(layout, n_across=3, aspect=8.0, coarse=5e-3)

@@ -116,7 +116,8 @@ def _guided_flexure(radius, n_across):
     10 um without rotating (guided): (max nodal, max element von Mises (Pa), shear force (N))."""
     from flexfem.fem import material
     from flexfem.fem.model import Model, PlaneStress
-    from flexfem.geometry.flexure_linkage import FlexureLayout, Part, mesh_layout
+    from flexfem.geometry.flexure_drawing import mesh_layout
+    from flexfem.geometry.flexure_linkage import FlexureLayout, Part
     w, L, W = 0.3e-3, 6e-3, 2e-3
     parts = (Part("anchor_J", "ground", "anchor", (-L / 2 - W, 0.0), (-L / 2, 0.0), W),
              Part("flexure_J", "block", "flexure", (-L / 2, 0.0), (L / 2, 0.0), w),
