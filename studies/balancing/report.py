@@ -21,7 +21,7 @@ from .design import (  # noqa: E402
     sensitivity_rows,
 )
 from .gravity import Workspace, load_robot, workspace_torques  # noqa: E402
-from .negative_pivot import negative_pivot_study  # noqa: E402
+from .negative_pivot_study import negative_pivot_study  # noqa: E402
 from .pivot_fem import pivot_fem_study  # noqa: E402
 
 

@@ -1,4 +1,4 @@
-"""Negative-stiffness compressed-leaf pivots (studies.balancing_negative_pivot).
+"""Negative-stiffness compressed-leaf pivots (studies.balancing.negative_pivot[_study]).
 
 Leaf for the FEM checks: L = 100 mm, t = 1.25 mm (L / t = 80), w = 50 mm, spring steel, P2
 triangles, 2 elements through the leaf, rigid clamp and rigid hub (RigidFace), plane stress
@@ -15,12 +15,11 @@ from flexfem.studies.balancing.negative_pivot import (
     compressed_leaf_elastica,
     compressed_leaf_stress,
     kL_for_stiffness_factor,
-    negative_pivot_fem_check,
-    negative_pivot_study,
     preload_for_stiffness,
     size_negative_pivot,
     stiffness_factor,
 )
+from flexfem.studies.balancing.negative_pivot_study import negative_pivot_fem_check, negative_pivot_study
 from flexfem.studies.balancing.pivots import flexure_material
 
 STEEL = flexure_material("spring_steel_aisi1095")
