@@ -2,6 +2,7 @@
 comparisons with the thesis (Chapters 5-8), and the MEMS scaling with its design-rule check."""
 from pathlib import Path
 
+from matplotlib.tri import Triangulation
 import numpy as np
 
 from ...data import load_toml
@@ -19,6 +20,10 @@ from ...geometry.eightbar.flexure import (
 )
 from ...geometry.eightbar.rigid import trace_eightbar
 from ..engine.tables import write_rows
+from ..report.comparison import Comparison, rows as comparison_rows
+from ..report.figures import axis_label, entry, legend_outside, pyplot, save
+from ..report.format import figure_entries
+
 from .analysis import analyze_eightbar, stress_convergence, summary_row
 from .driving import driving_study
 
@@ -101,17 +106,9 @@ def _write_csv(path: Path, rows: list) -> str:
     return write_rows(path, rows).name
 
 
-def _rel(value, published):
-    return (value - published) / published if published else None
-
-
-def plot_fields(out: dict, path: Path) -> str:
+def plot_fields(out: dict, path: Path) -> dict:
     """Deformed shape at the end of the stroke (nonlinear) and linear von Mises at half travel."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    from matplotlib.tri import Triangulation
-
+    plt = pyplot()
     lin = out["linear_result"]
     mesh = lin.model.mesh.mesh
     fig, axes = plt.subplots(1, 2, figsize=(13, 5.5))
@@ -137,20 +134,17 @@ def plot_fields(out: dict, path: Path) -> str:
                       f"{loc['flexure']}", fontsize=10)
     for ax in axes:
         ax.set_aspect("equal")
-        ax.set_xlabel("x (mm)")
-        ax.set_ylabel("y (mm)")
+        ax.set_xlabel(axis_label("x", "mm"))
+        ax.set_ylabel(axis_label("y", "mm"))
     fig.tight_layout()
-    fig.savefig(path, dpi=130)
-    plt.close(fig)
-    return path.name
+    return save(fig, path, "The eight-bar flexure suspension: displacement magnitude on the "
+                "deformed shape at the end of the half stroke (left) and the linear von Mises "
+                "stress at half the travel with its maximum marked (right).")
 
 
-def plot_path(out: dict, rigid_rows, path: Path) -> str:
+def plot_path(out: dict, rigid_rows, path: Path) -> dict:
     """Path across the line (um) against the stroke (mm): FEM vs rigid body."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
+    plt = pyplot()
     rows = out["path"]
     x = np.array([r["x_m"] for r in rows])
     y = np.array([r["y_m"] for r in rows])
@@ -160,43 +154,74 @@ def plot_path(out: dict, rigid_rows, path: Path) -> str:
     ax.plot(rigid_rows[:, 0] * 1e3, (rigid_rows[:, 1] - rigid_rows[len(rigid_rows) // 2, 1]) * 1e6,
             "-", label=f"rigid body (band {out['rigid_band_m'] * 1e6:.2f} um, "
             f"{out['rigid_deviation_pct']:.2g} %)")
-    ax.set_xlabel("end-effector x (mm)")
-    ax.set_ylabel("y - y(0) (um)")
+    ax.set_xlabel(axis_label("end-effector x", "mm"))
+    ax.set_ylabel(axis_label("y - y(0)", "um"))
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=8)
-    ax.set_title("eight-bar flexure suspension: path over the travel", fontsize=10)
+    legend_outside(ax)
     fig.tight_layout()
-    fig.savefig(path, dpi=130)
-    plt.close(fig)
-    return path.name
+    return save(fig, path, "Path of the end effector across its line over the travel: the "
+                "flexure suspension by nonlinear FEM beside the rigid-body linkage.")
 
 
-def plot_force(out: dict, path: Path) -> str:
+def plot_force(out: dict, path: Path) -> dict:
     """Force-displacement and peak von Mises along the travel against yield."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
+    plt = pyplot()
     rows = out["path"]
     x = np.array([r["x_m"] for r in rows]) * 1e3
     fig, (a, b) = plt.subplots(1, 2, figsize=(11, 4.2))
     a.plot(x, [r["force_x_n"] for r in rows], "o-", label="FEM (nonlinear)")
     a.plot(x, out["k_x"] * x / 1e3, "--", label=f"linear k_x = {out['k_x']:.3g} N/m")
     a.plot(x, out["k_x_prbm"] * x / 1e3, ":", label=f"PRBM {out['k_x_prbm']:.3g} N/m")
-    a.set_xlabel("x (mm)")
-    a.set_ylabel("drive force F_x (N)")
+    a.set_xlabel(axis_label("x", "mm"))
+    a.set_ylabel(axis_label("drive force F_x", "N"))
     a.legend(fontsize=8)
     a.grid(alpha=0.3)
     b.plot(x, [r["peak_von_mises_pa"] / 1e6 for r in rows], "o-", label="peak von Mises (element)")
-    b.axhline(out["yield_strength"] / 1e6, color="r", label="yield (6061-T6)")
-    b.set_xlabel("x (mm)")
-    b.set_ylabel("MPa")
+    b.axhline(out["yield_strength"] / 1e6, color="r", label="yield strength")
+    b.set_xlabel(axis_label("x", "mm"))
+    b.set_ylabel(axis_label("von Mises stress", "MPa"))
     b.legend(fontsize=8)
     b.grid(alpha=0.3)
     fig.tight_layout()
-    fig.savefig(path, dpi=130)
-    plt.close(fig)
-    return path.name
+    return save(fig, path, "Drive force against stroke (nonlinear FEM beside the linear and "
+                "pseudo-rigid-body stiffness) and the peak von Mises stress along the stroke "
+                "against the yield strength.")
+
+
+def comparisons(out: dict, mems: dict) -> list[Comparison]:
+    """The flexure suspension beside the thesis' design targets (SI units)."""
+    targets = load_toml("eightbar_thesis.toml")["design_targets"]
+    C = Comparison
+    return [
+        C("travel traced by the flexure FEM", out["fem_travel_m"], targets["travel_mm"] * 1e-3,
+          "m", "Ch. 5", "input", note="the end-effector face is driven over the thesis' stroke"),
+        C("flexure FEM path deviation (% of travel)", out["fem_deviation_pct"],
+          targets["max_deviation_pct"], "-", "Ch. 5 design bound", limit="upper",
+          note=f"max distance from the best-fit line; band {out['fem_band_m'] * 1e6:.1f} um. The "
+               "thesis gives 0.1 % for its rigid-body path and calls the flexure motion 'very "
+               "close' to it", headline=True),
+        C("rigid-body path deviation (% of travel)", out["rigid_deviation_pct"],
+          targets["max_deviation_pct"], "-", "Ch. 5 design bound", limit="upper",
+          note="flexfem's linkage (Ch. 5 rigid design), same measure"),
+        C("micro version: stress-limited travel, flexures widened to 3 um",
+          mems["widened"]["stress_limited_travel_m"], mems["published_travel_m"], "m", "Ch. 8",
+          limit="lower", note="silicon <110>, 1 GPa design strength, pseudo-rigid-body bending "
+          "stress; the plain 1e-3 scaling breaks the 3 um minimum beam width", headline=True),
+    ]
+
+
+def paragraph(out: dict, params: EightBarFlexureParams) -> str:
+    """What the flexure FEM did and what it means, with the run's own numbers."""
+    loc = out["max_stress_location"]
+    return (f"The eight-bar's pivots are replaced by beam flexures (root fillets r = "
+            f"{params.root_fillet_radius * 1e3:.2g} mm) and the suspension is solved by FEM: "
+            f"linear stiffness k_x = {out['k_x']:.3g} N/m along the motion and "
+            f"k_y = {out['k_y']:.3g} N/m across it, and a large-deflection trace over the "
+            f"thesis' stroke, whose path stays within {out['fem_deviation_pct']:.2g} % of the "
+            f"travel of a straight line. The largest linear von Mises stress at half the travel, "
+            f"{out['max_von_mises'] / 1e6:.0f} MPa, is in flexure {loc['flexure']}, not beside "
+            "the base link as the thesis expects: the A flexures lie across the cranks, whose "
+            "axial force shears them (see eightbar_fem_prbm.csv).")
 
 
 def reproduce(out_dir, quick: bool = False, full: bool = False) -> dict:
@@ -224,38 +249,10 @@ def reproduce(out_dir, quick: bool = False, full: bool = False) -> dict:
     violations = mems["scaled"]["violations"] + mems["widened"]["violations"]
     if violations:
         tables.append(_write_csv(out_dir / "eightbar_mems_violations.csv", violations))
-    targets = load_toml("eightbar_thesis.toml")["design_targets"]
-    loc = out["max_stress_location"]
-    rows = [
-        {"quantity": "travel traced (m)", "flexfem": out["fem_travel_m"],
-         "published": targets["travel_mm"] * 1e-3,
-         "rel_diff": _rel(out["fem_travel_m"], targets["travel_mm"] * 1e-3),
-         "note": "nonlinear FEM, end-effector face driven in x over the thesis' stroke"},
-        {"quantity": "flexure FEM path deviation (% of travel)", "flexfem": out["fem_deviation_pct"],
-         "published": targets["max_deviation_pct"],
-         "rel_diff": _rel(out["fem_deviation_pct"], targets["max_deviation_pct"]),
-         "note": f"max distance from the TLS line; band {out['fem_band_m'] * 1e6:.1f} um. The "
-                 "thesis gives 0.1 % for its rigid-body path and calls the flexure motion 'very "
-                 "close' to it"},
-        {"quantity": "rigid-body path deviation (% of travel)", "flexfem": out["rigid_deviation_pct"],
-         "published": targets["max_deviation_pct"],
-         "rel_diff": _rel(out["rigid_deviation_pct"], targets["max_deviation_pct"]),
-         "note": "our linkage (Ch. 5 rigid design), same measure"},
-        {"quantity": "location of the maximum stress", "flexfem": loc["flexure"],
-         "published": "the two flexures beside the base link", "rel_diff": None,
-         "note": f"root fillets r = {params.root_fillet_radius * 1e3:.2g} mm; linear, nodal "
-                 f"(L2-projected) von Mises {out['max_von_mises'] / 1e6:.0f} MPa at half travel "
-                 f"at the fillet's tangent point; the peak along the nonlinear trace is in "
-                 f"{out['peak_von_mises_flexure']}. Not beside the base: the A flexures lie across "
-                 "the cranks, whose axial force shears them (see eightbar_fem_prbm.csv)"},
-        {"quantity": "micro version: stress-limited travel, flexures widened to 3 um (m)",
-         "flexfem": mems["widened"]["stress_limited_travel_m"],
-         "published": mems["published_travel_m"],
-         "rel_diff": _rel(mems["widened"]["stress_limited_travel_m"], mems["published_travel_m"]),
-         "note": "silicon <110>, 1 GPa design strength, pseudo-rigid-body bending stress; the "
-                 "plain 1e-3 scaling breaks the 3 um minimum beam width"},
-    ]
-    summary = {"comparisons": rows, "figures": figures, "tables": tables + ["eightbar_linear.vtu"],
+    rows = comparison_rows(comparisons(out, mems))
+    figures.append(entry("eightbar_linear.vtu", "the linear solve's fields, for ParaView"))
+    summary = {"paragraph": paragraph(out, params), "comparisons": rows, "figures": figures,
+               "tables": tables,
                "analysis": summary_row(out), "mems": {k: (v if k == "published_travel_m" else
                                                           {kk: vv for kk, vv in v.items() if kk != "violations"})
                                                       for k, v in mems.items()},
@@ -272,5 +269,6 @@ def reproduce(out_dir, quick: bool = False, full: bool = False) -> dict:
     summary["notes"] = [convergence_note(convergence)] + driving.get("notes", [])
     summary["stress_convergence"] = convergence
     summary["tables"] += [f"driving/{t}" for t in driving["tables"]]
-    summary["figures"] += [f"driving/{f}" for f in driving["figures"]]
+    summary["figures"] += [{**f, "file": f"driving/{f['file']}"}
+                           for f in figure_entries(driving["figures"])]
     return summary

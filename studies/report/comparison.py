@@ -35,6 +35,8 @@ class Comparison:
     tolerance : the largest difference judged as agreement: relative (a fraction) for most
         units, absolute in ``unit`` for degrees and percentages; None: not judged
     headline : True for the few rows that summarise a source document
+    limit : "upper" or "lower" when the reference is a bound the value must respect (a design
+        requirement, not a value to match); the verdict is then 'within limit' or 'beyond limit'
     """
 
     quantity: str
@@ -46,8 +48,12 @@ class Comparison:
     tolerance: float | None = None
     note: str = ""
     headline: bool = False
+    limit: str = ""
 
     def __post_init__(self):
+        if self.limit not in ("", "upper", "lower"):
+            raise ValueError(f"Comparison({self.quantity!r}).limit = {self.limit!r}; "
+                             "'', 'upper' or 'lower'")
         if self.kind not in KINDS:
             raise ValueError(f"Comparison({self.quantity!r}).kind = {self.kind!r}; one of {KINDS}")
         if self.tolerance is not None and not self.tolerance >= 0:
@@ -70,9 +76,13 @@ class Comparison:
 
     @property
     def verdict(self) -> str:
-        """'agrees', 'differs', 'calibrated', 'input' or 'not judged'."""
+        """'agrees', 'differs', 'within limit', 'beyond limit', 'calibrated', 'input' or
+        'not judged'."""
         if self.kind in ("calibrated", "input"):
             return self.kind
+        if self.limit:
+            below = self.value <= self.reference
+            return "within limit" if below == (self.limit == "upper") else "beyond limit"
         if self.tolerance is None or not math.isfinite(self.difference):
             return "not judged"
         return "agrees" if abs(self.difference) <= self.tolerance else "differs"

@@ -3,15 +3,28 @@ import math
 from pathlib import Path
 
 SIGNIFICANT = 4
+# SI values are printed in the unit a designer reads them in: (largest |value|, factor, unit)
+DISPLAY_UNITS = {"m": ((1e-3, 1e-6, "um"), (0.1, 1e-3, "mm")),
+                 "Pa": ((1e6, 1.0, "Pa"), (1e9, 1e6, "MPa"), (math.inf, 1e9, "GPa"))}
+
+
+def display(value: float, unit: str) -> tuple[float, str]:
+    """(value, unit) rescaled for reading: 2.7e-5 m -> (27, 'um'), 2.1e8 Pa -> (210, 'MPa')."""
+    for bound, factor, shown in DISPLAY_UNITS.get(unit, ()):
+        if abs(value) < bound:
+            return value / factor, shown
+    return value, unit
 
 
 def number(value, unit: str = "") -> str:
-    """A value to 4 significant digits (no exponent between 1e-3 and 1e6), with its unit;
-    '-' for None, NaN or infinity; other types as text."""
+    """A value to 4 significant digits (no exponent between 1e-3 and 1e6), with its unit
+    (lengths and stresses rescaled, see ``display``); '-' for None, NaN or infinity; other
+    types as text."""
     if isinstance(value, bool) or not isinstance(value, (int, float)):
         return "-" if value is None else str(value)
     if not math.isfinite(value):
         return "-"
+    value, unit = display(value, unit) if value != 0 else (value, unit)
     if isinstance(value, int) or float(value).is_integer() and abs(value) < 1e6:
         text = f"{int(value)}"
     elif value != 0 and not 1e-3 <= abs(value) < 1e6:
@@ -38,11 +51,15 @@ def difference_text(row: dict) -> str:
     if _absolute(row):
         unit = "pp" if row.get("unit") == "%" else row.get("unit", "")
         return f"{d:+.3g} {unit}"
+    if row.get("limit"):
+        return f"{100 * d:+.1f} %"
     return f"{100 * d:+.2g} %" if abs(d) < 0.01 else f"{100 * d:+.1f} %"
 
 
 def tolerance_text(row: dict) -> str:
     """'±5 %' (relative) or '±1 deg' (absolute) or '-' when not judged."""
+    if row.get("limit"):
+        return {"upper": "at most", "lower": "at least"}[row["limit"]]
     t = row.get("tolerance")
     if not isinstance(t, (int, float)):
         return "-"

@@ -19,6 +19,8 @@ from ..engine.serialize import jsonable
 from .format import (difference_text, figure_entries, is_image, number, reference_of,
                      tolerance_text)
 
+VERDICT_CLASSES = {"agrees": "agrees", "within limit": "agrees", "differs": "differs",
+                   "beyond limit": "differs", "calibrated": "calibrated"}
 HEADLINE_COLUMNS = ["quantity", "flexfem", "reference", "source", "difference", "tolerance",
                     "verdict"]
 
@@ -117,8 +119,8 @@ def _html_table(header, rows, cls="") -> str:
 def _verdict_table(rows, cls="comparisons") -> str:
     cells = [comparison_cells(r) for r in rows]
     table = _html_table(HEADLINE_COLUMNS, cells, cls)
-    for verdict in ("agrees", "differs", "calibrated"):
-        table = table.replace(f"<td>{verdict}</td>", f"<td class='{verdict}'>{verdict}</td>")
+    for verdict, cls in VERDICT_CLASSES.items():
+        table = table.replace(f"<td>{verdict}</td>", f"<td class='{cls}'>{verdict}</td>")
     return table
 
 
