@@ -113,10 +113,11 @@ def _check_parameters(parameters: dict, geometry: Path, constants: dict, loc: Lo
                         f"{geometry.name} has none", "parameters")
     for name in parameters:
         if name not in constants:
-            how = "override" if name in overridden else "[parameters]"
-            raise loc.error(f"{how} {name!r} is not a DefineConstant of {geometry.name}; its "
-                            f"constants: {', '.join(sorted(constants)) or 'none'}",
-                            "parameters", name)
+            message = (f"{name!r} is not a DefineConstant of {geometry.name}; its "
+                       f"constants: {', '.join(sorted(constants)) or 'none'}")
+            if name in overridden:
+                raise ValueError(f"{loc.path}: override {message}")
+            raise loc.error(f"[parameters] {message}", "parameters", name)
 
 
 def _check_groups(spec_parts: dict, groups: dict, geometry: Path, dim: int, loc: Locator):
@@ -174,12 +175,8 @@ def load_spec(path, overrides: dict | None = None) -> ModelSpec:
     if not parts["supports"]:
         raise loc.error("at least one [[supports]] is needed (group = \"NAME\")", None)
     parameters = _parameters(raw.get("parameters", {}), loc, overridden)
-    names_only = {}
-    if geometry.suffix.lower() in GEO_SUFFIXES:
-        from .geometry import define_constant_names
-        names_only = dict.fromkeys(define_constant_names(geometry))
-    _check_parameters(parameters, geometry, names_only, loc, overridden)
     info = inspect_geometry(geometry, parameters, parts["selects"])
+    _check_parameters(parameters, geometry, info.constants, loc, overridden)
     _check_groups(parts, info.groups, geometry, dim, loc)
     description = raw.get("description", "")
     return ModelSpec(path=path, geometry=geometry, dim=dim, parameters=parameters,
