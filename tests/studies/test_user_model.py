@@ -276,3 +276,17 @@ def test_under_supported_model_names_the_file(tmp_path):
     (tmp_path / "guide.toml").write_text(text)
     with pytest.raises(ValueError, match=r"guide.toml: the supports leave .* rigid-body modes"):
         analyze_model(load_spec(tmp_path / "guide.toml"))
+
+
+def test_doc_python_blocks_run(monkeypatch, capsys):
+    """Every Python block of docs/model_files.md runs (from the repository root)."""
+    import re
+
+    doc = EXAMPLES.parent / "docs" / "model_files.md"
+    blocks = re.findall(r"```python\n(.*?)```", doc.read_text(), re.S)
+    assert len(blocks) >= 3
+    monkeypatch.chdir(EXAMPLES.parent)
+    for i, code in enumerate(blocks):
+        exec(compile(code, f"{doc}:python block {i}", "exec"), {})
+    out = capsys.readouterr().out
+    assert "True" in out and "N/m, beam theory" in out and "L = 0.05 m" in out
