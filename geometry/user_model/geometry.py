@@ -185,6 +185,10 @@ def mesh_geometry(spec, size_factor: float = 1.0) -> FEMesh:
             gmsh.option.setNumber("Mesh.MeshSizeMax", spec.mesh.size)
         if spec.mesh.refine:
             _refine(gmsh, spec.mesh.refine, coarse)
+        off_plane = max(abs(zmin), abs(zmax))  # OpenCASCADE pads boxes by 1e-7 m
+        if spec.dim == 2 and off_plane > 1e-6 * (1 + max(xmax - xmin, ymax - ymin)):
+            raise ValueError(f"{spec.geometry}: a 2-D model must lie in the plane z = 0; it "
+                             f"spans z = {zmin:.4g} to {zmax:.4g} m")
         if gmsh.model.getDimension() != spec.dim:
             raise ValueError(f"{spec.source}: dim = {spec.dim} but {spec.geometry} is "
                              f"{gmsh.model.getDimension()}-D")

@@ -151,9 +151,9 @@ def load_spec(path, overrides: dict | None = None) -> ModelSpec:
     if unknown:
         name = unknown[0]
         is_table = isinstance(raw[name], (dict, list))
-        raise loc.error(f"unknown {'table' if is_table else 'key'} {name!r}"
-                        f"{' (and ' + ', '.join(map(repr, unknown[1:])) + ')' if unknown[1:] else ''}"
-                        f"; allowed: {', '.join(TOP_KEYS)}",
+        more = f" (and {', '.join(map(repr, unknown[1:]))})" if unknown[1:] else ""
+        raise loc.error(f"unknown {'table' if is_table else 'key'} {name!r}{more}; "
+                        f"allowed: {', '.join(TOP_KEYS)}",
                         name if is_table else None, None if is_table else name)
     geometry = _geometry_path(raw, loc)
     dim = _dim(raw, loc)
@@ -172,6 +172,10 @@ def load_spec(path, overrides: dict | None = None) -> ModelSpec:
     if parts["selects"] and geometry.suffix.lower() not in CAD_SUFFIXES:
         raise loc.error("[[select]] rules are for CAD files (.step/.stp/.brep); "
                         f"{geometry.name} names its own groups", "select")
+    if geometry.suffix.lower() not in GEO_SUFFIXES + CAD_SUFFIXES and (
+            parts["mesh"].size or parts["mesh"].refine):
+        raise loc.error(f"[mesh] size and refine need a geometry to mesh; {geometry.name} is a "
+                        "finished mesh (only order applies)", "mesh")
     if not parts["supports"]:
         raise loc.error("at least one [[supports]] is needed (group = \"NAME\")", None)
     parameters = _parameters(raw.get("parameters", {}), loc, overridden)

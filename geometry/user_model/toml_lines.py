@@ -23,6 +23,8 @@ def find_line(text: str, table: str | None = None, key: str | None = None,
               index: int = 0) -> int | None:
     """1-based line of ``key`` in ``table`` (None: the top level; for an array of tables, its
     ``index``-th entry), or of the table header when ``key`` is None; None if not found."""
+    if table is None and key is None:
+        return None
     lines = text.splitlines()
     headers = _headers(lines)
     if table is None:

@@ -92,14 +92,17 @@ def test_mesh_size_and_refinement(tmp_path):
 @pytest.mark.parametrize("edit, expected", [
     # (old text -> new text), fragments of the message
     (('group = "stage"', 'group = "stagee"'),
-     ["line 18:", "[[loads]] group 'stagee' is not a group of guide.geo; groups: body, fixed, stage"]),
+     ["line 18:",
+      "[[loads]] group 'stagee' is not a group of guide.geo; groups: body, fixed, stage"]),
     (("L = 0.04", "Lx = 0.04"),
      ["line 5:", "'Lx' is not a DefineConstant of guide.geo", "L, d, hb, hs, lc_block"]),
     (("dim = 2", "dim = 2\ncolour = 1"), ["line 3:", "unknown key 'colour'"]),
-    (('thickness = 0.01', 'thickness = 0.01\nwidth = 2'), ["line 13:", "[section]: unknown key 'width'"]),
+    (('thickness = 0.01', 'thickness = 0.01\nwidth = 2'),
+     ["line 13:", "[section]: unknown key 'width'"]),
     (('[[loads]]', '[extra]\na = 1\n[[loads]]'), ["line 17:", "unknown table 'extra'"]),
     (('name = "structural_steel"', 'name = "spring_steel"'),
-     ["line 8:", "'spring_steel' is not in the library", "structural_steel", "missing: E, nu, rho"]),
+     ["line 8:", "'spring_steel' is not in the library", "structural_steel",
+      "missing: E, nu, rho"]),
     (('name = "structural_steel"', 'name = "structural_steel"\nnu = 0.7'), ["line 7:", "nu = 0.7"]),
     (('force = [1.0, 0.0]', 'pressure = 1e5'), ["line 19:", "pressure is not available yet"]),
     (('force = [1.0, 0.0]', 'force = [1.0, 0.0, 0.0]'), ["line 19:", "list of 2 numbers"]),
@@ -111,6 +114,11 @@ def test_mesh_size_and_refinement(tmp_path):
     (("dim = 2", "dim = 2\n[[select]]\ngroup = 'a'\ndim = 1\nwhere = 'x < 0'"),
      ["line 3:", "[[select]] rules are for CAD files"]),
     (("L = 0.04", "L = 0.04 0.05"), ["not valid TOML", "line 5"]),
+    (('[[supports]]', '[mesh]\norder = 3\n[[supports]]'), ["line 15:", "order = 3 must be 1 or 2"]),
+    (('force = [1.0, 0.0]', 'force = [1.0, 0.0]\n[analysis]\nmodes = 0'),
+     ["line 21:", "modes = 0 must be an integer >= 1"]),
+    (('[[supports]]\ngroup = "fixed"\n', ''), ["at least one [[supports]]"]),
+    (('[material]\nname = "structural_steel"\n', ''), ["[material] is required"]),
 ])
 def test_bad_model_files_name_file_and_line(tmp_path, edit, expected):
     old, new = edit
@@ -155,6 +163,7 @@ def test_find_line():
     assert find_line(text, "t") == 2 and find_line(text, "t", "k") == 3
     assert find_line(text, "arr", "k", 0) == 5 and find_line(text, "arr", "k", 1) == 7
     assert find_line(text, "arr", "k", 2) is None and find_line(text, "t", "zz") is None
+    assert find_line(text) is None
 
 
 @pytest.mark.parametrize("rule, value", [

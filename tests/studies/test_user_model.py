@@ -55,8 +55,8 @@ def test_guide_lateral_stiffness_against_beam_theory():
 def test_guide_error_is_the_root_effect_of_order_t_over_L():
     """Doubling L/t halves k_FEM / k_beam - 1 (an O(t/L) end effect, not a modelling error),
     and the linear extrapolation to t/L -> 0 recovers beam theory within 1 %."""
-    r40 = evaluate({"L": 0.04}, model=str(GUIDE))["stiffness_stage_x"] / guide_stiffness(0.04, 0.001)
-    r80 = evaluate({"L": 0.08}, model=str(GUIDE))["stiffness_stage_x"] / guide_stiffness(0.08, 0.001)
+    r40, r80 = (evaluate({"L": L}, model=str(GUIDE))["stiffness_stage_x"]
+                / guide_stiffness(L, 0.001) for L in (0.04, 0.08))
     assert 0.4 < (1 - r80) / (1 - r40) < 0.6, (r40, r80)  # measured 0.52
     assert 2 * r80 - r40 == pytest.approx(1.0, abs=0.01)  # measured 0.9975
 
@@ -97,7 +97,8 @@ def test_cross_pivot_against_beam_theory():
     L, t, arm = (spec.constants[k] for k in ("L", "t", "arm"))
     r60 = pivot_stiffness(evaluate(model=str(PIVOT)), arm) / joined_cross_stiffness(L, t)
     assert abs(r60 - 1) < 3 * t / L, r60  # measured 1.030
-    r120 = pivot_stiffness(evaluate({"t": t / 2}, model=str(PIVOT)), arm) / joined_cross_stiffness(L, t / 2)
+    thinner = evaluate({"t": t / 2}, model=str(PIVOT))
+    r120 = pivot_stiffness(thinner, arm) / joined_cross_stiffness(L, t / 2)
     assert 0.4 < (r120 - 1) / (r60 - 1) < 0.7, (r60, r120)  # measured 0.56
     assert 2 * r120 - r60 == pytest.approx(1.0, abs=0.01)  # measured 1.003
 
@@ -115,8 +116,9 @@ def test_3d_cross_spring_pivot_against_wittrick():
     assert metrics["h"] < 2 * t and metrics["dofs"] > 5000
 
 
-def write_guide_step(path, L=0.04, t=0.001, d=0.02, hb=0.005, hs=0.008, m=0.005, dim=2):
-    """The default guide.geo outline as a STEP file (OpenCASCADE, written in mm)."""
+def write_guide_step(path, L=0.04, t=0.001, d=0.02, hb=0.005, hs=0.008, m=0.005, z=0.0):
+    """The default guide.geo outline, in the plane at height z (m), as a STEP file
+    (OpenCASCADE, written in mm)."""
     import gmsh
 
     gmsh.initialize(readConfigFiles=False)
@@ -124,9 +126,9 @@ def write_guide_step(path, L=0.04, t=0.001, d=0.02, hb=0.005, hs=0.008, m=0.005,
         gmsh.option.setNumber("General.Terminal", 0)
         gmsh.option.setString("Geometry.OCCTargetUnit", "M")
         occ, e = gmsh.model.occ, d / 2 + t / 2 + m
-        base = occ.addRectangle(-e, -hb, 0, 2 * e, hb)
-        stage = occ.addRectangle(-e, L, 0, 2 * e, hs)
-        leaves = [occ.addRectangle(x - t / 2, 0, 0, t, L) for x in (-d / 2, d / 2)]
+        base = occ.addRectangle(-e, -hb, z, 2 * e, hb)
+        stage = occ.addRectangle(-e, L, z, 2 * e, hs)
+        leaves = [occ.addRectangle(x - t / 2, 0, z, t, L) for x in (-d / 2, d / 2)]
         occ.fuse([(2, base)], [(2, stage)] + [(2, s) for s in leaves])
         occ.synchronize()
         gmsh.write(str(path))
@@ -183,6 +185,13 @@ def test_step_guide_matches_geo_guide(tmp_path):
         load_spec(tmp_path / "guide.toml")
 
 
+def test_2d_step_off_the_plane_is_refused(tmp_path):
+    write_guide_step(tmp_path / "guide.step", z=0.01)
+    (tmp_path / "guide.toml").write_text(STEP_MODEL)
+    with pytest.raises(ValueError, match=r"guide.step: a 2-D model must lie in the plane z = 0"):
+        analyze_model(load_spec(tmp_path / "guide.toml"))
+
+
 def test_step_example_3d():
     """The committed 3-D STEP guide (L/t = 20, w = 3 t): within the root-compliance bound
     (softer by at most 1 - (1 + t/L)^-3 = 13.6 %); plate action (w/t = 3) stiffens by at most
@@ -213,6 +222,10 @@ def test_msh_gives_the_geo_result(tmp_path):
         from_geo["stiffness"]["stage"]["x"], rel=1e-9)
     with pytest.raises(ValueError, match="guide.msh: a .msh mesh cannot be remeshed"):
         evaluate(model=str(tmp_path / "guide.toml"), size_factor=0.5)
+    (tmp_path / "guide.toml").write_text(text.replace("order = 2", "order = 2\nsize = 0.001"))
+    with pytest.raises(ValueError, match=r"guide.toml line 16: \[mesh\] size and refine need a "
+                                         r"geometry to mesh; guide.msh is a finished mesh"):
+        load_spec(tmp_path / "guide.toml")
 
 
 def parser():
