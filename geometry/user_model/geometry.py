@@ -22,11 +22,12 @@ _ENTITY_WORDS = {0: "point", 1: "curve", 2: "surface", 3: "volume"}
 
 @dataclass(frozen=True)
 class GeometryInfo:
-    """What a geometry file offers: groups {name: dimension} and, for a .geo, its
-    DefineConstant names with their default values (SI)."""
+    """What a geometry file offers: groups {name: dimension}, for a .geo its DefineConstant
+    names with their values (SI), and its dimension (highest entity dimension)."""
 
     groups: dict
     constants: dict
+    dim: int = 0
 
 
 def _split_top(text: str) -> list[str]:
@@ -126,14 +127,15 @@ def inspect_geometry(path: Path, parameters: dict | None = None, selects=()) -> 
             _load_geo(gmsh, path, {k: v for k, v in (parameters or {}).items() if k in names})
             constants = {n: float(gmsh.parser.getNumber(n)[0]) for n in names
                          if len(gmsh.parser.getNumber(n)) == 1}
-            return GeometryInfo(_physical_groups(gmsh), constants)
+            return GeometryInfo(_physical_groups(gmsh), constants, gmsh.model.getDimension())
         if suffix in CAD_SUFFIXES:
-            return GeometryInfo(_load_cad(gmsh, path, selects), {})
+            groups = _load_cad(gmsh, path, selects)
+            return GeometryInfo(groups, {}, gmsh.model.getDimension())
         try:
             gmsh.open(str(path))
         except Exception as error:
             raise _gmsh_error(path, error) from None
-        return GeometryInfo(_physical_groups(gmsh), {})
+        return GeometryInfo(_physical_groups(gmsh), {}, gmsh.model.getDimension())
 
 
 def _refine(gmsh, refinements, coarse: float) -> None:

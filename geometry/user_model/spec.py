@@ -127,8 +127,10 @@ def _check_groups(spec_parts: dict, groups: dict, geometry: Path, dim: int, loc:
     entries += [("loads", i, load.group) for i, load in enumerate(spec_parts["loads"])]
     for table, i, group in entries:
         if groups.get(group) not in (dim - 1, dim):
+            hint = (" (name groups with [[select]] rules)"
+                    if geometry.suffix.lower() in CAD_SUFFIXES else "")
             raise loc.error(f"[[{table}]] group {group!r} is not a group of {geometry.name}; "
-                            f"groups: {listed or 'none'}", table, "group", i)
+                            f"groups: {listed or 'none'}{hint}", table, "group", i)
         if table == "loads" and groups[group] != dim - 1:
             raise loc.error(f"[[loads]] group {group!r} is a {dim}-D subdomain of "
                             f"{geometry.name}; a force or traction needs a boundary group "
@@ -181,6 +183,9 @@ def load_spec(path, overrides: dict | None = None) -> ModelSpec:
     parameters = _parameters(raw.get("parameters", {}), loc, overridden)
     info = inspect_geometry(geometry, parameters, parts["selects"])
     _check_parameters(parameters, geometry, info.constants, loc, overridden)
+    if info.dim != dim:
+        raise loc.error(f"dim = {dim} but {geometry.name} is {info.dim}-D", None,
+                        "dim" if "dim" in raw else None)
     _check_groups(parts, info.groups, geometry, dim, loc)
     description = raw.get("description", "")
     return ModelSpec(path=path, geometry=geometry, dim=dim, parameters=parameters,

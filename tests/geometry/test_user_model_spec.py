@@ -143,6 +143,18 @@ def test_unknown_override_lists_constants(tmp_path):
         load_spec(write_model(tmp_path), {"supports.x": 0.0})
 
 
+def test_geometry_kind_mismatches(tmp_path):
+    step = EXAMPLES / "step_guide" / "guide_step.toml"
+    with pytest.raises(ValueError, match=r"guide_step.toml: \[parameters\] are DefineConstant "
+                                         r"overrides of a .geo file; guide.step has none"):
+        load_spec(step, {"L": 0.03})
+    shutil.copy(EXAMPLES / "cross_pivot" / "pivot3d.geo", tmp_path / "pivot3d.geo")
+    path = write_model(tmp_path, MODEL.replace('"guide.geo"', '"pivot3d.geo"')
+                       .replace("L = 0.04", "L = 0.03"))
+    with pytest.raises(ValueError, match=r"guide.toml line 2: dim = 2 but pivot3d.geo is 3-D"):
+        load_spec(path)
+
+
 def test_unreadable_geometry_names_the_file(tmp_path):
     path = write_model(tmp_path)
     (tmp_path / "guide.geo").write_text("Point(1) = {0, 0, 0;\n")
