@@ -1,0 +1,208 @@
+"""Geometry files of a model file -> FEMesh with named groups.
+
+``.geo``: gmsh's own script; its ``DefineConstant[]`` values are overridden from
+``[parameters]`` (``gmsh.parser.setNumber`` before ``gmsh.merge``: the override wins over the
+default, with or without a ONELAB ``Name``) and its Physical groups name the groups.
+``.step``/``.stp``/``.brep``: imported by OpenCASCADE (STEP converted to metres), groups made
+by the model file's ``[[select]]`` rules. ``.msh``: a finished mesh with Physical groups.
+"""
+from dataclasses import dataclass
+from pathlib import Path
+import re
+
+from ...fem import FEMesh, gmsh_session, mesh_from_gmsh, read_mesh
+from .selection import compile_rule, entity_values
+
+GEO_SUFFIXES = (".geo",)
+CAD_SUFFIXES = (".step", ".stp", ".brep")
+MESH_SUFFIXES = (".msh",)
+SUFFIXES = GEO_SUFFIXES + CAD_SUFFIXES + MESH_SUFFIXES
+_ENTITY_WORDS = {0: "point", 1: "curve", 2: "surface", 3: "volume"}
+
+
+@dataclass(frozen=True)
+class GeometryInfo:
+    """What a geometry file offers: groups {name: dimension}, for a .geo its DefineConstant
+    names with their values (SI), and its dimension (highest entity dimension)."""
+
+    groups: dict
+    constants: dict
+    dim: int = 0
+
+
+def _split_top(text: str) -> list[str]:
+    """Split at commas outside brackets and strings."""
+    parts, depth, quote, start = [], 0, False, 0
+    for i, c in enumerate(text):
+        if c == '"':
+            quote = not quote
+        elif not quote and c in "[{(":
+            depth += 1
+        elif not quote and c in "]})":
+            depth -= 1
+        elif not quote and depth == 0 and c == ",":
+            parts.append(text[start:i])
+            start = i + 1
+    parts.append(text[start:])
+    return parts
+
+
+def define_constant_names(path: Path) -> list[str]:
+    """Names declared in the ``DefineConstant[...]`` blocks of a .geo file (main file only)."""
+    text = re.sub(r"//[^\n]*|/\*.*?\*/", "", path.read_text(errors="replace"), flags=re.S)
+    names = []
+    for m in re.finditer(r"DefineConstant\s*\[", text):
+        depth, i = 1, m.end()
+        while i < len(text) and depth:
+            depth += {"[": 1, "]": -1}.get(text[i], 0)
+            i += 1
+        for item in _split_top(text[m.end():i - 1]):
+            name = re.match(r"\s*([A-Za-z_]\w*)\s*=", item)
+            if name:
+                names.append(name.group(1))
+    return names
+
+
+def _gmsh_error(path: Path, error: Exception) -> ValueError:
+    return ValueError(f"{path}: gmsh cannot read this geometry file: {error}")
+
+
+def _load_geo(gmsh, path: Path, parameters: dict) -> None:
+    for name, value in parameters.items():
+        gmsh.parser.setNumber(name, [float(value)])
+    try:
+        gmsh.merge(str(path))
+    except Exception as error:  # gmsh raises plain Exception with its message
+        raise _gmsh_error(path, error) from None
+
+
+def _load_cad(gmsh, path: Path, selects) -> dict:
+    """Import a STEP/BREP file and make a physical group per distinct select ``group``;
+    returns {group: dim}. A rule that matches nothing raises ValueError."""
+    gmsh.option.setString("Geometry.OCCTargetUnit", "M")
+    try:
+        gmsh.model.occ.importShapes(str(path))
+        gmsh.model.occ.synchronize()
+    except Exception as error:
+        raise _gmsh_error(path, error) from None
+    if not gmsh.model.getEntities():
+        raise ValueError(f"{path}: the file holds no shapes")
+    chosen = {}
+    for rule in selects:
+        predicate = compile_rule(rule.where)
+        tags = [tag for _, tag in gmsh.model.getEntities(rule.dim)
+                if predicate(entity_values(gmsh, rule.dim, tag))]
+        if not tags:
+            raise ValueError(f"{rule.source}: [[select]] group {rule.group!r} (where "
+                             f"{rule.where!r}) matches no {_ENTITY_WORDS[rule.dim]} of {path}")
+        dims = chosen.setdefault(rule.group, (rule.dim, []))
+        if dims[0] != rule.dim:
+            raise ValueError(f"{rule.source}: [[select]] group {rule.group!r} mixes dimensions "
+                             f"{dims[0]} and {rule.dim}")
+        dims[1].extend(tags)
+    top = max(d for d, _ in gmsh.model.getEntities())
+    chosen.setdefault("body", (top, [tag for _, tag in gmsh.model.getEntities(top)]))
+    for name, (dim, tags) in chosen.items():
+        gmsh.model.addPhysicalGroup(dim, sorted(set(tags)), name=name)
+    return {name: dim for name, (dim, _) in chosen.items()}
+
+
+def _physical_groups(gmsh) -> dict:
+    return {gmsh.model.getPhysicalName(d, t) or f"group{t}": d
+            for d, t in gmsh.model.getPhysicalGroups()}
+
+
+def inspect_geometry(path: Path, parameters: dict | None = None, selects=()) -> GeometryInfo:
+    """Read ``path`` (no meshing) and list its groups and DefineConstant values."""
+    path = Path(path)
+    if path.suffix.lower() not in SUFFIXES:
+        raise ValueError(f"{path}: unknown geometry file type {path.suffix!r}; use one of "
+                         f"{', '.join(SUFFIXES)}")
+    if not path.is_file():
+        raise ValueError(f"{path}: the geometry file does not exist")
+    suffix = path.suffix.lower()
+    with gmsh_session("inspect") as gmsh:
+        if suffix in GEO_SUFFIXES:
+            names = define_constant_names(path)
+            _load_geo(gmsh, path, {k: v for k, v in (parameters or {}).items() if k in names})
+            constants = {n: float(gmsh.parser.getNumber(n)[0]) for n in names
+                         if len(gmsh.parser.getNumber(n)) == 1}
+            return GeometryInfo(_physical_groups(gmsh), constants, gmsh.model.getDimension())
+        if suffix in CAD_SUFFIXES:
+            groups = _load_cad(gmsh, path, selects)
+            return GeometryInfo(groups, {}, gmsh.model.getDimension())
+        try:
+            gmsh.open(str(path))
+        except Exception as error:
+            raise _gmsh_error(path, error) from None
+        return GeometryInfo(_physical_groups(gmsh), {}, gmsh.model.getDimension())
+
+
+def _refine(gmsh, refinements, coarse: float) -> None:
+    """Background field: element size ``size`` within ``distance`` of each group, growing
+    linearly to ``coarse`` over another ``distance``."""
+    groups = {gmsh.model.getPhysicalName(d, t): (d, t) for d, t in gmsh.model.getPhysicalGroups()}
+    thresholds = []
+    for r in refinements:
+        dim, tag = groups[r.group]
+        entities = [int(e) for e in gmsh.model.getEntitiesForPhysicalGroup(dim, tag)]
+        distance = gmsh.model.mesh.field.add("Distance")
+        key = {0: "PointsList", 1: "CurvesList", 2: "SurfacesList", 3: "VolumesList"}[dim]
+        gmsh.model.mesh.field.setNumbers(distance, key, entities)
+        gmsh.model.mesh.field.setNumber(distance, "Sampling", 50)
+        threshold = gmsh.model.mesh.field.add("Threshold")
+        gmsh.model.mesh.field.setNumber(threshold, "InField", distance)
+        gmsh.model.mesh.field.setNumber(threshold, "SizeMin", r.size)
+        gmsh.model.mesh.field.setNumber(threshold, "SizeMax", max(coarse, r.size))
+        gmsh.model.mesh.field.setNumber(threshold, "DistMin", r.distance)
+        gmsh.model.mesh.field.setNumber(threshold, "DistMax", 2 * r.distance)
+        thresholds.append(threshold)
+    field = gmsh.model.mesh.field.add("Min")
+    gmsh.model.mesh.field.setNumbers(field, "FieldsList", thresholds)
+    gmsh.model.mesh.field.setAsBackgroundMesh(field)
+
+
+def mesh_geometry(spec, size_factor: float = 1.0) -> FEMesh:
+    """Mesh the model file's geometry (m) with its named groups. ``size_factor`` multiplies
+    every element size (a .msh cannot be remeshed: only 1 is accepted)."""
+    if not size_factor > 0:
+        raise ValueError(f"size_factor = {size_factor!r} must be > 0")
+    suffix = spec.geometry.suffix.lower()
+    if suffix in MESH_SUFFIXES:
+        if size_factor != 1.0:
+            raise ValueError(f"{spec.geometry}: a .msh mesh cannot be remeshed with size_factor "
+                             f"= {size_factor}; give a .geo or CAD file")
+        return _check_dim(read_mesh(spec.geometry), spec)
+    with gmsh_session("model") as gmsh:
+        if suffix in GEO_SUFFIXES:
+            _load_geo(gmsh, spec.geometry, spec.parameters)
+        else:
+            _load_cad(gmsh, spec.geometry, spec.selects)
+        gmsh.option.setNumber("Mesh.ElementOrder", 1)
+        gmsh.option.setNumber("Mesh.MeshSizeFactor", size_factor)
+        xmin, ymin, zmin, xmax, ymax, zmax = gmsh.model.getBoundingBox(-1, -1)
+        coarse = spec.mesh.size or 0.1 * ((xmax - xmin) ** 2 + (ymax - ymin) ** 2
+                                          + (zmax - zmin) ** 2) ** 0.5
+        if spec.mesh.size:
+            gmsh.option.setNumber("Mesh.MeshSizeMax", spec.mesh.size)
+        if spec.mesh.refine:
+            _refine(gmsh, spec.mesh.refine, coarse)
+        off_plane = max(abs(zmin), abs(zmax))  # OpenCASCADE pads boxes by 1e-7 m
+        if spec.dim == 2 and off_plane > 1e-6 * (1 + max(xmax - xmin, ymax - ymin)):
+            raise ValueError(f"{spec.geometry}: a 2-D model must lie in the plane z = 0; it "
+                             f"spans z = {zmin:.4g} to {zmax:.4g} m")
+        if gmsh.model.getDimension() != spec.dim:
+            raise ValueError(f"{spec.source}: dim = {spec.dim} but {spec.geometry} is "
+                             f"{gmsh.model.getDimension()}-D")
+        try:
+            gmsh.model.mesh.generate(spec.dim)
+        except Exception as error:
+            raise ValueError(f"{spec.geometry}: gmsh could not mesh it: {error}") from None
+        return _check_dim(mesh_from_gmsh(gmsh), spec)
+
+
+def _check_dim(mesh: FEMesh, spec) -> FEMesh:
+    if mesh.dim != spec.dim:
+        raise ValueError(f"{spec.source}: dim = {spec.dim} but the mesh of {spec.geometry} is "
+                         f"{mesh.dim}-D")
+    return mesh

@@ -1,0 +1,193 @@
+"""A model file (TOML) -> :class:`ModelSpec`: a user's flexure given by a geometry file and
+what to do with it. Every error is a ValueError naming the model file and, where the key can
+be found, its line."""
+from dataclasses import dataclass, field
+from pathlib import Path
+import tomllib
+
+from ...fem.materials import Material
+from .geometry import CAD_SUFFIXES, GEO_SUFFIXES, SUFFIXES, inspect_geometry
+from .tables import (Analysis, Locator, MeshOptions, Section, is_number, parse_analysis,
+                     parse_loads, parse_material, parse_mesh, parse_section, parse_selects,
+                     parse_supports)
+
+TOP_KEYS = ("geometry", "dim", "description", "parameters", "material", "section", "mesh",
+            "supports", "loads", "select", "analysis")
+OVERRIDE_TABLES = ("material", "section", "mesh", "analysis")
+
+
+@dataclass(frozen=True)
+class ModelSpec:
+    """A validated model file. path: the model file; geometry: the geometry file (absolute,
+    resolved from the model file's folder); parameters: {DefineConstant name: value (SI)}
+    overriding the .geo; groups: {group name: dimension} offered by the geometry;
+    constants: the .geo's DefineConstant values after the overrides."""
+
+    path: Path
+    geometry: Path
+    dim: int
+    material: Material
+    section: Section
+    parameters: dict = field(default_factory=dict)
+    mesh: MeshOptions = MeshOptions()
+    supports: tuple = ()
+    loads: tuple = ()
+    selects: tuple = ()
+    analysis: Analysis = Analysis()
+    groups: dict = field(default_factory=dict)
+    constants: dict = field(default_factory=dict)
+    description: str = ""
+
+    @property
+    def source(self) -> str:
+        """The model file's path, for messages."""
+        return str(self.path)
+
+    @property
+    def thickness(self) -> float:
+        """Out-of-plane thickness (m) of a 2-D section; 1 for a solid."""
+        return self.section.thickness
+
+
+def _read(path: Path) -> tuple[str, dict]:
+    if not path.is_file():
+        raise ValueError(f"{path}: the model file does not exist")
+    text = path.read_text()
+    try:
+        return text, tomllib.loads(text)
+    except tomllib.TOMLDecodeError as error:
+        raise ValueError(f"{path}: not valid TOML: {error}") from None
+
+
+def _apply_overrides(raw: dict, overrides: dict | None, path: Path) -> dict:
+    """NAME=value goes to [parameters]; TABLE.KEY=value (material, section, mesh, analysis)
+    to that table."""
+    raw = {k: (dict(v) if isinstance(v, dict) else v) for k, v in raw.items()}
+    for name, value in (overrides or {}).items():
+        table, dot, key = str(name).rpartition(".")
+        if dot and table not in OVERRIDE_TABLES:
+            raise ValueError(f"{path}: override {name!r}: only [parameters] names and "
+                             f"{', '.join(t + '.KEY' for t in OVERRIDE_TABLES)} can be set")
+        raw.setdefault(table or "parameters", {})[key] = value
+    return raw
+
+
+def _parameters(raw, loc: Locator, overridden: set) -> dict:
+    if not isinstance(raw, dict):
+        raise loc.error(f"[parameters] must be a table of numbers, not {raw!r}", "parameters")
+    for name, value in raw.items():
+        if not is_number(value):
+            how = " (set by an override)" if name in overridden else ""
+            raise loc.error(f"[parameters] {name} = {value!r}{how} must be a number (SI)",
+                            "parameters", name)
+    return {k: float(v) for k, v in raw.items()}
+
+
+def _geometry_path(raw, loc: Locator) -> Path:
+    value = raw.get("geometry")
+    if not isinstance(value, str) or not value:
+        raise loc.error('geometry = "FILE" (a .geo, .step/.stp/.brep or .msh file, relative to '
+                        "the model file) is required", None, "geometry")
+    path = (loc.path.parent / value).resolve()
+    if path.suffix.lower() not in SUFFIXES:
+        raise loc.error(f"geometry = {value!r}: unknown file type; use one of "
+                        f"{', '.join(SUFFIXES)}", None, "geometry")
+    if not path.is_file():
+        raise loc.error(f"geometry = {value!r}: {path} does not exist", None, "geometry")
+    return path
+
+
+def _dim(raw, loc: Locator) -> int:
+    section = raw.get("section")
+    default = 3 if isinstance(section, dict) and section.get("kind") == "solid" else 2
+    dim = raw.get("dim", default)
+    if dim not in (2, 3) or isinstance(dim, bool):
+        raise loc.error(f"dim = {dim!r} must be 2 or 3", None, "dim")
+    return int(dim)
+
+
+def _check_parameters(parameters: dict, geometry: Path, constants: dict, loc: Locator,
+                      overridden: set) -> None:
+    if parameters and geometry.suffix.lower() not in GEO_SUFFIXES:
+        raise loc.error(f"[parameters] are DefineConstant overrides of a .geo file; "
+                        f"{geometry.name} has none", "parameters")
+    for name in parameters:
+        if name not in constants:
+            message = (f"{name!r} is not a DefineConstant of {geometry.name}; its "
+                       f"constants: {', '.join(sorted(constants)) or 'none'}")
+            if name in overridden:
+                raise ValueError(f"{loc.path}: override {message}")
+            raise loc.error(f"[parameters] {message}", "parameters", name)
+
+
+def _check_groups(spec_parts: dict, groups: dict, geometry: Path, dim: int, loc: Locator):
+    """Every support, load and refinement names a group of the geometry; loads a boundary."""
+    listed = ", ".join(sorted(n for n, d in groups.items() if d in (dim - 1, dim)))
+    entries = [("supports", i, s.group) for i, s in enumerate(spec_parts["supports"])]
+    entries += [("loads", i, load.group) for i, load in enumerate(spec_parts["loads"])]
+    for table, i, group in entries:
+        if groups.get(group) not in (dim - 1, dim):
+            hint = (" (name groups with [[select]] rules)"
+                    if geometry.suffix.lower() in CAD_SUFFIXES else "")
+            raise loc.error(f"[[{table}]] group {group!r} is not a group of {geometry.name}; "
+                            f"groups: {listed or 'none'}{hint}", table, "group", i)
+        if table == "loads" and groups[group] != dim - 1:
+            raise loc.error(f"[[loads]] group {group!r} is a {dim}-D subdomain of "
+                            f"{geometry.name}; a force or traction needs a boundary group "
+                            f"(dimension {dim - 1})", table, "group", i)
+    for r in spec_parts["mesh"].refine:
+        if r.group not in groups:
+            raise loc.error(f"[mesh] refine group {r.group!r} is not a group of "
+                            f"{geometry.name}; groups: {listed or 'none'}", "mesh", "refine")
+
+
+def load_spec(path, overrides: dict | None = None) -> ModelSpec:
+    """Read and validate the model file ``path``; ``overrides`` {NAME: value} replace
+    [parameters] entries (or 'material.E'-style keys) before validation."""
+    path = Path(path)
+    text, raw = _read(path)
+    loc = Locator(path, text)
+    overridden = set((overrides or {}).keys())
+    raw = _apply_overrides(raw, overrides, path)
+    unknown = sorted(set(raw) - set(TOP_KEYS))
+    if unknown:
+        name = unknown[0]
+        is_table = isinstance(raw[name], (dict, list))
+        more = f" (and {', '.join(map(repr, unknown[1:]))})" if unknown[1:] else ""
+        raise loc.error(f"unknown {'table' if is_table else 'key'} {name!r}{more}; "
+                        f"allowed: {', '.join(TOP_KEYS)}",
+                        name if is_table else None, None if is_table else name)
+    geometry = _geometry_path(raw, loc)
+    dim = _dim(raw, loc)
+    for table in ("material", "section"):
+        if table not in raw:
+            raise loc.error(f"[{table}] is required", None)
+    parts = {
+        "material": parse_material(raw["material"], loc),
+        "section": parse_section(raw["section"], dim, loc),
+        "mesh": parse_mesh(raw.get("mesh", {}), loc),
+        "supports": parse_supports(raw.get("supports", []), dim, loc),
+        "loads": parse_loads(raw.get("loads", []), dim, loc),
+        "selects": parse_selects(raw.get("select", []), loc),
+        "analysis": parse_analysis(raw.get("analysis", {}), loc),
+    }
+    if parts["selects"] and geometry.suffix.lower() not in CAD_SUFFIXES:
+        raise loc.error("[[select]] rules are for CAD files (.step/.stp/.brep); "
+                        f"{geometry.name} names its own groups", "select")
+    if geometry.suffix.lower() not in GEO_SUFFIXES + CAD_SUFFIXES and (
+            parts["mesh"].size or parts["mesh"].refine):
+        raise loc.error(f"[mesh] size and refine need a geometry to mesh; {geometry.name} is a "
+                        "finished mesh (only order applies)", "mesh")
+    if not parts["supports"]:
+        raise loc.error("at least one [[supports]] is needed (group = \"NAME\")", None)
+    parameters = _parameters(raw.get("parameters", {}), loc, overridden)
+    info = inspect_geometry(geometry, parameters, parts["selects"])
+    _check_parameters(parameters, geometry, info.constants, loc, overridden)
+    if info.dim != dim:
+        raise loc.error(f"dim = {dim} but {geometry.name} is {info.dim}-D", None,
+                        "dim" if "dim" in raw else None)
+    _check_groups(parts, info.groups, geometry, dim, loc)
+    description = raw.get("description", "")
+    return ModelSpec(path=path, geometry=geometry, dim=dim, parameters=parameters,
+                     groups=info.groups, constants=info.constants,
+                     description=str(description), **parts)

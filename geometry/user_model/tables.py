@@ -1,0 +1,286 @@
+"""Validation of the tables of a model file, one function per table. Each takes the raw
+TOML value and a :class:`Locator` (to name the file and line in errors) and returns frozen
+dataclasses with SI values."""
+from dataclasses import dataclass
+import math
+import numbers
+from pathlib import Path
+
+from ...fem.materials import Material, material, material_names
+from .toml_lines import find_line
+
+SECTION_KINDS = ("plane_stress", "plane_strain", "solid")
+LOAD_KINDS = ("force", "traction", "pressure")
+SOLVERS = ("auto", "direct", "amg")
+
+
+@dataclass(frozen=True)
+class Locator:
+    """The model file (its path and text): ``at(table, key, index)`` -> 'file line N: '."""
+
+    path: Path
+    text: str
+
+    def at(self, table=None, key=None, index: int = 0) -> str:
+        line = find_line(self.text, table, key, index)
+        if line is None and key is not None and table is not None:
+            line = find_line(self.text, table, None, index)
+        return f"{self.path} line {line}" if line else f"{self.path}"
+
+    def error(self, message: str, table=None, key=None, index: int = 0) -> ValueError:
+        return ValueError(f"{self.at(table, key, index)}: {message}")
+
+
+@dataclass(frozen=True)
+class Section:
+    """kind: plane_stress | plane_strain | solid; thickness: out-of-plane thickness (m), 1
+    for plane strain by default and for solids."""
+
+    kind: str
+    thickness: float = 1.0
+
+
+@dataclass(frozen=True)
+class Refinement:
+    """Element ``size`` (m) within ``distance`` (m) of group ``group``."""
+
+    group: str
+    size: float
+    distance: float
+    source: str = ""
+
+
+@dataclass(frozen=True)
+class MeshOptions:
+    """order: 1 or 2 (element order, applied by Model); size: largest element size (m) or None
+    for the geometry file's sizes; refine: Refinement tuple."""
+
+    order: int = 2
+    size: float | None = None
+    refine: tuple = ()
+
+
+@dataclass(frozen=True)
+class Support:
+    """group held: all components at 0 (components None) or {axis index: value (m)}."""
+
+    group: str
+    components: dict | None
+    source: str = ""
+
+
+@dataclass(frozen=True)
+class Load:
+    """kind 'force' (total force on the group, N) or 'traction' (Pa): vector per axis."""
+
+    group: str
+    kind: str
+    vector: tuple
+    source: str = ""
+
+
+@dataclass(frozen=True)
+class SelectRule:
+    """Physical group ``group`` made of the CAD entities of dimension ``dim`` where the
+    condition ``where`` holds (see selection.py)."""
+
+    group: str
+    dim: int
+    where: str
+    source: str = ""
+
+
+@dataclass(frozen=True)
+class Analysis:
+    """modes: number of natural frequencies (None: none); steps: load steps of a nonlinear
+    (large-deflection) solve (None: linear only); solver: 'auto', 'direct' or 'amg'."""
+
+    modes: int | None = None
+    steps: int | None = None
+    solver: str = "auto"
+
+
+def is_number(value) -> bool:
+    return isinstance(value, numbers.Real) and not isinstance(value, bool) and math.isfinite(value)
+
+
+def check_keys(raw, allowed, loc: Locator, table, index: int = 0, what=None) -> dict:
+    """Refuse a non-table and unknown keys by name."""
+    what = what or f"[{table}]"
+    if not isinstance(raw, dict):
+        raise loc.error(f"{what} must be a table, not {raw!r}", table, None, index)
+    unknown = sorted(set(raw) - set(allowed))
+    if unknown:
+        raise loc.error(f"{what}: unknown key{'s' if len(unknown) > 1 else ''} "
+                        f"{', '.join(map(repr, unknown))}; allowed: {', '.join(allowed)}",
+                        table, unknown[0], index)
+    return raw
+
+
+def positive(raw: dict, key: str, loc: Locator, table, index: int = 0, what=None):
+    value = raw[key]
+    if not (is_number(value) and value > 0):
+        raise loc.error(f"{what or f'[{table}]'} {key} = {value!r} must be a number > 0 (SI)",
+                        table, key, index)
+    return float(value)
+
+
+def parse_material(raw, loc: Locator) -> Material:
+    """A library material by ``name`` (keys given override it) or E, nu, rho
+    (yield_strength optional), Pa and kg/m^3."""
+    keys = ("name", "E", "nu", "rho", "yield_strength")
+    raw = dict(check_keys(raw, keys, loc, "material"))
+    name = raw.pop("name", None)
+    if name is not None and not isinstance(name, str):
+        raise loc.error(f"[material] name = {name!r} must be a string", "material", "name")
+    for key, value in raw.items():
+        if not is_number(value):
+            raise loc.error(f"[material] {key} = {value!r} must be a number (SI)", "material", key)
+    if name in material_names():
+        base = material(name).as_dict()
+        values = {**{k: base[k] for k in keys[1:]}, **raw}
+        source = material(name).source
+    else:
+        missing = [k for k in ("E", "nu", "rho") if k not in raw]
+        if missing:
+            known = ", ".join(material_names())
+            msg = (f"[material] name = {name!r} is not in the library ({known}); give E, nu and "
+                   f"rho (missing: {', '.join(missing)})" if name is not None else
+                   f"[material] needs a library name ({known}) or E, nu and rho (missing: "
+                   f"{', '.join(missing)})")
+            raise loc.error(msg, "material", "name" if name is not None else None)
+        values, source = raw, f"model file {loc.path}"
+    try:
+        return Material(name=name or "user", source=source, **values)
+    except ValueError as error:
+        raise loc.error(f"[material]: {error}", "material") from None
+
+
+def parse_section(raw, dim: int, loc: Locator) -> Section:
+    raw = check_keys(raw, ("kind", "thickness"), loc, "section")
+    kind = raw.get("kind")
+    if kind not in SECTION_KINDS:
+        raise loc.error(f"[section] kind = {kind!r}; choose one of {', '.join(SECTION_KINDS)}",
+                        "section", "kind")
+    if (kind == "solid") != (dim == 3):
+        raise loc.error(f"[section] kind = {kind!r} does not fit dim = {dim} (2-D: plane_stress "
+                        "or plane_strain; 3-D: solid)", "section", "kind")
+    if kind == "solid":
+        if "thickness" in raw:
+            raise loc.error("[section] thickness is for 2-D sections; a solid has none",
+                            "section", "thickness")
+        return Section(kind)
+    if "thickness" not in raw:
+        if kind == "plane_stress":
+            raise loc.error("[section] plane_stress needs thickness (m, out of plane)", "section")
+        return Section(kind)
+    return Section(kind, positive(raw, "thickness", loc, "section"))
+
+
+def parse_mesh(raw, loc: Locator) -> MeshOptions:
+    raw = check_keys(raw, ("order", "size", "refine"), loc, "mesh")
+    order = raw.get("order", 2)
+    if order not in (1, 2) or isinstance(order, bool):
+        raise loc.error(f"[mesh] order = {order!r} must be 1 or 2", "mesh", "order")
+    size = positive(raw, "size", loc, "mesh") if "size" in raw else None
+    refine = raw.get("refine", [])
+    if not isinstance(refine, list):
+        raise loc.error("[mesh] refine must be a list of {group, size, distance} tables",
+                        "mesh", "refine")
+    rules = []
+    for r in refine:
+        what = "[mesh] refine entry"
+        check_keys(r, ("group", "size", "distance"), loc, "mesh", what=what)
+        if not isinstance(r.get("group"), str) or "size" not in r or "distance" not in r:
+            raise loc.error(f"{what} {r!r} needs group, size and distance (m)", "mesh", "refine")
+        rules.append(Refinement(r["group"], positive(r, "size", loc, "mesh", what=what),
+                                positive(r, "distance", loc, "mesh", what=what),
+                                loc.at("mesh", "refine")))
+    return MeshOptions(int(order), size, tuple(rules))
+
+
+def _entries(raw, name: str, loc: Locator) -> list:
+    if not isinstance(raw, list) or not all(isinstance(e, dict) for e in raw):
+        raise loc.error(f"{name} must be an array of tables: [[{name}]] ...", None, name)
+    return raw
+
+
+def _group(entry: dict, table: str, loc: Locator, i: int) -> str:
+    group = entry.get("group")
+    if not isinstance(group, str) or not group:
+        raise loc.error(f"[[{table}]] needs group = \"NAME\" (a Physical group)", table, "group", i)
+    return group
+
+
+def parse_supports(raw, dim: int, loc: Locator) -> tuple:
+    axes = ("x", "y", "z")[:dim]
+    out = []
+    for i, entry in enumerate(_entries(raw, "supports", loc)):
+        check_keys(entry, ("group", *axes), loc, "supports", i, "[[supports]]")
+        group = _group(entry, "supports", loc, i)
+        components = {}
+        for k, axis in enumerate(axes):
+            if axis in entry:
+                if not is_number(entry[axis]):
+                    raise loc.error(f"[[supports]] {axis} = {entry[axis]!r} must be a number "
+                                    "(prescribed displacement, m)", "supports", axis, i)
+                components[k] = float(entry[axis])
+        out.append(Support(group, components or None, loc.at("supports", "group", i)))
+    return tuple(out)
+
+
+def parse_loads(raw, dim: int, loc: Locator) -> tuple:
+    out = []
+    for i, entry in enumerate(_entries(raw, "loads", loc)):
+        check_keys(entry, ("group", *LOAD_KINDS), loc, "loads", i, "[[loads]]")
+        group = _group(entry, "loads", loc, i)
+        kinds = [k for k in LOAD_KINDS if k in entry]
+        if len(kinds) != 1:
+            raise loc.error(f"[[loads]] on {group!r} needs exactly one of force (N, total), "
+                            "traction (Pa)", "loads", "group", i)
+        kind, value = kinds[0], entry[kinds[0]]
+        if kind == "pressure":
+            raise loc.error("[[loads]] pressure is not available yet (flexfem.fem has no "
+                            "pressure load); give traction = [...] (Pa) on a flat face",
+                            "loads", "pressure", i)
+        if not (isinstance(value, list) and len(value) == dim and all(map(is_number, value))):
+            raise loc.error(f"[[loads]] {kind} = {value!r} must be a list of {dim} numbers "
+                            f"({'N' if kind == 'force' else 'Pa'})", "loads", kind, i)
+        out.append(Load(group, kind, tuple(float(v) for v in value), loc.at("loads", kind, i)))
+    return tuple(out)
+
+
+def parse_selects(raw, loc: Locator) -> tuple:
+    from .selection import compile_rule
+
+    out = []
+    for i, entry in enumerate(_entries(raw, "select", loc)):
+        check_keys(entry, ("group", "dim", "where"), loc, "select", i, "[[select]]")
+        group = _group(entry, "select", loc, i)
+        dim = entry.get("dim")
+        if dim not in (0, 1, 2, 3) or isinstance(dim, bool):
+            raise loc.error(f"[[select]] dim = {dim!r} must be 0, 1, 2 or 3 (point, curve, "
+                            "surface, volume)", "select", "dim", i)
+        try:
+            compile_rule(entry.get("where"))
+        except ValueError as error:
+            raise loc.error(f"[[select]] where: {error}", "select", "where", i) from None
+        out.append(SelectRule(group, int(dim), entry["where"], loc.at("select", "where", i)))
+    return tuple(out)
+
+
+def parse_analysis(raw, loc: Locator) -> Analysis:
+    raw = check_keys(raw, ("modes", "steps", "solver"), loc, "analysis")
+    values = {}
+    for key in ("modes", "steps"):
+        if key in raw:
+            v = raw[key]
+            if not (isinstance(v, int) and not isinstance(v, bool) and v >= 1):
+                raise loc.error(f"[analysis] {key} = {v!r} must be an integer >= 1",
+                                "analysis", key)
+            values[key] = v
+    solver = raw.get("solver", "auto")
+    if solver not in SOLVERS:
+        raise loc.error(f"[analysis] solver = {solver!r}; choose one of {', '.join(SOLVERS)}",
+                        "analysis", "solver")
+    return Analysis(values.get("modes"), values.get("steps"), solver)

@@ -1,0 +1,155 @@
+"""Analysis of a user's model file: static solve (and natural frequencies, and a
+large-deflection solve where asked), as a JSON-able dict and as flat metrics for sweeps."""
+import re
+
+import numpy as np
+
+from ...fem import (Fixed, Force, Model, PlaneStrain, PlaneStress, Prescribed, Solid3D,
+                    Traction, solve_modes, solve_nonlinear, solve_static)
+from ...geometry.user_model import ModelSpec, load_spec, mesh_geometry
+
+_AXES = ("x", "y", "z")
+
+
+def formulation(spec: ModelSpec):
+    """PlaneStress / PlaneStrain / Solid3D of the model file's [section]."""
+    if spec.section.kind == "plane_stress":
+        return PlaneStress(spec.section.thickness)
+    if spec.section.kind == "plane_strain":
+        return PlaneStrain(spec.section.thickness)
+    return Solid3D()
+
+
+def supports_and_loads(spec: ModelSpec) -> tuple[list, list]:
+    """The fem supports (Fixed, Prescribed) and loads (Force, Traction) of the model file."""
+    supports = [Fixed(s.group) if s.components is None else
+                Prescribed(s.group, **{_AXES[i]: v for i, v in s.components.items()})
+                for s in spec.supports]
+    loads = [Force(load.group, load.vector) if load.kind == "force" else
+             Traction(load.group, load.vector) for load in spec.loads]
+    return supports, loads
+
+
+def element_size(model: Model) -> float:
+    """Characteristic element size h (m): the mean edge length of the mesh."""
+    mesh = model.mesh.mesh
+    edges = mesh.facets if model.dim == 2 else mesh.edges
+    return float(np.mean(np.linalg.norm(mesh.p[:, edges[0]] - mesh.p[:, edges[1]], axis=0)))
+
+
+def build_model(spec: ModelSpec, size_factor: float = 1.0) -> Model:
+    """Mesh the geometry and make the Model (m, Pa)."""
+    mesh = mesh_geometry(spec, size_factor)
+    return Model(mesh, spec.material, formulation(spec), order=spec.mesh.order)
+
+
+def _groups(spec: ModelSpec) -> list[str]:
+    names = [s.group for s in spec.supports] + [load.group for load in spec.loads]
+    return list(dict.fromkeys(names))
+
+
+def stiffness(spec: ModelSpec, mean_displacement: dict) -> dict:
+    """{group: {axis: N/m}} where exactly one force load is applied: force / mean displacement
+    of its group along the force (axis 'x'/'y'/'z' for an axis-aligned force, else 'along')."""
+    forces = [load for load in spec.loads if load.kind == "force"]
+    if len(forces) != 1 or len(spec.loads) != 1:
+        return {}
+    load = forces[0]
+    f = np.array(load.vector)
+    nonzero = np.flatnonzero(f)
+    if len(nonzero) == 0:
+        return {}
+    u = np.asarray(mean_displacement[load.group])
+    direction = f / np.linalg.norm(f)
+    along = float(u @ direction)
+    axis = _AXES[nonzero[0]] if len(nonzero) == 1 else "along"
+    return {load.group: {axis: float(np.linalg.norm(f) / along) if along else float("inf")}}
+
+
+def _in_context(spec: ModelSpec, error: ValueError) -> ValueError:
+    """fem errors prefixed by the model file (their own type kept)."""
+    return type(error)(f"{spec.source}: {error}")
+
+
+def analyze_model(spec: ModelSpec, size_factor: float = 1.0) -> dict:
+    """Solve the model file's problem. Returns (SI): dofs, solver, h (m), max_von_mises (Pa),
+    max_von_mises_location (m), mean_displacement {group: vector (m)} of every support and
+    load group, reactions {group: vector (N)} of every support, stiffness {group: {axis:
+    N/m}} (single force load), frequencies_hz (when [analysis] modes), nonlinear (when
+    [analysis] steps)."""
+    supports, loads = supports_and_loads(spec)
+    try:
+        model = build_model(spec, size_factor)
+        result = solve_static(model, supports, loads, solver=spec.analysis.solver)
+    except ValueError as error:
+        raise _in_context(spec, error) from None
+    groups = _groups(spec)
+    mean = {g: result.mean_displacement(g).tolist() for g in groups}
+    out = {
+        "model": spec.source, "geometry": str(spec.geometry), "parameters": dict(spec.constants),
+        "dim": spec.dim, "dofs": int(model.n_dofs), "solver": result.solver,
+        "h": element_size(model), "max_von_mises": result.max_von_mises,
+        "max_von_mises_location": result.max_von_mises_location.tolist(),
+        "mean_displacement": mean,
+        "reactions": {g: np.asarray(r).tolist() for g, r in result.reactions.items()},
+        "stiffness": stiffness(spec, mean),
+        "yield_strength": spec.material.yield_strength,
+    }
+    if spec.analysis.modes:
+        try:
+            modes = solve_modes(model, spec.analysis.modes, supports)
+        except ValueError as error:
+            raise _in_context(spec, error) from None
+        out["frequencies_hz"] = modes.frequencies_hz.tolist()
+    if spec.analysis.steps:
+        out["nonlinear"] = _nonlinear(spec, model, supports, loads, groups)
+    return out
+
+
+def _nonlinear(spec, model, supports, loads, groups) -> dict:
+    """Large-deflection solve at full load: mean displacements (m), reactions (N), von Mises
+    (Pa)."""
+    try:
+        large = solve_nonlinear(model, supports, loads, steps=spec.analysis.steps)
+    except ValueError as error:
+        raise _in_context(spec, error) from None
+    return {"steps": len(large.load_factors) - 1,
+            "mean_displacement": {g: large.mean_displacement(g).tolist() for g in groups},
+            "reactions": {g: np.asarray(r).tolist() for g, r in large.reactions[-1].items()},
+            "max_von_mises": large.max_von_mises}
+
+
+def _key(name: str) -> str:
+    return re.sub(r"\W", "_", name)
+
+
+def flat_metrics(result: dict) -> dict[str, float]:
+    """The analyze_model dict as flat float metrics (see :func:`evaluate`)."""
+    out = {"dofs": float(result["dofs"]), "h": result["h"],
+           "max_von_mises": result["max_von_mises"]}
+    for what, table in (("mean_displacement", result["mean_displacement"]),
+                        ("reaction", result["reactions"])):
+        for group, vector in table.items():
+            for axis, value in zip(_AXES, vector):
+                out[f"{what}_{_key(group)}_{axis}"] = float(value)
+    for group, by_axis in result["stiffness"].items():
+        for axis, value in by_axis.items():
+            out[f"stiffness_{_key(group)}_{axis}"] = value
+    for k, f in enumerate(result.get("frequencies_hz", []), start=1):
+        out[f"f{k}_hz"] = float(f)
+    return out
+
+
+def evaluate(params: dict | None = None, *, model: str, size_factor: float = 1.0,
+             **options) -> dict[str, float]:
+    """Metrics of the model file ``model`` with ``params`` overriding its [parameters]
+    (SI) and ``options`` its other tables ('material.E': 210e9, 'analysis.modes': 3, ...).
+    Keys: dofs, h (m), max_von_mises (Pa), mean_displacement_<group>_<axis> (m),
+    reaction_<group>_<axis> (N), stiffness_<group>_<axis> (N/m, single force load),
+    f1_hz, f2_hz, ... (Hz)."""
+    unknown = [k for k in options if "." not in k]
+    if unknown:
+        raise ValueError(f"evaluate: unknown option(s) {unknown}; give parameters in params and "
+                         "other model-file keys as 'table.key' (e.g. 'material.E')")
+    spec = load_spec(model, {**(params or {}), **options})
+    return flat_metrics(analyze_model(spec, size_factor))

@@ -1,0 +1,69 @@
+"""``flexfem analyze MODEL.toml [--set NAME=VALUE ...] [--json]``: a user's flexure from its
+model file (see docs/model_files.md)."""
+from ...geometry.user_model import load_spec
+from .analysis import analyze_model
+
+_AXES = ("x", "y", "z")
+
+
+def parse_sets(items) -> dict:
+    """['L=0.05', 'material.E=2e11'] -> {'L': 0.05, 'material.E': 2e11} (values as numbers;
+    a value that is not a number stays a string, e.g. material.name=aluminium_6061_t6)."""
+    out = {}
+    for item in items or []:
+        name, sep, value = item.partition("=")
+        if not sep or not name.strip():
+            raise ValueError(f"--set {item!r}: write NAME=VALUE, e.g. --set L=0.05")
+        text = value.strip()
+        try:
+            number = float(text)
+            out[name.strip()] = int(number) if text.lstrip("-").isdigit() else number
+        except ValueError:
+            out[name.strip()] = text
+    return out
+
+
+def run(args) -> dict:
+    """analyze_model of ``args.model`` with the ``--set`` overrides."""
+    return analyze_model(load_spec(args.model, parse_sets(args.set)))
+
+
+def _vector(v, unit: str) -> str:
+    return "(" + ", ".join(f"{c:.4g}" for c in v) + f") {unit}"
+
+
+def summarize(result: dict) -> str:
+    lines = [f"{result['model']}: {result['dim']}-D, {result['dofs']} DOFs, solver "
+             f"{result['solver']}, element size h = {result['h']:.4g} m"]
+    vm = result["max_von_mises"]
+    where = _vector(result["max_von_mises_location"], "m")
+    ratio = vm / result["yield_strength"]
+    lines.append(f"max von Mises stress {vm / 1e6:.4g} MPa at {where}"
+                 + (f" ({100 * ratio:.4g} % of yield)" if ratio > 0 else ""))
+    for group, u in result["mean_displacement"].items():
+        lines.append(f"mean displacement of {group!r}: {_vector(u, 'm')}")
+    for group, f in result["reactions"].items():
+        lines.append(f"reaction on {group!r}: {_vector(f, 'N')}")
+    for group, by_axis in result["stiffness"].items():
+        for axis, k in by_axis.items():
+            lines.append(f"stiffness of {group!r} along {axis}: {k:.4g} N/m")
+    if "frequencies_hz" in result:
+        lines.append("natural frequencies: " + ", ".join(f"{f:.4g}" for f in
+                                                          result["frequencies_hz"]) + " Hz")
+    if "nonlinear" in result:
+        nl = result["nonlinear"]
+        for group, u in nl["mean_displacement"].items():
+            lines.append(f"large deflection ({nl['steps']} steps), mean displacement of "
+                         f"{group!r}: {_vector(u, 'm')}")
+    return "\n".join(lines)
+
+
+def register(subparsers):
+    parser = subparsers.add_parser(
+        "analyze", help="analyse your own flexure from a model file (TOML + .geo/.step/.msh)")
+    parser.add_argument("model", metavar="MODEL.toml", help="the model file")
+    parser.add_argument("--set", action="append", metavar="NAME=VALUE", default=[],
+                        help="override a [parameters] entry (SI), or TABLE.KEY such as "
+                             "material.E; repeatable")
+    parser.add_argument("--json", action="store_true", help="print one JSON object")
+    parser.set_defaults(run=run, summarize=summarize)
