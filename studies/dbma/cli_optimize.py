@@ -1,5 +1,5 @@
 """``flexfem optimize dbma``: FEM-decided search of the DBMA hinge dimensions (SI units)."""
-from .optimize import OptimizeSpec
+from .optimize_spec import OptimizeSpec
 from .optimize_output import run as run_search
 from .optimize_output import summarize as summarize_search
 

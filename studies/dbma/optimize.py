@@ -19,142 +19,36 @@ default mesh, size_factor 1); (3) COBYQA (scipy, derivative-free, bounds and non
 constraints) on the calibrated search mesh from the start; (4) FEM on the check mesh of the
 best calibrated-feasible design, re-calibrated at it and repeated (3 times at most) if it
 fails. Every FEM evaluation is stored in an SQLite case store (studies/store.py) keyed by its
-design and mesh: a re-run is free, a crash loses only the case in flight. SI units.
+design and mesh: a re-run is free, a crash loses only the case in flight. The spec and the
+constraints are in :mod:`.optimize_spec`. SI units.
 """
 import math
 import time
-from dataclasses import asdict, dataclass, fields, replace
+from dataclasses import asdict, replace
 
 import numpy as np
 
-from ...data import load_toml
 from ...fem import Force, solve_static
-from ...geometry.dbma.drawing import DBMALayout, check_layout
 from ...geometry.dbma.params import DBMAParams, paper_design
 from ..engine.store import CaseResult, ResultStore, case_key
 from . import analysis as dbma_fem
 from . import enhanced as en
 from . import prbm as prbm
 from .analysis import dbma_material
+from .optimize_spec import (
+    NAMES,
+    InfeasibleSpecError,
+    OptimizeSpec,
+    at_bounds,
+    check_box,
+    constraint_table,
+    constraints_of,
+    margins,
+)
 
-NAMES = ("b", "h", "l")
 FORCE = 100.0  # N, the actuator force of the linear solves (results are scaled to the stroke)
-ACTIVE_TOL = 0.01  # a constraint within 1 % of its bound is reported active
 SCREEN_TOL = 0.30  # screening: analytical models miss FEM by up to ~20 % (docs/dbma.md)
 ROUND_M = 1e-7  # designs are rounded to 0.1 um: stable store keys, far below any tolerance
-# the response bandwidth the DBMA was built for (Abstract): the default frequency bound, Hz
-PAPER_BANDWIDTH_HZ = float(load_toml("dbma_paper.toml")["frequency"]["bandwidth_Hz"])
-
-
-class InfeasibleSpecError(ValueError):
-    """No design within the bounds meets the constraints."""
-
-
-@dataclass(frozen=True)
-class OptimizeSpec:
-    """Bounds (m) and constraints of the DBMA hinge design search.
-
-    b, h, l bounds (m): hinge thickness, hinge offset, hinge length; every design in the box
-    must be buildable (checked at the largest corner against DBMAParams and the layout).
-    min_frequency_hz (Hz, default 300: the paper's bandwidth, data/dbma_paper.toml), 0: none;
-    safety_factor (>= 1) against yield at the actuator stroke stroke_m (m, elongation);
-    min_output_stiffness (N/m), 0: none. max_evaluations: search-mesh FEM evaluations (>= 8:
-    COBYQA's first model needs 2 n + 1 = 7); search_size_factor / check_size_factor: meshes
-    of the search and of the final check; n_seed: Sobol points screened; seed: Sobol seed.
-    """
-
-    b_min: float = 0.3e-3
-    b_max: float = 1.2e-3
-    h_min: float = 0.5e-3
-    h_max: float = 4.0e-3
-    l_min: float = 2.0e-3
-    l_max: float = 8.0e-3
-    min_frequency_hz: float = PAPER_BANDWIDTH_HZ
-    safety_factor: float = 1.5
-    stroke_m: float = 20e-6
-    min_output_stiffness: float = 3.0e5
-    max_evaluations: int = 40
-    search_size_factor: float = 1.0
-    check_size_factor: float = 1.0
-    n_seed: int = 1024
-    seed: int = 0
-
-    def __post_init__(self):
-        for f in fields(self):
-            v = getattr(self, f.name)
-            if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
-                raise ValueError(f"OptimizeSpec: {f.name} = {v!r} must be a finite number")
-        for name in ("b", "h", "l"):
-            lo, hi = getattr(self, f"{name}_min"), getattr(self, f"{name}_max")
-            if not lo > 0:
-                raise ValueError(f"OptimizeSpec: {name}_min = {lo!r} must be > 0 (m)")
-            if not hi > lo:
-                raise ValueError(f"OptimizeSpec: {name}_max = {hi!r} must be > {name}_min = {lo!r} (m)")
-        for name in ("min_frequency_hz", "min_output_stiffness"):
-            if getattr(self, name) < 0:
-                raise ValueError(f"OptimizeSpec: {name} = {getattr(self, name)!r} must be >= 0 (0: no constraint)")
-        if not self.safety_factor >= 1:
-            raise ValueError(f"OptimizeSpec: safety_factor = {self.safety_factor!r} must be >= 1")
-        if not self.stroke_m > 0:
-            raise ValueError(f"OptimizeSpec: stroke_m = {self.stroke_m!r} must be > 0 (m)")
-        for name, low in (("max_evaluations", 8), ("n_seed", 16), ("seed", 0)):
-            v = getattr(self, name)
-            if not (isinstance(v, int) and v >= low):
-                raise ValueError(f"OptimizeSpec: {name} = {v!r} must be an integer >= {low}")
-        for name in ("search_size_factor", "check_size_factor"):
-            if not 0.05 <= getattr(self, name) <= 20:
-                raise ValueError(f"OptimizeSpec: {name} = {getattr(self, name)!r} must be in [0.05, 20]")
-
-    @property
-    def lower(self) -> np.ndarray:
-        return np.array([self.b_min, self.h_min, self.l_min])
-
-    @property
-    def upper(self) -> np.ndarray:
-        return np.array([self.b_max, self.h_max, self.l_max])
-
-
-def quick_spec(spec: OptimizeSpec) -> OptimizeSpec:
-    """The smoke-run settings: at most 12 FEM evaluations and 256 screened designs."""
-    return replace(spec, max_evaluations=min(spec.max_evaluations, 12),
-                   n_seed=min(spec.n_seed, 256))
-
-
-def check_box(spec: OptimizeSpec, base: DBMAParams) -> None:
-    """ValueError unless every (b, h, l) in the box builds a DBMA: the limits (h + b < c, h + b
-    < ls, b < a, l < e, ll > 2 c + b + arm_gap) bind at the largest corner."""
-    try:
-        check_layout(replace(base, b=spec.b_max, h=spec.h_max, l=spec.l_max), DBMALayout())
-    except ValueError as error:
-        raise ValueError(f"OptimizeSpec: the corner (b_max, h_max, l_max) = ({spec.b_max!r}, "
-                         f"{spec.h_max!r}, {spec.l_max!r}) m cannot be built: {error}") from None
-
-
-# ---- constraints -------------------------------------------------------------------------
-
-def constraints_of(spec: OptimizeSpec, yield_strength: float) -> list[tuple]:
-    """(name, metric key, bound, kind) of each active-able constraint; kind '>=' or '<='."""
-    out = [("stress", "von_mises_at_stroke", yield_strength / spec.safety_factor, "<=")]
-    if spec.min_frequency_hz > 0:
-        out.append(("frequency", "fn_working", spec.min_frequency_hz, ">="))
-    if spec.min_output_stiffness > 0:
-        out.append(("output_stiffness", "k_out", spec.min_output_stiffness, ">="))
-    return out
-
-
-def margins(metrics: dict, constraints: list[tuple]) -> np.ndarray:
-    """log(value / bound) for '>=', log(bound / value) for '<=': >= 0 where met (-)."""
-    return np.array([math.log(metrics[key] / bound) * (1 if kind == ">=" else -1)
-                     for _, key, bound, kind in constraints])
-
-
-def constraint_table(metrics: dict, constraints: list[tuple]) -> list[dict]:
-    """Each constraint's value, bound, margin, whether met and active (within 1 %)."""
-    return [{"constraint": name, "metric": key, "value": metrics[key], "bound": bound,
-             "kind": kind, "margin": metrics[key] / bound - 1,
-             "met": bool(metrics[key] >= bound if kind == ">=" else metrics[key] <= bound),
-             "active": bool(abs(metrics[key] / bound - 1) <= ACTIVE_TOL)}
-            for name, key, bound, kind in constraints]
 
 
 # ---- analytical screening ----------------------------------------------------------------
@@ -291,15 +185,6 @@ class Evaluations:
     def close(self):
         if self.store is not None:
             self.store.close()
-
-
-def at_bounds(spec: OptimizeSpec, x) -> list[str]:
-    """Design variables within 1 % of their range from a bound, e.g. ["l = l_min"]."""
-    out = []
-    for name, v, lo, hi in zip(NAMES, x, spec.lower, spec.upper):
-        out += [f"{name} = {name}_min"] if v - lo <= ACTIVE_TOL * (hi - lo) else []
-        out += [f"{name} = {name}_max"] if hi - v <= ACTIVE_TOL * (hi - lo) else []
-    return out
 
 
 def _round(x):

@@ -4,15 +4,13 @@ import csv
 from pathlib import Path
 
 from ...geometry.dbma.params import paper_design
-from .optimize import (
+from .optimize import Evaluations, fem_metrics, optimize
+from .optimize_spec import (
     NAMES,
-    Evaluations,
     OptimizeSpec,
     constraint_table,
     constraints_of,
-    fem_metrics,
     margins,
-    optimize,
     quick_spec,
 )
 

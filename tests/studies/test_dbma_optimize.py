@@ -11,7 +11,14 @@ from flexfem.geometry.dbma.params import paper_design
 from flexfem.studies import cli
 from flexfem.studies.dbma import enhanced as dbma_enhanced
 from flexfem.studies.dbma import optimize as opt
-from flexfem.studies.dbma.optimize_output import history_rows
+from flexfem.studies.dbma.optimize_output import history_rows, run
+from flexfem.studies.dbma.optimize_spec import (
+    NAMES,
+    InfeasibleSpecError,
+    OptimizeSpec,
+    constraint_table,
+    constraints_of,
+)
 from scipy.optimize import linprog
 
 P = paper_design()
@@ -36,7 +43,7 @@ def surrogate(params: dict, size_factor: float) -> dict:
 def surrogate_raw(params: dict, size_factor: float) -> dict:
     """Raw metrics in the form of fem_metrics: elongation 20 um at 100 N, so the stress at a
     20 um stroke is max_von_mises itself."""
-    x = np.array([params[n] for n in opt.NAMES]) / REF
+    x = np.array([params[n] for n in NAMES]) / REF
     m = {k: CONSTANTS[k] * float(np.prod(x ** np.array(e))) for k, e in EXPONENTS.items()}
     m["fn_working"] *= 1 + MESH_BIAS * (size_factor - 1)
     return {**m, "force": 100.0, "elongation": 20e-6, "k_in": 5e6,
@@ -46,7 +53,7 @@ def surrogate_raw(params: dict, size_factor: float) -> dict:
 
 def biased_estimator(p, stroke):
     """An 'analytical model' 20 % off in R and 10 % off in frequency: the FEM must decide."""
-    raw = design(surrogate_raw({n: getattr(p, n) for n in opt.NAMES}, 1.0), stroke)
+    raw = design(surrogate_raw({n: getattr(p, n) for n in NAMES}, 1.0), stroke)
     return {"R_fem": 1.2 * raw["R_fem"], "fn_working": 1.1 * raw["fn_working"],
             "k_out": raw["k_out"], "von_mises_at_stroke": raw["von_mises_at_stroke"]}
 
@@ -55,7 +62,7 @@ def design(raw, stroke):
     return opt.design_metrics(raw, stroke)
 
 
-def reference_optimum(spec: opt.OptimizeSpec) -> tuple[np.ndarray, float]:
+def reference_optimum(spec: OptimizeSpec) -> tuple[np.ndarray, float]:
     """The exact optimum: in y = log(x / REF) the surrogate is linear, so the search is a
     linear program (HiGHS), solved here independently of the search."""
     E = {k: np.array(v) for k, v in EXPONENTS.items()}
@@ -70,14 +77,14 @@ def reference_optimum(spec: opt.OptimizeSpec) -> tuple[np.ndarray, float]:
     return REF * np.exp(lp.x), CONSTANTS["R_fem"] * math.exp(-lp.fun)
 
 
-SPEC = opt.OptimizeSpec(min_frequency_hz=300.0, safety_factor=1.5, min_output_stiffness=3e5,
-                        max_evaluations=40, n_seed=256)
+SPEC = OptimizeSpec(min_frequency_hz=300.0, safety_factor=1.5, min_output_stiffness=3e5,
+                    max_evaluations=40, n_seed=256)
 
 
 def test_search_finds_the_constrained_optimum_of_a_surrogate():
     x_ref, R_ref = reference_optimum(SPEC)
     r = opt.optimize(SPEC, evaluator=surrogate, estimator=biased_estimator)
-    x = np.array([r["optimum"][n] for n in opt.NAMES])
+    x = np.array([r["optimum"][n] for n in NAMES])
     # COBYQA stops at a trust radius of 0.005 of each range; the optimum is a vertex where
     # R changes by <= 0.8 |dlog x| per variable, so 1 % in R and 3 % of a range in x
     assert r["R_fem"] == pytest.approx(R_ref, rel=1e-2)
@@ -85,8 +92,8 @@ def test_search_finds_the_constrained_optimum_of_a_surrogate():
     assert np.all(np.abs(x - x_ref) <= 0.03 * (SPEC.upper - SPEC.lower))
     assert all(c["met"] for c in r["constraints"])
     # the LP's binding constraints are the ones reported active
-    active_ref = {name for name, key, bound, kind in opt.constraints_of(SPEC, YIELD)
-                  if abs(design(surrogate_raw(dict(zip(opt.NAMES, x_ref)), 1.0), SPEC.stroke_m)[key]
+    active_ref = {name for name, key, bound, kind in constraints_of(SPEC, YIELD)
+                  if abs(design(surrogate_raw(dict(zip(NAMES, x_ref)), 1.0), SPEC.stroke_m)[key]
                          / bound - 1) < 1e-6}
     assert set(r["active_constraints"]) == active_ref and active_ref
     assert r["n_fem_evaluations"] <= SPEC.max_evaluations + 4
@@ -107,7 +114,7 @@ def test_search_on_a_coarse_mesh_is_calibrated_to_the_check_mesh():
 
 
 def test_infeasible_constraints_raise_before_any_fem():
-    with pytest.raises(opt.InfeasibleSpecError, match="frequency.*best over the bounds"):
+    with pytest.raises(InfeasibleSpecError, match="frequency.*best over the bounds"):
         opt.optimize(dataclasses.replace(SPEC, min_frequency_hz=3000.0),
                      evaluator=lambda *a: pytest.fail("FEM called"))
 
@@ -120,15 +127,15 @@ def test_infeasible_constraints_raise_before_any_fem():
 ])
 def test_bad_spec_raises_naming_the_field(change, name):
     with pytest.raises(ValueError, match=name):
-        opt.OptimizeSpec(**change)
+        OptimizeSpec(**change)
 
 
 def test_bounds_must_give_buildable_designs():
     # h + b must stay below c - ... (DBMAParams: h <= c - b = 10 - 1.2 mm)
     with pytest.raises(ValueError, match=r"b_max, h_max, l_max.*h = 0\.009"):
-        opt.optimize(opt.OptimizeSpec(h_max=9e-3), evaluator=surrogate)
+        opt.optimize(OptimizeSpec(h_max=9e-3), evaluator=surrogate)
     with pytest.raises(ValueError, match="arm length"):  # l < e = 19.9 mm
-        opt.optimize(opt.OptimizeSpec(l_max=25e-3), evaluator=surrogate)
+        opt.optimize(OptimizeSpec(l_max=25e-3), evaluator=surrogate)
 
 
 def test_store_makes_a_rerun_free_and_keeps_evaluations_of_a_crash(tmp_path):
@@ -152,7 +159,7 @@ def test_store_makes_a_rerun_free_and_keeps_evaluations_of_a_crash(tmp_path):
 
 
 def test_metrics_scale_with_the_stroke():
-    raw = surrogate_raw(dict(zip(opt.NAMES, REF)), 1.0)
+    raw = surrogate_raw(dict(zip(NAMES, REF)), 1.0)
     one, two = design(raw, 20e-6), design(raw, 40e-6)
     assert two["von_mises_at_stroke"] == pytest.approx(2 * one["von_mises_at_stroke"], rel=1e-12)
     assert one["von_mises_at_stroke"] == pytest.approx(raw["max_von_mises"], rel=1e-12)
@@ -202,7 +209,7 @@ def test_cli_json_and_outputs(tmp_path, monkeypatch, capsys):
 def test_fem_metrics_of_the_paper_design_coarse():
     # the same model and load as dbma_fem.evaluate: identical R, k_in and stress
     from flexfem.studies.dbma.analysis import evaluate
-    params = {n: getattr(P, n) for n in opt.NAMES}
+    params = {n: getattr(P, n) for n in NAMES}
     raw = opt.fem_metrics(params, 2.83)
     ref = evaluate(params, 2, 2.83, modes=True, force=100.0)
     for key in ("R_fem", "k_in", "max_von_mises"):
@@ -215,13 +222,13 @@ def test_fem_metrics_of_the_paper_design_coarse():
 
 @pytest.mark.slow
 def test_real_fem_quick_search(tmp_path):
-    r = opt.run(opt.OptimizeSpec(), tmp_path, quick=True)
+    r = run(OptimizeSpec(), tmp_path, quick=True)
     assert r["feasible"] and all(c["met"] for c in r["constraints"])
     assert r["check_size_factor"] == 1.0
     # the paper's design lies in the box and meets the default constraints (docs/dbma.md):
     # the search may not return anything worse
-    paper = opt.design_metrics(opt.fem_metrics({n: getattr(P, n) for n in opt.NAMES}, 1.0), 20e-6)
-    assert all(c["met"] for c in opt.constraint_table(paper, opt.constraints_of(opt.OptimizeSpec(), YIELD)))
+    paper = opt.design_metrics(opt.fem_metrics({n: getattr(P, n) for n in NAMES}, 1.0), 20e-6)
+    assert all(c["met"] for c in constraint_table(paper, constraints_of(OptimizeSpec(), YIELD)))
     assert r["R_fem"] > paper["R_fem"]
     assert r["metrics"]["working_mode"] == 2  # the in-plane working mode, 2nd in 2-D
     rows = history_rows(r)
