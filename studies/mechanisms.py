@@ -12,8 +12,12 @@ mechanism's own) and returns its metrics, FEM and analytical side by side; it ma
 ``"h"`` (a characteristic element size, m) and ``"dofs"`` (the number of unknowns) for
 convergence studies.
 """
-import importlib
 from dataclasses import dataclass
+import functools
+import hashlib
+import importlib
+from pathlib import Path
+import tomllib
 
 
 @dataclass(frozen=True)
@@ -89,6 +93,9 @@ BUILTIN = (
                     "report:reproduce"),
         )),
     Mechanism(
+        "model", "Your own flexure from a model file (TOML + .geo, .step or .msh)", "user_model",
+        evaluate="analysis:evaluate", commands="cli"),
+    Mechanism(
         "toy", "Tapered cantilever (closed form): the study engine's own check", "toy",
         evaluate="model:evaluate",
         sections=(
@@ -99,6 +106,30 @@ BUILTIN = (
 )
 
 MECHANISMS = {m.name: m for m in BUILTIN}
+MODEL_PREFIX = "model:"
+
+
+def model_mechanism(path, base_dir=None) -> str:
+    """The mechanism name of a model file: "model:<absolute path>@<digest>", the digest over
+    the model file and the geometry file it names, so that a study's stored cases are not
+    reused once either file changes. ``path`` is relative to ``base_dir`` (default: cwd)."""
+    path = Path(base_dir or ".") / path
+    if not path.is_file():
+        raise ValueError(f"mechanism.model = {str(path)!r}: no such model file")
+    digest = hashlib.sha256(path.read_bytes())
+    try:
+        geometry = tomllib.loads(path.read_text()).get("geometry")
+    except tomllib.TOMLDecodeError as error:
+        raise ValueError(f"{path}: not valid TOML: {error}") from None
+    if isinstance(geometry, str) and (path.parent / geometry).is_file():
+        digest.update((path.parent / geometry).read_bytes())
+    return f"{MODEL_PREFIX}{path.resolve()}@{digest.hexdigest()[:12]}"
+
+
+def _model_path(name: str) -> str | None:
+    if isinstance(name, str) and name.startswith(MODEL_PREFIX):
+        return name[len(MODEL_PREFIX):].rpartition("@")[0] or None
+    return None
 
 
 def is_target(name: str) -> bool:
@@ -108,14 +139,19 @@ def is_target(name: str) -> bool:
 
 
 def _known() -> list[str]:
-    return sorted(n for n, m in MECHANISMS.items() if m.evaluate)
+    return sorted(n for n, m in MECHANISMS.items() if m.evaluate and n != "model")
 
 
 def check_mechanism(name: str, key: str = "mechanism") -> str:
-    """Return ``name`` if it is a registered mechanism with an evaluate, or a
-    "module:function" target, without importing anything; else ValueError naming ``key``."""
+    """Return ``name`` if it is a registered mechanism with an evaluate, a model file's
+    mechanism (``model_mechanism``) or a "module:function" target, without importing
+    anything; else ValueError naming ``key``."""
+    if name == "model":
+        raise ValueError(f"{key} = 'model' needs its model file: "
+                         "mechanism = { model = \"FILE.toml\" } in a study file, or the file's "
+                         "path on the command line")
     known = isinstance(name, str) and name in MECHANISMS and MECHANISMS[name].evaluate
-    if not (known or (isinstance(name, str) and is_target(name))):
+    if not (known or _model_path(name) or (isinstance(name, str) and is_target(name))):
         raise ValueError(f"{key} = {name!r} is not a known mechanism; known: {_known()}"
                          " (or a 'package.module:function' evaluate)")
     return name
@@ -128,6 +164,9 @@ def get_evaluator(name: str):
     cannot be imported or lacks the function.
     """
     check_mechanism(name)
+    if _model_path(name):
+        model = MECHANISMS["model"]
+        return functools.partial(model.load(model.evaluate), model=_model_path(name))
     if name in MECHANISMS:
         return MECHANISMS[name].load(MECHANISMS[name].evaluate)
     module_name, _, function_name = name.partition(":")

@@ -12,21 +12,28 @@ from .engine.convergence import (
 )
 from .engine.store import export_csv, export_parquet, parquet_available
 from .engine.sweep import Study, plot_metric
-from .mechanisms import check_mechanism, coarsest_size_factor, get_evaluator
+from .mechanisms import check_mechanism, coarsest_size_factor, get_evaluator, model_mechanism
 
 
-def study_from_dict(data: dict) -> Study:
-    """The engine's ``study_from_dict``, its mechanism checked against the registry."""
+def study_from_dict(data: dict, base_dir=None) -> Study:
+    """The engine's ``study_from_dict``, its mechanism checked against the registry; a
+    ``mechanism = { model = "guide.toml" }`` table names a model file (relative to
+    ``base_dir``, default the working directory)."""
+    mechanism = data.get("mechanism")
+    if isinstance(mechanism, dict):
+        if set(mechanism) != {"model"}:
+            raise ValueError(f"mechanism = {mechanism!r}: a table must be {{ model = \"FILE.toml\" }}")
+        data = {**data, "mechanism": model_mechanism(mechanism["model"], base_dir)}
     study = engine.study_from_dict(data)
     check_mechanism(study.mechanism)
     return study
 
 
 def load_study(path) -> Study:
-    """The engine's ``load_study``, its mechanism checked against the registry."""
-    study = engine.load_study(path)
-    check_mechanism(study.mechanism)
-    return study
+    """A study file, its mechanism checked against the registry (a model file it names is
+    found relative to the study file)."""
+    path = Path(path)
+    return study_from_dict(engine.read_study_file(path), base_dir=path.parent)
 
 
 def run_study(study: Study, store_path, **options) -> engine.StudyResult:
@@ -71,6 +78,8 @@ def run_convergence(mechanism: str, metric: str, tol="0.5%", n_levels: int = 4, 
     the registry's coarsest_size_factor); writes convergence_<metric>.png into ``out_dir`` when
     given. JSON-able."""
     tolerance = parse_tolerance(tol)
+    if str(mechanism).endswith(".toml"):  # a model file
+        mechanism = model_mechanism(mechanism)
     if start is None:
         start = coarsest_size_factor(mechanism)
     if not (math.isfinite(start) and start > 0):

@@ -16,7 +16,8 @@ def register(subparsers):
     p.set_defaults(run=_run_sweep, summarize=summarize_sweep)
 
     c = subparsers.add_parser("converge", help="mesh-convergence study of one metric of a mechanism")
-    c.add_argument("mechanism", help="registered mechanism name (toy, dbma, eightbar)")
+    c.add_argument("mechanism", help="registered mechanism name (toy, dbma, eightbar) or a "
+                                     "model file (MODEL.toml)")
     c.add_argument("--metric", required=True, help="metric returned by the mechanism's evaluate")
     c.add_argument("--tol", default="0.5%", type=parse_tolerance,
                    help="relative tolerance, '0.5%%' or 0.005 (default 0.5%%)")

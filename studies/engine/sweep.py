@@ -153,8 +153,9 @@ def study_from_dict(data: dict) -> Study:
                  sample=sample, plots=tuple(plots))
 
 
-def load_study(path) -> Study:
-    """Read a study TOML file (FileNotFoundError if missing, ValueError if invalid)."""
+def read_study_file(path) -> dict:
+    """The parsed TOML of a study file, named after the file unless it names itself
+    (FileNotFoundError if missing, ValueError if not TOML)."""
     path = Path(path)
     with path.open("rb") as f:
         try:
@@ -162,7 +163,12 @@ def load_study(path) -> Study:
         except tomllib.TOMLDecodeError as error:
             raise ValueError(f"{path}: not valid TOML: {error}") from error
     data.setdefault("name", path.stem)
-    return study_from_dict(data)
+    return data
+
+
+def load_study(path) -> Study:
+    """Read a study TOML file (FileNotFoundError if missing, ValueError if invalid)."""
+    return study_from_dict(read_study_file(path))
 
 
 def design_points(study: Study) -> list[dict]:
