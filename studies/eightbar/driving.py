@@ -223,61 +223,82 @@ def driving_study(out_dir, quick: bool = False, params: DrivingParams | None = N
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     tr = trace_driving(params, n=31 if quick else 121)
-    ratio = transmission_ratio(tr)
-    rigid_rows = [{"s_m": float(s), "x_left_m": float(l[0]), "y_left_m": float(l[1]),
-                   "x_right_m": float(r[0]), "y_right_m": float(r[1]), "misfit_m": float(m)}
-                  for s, l, r, m in zip(tr.s, tr.ee_left, tr.ee_right, tr.misfit)]
-    tables = [_write_csv(out / "driving_rigid.csv", rigid_rows)]
+    tables = [_write_csv(out / "driving_rigid.csv", _rigid_rows(tr))]
     figures = [_draw_rigid(out / "driving_rigid.png", tr, params)]
     size_factor = 3.0 if quick else 1.5
-    model, sizes = build_model(params, flexure, size_factor=size_factor)
-    probe = 1e-6
-    lin = linear_drive(model, probe)
+    model, _ = build_model(params, flexure, size_factor=size_factor)
+    lin = linear_drive(model, 1e-6)
     umax = float(np.max(np.hypot(*lin["result"].displacement.T)))
     figures.append(_draw_fem(out / "driving_fem.png", model, lin, scale=8e-3 / umax))
-    summary = {"gruebler_whole": build_driving_linkage(params).mobility,
-               "gruebler_half": half_mobility(params),
-               "rigid_transmission": ratio,
-               "rigid_stroke_right_m": float(np.ptp(tr.dx_right)),
-               "rigid_antisymmetry_m": float(np.max(np.abs(tr.dx_left + tr.dx_right))),
-               "rigid_deviation_right_m": tr.deviation_right.max_deviation_m,
-               "rigid_deviation_right_pct": tr.deviation_right.deviation_pct,
-               "rigid_deviation_left_pct": tr.deviation_left.deviation_pct,
-               "coupler_deviation_m": tr.coupler_deviation.max_deviation_m,
-               "max_misfit_m": float(np.max(np.abs(tr.misfit))),
-               "input_travel_m": params.input_travel, "dofs": int(model.n_dofs),
-               **{k: v for k, v in lin.items() if k != "result"}}
-    fem_rows = [{k: v for k, v in lin.items() if k != "result"}]
+    fem_row = {k: v for k, v in lin.items() if k != "result"}
+    summary = {**_rigid_summary(params, tr), "dofs": int(model.n_dofs), **fem_row}
     extra_notes = []
     if not quick:
-        half = params.input_travel / 4
-        rows = nonlinear_drive(model, -half, 4)[::-1] + nonlinear_drive(model, half, 4)[1:]
-        tables.append(_write_csv(out / "driving_fem_nonlinear.csv", rows))
-        left = np.array([[r["x_left_m"], r["y_left_m"]] for r in rows])
-        right = np.array([[r["x_right_m"], r["y_right_m"]] for r in rows])
-        dl, dr = straight_line_deviation(left), straight_line_deviation(right)
-        # the suspension alone (x prescribed, no y force, no moment) over the same x stroke,
-        # sampled alike (9 points): what the driven deviation is measured against
-        alone_model = suspension_model(replace(flexure, rigid=replace(
-            params.suspension, travel=flexure.rigid.travel)), size_factor)
-        alone = suspension_alone_path(alone_model, float(np.max(np.abs(right[:, 0]))), 4)
-        da, shape, shape_alone = (straight_line_deviation(alone[:, :2]), path_shape(right),
-                                  path_shape(alone[:, :2]))
-        summary.update({"fem_nl_stroke_right_m": float(np.ptp(right[:, 0])),
-                        "fem_nl_ratio_end": rows[-1]["x_left_m"] / rows[-1]["x_right_m"],
-                        "fem_nl_deviation_right_m": dr.max_deviation_m,
-                        "fem_nl_deviation_right_pct": dr.deviation_pct,
-                        "fem_nl_deviation_left_pct": dl.deviation_pct,
-                        "fem_nl_max_rotation_rad": float(max(abs(r["rot_right_rad"]) for r in rows)),
-                        "fem_nl_tilt_right_rad": shape["tilt_rad"],
-                        "fem_nl_c2_right_per_m": shape["c2_per_m"],
-                        "lever_tilt_prbm_rad": float(np.arctan(lever_shear_rate(params, flexure)
-                                                               / k_y_alone(alone_model))),
-                        "alone_deviation_m": da.max_deviation_m,
-                        "alone_deviation_pct": da.deviation_pct,
-                        "alone_c2_per_m": shape_alone["c2_per_m"]})
-        extra_notes.append(
-            f"Nonlinear path deviation {summary['fem_nl_deviation_right_pct']:.3f} % "
+        table, nonlinear = _nonlinear_study(out, model, params, flexure, size_factor)
+        tables.append(table)
+        summary.update(nonlinear)
+        extra_notes.append(_nonlinear_note(summary))
+    tables.append(_write_csv(out / "driving_fem.csv", [fem_row]))
+    return {"comparisons": _comparisons(lin, summary["rigid_transmission"]), "tables": tables,
+            "figures": figures, "notes": _notes(params, summary) + extra_notes, "summary": summary}
+
+
+def _rigid_rows(tr) -> list:
+    """The rigid trace as rows: shuttle input s, end-effector positions, misfit (m)."""
+    return [{"s_m": float(s), "x_left_m": float(l[0]), "y_left_m": float(l[1]),
+             "x_right_m": float(r[0]), "y_right_m": float(r[1]), "misfit_m": float(m)}
+            for s, l, r, m in zip(tr.s, tr.ee_left, tr.ee_right, tr.misfit)]
+
+
+def _rigid_summary(params: DrivingParams, tr) -> dict:
+    """Gruebler counts, transmission (-), strokes, deviations and misfit (m, %) of the rigid trace."""
+    return {"gruebler_whole": build_driving_linkage(params).mobility,
+            "gruebler_half": half_mobility(params),
+            "rigid_transmission": transmission_ratio(tr),
+            "rigid_stroke_right_m": float(np.ptp(tr.dx_right)),
+            "rigid_antisymmetry_m": float(np.max(np.abs(tr.dx_left + tr.dx_right))),
+            "rigid_deviation_right_m": tr.deviation_right.max_deviation_m,
+            "rigid_deviation_right_pct": tr.deviation_right.deviation_pct,
+            "rigid_deviation_left_pct": tr.deviation_left.deviation_pct,
+            "coupler_deviation_m": tr.coupler_deviation.max_deviation_m,
+            "max_misfit_m": float(np.max(np.abs(tr.misfit))),
+            "input_travel_m": params.input_travel}
+
+
+def _nonlinear_study(out: Path, model: Model, params: DrivingParams, flexure, size_factor) -> tuple:
+    """Nonlinear drive over +-input_travel / 4 (m), written to driving_fem_nonlinear.csv, beside
+    the suspension alone over the same x stroke: (table name, summary entries, SI)."""
+    half = params.input_travel / 4
+    rows = nonlinear_drive(model, -half, 4)[::-1] + nonlinear_drive(model, half, 4)[1:]
+    table = _write_csv(out / "driving_fem_nonlinear.csv", rows)
+    left = np.array([[r["x_left_m"], r["y_left_m"]] for r in rows])
+    right = np.array([[r["x_right_m"], r["y_right_m"]] for r in rows])
+    dl, dr = straight_line_deviation(left), straight_line_deviation(right)
+    # the suspension alone (x prescribed, no y force, no moment) over the same x stroke,
+    # sampled alike (9 points): what the driven deviation is measured against
+    alone_model = suspension_model(replace(flexure, rigid=replace(
+        params.suspension, travel=flexure.rigid.travel)), size_factor)
+    alone = suspension_alone_path(alone_model, float(np.max(np.abs(right[:, 0]))), 4)
+    da, shape, shape_alone = (straight_line_deviation(alone[:, :2]), path_shape(right),
+                              path_shape(alone[:, :2]))
+    return table, {"fem_nl_stroke_right_m": float(np.ptp(right[:, 0])),
+                   "fem_nl_ratio_end": rows[-1]["x_left_m"] / rows[-1]["x_right_m"],
+                   "fem_nl_deviation_right_m": dr.max_deviation_m,
+                   "fem_nl_deviation_right_pct": dr.deviation_pct,
+                   "fem_nl_deviation_left_pct": dl.deviation_pct,
+                   "fem_nl_max_rotation_rad": float(max(abs(r["rot_right_rad"]) for r in rows)),
+                   "fem_nl_tilt_right_rad": shape["tilt_rad"],
+                   "fem_nl_c2_right_per_m": shape["c2_per_m"],
+                   "lever_tilt_prbm_rad": float(np.arctan(lever_shear_rate(params, flexure)
+                                                          / k_y_alone(alone_model))),
+                   "alone_deviation_m": da.max_deviation_m,
+                   "alone_deviation_pct": da.deviation_pct,
+                   "alone_c2_per_m": shape_alone["c2_per_m"]}
+
+
+def _nonlinear_note(summary: dict) -> str:
+    """The nonlinear path's deviation beside the suspension alone's, and its tilt."""
+    return (f"Nonlinear path deviation {summary['fem_nl_deviation_right_pct']:.3f} % "
             f"({summary['fem_nl_deviation_right_m'] * 1e6:.1f} um over "
             f"{summary['fem_nl_stroke_right_m'] * 1e3:.1f} mm, c2 "
             f"{summary['fem_nl_c2_right_per_m']:.3f} /m); the suspension alone (no load across its "
@@ -285,10 +306,13 @@ def driving_study(out_dir, quick: bool = False, params: DrivingParams | None = N
             f"{summary['alone_c2_per_m']:.3f} /m), the difference being the bar's shear. Path tilt "
             f"{summary['fem_nl_tilt_right_rad'] * 1e3:.2f} mrad (lever flexure's shear / k_y: "
             f"{summary['lever_tilt_prbm_rad'] * 1e3:.2f} mrad), removed by the best-line fit.")
-    tables.append(_write_csv(out / "driving_fem.csv", fem_rows))
-    # the report's row format; the thesis states only "opposite directions" (Ch. 6, Fig. 6.3),
-    # so the symmetric value -1 stands in the published column, marked as such
-    comparisons = [
+
+
+def _comparisons(lin: dict, ratio: float) -> list:
+    """The report's rows: the linear FEM's left/right ratio and transmission (-). The thesis
+    states only "opposite directions" (Ch. 6, Fig. 6.3), so the symmetric value -1 stands in
+    the published column, marked as such."""
+    return [
         {"quantity": "driving linkage: end-effector x ratio left/right (linear FEM)",
          "flexfem": lin["ratio_left_right"], "published": -1.0,
          "rel_diff": lin["ratio_left_right"] / -1.0 - 1.0,
@@ -299,7 +323,11 @@ def driving_study(out_dir, quick: bool = False, params: DrivingParams | None = N
          "rel_diff": lin["transmission"] / ratio - 1.0,
          "note": "published column: our rigid linkage (the thesis gives no dimensions)"},
     ]
-    notes = [
+
+
+def _notes(params: DrivingParams, summary: dict) -> list:
+    """The study's notes: our arrangement, the Gruebler counts and misfit, the coupler length."""
+    return [
         "Arrangement and dimensions are ours: the thesis prints none for Chapter 6 and its figures "
         "are not in the text.",
         f"Gruebler count of the whole mechanism {summary['gruebler_whole']}, of one half "
@@ -310,6 +338,4 @@ def driving_study(out_dir, quick: bool = False, params: DrivingParams | None = N
         f"Suspension coupler length {params.suspension.coupler_length * 1e3:.1f} mm (Chapter 5 "
         f"design: 50 mm; {FLEXURE_COMPENSATED_COUPLER_LENGTH * 1e3:.1f} mm cancels the flexures' "
         f"elastic bow): rigid-body path deviation {summary['rigid_deviation_right_pct']:.4f} %.",
-    ] + extra_notes
-    return {"comparisons": comparisons, "tables": tables, "figures": figures, "notes": notes,
-            "summary": summary}
+    ]
