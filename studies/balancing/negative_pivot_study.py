@@ -11,6 +11,7 @@ from ...fem import Fixed, RigidFace
 from ...fem.nonlinear import solve_nonlinear
 from ...geometry.flexure_pivot import PivotGeometry
 from ..engine.tables import write_rows
+from ..report.figures import axis_label, pyplot, save
 from .design import default_workspace
 from .gravity import load_robot, workspace_torques
 from .negative_pivot import (
@@ -193,18 +194,14 @@ def negative_pivot_study(out_dir, quick: bool = False, workspace=None) -> dict:
     table = "balancing_negative_pivot.csv"
     keys = [k for k in rows[0] if not k.startswith(("curve", "fem_curve", "fem_newton"))]
     write_rows(out_dir / table, rows, keys)
-    figure = "balancing_negative_pivot.png"
-    plot_negative_pivots(out_dir / figure, rows)
+    figure = plot_negative_pivots(out_dir / "balancing_negative_pivot.png", rows)
     return {"rows": rows, "tables": [table], "figures": [figure]}
 
 
-def plot_negative_pivots(path, rows: list):
+def plot_negative_pivots(path, rows: list) -> dict:
     """Hub moment (N m) vs pivot rotation (deg): linear K theta, elastica, FEM; one panel per
     motor."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
+    plt = pyplot()
     fig, axes = plt.subplots(1, len(rows), figsize=(5.5 * len(rows), 4.2), squeeze=False)
     for ax, r in zip(axes[0], rows):
         th = np.array(r["curve_elastica_theta_rad"])
@@ -219,10 +216,11 @@ def plot_negative_pivots(path, rows: list):
         ax.set_title(f"motor {r['motor']}: N = {r['transmission_ratio']:g}, L = "
                      f"{r['L_m'] * 1e3:.0f} mm, t = {r['t_m'] * 1e3:.2f} mm, "
                      f"w = {r['w_m'] * 1e3:.0f} mm, P = {r['P_N']:.0f} N", fontsize=9)
-        ax.set_xlabel("pivot rotation (deg)")
-        ax.set_ylabel("moment on the hub (N m)")
+        ax.set_xlabel(axis_label("pivot rotation", "deg"))
+        ax.set_ylabel(axis_label("moment on the hub", "N m"))
         ax.grid(True, alpha=0.3)
         ax.legend(fontsize=8)
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    return save(fig, path, "Negative-stiffness compressed-leaf pivots of motors 2 and 4: hub "
+                "moment against rotation, beam-column linear stiffness, elastica and "
+                "large-deflection FEM.")

@@ -45,6 +45,7 @@ from ...fem.rigid_face import ReducedSpace
 from ...fem.static import nodal_average
 from ...geometry.flexure_pivot import PivotGeometry, mesh_pivot
 from ..engine.tables import write_rows
+from ..report.figures import axis_label, pyplot, save
 from .design import pivot_designs
 from .pivots import (
     FlexurePivot,
@@ -234,18 +235,14 @@ def pivot_fem_study(out_dir, quick: bool = False, workspace=None) -> dict:
     table = "balancing_pivot_fem.csv"
     keys = [k for k in rows[0] if not k.startswith("curve") and k != "newton_iterations"]
     write_rows(out_dir / table, rows, keys)
-    figure = "balancing_pivot_fem.png"
-    plot_moment_rotation(out_dir / figure, rows)
+    figure = plot_moment_rotation(out_dir / "balancing_pivot_fem.png", rows)
     return {"rows": rows, "tables": [table], "figures": [figure]}
 
 
-def plot_moment_rotation(path, rows: list):
+def plot_moment_rotation(path, rows: list) -> dict:
     """Moment (N m) vs pivot rotation (deg), FEM (large deflection) and beam theory K theta,
     one panel per motor."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
+    plt = pyplot()
     motors = sorted({(r["motor"], r["design"]) for r in rows})
     fig, axes = plt.subplots(1, len(motors), figsize=(5.5 * len(motors), 4.2), squeeze=False)
     for ax, (motor, design) in zip(axes[0], motors):
@@ -259,10 +256,11 @@ def plot_moment_rotation(path, rows: list):
                         label=f"FEM, {r['formulation'].replace('_', ' ')}")
         ax.set_title(f"motor {motor}: cross-spring, N = {mine[0]['transmission_ratio']:g}, "
                      f"L = {mine[0]['L_m'] * 1e3:.0f} mm, t = {mine[0]['t_m'] * 1e3:.2f} mm")
-        ax.set_xlabel("pivot rotation (deg)")
-        ax.set_ylabel("moment on the hub (N m)")
+        ax.set_xlabel(axis_label("pivot rotation", "deg"))
+        ax.set_ylabel(axis_label("moment on the hub", "N m"))
         ax.grid(True, alpha=0.3)
         ax.legend(fontsize=8)
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    return save(fig, path, "Cross-spring flexure pivots sized as the torsion springs of motors "
+                "3 and 5: hub moment against rotation by large-deflection FEM (plane stress and "
+                "plane strain) beside beam theory.")
