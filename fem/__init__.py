@@ -18,6 +18,9 @@ from .nonlinear import NonConvergenceError, NonlinearResult, solve_nonlinear
 from .rigid_face import RigidFace
 from .model import Model, PlaneStrain, PlaneStress, Solid3D, von_mises
 from .static import StaticResult, UnderConstrainedError, solve_static
+from .buckling import Buckling, solve_buckling
+from .compliance import Compliance, compliance_matrix
+from .harmonic import FRF, HarmonicResult, Rayleigh, solve_harmonic
 
 __all__ = [
     "BodyForce", "FEMesh", "Fixed", "Force", "Gravity", "Material", "Model", "Modes",
@@ -26,4 +29,6 @@ __all__ = [
     "UnderConstrainedError", "facets_where", "gmsh_session", "material", "material_names",
     "mesh_from_gmsh", "read_mesh", "solve_modes", "solve_nonlinear", "solve_static",
     "von_mises", "write_mesh", "write_result",
+    "Buckling", "Compliance", "FRF", "HarmonicResult", "Rayleigh", "compliance_matrix",
+    "solve_buckling", "solve_harmonic",
 ]

@@ -24,6 +24,7 @@ from .hyperelastic import (STRAIN_LIMIT, Assembler, _StepFailed, cauchy_stress, 
 from .model import Model
 from .rigid_face import ReducedSpace
 from .rigid_static import check_held
+from .arclength import limit_points
 from .stability import count_negative_eigenvalues
 from .static import mean_field, rigid_body_dof_modes
 
@@ -258,7 +259,8 @@ def _record(problem, z, u, r, lam):
 def solve_nonlinear(model: Model, supports, loads, steps: int = 10, max_iterations: int = 25,
                     tol: float = 1e-8, min_step: float = 1e-4, rigid_faces=(),
                     solver: str = "direct", check_stability: bool = True,
-                    strain_limit: float = STRAIN_LIMIT) -> NonlinearResult:
+                    strain_limit: float = STRAIN_LIMIT, control: str = "load",
+                    max_steps: int | None = None) -> NonlinearResult:
     """Large-deflection static solve of ``model`` under ``supports`` (Fixed, Prescribed),
     ``loads`` (Force, Traction, PointForce, BodyForce, Gravity; dead loads, N) and
     ``rigid_faces`` (RigidFace, 2-D), all scaled by a load factor stepped 0 -> 1 in
@@ -270,8 +272,14 @@ def solve_nonlinear(model: Model, supports, loads, steps: int = 10, max_iteratio
     left is about |dz|^2). ``solver``: 'direct', 'amg' (symmetric positive tangent only) or
     'auto'. ``check_stability``: count the negative eigenvalues of the tangent at each
     converged step (one extra factorization per step; result.stable). ``strain_limit``: the
-    Green-Lagrange strain (-) beyond which result.strain_valid flags a step."""
+    Green-Lagrange strain (-) beyond which result.strain_valid flags a step. ``control``:
+    'load' (the load factor stepped as above) or 'arc-length' (:mod:`.arclength`: the path is
+    followed through limit points, which result.info['limit_points'] lists; the first arc
+    length is that of a load step 1 / ``steps`` along the initial tangent; at most
+    ``max_steps`` steps, default 20 ``steps``)."""
     _check_arguments(steps, max_iterations, tol, min_step)
+    if control not in ("load", "arc-length"):
+        raise ValueError(f"control = {control!r}; choose 'load' or 'arc-length'")
     if not (isinstance(strain_limit, (int, float)) and 0 < strain_limit < math.inf):
         raise ValueError(f"strain_limit = {strain_limit!r} must be a finite number > 0")
     problem = _Problem(model, supports, loads, rigid_faces, solver)
@@ -281,9 +289,23 @@ def solve_nonlinear(model: Model, supports, loads, steps: int = 10, max_iteratio
     lams, us, its = [0.0], [u0], [0]
     records = [_record(problem, z, u0, r0, 0.0)]
     negative, strains = [0 if check_stability else None], [0.0]
+
+    def on_step(z, lam, u, r, n_it):
+        lams.append(lam)
+        us.append(u)
+        its.append(n_it)
+        records.append(_record(problem, z, u, r, lam))
+        negative.append(_stability(problem, z, u, r, lam) if check_stability else None)
+        strains.append(max_strain(model, u))
+
     nominal = 1.0 / steps
     dlam, lam, cuts, good, cuts_here = nominal, 0.0, 0, 0, 0
     z_previous = z
+    if control == "arc-length":
+        from .arclength import trace
+        cuts = trace(problem, steps, max_iterations, tol, min_step,
+                     20 * steps if max_steps is None else max_steps, on_step)
+        lam = 1.0
     while lam < 1.0 - 1e-12:
         dlam = min(dlam, 1.0 - lam)
         try:
@@ -306,12 +328,7 @@ def solve_nonlinear(model: Model, supports, loads, steps: int = 10, max_iteratio
             continue
         lam, cuts_here = lam + dlam, 0
         z_previous, z = z, z_new
-        lams.append(lam)
-        us.append(u)
-        its.append(n_it)
-        records.append(_record(problem, z, u, r, lam))
-        negative.append(_stability(problem, z, u, r, lam) if check_stability else None)
-        strains.append(max_strain(model, u))
+        on_step(z, lam, u, r, n_it)
         good += 1
         if good >= 2 and dlam < nominal:
             dlam, good = min(2 * dlam, nominal), 0
@@ -322,5 +339,6 @@ def solve_nonlinear(model: Model, supports, loads, steps: int = 10, max_iteratio
         iterations=its, von_mises_nodal=vm_nodal, von_mises_element_max=vm_element,
         applied=problem.f_ext,
         info={"n_dofs": model.n_dofs, "n_unknowns": problem.space.n, "step_cuts": cuts,
-              "solver": problem.solver},
+              "solver": problem.solver, "control": control,
+              "limit_points": limit_points(lams)},
         negative_eigenvalues=negative, max_strain=np.array(strains), strain_limit=strain_limit)
