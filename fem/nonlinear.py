@@ -256,6 +256,43 @@ def _record(problem, z, u, r, lam):
     return reactions, faces, motion
 
 
+def _load_control(problem, steps, max_iterations, tol, min_step, lams, on_step) -> int:
+    """Step the load factor 0 -> 1 (see :func:`solve_nonlinear`); ``lams`` (the converged
+    load factors so far, appended to by ``on_step``) extrapolates each step's start.
+    Returns the number of step cuts."""
+    nominal = 1.0 / steps
+    dlam, lam, cuts, good, cuts_here = nominal, 0.0, 0, 0, 0
+    z = z_previous = np.zeros(problem.space.n)
+    while lam < 1.0 - 1e-12:
+        dlam = min(dlam, 1.0 - lam)
+        try:
+            guess = None
+            if len(lams) > 1 and cuts_here == 0:
+                guess = z + dlam / (lams[-1] - lams[-2]) * (z - z_previous)
+            z_new, u, r, n_it, history = _newton(problem, z, lam, lam + dlam, max_iterations, tol,
+                                                 guess)
+        except _StepFailed as failure:
+            if dlam / 2 < min_step * (1 - 1e-9):
+                raise NonConvergenceError(
+                    f"no convergence beyond load factor {lam:.6g} (trying {lam + dlam:.6g}, step "
+                    f"{dlam:.3g} after {cuts} cuts): {failure.reason}; relative residuals "
+                    f"{', '.join(f'{h:.2e}' for h in failure.history) or 'none'}. Use more steps, "
+                    f"a smaller min_step (now {min_step:g}) or more max_iterations (now "
+                    f"{max_iterations}); if the residual grows, the structure may buckle or snap "
+                    "(a limit point), which load control cannot pass: use control='arc-length' or "
+                    "prescribe a displacement instead", lam, lam + dlam, len(failure.history),
+                    failure.history) from None
+            dlam, cuts, good, cuts_here = dlam / 2, cuts + 1, 0, cuts_here + 1
+            continue
+        lam, cuts_here = lam + dlam, 0
+        z_previous, z = z, z_new
+        on_step(z, lam, u, r, n_it)
+        good += 1
+        if good >= 2 and dlam < nominal:
+            dlam, good = min(2 * dlam, nominal), 0
+    return cuts
+
+
 def solve_nonlinear(model: Model, supports, loads, steps: int = 10, max_iterations: int = 25,
                     tol: float = 1e-8, min_step: float = 1e-4, rigid_faces=(),
                     solver: str = "direct", check_stability: bool = True,
@@ -298,40 +335,12 @@ def solve_nonlinear(model: Model, supports, loads, steps: int = 10, max_iteratio
         negative.append(_stability(problem, z, u, r, lam) if check_stability else None)
         strains.append(max_strain(model, u))
 
-    nominal = 1.0 / steps
-    dlam, lam, cuts, good, cuts_here = nominal, 0.0, 0, 0, 0
-    z_previous = z
     if control == "arc-length":
         from .arclength import trace
         cuts = trace(problem, steps, max_iterations, tol, min_step,
                      20 * steps if max_steps is None else max_steps, on_step)
-        lam = 1.0
-    while lam < 1.0 - 1e-12:
-        dlam = min(dlam, 1.0 - lam)
-        try:
-            guess = None
-            if len(lams) > 1 and cuts_here == 0:
-                guess = z + dlam / (lams[-1] - lams[-2]) * (z - z_previous)
-            z_new, u, r, n_it, history = _newton(problem, z, lam, lam + dlam, max_iterations, tol,
-                                                 guess)
-        except _StepFailed as failure:
-            if dlam / 2 < min_step * (1 - 1e-9):
-                raise NonConvergenceError(
-                    f"no convergence beyond load factor {lam:.6g} (trying {lam + dlam:.6g}, step "
-                    f"{dlam:.3g} after {cuts} cuts): {failure.reason}; relative residuals "
-                    f"{', '.join(f'{h:.2e}' for h in failure.history) or 'none'}. Use more steps, "
-                    f"a smaller min_step (now {min_step:g}) or more max_iterations (now "
-                    f"{max_iterations}); if the residual grows, the structure may buckle or snap "
-                    "(a limit point), which load control cannot pass: prescribe a displacement "
-                    "instead", lam, lam + dlam, len(failure.history), failure.history) from None
-            dlam, cuts, good, cuts_here = dlam / 2, cuts + 1, 0, cuts_here + 1
-            continue
-        lam, cuts_here = lam + dlam, 0
-        z_previous, z = z, z_new
-        on_step(z, lam, u, r, n_it)
-        good += 1
-        if good >= 2 and dlam < nominal:
-            dlam, good = min(2 * dlam, nominal), 0
+    else:
+        cuts = _load_control(problem, steps, max_iterations, tol, min_step, lams, on_step)
     vm_nodal, vm_element = final_stress(model, us[-1])
     return NonlinearResult(
         model=model, load_factors=np.array(lams), u=us, reactions=[rec[0] for rec in records],
