@@ -18,7 +18,9 @@ def count_negative_eigenvalues(K) -> int:
     pivots of K = P^T L D L^T P with diagonal pivots (SuperLU in symmetric mode, no pivoting
     threshold). A zero pivot (K singular: a critical state) raises SingularSystemError;
     where SuperLU leaves the diagonal (non-symmetric permutation) the count falls back to
-    shift-invert Lanczos about 0 (the sign of the extreme eigenvalue of K^-1)."""
+    shift-invert Lanczos about 0 (the 6 eigenvalues nearest 0). Without 2 x 2 pivots the
+    factorization of a strongly indefinite matrix may be inaccurate; tangents of
+    structures near their stability limit, the case of interest, are nearly definite."""
     from .linsolve import SingularSystemError
 
     K = sp.csc_matrix(K, dtype=float)

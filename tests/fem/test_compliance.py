@@ -134,3 +134,19 @@ def test_3d_cantilever_tip_compliance_is_beam_theory():
     assert turned.matrix[2, 4] == pytest.approx(-c.matrix[1, 5], rel=1e-9)
     with pytest.raises(ValueError, match="angle"):
         compliance_matrix(model, [Fixed("fixed")], "tip", angle=0.1)
+
+
+def test_bad_arguments_name_themselves(guide):
+    model, L, H = guide
+    with pytest.raises(ValueError, match="face"):
+        compliance_matrix(model, [Fixed("fixed")], 3)
+    with pytest.raises(ValueError, match="point"):
+        compliance_matrix(model, [Fixed("fixed")], "tip", point=(1.0, 2.0, 3.0))
+    with pytest.raises(ValueError, match="frame"):
+        compliance_matrix(model, [Fixed("fixed")], "tip", frame=[[1.0, 1.0], [0.0, 1.0]])
+    c = compliance_matrix(model, [Fixed("fixed")], "tip")
+    with pytest.raises(ValueError, match="direction"):
+        c.support_stiffness((0.0, 0.0))
+    from flexfem.fem import UnderConstrainedError
+    with pytest.raises(UnderConstrainedError):
+        compliance_matrix(model, [], "tip")
