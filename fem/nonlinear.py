@@ -77,7 +77,8 @@ class NonlinearResult:
     @property
     def stable(self) -> np.ndarray:
         """(n,) bool per step: the reduced tangent stiffness is positive definite (a strict
-        minimum of the potential energy); False at a critical or unstable state."""
+        minimum of the potential energy); False at a critical or unstable state, and where
+        not checked (negative_eigenvalues None)."""
         return np.array([n == 0 for n in self.negative_eigenvalues], dtype=bool)
 
     @property
@@ -295,7 +296,7 @@ def _load_control(problem, steps, max_iterations, tol, min_step, lams, on_step) 
 
 def solve_nonlinear(model: Model, supports, loads, steps: int = 10, max_iterations: int = 25,
                     tol: float = 1e-8, min_step: float = 1e-4, rigid_faces=(),
-                    solver: str = "direct", check_stability: bool = True,
+                    solver: str = "direct", check_stability: bool | None = None,
                     strain_limit: float = STRAIN_LIMIT, control: str = "load",
                     max_steps: int | None = None) -> NonlinearResult:
     """Large-deflection static solve of ``model`` under ``supports`` (Fixed, Prescribed),
@@ -308,7 +309,8 @@ def solve_nonlinear(model: Model, supports, loads, steps: int = 10, max_iteratio
     last increment |dz| <= sqrt(tol) |u| (Newton converges quadratically, so the error
     left is about |dz|^2). ``solver``: 'direct', 'amg' (symmetric positive tangent only) or
     'auto'. ``check_stability``: count the negative eigenvalues of the tangent at each
-    converged step (one extra factorization per step; result.stable). ``strain_limit``: the
+    converged step (one extra sparse LDL^T factorization per step; result.stable); default
+    on with the direct solver, off with AMG (a model too large to factorize). ``strain_limit``: the
     Green-Lagrange strain (-) beyond which result.strain_valid flags a step. ``control``:
     'load' (the load factor stepped as above) or 'arc-length' (:mod:`.arclength`: the path is
     followed through limit points, which result.info['limit_points'] lists; the first arc
@@ -320,6 +322,8 @@ def solve_nonlinear(model: Model, supports, loads, steps: int = 10, max_iteratio
     if not (isinstance(strain_limit, (int, float)) and 0 < strain_limit < math.inf):
         raise ValueError(f"strain_limit = {strain_limit!r} must be a finite number > 0")
     problem = _Problem(model, supports, loads, rigid_faces, solver)
+    if check_stability is None:
+        check_stability = problem.solver == "direct"
     z = np.zeros(problem.space.n)
     u0 = np.zeros(model.n_dofs)
     r0 = np.zeros(model.n_dofs)
