@@ -6,6 +6,11 @@
     modes = solve_modes(model, n=6, supports=[Fixed("fixed")])
     write_result(result, "result.vtu")                  # ParaView; write_mesh for .msh/.inp
     large = solve_nonlinear(model, [Fixed("fixed")], [Force("tip", (0.0, -1e3))], steps=20)
+    large.stable, large.strain_valid, large.stress_at_step(5)   # per-step checks
+    hub = solve_static(model, [Fixed("fixed")], [], rigid_faces=[RigidFace("tip", moment=1.0)])
+    c = compliance_matrix(model, [Fixed("fixed")], "tip", state=(large, -1))
+    buckling = solve_buckling(model, [Fixed("fixed")], [Force("tip", (-1.0, 0.0))], n=3)
+    frf = solve_harmonic(model, [Fixed("fixed")], loads, freqs, damping=0.02).frf("tip", "y")
 """
 from .boundary import BodyForce, Fixed, Force, Gravity, PointForce, Prescribed, Traction
 from .export import write_mesh, write_result
@@ -18,6 +23,9 @@ from .model import Model, PlaneStrain, PlaneStress, Solid3D, von_mises
 from .nonlinear import NonConvergenceError, NonlinearResult, solve_nonlinear
 from .rigid_face import RigidFace
 from .static import StaticResult, UnderConstrainedError, solve_static
+from .buckling import Buckling, solve_buckling
+from .compliance import Compliance, compliance_matrix
+from .harmonic import FRF, HarmonicResult, Rayleigh, solve_harmonic
 
 __all__ = [
     "BodyForce", "FEMesh", "Fixed", "Force", "Gravity", "Material", "Model", "Modes",
@@ -26,4 +34,6 @@ __all__ = [
     "UnderConstrainedError", "facets_where", "gmsh_session", "material", "material_names",
     "mesh_from_gmsh", "read_mesh", "solve_modes", "solve_nonlinear", "solve_static",
     "von_mises", "write_mesh", "write_result",
+    "Buckling", "Compliance", "FRF", "HarmonicResult", "Rayleigh", "compliance_matrix",
+    "solve_buckling", "solve_harmonic",
 ]

@@ -12,7 +12,7 @@ import scipy.sparse.linalg as spla
 from . import linsolve
 from .boundary import component_indices, constrained_dofs
 from .model import Model
-from .static import vertex_displacement
+from .static import check_supports, vertex_displacement
 
 
 @dataclass(frozen=True, eq=False)
@@ -41,21 +41,34 @@ class Modes:
         return vertex_displacement(self.model, self.shapes[k])
 
 
-def solve_modes(model: Model, n: int = 6, supports=(), shift_hz: float | None = None) -> Modes:
+def solve_modes(model: Model, n: int = 6, supports=(), shift_hz: float | None = None,
+                prestress=None) -> Modes:
     """The ``n`` lowest natural frequencies and mass-normalised shapes.
 
     supports : Fixed/Prescribed supports; their DOFs are held at zero (prescribed values are
     ignored: modes are free vibrations about the supported state). With no supports the
-    rigid-body modes come first, at ~0 Hz. shift_hz : shift-invert centre (default a small
-    negative shift, so that a free body's singular K is factorizable).
+    rigid-body modes come first, at ~0 Hz; supports that leave a rigid-body motion (of any
+    disconnected part) free raise UnderConstrainedError, as in solve_static. shift_hz :
+    shift-invert centre (default a small negative shift, so that a free body's singular K
+    is factorizable). prestress : vibrations about a loaded state: a StaticResult (K plus
+    the geometric stiffness of its stress), a NonlinearResult (last step), a
+    (NonlinearResult, step) pair or a converged DOF vector (m) (the consistent tangent
+    there); see :func:`.stability.tangent_stiffness`. A state beyond buckling has negative
+    eigenvalues: reported as 0 Hz.
     """
     if not (isinstance(n, (int, np.integer)) and 1 <= n):
         raise ValueError(f"number of modes n = {n} must be a positive integer")
     D, _, _ = constrained_dofs(model, supports)
+    if len(D):
+        check_supports(model, D)
     I = np.setdiff1d(np.arange(model.n_dofs), D)
     if n >= len(I):
         raise ValueError(f"n = {n} modes asked for but only {len(I)} free DOFs exist")
-    K = model.stiffness[I][:, I]
+    if prestress is None:
+        K = model.stiffness[I][:, I]
+    else:
+        from .stability import tangent_stiffness
+        K = tangent_stiffness(model, prestress)[I][:, I]
     M = model.mass[I][:, I]
     if shift_hz is None:
         # -(scale of the stiffness/mass ratio) * 1e-6: far below any elastic mode, and keeps
@@ -65,7 +78,7 @@ def solve_modes(model: Model, n: int = 6, supports=(), shift_hz: float | None = 
         sigma = (2 * np.pi * shift_hz) ** 2 * np.sign(shift_hz)
     # one factorization of K - sigma M for every Lanczos step; SPD for sigma < 0 (Cholesky),
     # indefinite for a positive shift
-    kind = "spd" if sigma < 0 else "symmetric"
+    kind = "spd" if sigma < 0 and prestress is None else "symmetric"
     with linsolve.factorize((K - sigma * M).tocsr(), kind=kind) as solve:
         op = spla.LinearOperator(K.shape, matvec=solve, matmat=solve, dtype=float)
         eigvals, vectors = spla.eigsh(K, k=n, M=M, sigma=sigma, which="LM", OPinv=op, tol=1e-10)

@@ -10,25 +10,23 @@ K(du, v) = t int [(grad du S) : grad v + (F dS(du)) : grad v] dX, dS = C : sym(F
 All loads, prescribed displacements and rigid-face motions are dead and scale with the
 load factor, stepped from 0 to 1 by Newton's method, halving a step that fails.
 """
-import math
 from dataclasses import dataclass, field
+import math
 
 import numpy as np
 import scipy.sparse as sp
-import skfem
-from skfem.helpers import ddot, eye, grad, mul, trace, transpose
 
 from . import linsolve
 from .boundary import component_indices, constrained_dofs, group_dofs, load_vector
-from .model import Model, PlaneStrain, von_mises
+from .hyperelastic import (STRAIN_LIMIT, Assembler, _StepFailed, cauchy_stress,  # noqa: F401
+                           deformation, final_stress, green_lagrange, max_strain, svk_stress,
+                           tangent_modulus)
+from .model import Model
 from .rigid_face import ReducedSpace
-from .static import (
-    UnderConstrainedError,
-    check_supports,
-    mean_field,
-    nodal_average,
-    rigid_body_dof_modes,
-)
+from .rigid_static import check_held
+from .arclength import limit_points
+from .stability import count_negative_eigenvalues
+from .static import mean_field, rigid_body_dof_modes
 
 
 class NonConvergenceError(ValueError):
@@ -44,93 +42,6 @@ class NonConvergenceError(ValueError):
         self.residual_history = residual_history
 
 
-class _StepFailed(Exception):
-    def __init__(self, reason, history):
-        super().__init__(reason)
-        self.reason, self.history = reason, history
-
-
-def green_lagrange(F: np.ndarray) -> np.ndarray:
-    """E = (F^T F - I) / 2 of a (dim, dim, ...) deformation gradient."""
-    return 0.5 * (mul(transpose(F), F) - eye(np.ones_like(F[0, 0]), F.shape[0]))
-
-
-def svk_stress(E: np.ndarray, lam: float, mu: float) -> np.ndarray:
-    """Second Piola-Kirchhoff stress (Pa) S = lam tr(E) I + 2 mu E."""
-    return lam * trace(E) * eye(np.ones_like(E[0, 0]), E.shape[0]) + 2.0 * mu * E
-
-
-def cauchy_stress(F: np.ndarray, S: np.ndarray) -> np.ndarray:
-    """sigma = F S F^T / det F (Pa)."""
-    return mul(mul(F, S), transpose(F)) / np.linalg.det(np.moveaxis(F, (0, 1), (-2, -1)))
-
-
-def deformation(basis, u: np.ndarray):
-    """F = I + grad u at the quadrature points of ``basis``, (dim, dim, n_elements, n_points)."""
-    gu = basis.interpolate(u).grad
-    return gu + eye(np.ones_like(gu[0, 0]), gu.shape[0])
-
-
-@skfem.LinearForm
-def _internal_force(v, w):
-    return w.t * ddot(mul(w.F, w.S), grad(v))
-
-
-@skfem.BilinearForm
-def _tangent(du, v, w):
-    return np.einsum("ij...,ijkl...,kl...->...", grad(v), np.asarray(w.A), grad(du))
-
-
-def tangent_modulus(F: np.ndarray, S: np.ndarray, lam: float, mu: float) -> np.ndarray:
-    """A_iJkL = delta_ik S_JL + F_iM C_MJNL F_kN (Pa), (dim,) * 4 + (n_elements, n_points):
-    dP = A : grad du, the consistent tangent of P = F S for St. Venant-Kirchhoff."""
-    d = F.shape[0]
-    I = np.eye(d)
-    A = np.einsum("ik,jl...->ijkl...", I, S)
-    A += lam * np.einsum("ij...,kl...->ijkl...", F, F)
-    A += mu * (np.einsum("il...,kj...->ijkl...", F, F) + np.einsum("ik...,jl...->ijkl...",
-                                                                    np.einsum("im...,km...->ik...", F, F),
-                                                                    I[..., None, None] + 0 * S))
-    return A
-
-
-class Assembler:
-    """Internal force (N) and tangent (N/m) of a model, on the model's stiffness quadrature
-    (exact for the linear part, so the tangent at u = 0 is ``model.stiffness``). The sparse
-    pattern is computed once and reused."""
-
-    def __init__(self, model: Model):
-        self.basis = model.stiffness_basis
-        self.lam, self.mu = model.lame
-        self.t = model.thickness
-        self._pattern = None
-
-    def state(self, u: np.ndarray):
-        """(F, S) at the quadrature points; raises _StepFailed where det F <= 0."""
-        F = deformation(self.basis, u)
-        J = np.linalg.det(np.moveaxis(F, (0, 1), (-2, -1)))
-        if not np.all(np.isfinite(J)) or J.min() <= 0:
-            raise _StepFailed(f"an element turned inside out (min det F = {J.min():.2g})", [])
-        return F, svk_stress(green_lagrange(F), self.lam, self.mu)
-
-    def internal_force(self, F, S) -> np.ndarray:
-        return _internal_force.assemble(self.basis, F=F, S=S, t=self.t)
-
-    def tangent(self, F, S) -> sp.csr_matrix:
-        A = self.t * tangent_modulus(F, S, self.lam, self.mu)
-        coo = _tangent.coo_data(self.basis, A=A)
-        if self._pattern is None:
-            n = coo.shape[0]
-            keys = coo.indices[0].astype(np.int64) * n + coo.indices[1]
-            unique, where = np.unique(keys, return_inverse=True)
-            rows, cols = np.divmod(unique, n)
-            indptr = np.searchsorted(rows, np.arange(n + 1))
-            self._pattern = (where, cols.astype(np.int32), indptr.astype(np.int32), len(unique), n)
-        where, cols, indptr, nnz, n = self._pattern
-        data = np.bincount(where, weights=coo.data, minlength=nnz)
-        return sp.csr_matrix((data, cols, indptr), shape=(n, n))
-
-
 @dataclass(frozen=True, eq=False)
 class NonlinearResult:
     """Converged steps of a nonlinear solve; index 0 is the unloaded state.
@@ -142,7 +53,11 @@ class NonlinearResult:
     (c_x, c_y, theta)} (m, m, rad) ; iterations : Newton iterations per step ;
     von_mises_nodal / von_mises_element_max : final Cauchy von Mises stress (Pa), nodal from
     the L2 projection of the stress components onto linear fields, and the maximum over each
-    element's quadrature points ; applied : full-load vector f_ext (N)."""
+    element's quadrature points ; applied : full-load vector f_ext (N) ; negative_eigenvalues :
+    per step, the number of negative eigenvalues of the reduced tangent stiffness (None where
+    it is singular, a critical state; None everywhere if not checked) ; max_strain : per step
+    the largest absolute principal Green-Lagrange strain (-) ; strain_limit : the validity
+    limit of St. Venant-Kirchhoff (see :data:`.hyperelastic.STRAIN_LIMIT`)."""
 
     model: Model
     load_factors: np.ndarray
@@ -155,6 +70,28 @@ class NonlinearResult:
     von_mises_element_max: np.ndarray
     applied: np.ndarray
     info: dict = field(default_factory=dict)
+    negative_eigenvalues: list = field(default_factory=list)
+    max_strain: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    strain_limit: float = STRAIN_LIMIT
+
+    @property
+    def stable(self) -> np.ndarray:
+        """(n,) bool per step: the reduced tangent stiffness is positive definite (a strict
+        minimum of the potential energy); False at a critical or unstable state, and where
+        not checked (negative_eigenvalues None)."""
+        return np.array([n == 0 for n in self.negative_eigenvalues], dtype=bool)
+
+    @property
+    def strain_valid(self) -> np.ndarray:
+        """(n,) bool per step: every Green-Lagrange principal strain within strain_limit."""
+        return np.asarray(self.max_strain) <= self.strain_limit
+
+    def stress_at_step(self, step: int) -> tuple[np.ndarray, np.ndarray]:
+        """(nodal (n_vertices,), element max (n_elements,)) Cauchy von Mises stress (Pa) at
+        ``step`` (as von_mises_nodal / von_mises_element_max at the last step)."""
+        if not (isinstance(step, (int, np.integer)) and -len(self.u) <= step < len(self.u)):
+            raise ValueError(f"step = {step!r} must index one of the {len(self.u)} steps")
+        return final_stress(self.model, self.u[step])
 
     def mean_displacement(self, group: str, step: int = -1) -> np.ndarray:
         """Measure-averaged displacement (m) of a group at ``step``."""
@@ -192,24 +129,6 @@ class NonlinearResult:
         return self.model.mesh.mesh.p[:, int(np.argmax(self.von_mises_nodal))]
 
 
-def final_stress(model: Model, u: np.ndarray):
-    """(nodal von Mises (n_vertices,), element max (n_elements,)) of the Cauchy stress (Pa).
-    2-D: sigma_zz = 0 in plane stress, S_zz / det F in plane strain; the thickness change
-    is neglected in det F (strains small beside rotations)."""
-    basis = model.basis
-    lam, mu = model.lame
-    F = deformation(basis, u)
-    E = green_lagrange(F)
-    sig = cauchy_stress(F, svk_stress(E, lam, mu))
-    if model.dim == 2:
-        full = np.zeros((3, 3) + sig.shape[2:])
-        full[:2, :2] = sig
-        if isinstance(model.formulation, PlaneStrain):
-            full[2, 2] = lam * trace(E) / np.linalg.det(np.moveaxis(F, (0, 1), (-2, -1)))
-        sig = full
-    return von_mises(nodal_average(model, sig)), von_mises(sig).max(axis=1)
-
-
 def _check_arguments(steps, max_iterations, tol, min_step):
     if not (isinstance(steps, int) and steps >= 1):
         raise ValueError(f"steps = {steps!r} must be an integer >= 1")
@@ -221,26 +140,13 @@ def _check_arguments(steps, max_iterations, tol, min_step):
         raise ValueError(f"min_step = {min_step!r} must lie in (0, 1]")
 
 
-def _check_held(model, space):
-    """Raise UnderConstrainedError if supports and rigid faces leave a rigid-body motion."""
-    if not space.faces:
-        check_supports(model, space.D)
-        return
-    rows = space.held_mode_rows(model)
-    s = np.linalg.svd(rows, compute_uv=False) if len(rows) else np.zeros(0)
-    free = 3 - int(np.sum(s > 1e-9 * max(np.abs(rows).max(initial=0.0), 1e-300)))
-    if free:
-        raise UnderConstrainedError(f"the supports and rigid faces leave {free} of 3 rigid-body "
-                                    "modes free; prescribe more coordinates or add supports")
-
-
 class _Problem:
     """Residual and tangent in the reduced unknowns z at a load factor."""
 
     def __init__(self, model, supports, loads, rigid_faces, solver):
         D, xD, self.owned = constrained_dofs(model, supports)
         self.space = ReducedSpace(model, D, xD, rigid_faces)
-        _check_held(model, self.space)
+        check_held(model, self.space)
         self.model = model
         self.assembler = Assembler(model)
         self.f_ext = load_vector(model, loads)
@@ -331,6 +237,15 @@ def _newton(problem, z, lam_old, lam, max_iterations, tol, guess=None):
     raise _StepFailed(f"no convergence in {max_iterations} iterations", history)
 
 
+def _stability(problem, z, u, r, lam):
+    """Negative eigenvalues of the reduced tangent at a converged state (None: singular)."""
+    K = problem.reduced_tangent(z, lam, u, r, problem.space.jacobian(z, lam))
+    try:
+        return count_negative_eigenvalues(K)
+    except linsolve.SingularSystemError:
+        return None
+
+
 def _record(problem, z, u, r, lam):
     space = problem.space
     comps = component_indices(problem.model)
@@ -342,29 +257,13 @@ def _record(problem, z, u, r, lam):
     return reactions, faces, motion
 
 
-def solve_nonlinear(model: Model, supports, loads, steps: int = 10, max_iterations: int = 25,
-                    tol: float = 1e-8, min_step: float = 1e-4, rigid_faces=(),
-                    solver: str = "direct") -> NonlinearResult:
-    """Large-deflection static solve of ``model`` under ``supports`` (Fixed, Prescribed),
-    ``loads`` (Force, Traction, PointForce, BodyForce, Gravity; dead loads, N) and
-    ``rigid_faces`` (RigidFace, 2-D), all scaled by a load factor stepped 0 -> 1 in
-    ``steps`` equal increments. A step whose Newton iterations fail (``max_iterations``
-    reached, residual diverging, an element inverted, a singular tangent) is halved, down
-    to ``min_step`` (a load-factor increment); below that NonConvergenceError is raised.
-    Converged when |r| <= tol * reference force (applied loads and reactions, N) and the
-    last increment |dz| <= sqrt(tol) |u| (Newton converges quadratically, so the error
-    left is about |dz|^2). ``solver``: 'direct', 'amg' (symmetric positive tangent only) or
-    'auto'."""
-    _check_arguments(steps, max_iterations, tol, min_step)
-    problem = _Problem(model, supports, loads, rigid_faces, solver)
-    z = np.zeros(problem.space.n)
-    u0 = np.zeros(model.n_dofs)
-    r0 = np.zeros(model.n_dofs)
-    lams, us, its = [0.0], [u0], [0]
-    records = [_record(problem, z, u0, r0, 0.0)]
+def _load_control(problem, steps, max_iterations, tol, min_step, lams, on_step) -> int:
+    """Step the load factor 0 -> 1 (see :func:`solve_nonlinear`); ``lams`` (the converged
+    load factors so far, appended to by ``on_step``) extrapolates each step's start.
+    Returns the number of step cuts."""
     nominal = 1.0 / steps
     dlam, lam, cuts, good, cuts_here = nominal, 0.0, 0, 0, 0
-    z_previous = z
+    z = z_previous = np.zeros(problem.space.n)
     while lam < 1.0 - 1e-12:
         dlam = min(dlam, 1.0 - lam)
         try:
@@ -381,19 +280,71 @@ def solve_nonlinear(model: Model, supports, loads, steps: int = 10, max_iteratio
                     f"{', '.join(f'{h:.2e}' for h in failure.history) or 'none'}. Use more steps, "
                     f"a smaller min_step (now {min_step:g}) or more max_iterations (now "
                     f"{max_iterations}); if the residual grows, the structure may buckle or snap "
-                    "(a limit point), which load control cannot pass: prescribe a displacement "
-                    "instead", lam, lam + dlam, len(failure.history), failure.history) from None
+                    "(a limit point), which load control cannot pass: use control='arc-length' or "
+                    "prescribe a displacement instead", lam, lam + dlam, len(failure.history),
+                    failure.history) from None
             dlam, cuts, good, cuts_here = dlam / 2, cuts + 1, 0, cuts_here + 1
             continue
         lam, cuts_here = lam + dlam, 0
         z_previous, z = z, z_new
+        on_step(z, lam, u, r, n_it)
+        good += 1
+        if good >= 2 and dlam < nominal:
+            dlam, good = min(2 * dlam, nominal), 0
+    return cuts
+
+
+def solve_nonlinear(model: Model, supports, loads, steps: int = 10, max_iterations: int = 25,
+                    tol: float = 1e-8, min_step: float = 1e-4, rigid_faces=(),
+                    solver: str = "direct", check_stability: bool | None = None,
+                    strain_limit: float = STRAIN_LIMIT, control: str = "load",
+                    max_steps: int | None = None) -> NonlinearResult:
+    """Large-deflection static solve of ``model`` under ``supports`` (Fixed, Prescribed),
+    ``loads`` (Force, Traction, PointForce, BodyForce, Gravity; dead loads, N) and
+    ``rigid_faces`` (RigidFace, 2-D), all scaled by a load factor stepped 0 -> 1 in
+    ``steps`` equal increments. A step whose Newton iterations fail (``max_iterations``
+    reached, residual diverging, an element inverted, a singular tangent) is halved, down
+    to ``min_step`` (a load-factor increment); below that NonConvergenceError is raised.
+    Converged when |r| <= tol * reference force (applied loads and reactions, N) and the
+    last increment |dz| <= sqrt(tol) |u| (Newton converges quadratically, so the error
+    left is about |dz|^2). ``solver``: 'direct', 'amg' (symmetric positive tangent only) or
+    'auto'. ``check_stability``: count the negative eigenvalues of the tangent at each
+    converged step (one extra sparse LDL^T factorization per step; result.stable); default
+    on with the direct solver, off with AMG (a model too large to factorize). ``strain_limit``: the
+    Green-Lagrange strain (-) beyond which result.strain_valid flags a step. ``control``:
+    'load' (the load factor stepped as above) or 'arc-length' (:mod:`.arclength`: the path is
+    followed through limit points, which result.info['limit_points'] lists; the first arc
+    length is that of a load step 1 / ``steps`` along the initial tangent; at most
+    ``max_steps`` steps, default 20 ``steps``)."""
+    _check_arguments(steps, max_iterations, tol, min_step)
+    if control not in ("load", "arc-length"):
+        raise ValueError(f"control = {control!r}; choose 'load' or 'arc-length'")
+    if not (isinstance(strain_limit, (int, float)) and 0 < strain_limit < math.inf):
+        raise ValueError(f"strain_limit = {strain_limit!r} must be a finite number > 0")
+    problem = _Problem(model, supports, loads, rigid_faces, solver)
+    if check_stability is None:
+        check_stability = problem.solver == "direct"
+    z = np.zeros(problem.space.n)
+    u0 = np.zeros(model.n_dofs)
+    r0 = np.zeros(model.n_dofs)
+    lams, us, its = [0.0], [u0], [0]
+    records = [_record(problem, z, u0, r0, 0.0)]
+    negative, strains = [0 if check_stability else None], [0.0]
+
+    def on_step(z, lam, u, r, n_it):
         lams.append(lam)
         us.append(u)
         its.append(n_it)
         records.append(_record(problem, z, u, r, lam))
-        good += 1
-        if good >= 2 and dlam < nominal:
-            dlam, good = min(2 * dlam, nominal), 0
+        negative.append(_stability(problem, z, u, r, lam) if check_stability else None)
+        strains.append(max_strain(model, u))
+
+    if control == "arc-length":
+        from .arclength import trace
+        cuts = trace(problem, steps, max_iterations, tol, min_step,
+                     20 * steps if max_steps is None else max_steps, on_step)
+    else:
+        cuts = _load_control(problem, steps, max_iterations, tol, min_step, lams, on_step)
     vm_nodal, vm_element = final_stress(model, us[-1])
     return NonlinearResult(
         model=model, load_factors=np.array(lams), u=us, reactions=[rec[0] for rec in records],
@@ -401,4 +352,6 @@ def solve_nonlinear(model: Model, supports, loads, steps: int = 10, max_iteratio
         iterations=its, von_mises_nodal=vm_nodal, von_mises_element_max=vm_element,
         applied=problem.f_ext,
         info={"n_dofs": model.n_dofs, "n_unknowns": problem.space.n, "step_cuts": cuts,
-              "solver": problem.solver})
+              "solver": problem.solver, "control": control,
+              "limit_points": limit_points(lams)},
+        negative_eigenvalues=negative, max_strain=np.array(strains), strain_limit=strain_limit)

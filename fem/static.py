@@ -25,7 +25,9 @@ class StaticResult:
     von_mises_nodal : (n_vertices,) from the stress components L2-projected onto
     continuous linear fields; von_mises_element_max :
     (n_elements,) maximum over each element's quadrature points; reactions : {group: force
-    vector} on every supported group; strain_energy : 1/2 u.K.u.
+    vector} on every supported group; strain_energy : 1/2 u.K.u; face_motion / face_reactions :
+    {group: (c_x, c_y, theta)} (m, m, rad) / {group: (F_x, F_y, M)} (N, N, N m about the
+    centroid) of each rigid face (``solve_static(..., rigid_faces=...)``).
     """
 
     model: Model
@@ -38,6 +40,8 @@ class StaticResult:
     strain_energy: float
     solver: str = "direct"
     info: dict = field(default_factory=dict)
+    face_motion: dict = field(default_factory=dict)
+    face_reactions: dict = field(default_factory=dict)
 
     @property
     def max_von_mises(self) -> float:
@@ -157,9 +161,14 @@ def body_parts(model: Model) -> list[np.ndarray]:
     return sorted(parts, key=len, reverse=True)
 
 
-def solve_static(model: Model, supports, loads, solver: str = "auto") -> StaticResult:
+def solve_static(model: Model, supports, loads, solver: str = "auto",
+                 rigid_faces=()) -> StaticResult:
     """Solve K u = f with the displacement ``supports`` (Fixed, Prescribed) and ``loads``
-    (Force, Traction, PointForce, BodyForce, Gravity). ``solver``: 'auto', 'direct' or 'amg'."""
+    (Force, Traction, PointForce, BodyForce, Gravity). ``solver``: 'auto', 'direct' or 'amg'.
+    ``rigid_faces``: RigidFace (2-D), linearised; see :mod:`.rigid_static`."""
+    if rigid_faces:
+        from .rigid_static import solve_static_faces
+        return solve_static_faces(model, supports, loads, rigid_faces, solver)
     D, xD, owned = constrained_dofs(model, supports)
     check_supports(model, D)
     K = model.stiffness

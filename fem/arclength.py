@@ -1,0 +1,114 @@
+"""Arc-length continuation for ``solve_nonlinear(..., control="arc-length")``.
+
+The load factor lambda becomes an unknown beside the reduced unknowns z (lengths, m), and
+each step advances a fixed distance ds along the equilibrium path in z (cylindrical arc
+length, Crisfield 1981, "A fast incremental/iterative solution procedure that handles
+snap-through", Comput. Struct. 13:55): the tangent predictor dz = dlambda K^-1 q, q =
+-dR/dlambda, in the direction of the previous increment (so the path is followed through
+limit points, where lambda turns back), then corrections constrained to the plane normal to
+the current increment (Riks-Wempner, updated normal plane). The last step lands on
+lambda = 1 by load control. Limit points (local extremes of lambda along the path) are
+reported in ``result.info["limit_points"]``.
+"""
+import math
+
+import numpy as np
+
+from . import linsolve
+from .hyperelastic import _StepFailed
+
+
+def _load_direction(problem, z, lam, rz) -> np.ndarray:
+    """q = -dR/dlambda (N) by a forward difference (exact for dead loads and prescribed
+    translations, which enter linearly)."""
+    h = 1e-6 * max(1.0, abs(lam))
+    return -(problem.evaluate(z, lam + h, tangent=False)[2] - rz) / h
+
+
+def _solve2(K, a, b):
+    try:
+        with linsolve.factorize(K, kind="symmetric") as solve:
+            x = solve(np.column_stack([a, b]))
+    except (RuntimeError, linsolve.SingularSystemError) as error:
+        raise _StepFailed(f"the tangent is singular ({error})", []) from None
+    if not np.all(np.isfinite(x)):
+        raise _StepFailed("the tangent is singular (non-finite increment)", [])
+    return x[:, 0], x[:, 1]
+
+
+def arc_step(problem, z, lam, ds, previous, max_iterations, tol):
+    """One converged arc-length step of length ``ds`` (m) from (z, lam), continuing the
+    direction ``previous`` (the last increment of z): (z, lam, u, r, iterations)."""
+    _, _, rz, K, _, _, _ = problem.evaluate(z, lam)
+    _, dz_t = _solve2(K, np.zeros_like(rz), _load_direction(problem, z, lam, rz))
+    sign = 1.0 if float(dz_t @ previous) >= 0 else -1.0
+    dlam = sign * ds / max(np.linalg.norm(dz_t), 1e-300)
+    Dz, Dlam, d = dlam * dz_t, dlam, None
+    history = []
+    for iteration in range(1, max_iterations + 1):
+        zc, lc = z + Dz, lam + Dlam
+        u, r, rz, K, reference, _, _ = problem.evaluate(zc, lc)
+        norm = float(np.linalg.norm(rz))
+        history.append(norm / reference if reference > 0 else norm)
+        if not math.isfinite(norm):
+            raise _StepFailed("the residual diverged", history)
+        small = d is not None and np.linalg.norm(d) <= math.sqrt(tol) * max(np.linalg.norm(u), 1e-300)
+        if norm <= tol * reference and small:
+            return zc, lc, u, r, iteration
+        a, b = _solve2(K, -rz, _load_direction(problem, zc, lc, rz))
+        denominator = 2.0 * float(Dz @ b)
+        if denominator == 0:
+            raise _StepFailed("the arc-length constraint is degenerate", history)
+        dl = (ds ** 2 - float(Dz @ Dz) - 2.0 * float(Dz @ a)) / denominator
+        d = a + dl * b
+        Dz, Dlam = Dz + d, Dlam + dl
+    raise _StepFailed(f"no convergence in {max_iterations} iterations", history)
+
+
+def limit_points(load_factors) -> list:
+    """[(step, load factor, 'maximum' | 'minimum')] where lambda turns along the path."""
+    lam = np.asarray(load_factors)
+    out = []
+    for k in range(1, len(lam) - 1):
+        before, after = lam[k] - lam[k - 1], lam[k + 1] - lam[k]
+        if before * after < 0:
+            out.append((k, float(lam[k]), "maximum" if before > 0 else "minimum"))
+    return out
+
+
+def trace(problem, steps, max_iterations, tol, min_step, max_steps, on_step):
+    """Follow the path from the unloaded state to lambda = 1; ``on_step(z, lam, u, r,
+    iterations)`` records each converged point. Returns the number of step cuts."""
+    from .nonlinear import NonConvergenceError, _newton
+
+    z, lam = np.zeros(problem.space.n), 0.0
+    _, _, rz, K, _, _, _ = problem.evaluate(z, lam)
+    _, dz_t = _solve2(K, np.zeros_like(rz), _load_direction(problem, z, lam, rz))
+    ds0 = float(np.linalg.norm(dz_t)) / steps
+    if not ds0 > 0:
+        raise ValueError("control='arc-length': the loads and prescribed motions move nothing")
+    ds, previous, cuts, taken = ds0, dz_t, 0, 0
+    while lam < 1.0 - 1e-12:
+        if taken >= max_steps:
+            raise NonConvergenceError(
+                f"arc-length: load factor 1 not reached in max_steps = {max_steps} steps (at "
+                f"{lam:.6g}); raise max_steps or steps", lam, 1.0, 0, [])
+        try:
+            z_new, lam_new, u, r, its = arc_step(problem, z, lam, ds, previous, max_iterations, tol)
+            if lam_new > 1.0:
+                guess = z + (1.0 - lam) / (lam_new - lam) * (z_new - z)
+                z_new, u, r, its, _ = _newton(problem, z, lam, 1.0, max_iterations, tol, guess)
+                lam_new = 1.0
+        except _StepFailed as failure:
+            if ds / 2 < min_step * ds0:
+                raise NonConvergenceError(
+                    f"arc-length: no convergence beyond load factor {lam:.6g} with arc length "
+                    f"{ds:.3g} m after {cuts} cuts: {failure.reason}", lam, lam, len(failure.history),
+                    failure.history) from None
+            ds, cuts = ds / 2, cuts + 1
+            continue
+        previous, z, lam, taken = z_new - z, z_new, lam_new, taken + 1
+        on_step(z, lam, u, r, its)
+        if its <= 4:
+            ds = min(1.5 * ds, ds0)
+    return cuts

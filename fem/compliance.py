@@ -1,0 +1,233 @@
+"""Compliance of a rigid face: ``compliance_matrix(model, supports, face) -> Compliance``.
+
+The face (a boundary group, 2-D) is made rigid with all three coordinates free and loaded by
+unit generalised loads; the 3 x 3 compliance relates the face's (u_x, u_y, theta) at a
+reference point (m, m, rad) to a force (F_x, F_y) (N) applied there and a moment M (N m):
+[u_x, u_y, theta] = C [F_x, F_y, M]. About a converged nonlinear state it is the tangent
+(incremental) compliance: material and geometric stiffness, the face's rotation included.
+"""
+from dataclasses import dataclass
+import math
+
+import numpy as np
+import scipy.sparse as sp
+
+from . import linsolve
+from .boundary import constrained_dofs
+from .hyperelastic import Assembler
+from .rigid_face import ReducedSpace, RigidFace
+from .rigid_static import check_held, linear_map
+from .stability import state_displacement, tangent_stiffness
+
+
+@dataclass(frozen=True, eq=False)
+class Compliance:
+    """matrix : compliance (m/N, 1/N, rad/(N m)) of the face's (translations, rotations)
+    under (forces, moments) at ``point`` (m, current coordinates): 3 x 3 in 2-D (x, y, theta_z),
+    6 x 6 in 3-D (x, y, z, theta_x, theta_y, theta_z), in the axes ``frame`` (columns: the
+    axes' global components); face : the group."""
+
+    face: str
+    matrix: np.ndarray
+    point: np.ndarray
+    frame: np.ndarray
+
+    @property
+    def dim(self) -> int:
+        return len(self.point)
+
+    @property
+    def angle(self) -> float:
+        """2-D: rotation (rad) of the frame from the global axes."""
+        return float(math.atan2(self.frame[1, 0], self.frame[0, 0]))
+
+    @property
+    def stiffness(self) -> np.ndarray:
+        """Stiffness matrix (N/m, N, N m/rad): the inverse of ``matrix``."""
+        return np.linalg.inv(self.matrix)
+
+    def principal(self) -> tuple[np.ndarray, np.ndarray]:
+        """(compliances (dim,) m/N ascending, directions (dim, dim) as columns, frame
+        components) of the translational block: forces that translate the point along
+        themselves."""
+        n = self.dim
+        return np.linalg.eigh(self.matrix[:n, :n])
+
+    @property
+    def centre_of_compliance(self) -> np.ndarray:
+        """Global coordinates (m) of the point about which a force causes no rotation (the
+        elastic centre); in 3-D the point of least force-rotation coupling (Frobenius norm),
+        which decouples exactly where such a point exists."""
+        C, n = self.matrix, self.dim
+        if n == 2:
+            local = np.array([-C[2, 1] / C[2, 2], C[2, 0] / C[2, 2]])
+        else:
+            # rotation per force about P + d: C_rt + C_rr [d]x, linear in d
+            basis = [_skew(e) for e in np.eye(3)]
+            A = np.column_stack([(C[3:, 3:] @ S).ravel() for S in basis])
+            local = np.linalg.lstsq(A, -C[3:, :3].ravel(), rcond=None)[0]
+        return self.point + self.frame @ local
+
+    def _response(self, direction) -> tuple:
+        """(unit direction, response (translations, rotations) to a unit force along it)."""
+        d = np.asarray(direction, dtype=float)
+        if d.shape != (self.dim,) or not np.all(np.isfinite(d)) or not np.linalg.norm(d) > 0:
+            raise ValueError(f"direction = {direction!r} must be {self.dim} finite numbers, "
+                             "not all 0")
+        d = d / np.linalg.norm(d)
+        return d, self.matrix[:, :self.dim] @ d
+
+    def support_stiffness(self, direction) -> tuple[float, float]:
+        """(motion stiffness (N/m), support stiffness (N/m)) for motion along ``direction``
+        (frame components): the motion stiffness with every other coordinate free, the
+        support stiffness across the motion with the motion held and the rotations free (in
+        3-D the weakest direction across)."""
+        d, response = self._response(direction)
+        n = self.dim
+        across = np.linalg.svd(d[None, :])[2][1:]  # orthonormal complement, (n - 1, n)
+        Q = np.zeros((len(self.matrix), len(self.matrix)))
+        Q[0, :n], Q[1:n, :n], Q[n:, n:] = d, across, np.eye(len(self.matrix) - n)
+        K = np.linalg.inv(Q @ self.matrix @ Q.T)
+        held = np.linalg.inv(K[1:, 1:])[:n - 1, :n - 1]
+        return 1.0 / float(d @ response[:n]), 1.0 / float(np.linalg.eigvalsh(held).max())
+
+    def support_stiffness_ratio(self, direction) -> float:
+        """Support stiffness over motion stiffness (-) for motion along ``direction``."""
+        motion, support = self.support_stiffness(direction)
+        return support / motion
+
+    def parasitic(self, direction) -> tuple:
+        """(motion across (m/m), rotation (rad/m)) per unit motion along ``direction`` when
+        the point is pushed along it. 2-D: numbers, 'across' being ``direction`` turned by
+        +90 degrees; 3-D: the across-translation and rotation vectors (frame components)."""
+        d, response = self._response(direction)
+        n = self.dim
+        along = float(d @ response[:n])
+        if n == 2:
+            return float(np.array([-d[1], d[0]]) @ response[:2]) / along, response[2] / along
+        return (response[:3] - along * d) / along, response[3:] / along
+
+
+def _skew(v) -> np.ndarray:
+    return np.array([[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]])
+
+
+def _rotation(angle: float) -> np.ndarray:
+    c, s = math.cos(angle), math.sin(angle)
+    return np.array([[c, -s], [s, c]])
+
+
+def _rigid_fit(fk, u: np.ndarray) -> np.ndarray:
+    """(c_x, c_y, theta) of the rigid motion closest to the face's displacement ``u``."""
+    arms = fk.arms
+    x = arms + u[fk.dofs]  # current position relative to the reference centroid
+    a, b = arms - arms.mean(axis=1, keepdims=True), x - x.mean(axis=1, keepdims=True)
+    theta = math.atan2(np.sum(a[0] * b[1] - a[1] * b[0]), np.sum(a[0] * b[0] + a[1] * b[1]))
+    c = x.mean(axis=1) - _rotation(theta) @ arms.mean(axis=1)
+    return np.array([c[0], c[1], theta])
+
+
+def _reduced_tangent(model, space: ReducedSpace, state):
+    """(K_zz (N/m), face coordinates q) about ``state`` (None: the reference)."""
+    fk = space.faces[0]
+    if state is None:
+        T, _ = linear_map(space)
+        return (T.T @ model.stiffness @ T).tocsr(), np.zeros(3)
+    u, kind = state_displacement(model, state)
+    if kind == "linear":
+        T, _ = linear_map(space)
+        return (T.T @ tangent_stiffness(model, state) @ T).tocsr(), np.zeros(3)
+    q = _rigid_fit(fk, u)
+    z = np.zeros(space.n)
+    z[:len(space.I)] = u[space.I]
+    z[space.slots[0]] = q * np.array([1.0, 1.0, fk.ell])
+    assembler = Assembler(model)
+    F, S = assembler.state(u)
+    r = assembler.internal_force(F, S)
+    if isinstance(state, tuple):
+        r = r - state[0].load_factors[state[1]] * state[0].applied
+    elif hasattr(state, "applied"):
+        r = r - state.load_factors[-1] * state.applied
+    T = space.jacobian(z, 1.0)
+    K = T.T @ assembler.tangent(F, S) @ T
+    return (K + sp.diags(space.geometric_term(z, 1.0, r))).tocsr(), q
+
+
+def _frame(dim, angle, frame) -> np.ndarray:
+    """(dim, dim) orthonormal axes (columns) from ``angle`` (2-D, rad) or ``frame``."""
+    if not (isinstance(angle, (int, float)) and math.isfinite(angle)):
+        raise ValueError(f"angle = {angle!r} must be a finite number (rad)")
+    if frame is None:
+        if dim == 3 and angle != 0:
+            raise ValueError(f"angle = {angle!r} is for 2-D models; give frame in 3-D")
+        return _rotation(angle) if dim == 2 else np.eye(3)
+    R = np.asarray(frame, dtype=float)
+    if angle != 0 or R.shape != (dim, dim) or not np.allclose(R.T @ R, np.eye(dim), atol=1e-9):
+        raise ValueError(f"frame = {frame!r} must be an orthonormal {dim} x {dim} matrix "
+                         "(columns: the axes), given instead of angle")
+    return R
+
+
+def _face_compliance(model, supports, group, state):
+    """(compliance about the current centroid, in global axes; current centroid (m))."""
+    D, xD, _ = constrained_dofs(model, supports)
+    if model.dim == 3:
+        from .compliance3d import check_held_3d, reduced_stiffness_3d
+        if state is not None and state_displacement(model, state)[1] != "linear":
+            raise ValueError("state: 3-D compliance takes None or a StaticResult (3-D rigid "
+                             "faces are linear only)")
+        check_held_3d(model, D)
+        K = model.stiffness if state is None else tangent_stiffness(model, state)
+        K_zz, slots, centroid, ell = reduced_stiffness_3d(model, D, group, K)
+        scale = np.array([1.0] * 3 + [1.0 / ell] * 3)
+        q = np.zeros(3)
+    else:
+        space = ReducedSpace(model, D, xD, [RigidFace(group)])
+        check_held(model, space)
+        K_zz, q = _reduced_tangent(model, space, state)
+        fk = space.faces[0]
+        slots, centroid = space.slots[0], fk.centroid
+        scale = np.array([1.0, 1.0, 1.0 / fk.ell])
+    E = np.zeros((K_zz.shape[0], len(slots)))
+    E[slots, np.arange(len(slots))] = 1.0
+    with linsolve.Factorization(K_zz, "symmetric") as solve:
+        X = solve(E)
+    C = scale[:, None] * X[slots] * scale[None, :]  # coordinates per generalised loads
+    return 0.5 * (C + C.T), centroid + q[:model.dim]
+
+
+def compliance_matrix(model, supports, face, point=None, state=None, angle: float = 0.0,
+                      frame=None) -> Compliance:
+    """Compliance of the rigid ``face`` (a boundary group name or RigidFace; its prescribed
+    values are ignored: all its coordinates are freed) under ``supports`` (Fixed,
+    Prescribed): 3 x 3 in 2-D, 6 x 6 in 3-D (linearised face kinematics).
+
+    point : reference point (m), in the current configuration; default the face's centroid.
+    state : None (the unloaded reference), a StaticResult (prestressed: K + K_sigma), or in
+    2-D a converged nonlinear state (NonlinearResult, (NonlinearResult, step) or DOF vector,
+    m): the tangent compliance there. angle : 2-D frame rotation (rad, counter-clockwise) of
+    the returned matrix's axes; frame : instead, an orthonormal (dim, dim) matrix whose
+    columns are the axes. Raises UnderConstrainedError if the supports alone do not hold the
+    body with the face free.
+    """
+    group = face.group if isinstance(face, RigidFace) else face
+    if not isinstance(group, str):
+        raise ValueError(f"face = {face!r} must be a boundary group name or a RigidFace")
+    dim = model.dim
+    R = _frame(dim, angle, frame)
+    C, centre = _face_compliance(model, supports, group, state)
+    P = centre if point is None else np.asarray(point, dtype=float)
+    if P.shape != (dim,) or not np.all(np.isfinite(P)):
+        raise ValueError(f"point = {point!r} must be {dim} finite coordinates (m)")
+    d = P - centre
+    n = len(C)
+    # u_P = u_c + theta x d: translations gain -[d]x theta (2-D: theta (-d_y, d_x))
+    A = np.eye(n)
+    if dim == 2:
+        A[0, 2], A[1, 2] = -d[1], d[0]
+    else:
+        A[:3, 3:] = -_skew(d)
+    Rn = np.zeros((n, n))
+    Rn[:dim, :dim] = R.T
+    Rn[dim:, dim:] = R.T if dim == 3 else 1.0
+    return Compliance(group, Rn @ A @ C @ A.T @ Rn.T, P, R)

@@ -1,0 +1,154 @@
+"""Total-Lagrangian kinematics and St. Venant-Kirchhoff material: deformation gradient,
+Green-Lagrange strain, stresses, the consistent tangent and its assembly, and the geometric
+(initial-stress) stiffness used by buckling and prestressed modal analyses.
+
+St. Venant-Kirchhoff (S = lambda tr(E) I + 2 mu E) is Hooke's law written in the Green-Lagrange
+strain: exact for large rotations with small strains. Its stress departs from a linear law by a
+relative ~1.5 e at a uniaxial strain e (nominal stress E (e + 1.5 e^2 + e^3 / 2)), and in
+compression it softens and loses stability at a stretch of 1/sqrt(3) (e = -42 %), so beyond a
+few per cent of strain its response is no material's: :data:`STRAIN_LIMIT` (5 %, 7.5 %
+departure) is the validity limit flagged by the nonlinear solver.
+"""
+import numpy as np
+import scipy.sparse as sp
+import skfem
+from skfem.helpers import ddot, eye, grad, mul, transpose, trace
+
+from .model import Model, PlaneStrain, von_mises
+from .static import nodal_average
+
+STRAIN_LIMIT = 0.05
+
+
+class _StepFailed(Exception):
+    def __init__(self, reason, history):
+        super().__init__(reason)
+        self.reason, self.history = reason, history
+
+
+def green_lagrange(F: np.ndarray) -> np.ndarray:
+    """E = (F^T F - I) / 2 of a (dim, dim, ...) deformation gradient."""
+    return 0.5 * (mul(transpose(F), F) - eye(np.ones_like(F[0, 0]), F.shape[0]))
+
+
+def svk_stress(E: np.ndarray, lam: float, mu: float) -> np.ndarray:
+    """Second Piola-Kirchhoff stress (Pa) S = lam tr(E) I + 2 mu E."""
+    return lam * trace(E) * eye(np.ones_like(E[0, 0]), E.shape[0]) + 2.0 * mu * E
+
+
+def cauchy_stress(F: np.ndarray, S: np.ndarray) -> np.ndarray:
+    """sigma = F S F^T / det F (Pa)."""
+    return mul(mul(F, S), transpose(F)) / np.linalg.det(np.moveaxis(F, (0, 1), (-2, -1)))
+
+
+def deformation(basis, u: np.ndarray):
+    """F = I + grad u at the quadrature points of ``basis``, (dim, dim, n_elements, n_points)."""
+    gu = basis.interpolate(u).grad
+    return gu + eye(np.ones_like(gu[0, 0]), gu.shape[0])
+
+
+@skfem.LinearForm
+def _internal_force(v, w):
+    return w.t * ddot(mul(w.F, w.S), grad(v))
+
+
+@skfem.BilinearForm
+def _tangent(du, v, w):
+    return np.einsum("ij...,ijkl...,kl...->...", grad(v), np.asarray(w.A), grad(du))
+
+
+def tangent_modulus(F: np.ndarray, S: np.ndarray, lam: float, mu: float) -> np.ndarray:
+    """A_iJkL = delta_ik S_JL + F_iM C_MJNL F_kN (Pa), (dim,) * 4 + (n_elements, n_points):
+    dP = A : grad du, the consistent tangent of P = F S for St. Venant-Kirchhoff."""
+    d = F.shape[0]
+    I = np.eye(d)
+    A = np.einsum("ik,jl...->ijkl...", I, S)
+    A += lam * np.einsum("ij...,kl...->ijkl...", F, F)
+    A += mu * (np.einsum("il...,kj...->ijkl...", F, F) + np.einsum("ik...,jl...->ijkl...",
+                                                                    np.einsum("im...,km...->ik...", F, F),
+                                                                    I[..., None, None] + 0 * S))
+    return A
+
+
+class Assembler:
+    """Internal force (N) and tangent (N/m) of a model, on the model's stiffness quadrature
+    (exact for the linear part, so the tangent at u = 0 is ``model.stiffness``). The sparse
+    pattern is computed once and reused."""
+
+    def __init__(self, model: Model):
+        self.basis = model.stiffness_basis
+        self.lam, self.mu = model.lame
+        self.t = model.thickness
+        self._pattern = None
+
+    def state(self, u: np.ndarray):
+        """(F, S) at the quadrature points; raises _StepFailed where det F <= 0."""
+        F = deformation(self.basis, u)
+        J = np.linalg.det(np.moveaxis(F, (0, 1), (-2, -1)))
+        if not np.all(np.isfinite(J)) or J.min() <= 0:
+            raise _StepFailed(f"an element turned inside out (min det F = {J.min():.2g})", [])
+        return F, svk_stress(green_lagrange(F), self.lam, self.mu)
+
+    def internal_force(self, F, S) -> np.ndarray:
+        return _internal_force.assemble(self.basis, F=F, S=S, t=self.t)
+
+    def tangent(self, F, S) -> sp.csr_matrix:
+        A = self.t * tangent_modulus(F, S, self.lam, self.mu)
+        coo = _tangent.coo_data(self.basis, A=A)
+        if self._pattern is None:
+            n = coo.shape[0]
+            keys = coo.indices[0].astype(np.int64) * n + coo.indices[1]
+            unique, where = np.unique(keys, return_inverse=True)
+            rows, cols = np.divmod(unique, n)
+            indptr = np.searchsorted(rows, np.arange(n + 1))
+            self._pattern = (where, cols.astype(np.int32), indptr.astype(np.int32), len(unique), n)
+        where, cols, indptr, nnz, n = self._pattern
+        data = np.bincount(where, weights=coo.data, minlength=nnz)
+        return sp.csr_matrix((data, cols, indptr), shape=(n, n))
+
+
+def final_stress(model: Model, u: np.ndarray):
+    """(nodal von Mises (n_vertices,), element max (n_elements,)) of the Cauchy stress (Pa).
+    2-D: sigma_zz = 0 in plane stress, S_zz / det F in plane strain; the thickness change
+    is neglected in det F (strains small beside rotations)."""
+    basis = model.basis
+    lam, mu = model.lame
+    F = deformation(basis, u)
+    E = green_lagrange(F)
+    sig = cauchy_stress(F, svk_stress(E, lam, mu))
+    if model.dim == 2:
+        full = np.zeros((3, 3) + sig.shape[2:])
+        full[:2, :2] = sig
+        if isinstance(model.formulation, PlaneStrain):
+            full[2, 2] = lam * trace(E) / np.linalg.det(np.moveaxis(F, (0, 1), (-2, -1)))
+        sig = full
+    return von_mises(nodal_average(model, sig)), von_mises(sig).max(axis=1)
+
+
+@skfem.BilinearForm
+def _geometric(du, v, w):
+    return w.t * np.einsum("ij...,jl...,il...->...", grad(v), w.S, grad(du))
+
+
+def linear_stress(model: Model, u: np.ndarray, basis) -> np.ndarray:
+    """In-plane (dim, dim, n_elements, n_points) Cauchy stress (Pa) of the small-strain
+    state ``u`` at the quadrature points of ``basis``."""
+    return model.stress(u, basis)[:model.dim, :model.dim]
+
+
+def geometric_stiffness(model: Model, u: np.ndarray) -> sp.csr_matrix:
+    """Initial-stress (geometric) stiffness K_sigma (N/m) of the linear stress of ``u``:
+    K_sigma(du, v) = t int grad v . sigma . grad du^T dX, on the mass-matrix quadrature
+    (exact for sigma of degree order - 1). (K + K_sigma) is the tangent about a prestressed
+    reference configuration."""
+    basis = model.basis
+    S = linear_stress(model, u, basis)
+    return _geometric.assemble(basis, S=S, t=model.thickness).tocsr()
+
+
+def max_strain(model: Model, u: np.ndarray) -> float:
+    """Largest absolute principal Green-Lagrange strain (-) of state ``u`` over the stiffness
+    quadrature points."""
+    E = green_lagrange(deformation(model.stiffness_basis, u))
+    eig = np.linalg.eigvalsh(np.moveaxis(E, (0, 1), (-2, -1)))
+    return float(np.abs(eig).max())

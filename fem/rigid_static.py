@@ -1,0 +1,87 @@
+"""Rigid faces in the linear static solve: ``solve_static(..., rigid_faces=[...])``.
+
+The faces' DOFs are eliminated in favour of their generalised coordinates (c_x, c_y, theta)
+linearised about the reference configuration, u_a = c + theta (-(Y_a - Y_c), X_a - X_c):
+the small-displacement limit of :mod:`.rigid_face`'s kinematics. Prescribed coordinates
+are imposed, free ones carry the face's force and moment.
+"""
+import numpy as np
+
+from . import linsolve
+from .boundary import component_indices, constrained_dofs, load_vector
+from .model import von_mises
+from .rigid_face import ReducedSpace
+from .static import (StaticResult, UnderConstrainedError, check_supports, nodal_average,
+                     vertex_displacement)
+
+
+def check_held(model, space: ReducedSpace) -> None:
+    """Raise UnderConstrainedError if the supports and rigid faces of ``space`` leave a
+    rigid-body motion free."""
+    if not space.faces:
+        check_supports(model, space.D)
+        return
+    rows = space.held_mode_rows(model)
+    s = np.linalg.svd(rows, compute_uv=False) if len(rows) else np.zeros(0)
+    free = 3 - int(np.sum(s > 1e-9 * max(np.abs(rows).max(initial=0.0), 1e-300)))
+    if free:
+        raise UnderConstrainedError(f"the supports and rigid faces leave {free} of 3 rigid-body "
+                                    "modes free; prescribe more coordinates or add supports")
+
+
+def linear_map(space: ReducedSpace) -> tuple:
+    """(T, u_p): the linearised map u = T z + u_p (m) of the unknowns z, with u_p the
+    prescribed displacements and face coordinates at full load."""
+    T = space.jacobian(np.zeros(space.n), 0.0)
+    u_p = np.zeros(space.n_dofs)
+    u_p[space.D] = space.xD
+    for fk in space.faces:
+        q = fk.face.values()  # 0 where free
+        ax, ay = fk.arms
+        u_p[fk.dofs[0]] = q[0] - q[2] * ay
+        u_p[fk.dofs[1]] = q[1] + q[2] * ax
+    return T.tocsr(), u_p
+
+
+def face_results(space: ReducedSpace, z: np.ndarray, r: np.ndarray, theta_linear=True):
+    """({group: (F_x, F_y, M)} (N, N, N m about the centroid), {group: (c_x, c_y, theta)}
+    (m, m, rad)) of each face for unknowns ``z`` and nodal forces ``r`` = K u - f."""
+    qs = space.coordinates(z, 1.0)
+    forces = {fk.face.group: fk.generalised_force(r, 0.0 if theta_linear else q[2])
+              for fk, q in zip(space.faces, qs)}
+    return forces, {fk.face.group: q for fk, q in zip(space.faces, qs)}
+
+
+def solve_static_faces(model, supports, loads, rigid_faces, solver: str = "auto") -> StaticResult:
+    """Linear static solve with rigid faces (2-D); see :func:`.static.solve_static`. The
+    result's ``face_motion`` and ``face_reactions`` hold each face's (c_x, c_y, theta) (m, m,
+    rad) and (F_x, F_y, M) (N, N, N m about the face centroid): on a free coordinate the
+    applied load, on a prescribed one the reaction."""
+    if solver == "amg":
+        raise ValueError(f"solver = {solver!r} with rigid faces: use 'direct' or 'auto'")
+    linsolve.choose_solver(1, model.dim, solver)  # validates the name
+    D, xD, owned = constrained_dofs(model, supports)
+    space = ReducedSpace(model, D, xD, rigid_faces)
+    check_held(model, space)
+    K = model.stiffness
+    f = load_vector(model, loads)
+    T, u_p = linear_map(space)
+    rhs = T.T @ (f - K @ u_p) + space.applied(1.0)
+    z = np.zeros(space.n)
+    if np.any(rhs):
+        z = linsolve.solve_and_check((T.T @ K @ T).tocsr(), rhs, kind="spd", rtol=1e-6)
+    u = u_p + T @ z
+    r = K @ u - f
+    reactions = {g: np.array([r[np.intersect1d(dofs, idx)].sum()
+                              for idx in component_indices(model)])
+                 for g, dofs in owned.items()}
+    face_forces, motion = face_results(space, z, r)
+    sig = model.stress(u)
+    return StaticResult(
+        model=model, u=u, displacement=vertex_displacement(model, u),
+        von_mises_nodal=von_mises(nodal_average(model, sig)),
+        von_mises_element_max=von_mises(sig).max(axis=1), reactions=reactions,
+        applied_force=np.array([f[idx].sum() for idx in component_indices(model)]),
+        strain_energy=0.5 * float(u @ (K @ u)), solver="direct",
+        info={"n_dofs": model.n_dofs, "n_unknowns": space.n}, face_motion=motion,
+        face_reactions=face_forces)
