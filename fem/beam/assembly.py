@@ -7,14 +7,13 @@ keeps the system as well conditioned as the flexures alone and is exact at large
 x_s = x_m + R(theta_m) (X_s - X_m), theta_s = theta_m.
 """
 import numpy as np
-import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from .element import basic_stiffness, corotational, local_mass, rotation_to_global
 from .model import BeamModel, Fixed, NodalLoad, Prescribed
 
-DENSE_LIMIT = 800  # unknowns up to which dense LU is used
+DENSE_EIGEN_LIMIT = 800  # unknowns up to which modal analysis uses a dense eigensolver
 
 
 class SingularBeamError(ValueError):
@@ -92,6 +91,10 @@ class Space:
         self.arm = model.nodes[self.slaves] - model.nodes[self.masters]
         self.n = len(self.free)
         self.independent = np.concatenate([self.free, self.held])
+        self._col_free = -np.ones(n, dtype=int)
+        self._col_free[self.free] = np.arange(len(self.free))
+        self._col_held = -np.ones(n, dtype=int)
+        self._col_held[self.held] = np.arange(len(self.held))
         if self.n == 0:
             raise ValueError("supports: every DOF is held; nothing to solve")
 
@@ -111,23 +114,27 @@ class Space:
         return q
 
     def jacobian(self, q):
-        """Sparse dq/d(independent DOFs) split into (T for free, T_p for held) columns."""
-        n = self.model.n_dofs
-        rows = list(self.independent)
-        cols = list(self.independent)
-        vals = [1.0] * len(self.independent)
+        """Sparse dq/dz (T, for the free DOFs) and dq/dp (T_p, for the held ones)."""
+        rows, cols = [self.independent], [self.independent]
+        vals = [np.ones(len(self.independent))]
         if len(self.slaves):
             th = q[self.masters, 2]
             c, s = np.cos(th), np.sin(th)
             ax, ay = self.arm[:, 0], self.arm[:, 1]
             sd, md = 3 * self.slaves, 3 * self.masters
-            for k, (r, col, v) in enumerate([(0, 0, 1.0), (1, 1, 1.0), (2, 2, 1.0),
-                                             (0, 2, -s * ax - c * ay), (1, 2, c * ax - s * ay)]):
-                rows += list(sd + r)
-                cols += list(md + col)
-                vals += list(np.broadcast_to(v, sd.shape))
-        J = sp.csc_matrix((vals, (rows, cols)), shape=(n, n))
-        return J[:, self.free].tocsr(), J[:, self.held].tocsr()
+            for r, col, v in [(0, 0, 1.0), (1, 1, 1.0), (2, 2, 1.0),
+                              (0, 2, -s * ax - c * ay), (1, 2, c * ax - s * ay)]:
+                rows.append(sd + r)
+                cols.append(md + col)
+                vals.append(np.broadcast_to(v, sd.shape))
+        rows, cols, vals = np.concatenate(rows), np.concatenate(cols), np.concatenate(vals)
+        n = self.model.n_dofs
+        out = []
+        for column, width in ((self._col_free, self.n), (self._col_held, len(self.held))):
+            k = column[cols]
+            keep = k >= 0
+            out.append(sp.csr_matrix((vals[keep], (rows[keep], k[keep])), shape=(n, width)))
+        return out[0], out[1]
 
     def constraint_tangent(self, q, r_full) -> np.ndarray:
         """Second-order term sum_s r_s . d^2 x_s / d theta_m^2 on the free theta_m DOFs
@@ -162,22 +169,19 @@ class Assembler:
         if not tangent:
             return q, r, rz, None, T, Tp, None
         K = scatter(self.model, ke)
-        Kz = (T.T @ K @ T + self.space.constraint_tangent(q, r)).tocsr()
+        Kz = (T.T @ K @ T + self.space.constraint_tangent(q, r)).tocsc()
         return q, r, rz, Kz, T, Tp, K
 
 
 def solve(K, b):
-    """Solve K x = b (dense LU for small systems, sparse LU otherwise); raise
-    SingularBeamError for a singular K."""
-    b = np.asarray(b, dtype=float)
+    """Solve K x = b with a sparse LU (SuperLU: single-threaded, fast for the banded
+    systems of beam models); raise SingularBeamError if K is (numerically) singular."""
     try:
-        if K.shape[0] <= DENSE_LIMIT:
-            A = K.toarray() if sp.issparse(K) else K
-            lu = sla.lu_factor(A, check_finite=False)
-            d = np.abs(np.diag(lu[0]))
-            if d.min() <= 1e-13 * d.max() or not np.isfinite(d).all():
-                raise SingularBeamError("singular stiffness")
-            return sla.lu_solve(lu, b, check_finite=False)
-        return spla.splu(sp.csc_matrix(K)).solve(b)
-    except (RuntimeError, sla.LinAlgError) as exc:
+        lu = spla.splu(sp.csc_matrix(K))
+    except RuntimeError as exc:
         raise SingularBeamError(f"singular stiffness: {exc}") from None
+    d = np.abs(lu.U.diagonal())
+    if not np.isfinite(d).all() or d.min() <= 1e-13 * d.max():
+        raise SingularBeamError(f"singular stiffness (pivot ratio {d.min() / d.max():.1e}): a "
+                                "mechanism; the supports or links leave a motion free")
+    return lu.solve(np.asarray(b, dtype=float))

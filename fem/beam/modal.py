@@ -11,7 +11,7 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from .assembly import DENSE_LIMIT, Assembler, mass_matrix
+from .assembly import DENSE_EIGEN_LIMIT, Assembler, mass_matrix
 from .model import BeamModel
 
 
@@ -53,7 +53,7 @@ def solve_beam_modes(model: BeamModel, supports, n: int = 6, about=None, loads=(
         raise ValueError(f"n = {n} modes asked for but the model has {asm.space.n} free DOFs")
     M_full = mass_matrix(model)
     M = (T.T @ M_full @ T).tocsr()
-    if asm.space.n <= DENSE_LIMIT:
+    if asm.space.n <= DENSE_EIGEN_LIMIT:
         w2, phi = sla.eigh(K.toarray(), M.toarray(), subset_by_index=[0, n - 1])
     else:
         w2, phi = spla.eigsh(K.tocsc(), k=n, M=M.tocsc(), sigma=-1e-6 * abs(K.diagonal()).max()

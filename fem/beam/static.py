@@ -59,8 +59,12 @@ def make_state(assembler: Assembler, q, r, lam, info=None, fb=None) -> BeamState
     model = assembler.model
     if fb is None:
         _, _, fb = corotational(model, assembler.Kb, q, tangent=False)
-    held_nodes = np.unique(assembler.space.held // 3)
-    rr = r.reshape(-1, 3)
+    space = assembler.space
+    held_nodes = np.unique(space.held // 3)
+    T, Tp = space.jacobian(q)
+    rr = np.zeros(model.n_dofs)  # generalised residual of the independent DOFs
+    rr[space.free], rr[space.held] = T.T @ r, Tp.T @ r
+    rr = rr.reshape(-1, 3)
     reactions = {int(k): rr[k].copy() for k in held_nodes}
     sigma, xi = bending_stress(model, fb)
     return BeamState(model=model, q=q.copy(), reactions=reactions, axial_force=fb[:, 0].copy(),
