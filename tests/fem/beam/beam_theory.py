@@ -39,7 +39,7 @@ def timoshenko_cantilever_hz(E, nu, rho, A, I, L, n, kappa=5.0 / 6.0):
 
     # scan in omega (rad/s) from the Euler-Bernoulli first frequency down-scaled
     w1 = 1.8751**2 * np.sqrt(E * I / (rho * A * L**4))
-    grid = np.linspace(0.05 * w1, 40 * w1, 8000)
+    grid = np.linspace(0.05 * w1, 25 * w1, 1500)
     vals = np.array([det(w) for w in grid])
     roots = []
     for a, b, fa, fb in zip(grid[:-1], grid[1:], vals[:-1], vals[1:]):
