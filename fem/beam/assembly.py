@@ -173,15 +173,55 @@ class Assembler:
         return q, r, rz, Kz, T, Tp, K
 
 
+class Factor:
+    """Sparse LU (SuperLU: single-threaded, fast for the banded systems of beam models) of
+    the Jacobi-scaled K (unit diagonal, so that pivots compare across DOFs of any
+    stiffness). Raises SingularBeamError if K is (numerically) singular. ``sign``: the sign
+    of det K (it flips where the tangent loses definiteness: a limit or bifurcation point)."""
+
+    def __init__(self, K):
+        K = sp.csc_matrix(K)
+        diag = np.abs(K.diagonal())
+        if not np.all(np.isfinite(diag)) or np.any(diag == 0):
+            raise SingularBeamError("singular stiffness: a DOF has no stiffness at all (a "
+                                    "node without elements, or a mechanism)")
+        self.scale = 1.0 / np.sqrt(diag)
+        S = sp.diags(self.scale)
+        try:
+            self.lu = spla.splu((S @ K @ S).tocsc())
+        except RuntimeError as exc:
+            raise SingularBeamError(f"singular stiffness: {exc}") from None
+        d = self.lu.U.diagonal()
+        if not np.isfinite(d).all() or np.abs(d).min() <= 1e-13:
+            raise SingularBeamError(f"singular stiffness (scaled pivot {np.abs(d).min():.1e}): "
+                                    "a mechanism; the supports or links leave a motion free")
+        self.d = d
+
+    @property
+    def sign(self) -> int:
+        parity = _parity(self.lu.perm_r) ^ _parity(self.lu.perm_c)
+        return int(np.prod(np.sign(self.d))) * (-1 if parity else 1)
+
+    def solve(self, b):
+        b = np.asarray(b, dtype=float)
+        scale = self.scale if b.ndim == 1 else self.scale[:, None]
+        return scale * self.lu.solve(scale * b)
+
+
+def _parity(perm) -> int:
+    """0 for an even permutation, 1 for an odd one."""
+    seen = np.zeros(len(perm), dtype=bool)
+    cycles = 0
+    for start in range(len(perm)):
+        if not seen[start]:
+            cycles += 1
+            j = start
+            while not seen[j]:
+                seen[j] = True
+                j = perm[j]
+    return (len(perm) - cycles) % 2
+
+
 def solve(K, b):
-    """Solve K x = b with a sparse LU (SuperLU: single-threaded, fast for the banded
-    systems of beam models); raise SingularBeamError if K is (numerically) singular."""
-    try:
-        lu = spla.splu(sp.csc_matrix(K))
-    except RuntimeError as exc:
-        raise SingularBeamError(f"singular stiffness: {exc}") from None
-    d = np.abs(lu.U.diagonal())
-    if not np.isfinite(d).all() or d.min() <= 1e-13 * d.max():
-        raise SingularBeamError(f"singular stiffness (pivot ratio {d.min() / d.max():.1e}): a "
-                                "mechanism; the supports or links leave a motion free")
-    return lu.solve(np.asarray(b, dtype=float))
+    """Solve K x = b (see Factor)."""
+    return Factor(K).solve(b)

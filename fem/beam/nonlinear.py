@@ -15,7 +15,7 @@ import math
 import numpy as np
 
 from ..nonlinear import NonConvergenceError
-from .assembly import Assembler, SingularBeamError, solve
+from .assembly import Assembler, Factor, SingularBeamError
 from .model import BeamModel, dof_index
 from .static import BeamState, make_state
 
@@ -86,9 +86,10 @@ class _Stepper:
         return g
 
     def newton(self, z, lam, target):
-        """Converged (z, lam, q, r, iterations) reaching ``target`` (a load factor, or the
-        control DOF's value)."""
-        history = []
+        """Converged (z, lam, q, r, iterations, flipped) reaching ``target`` (a load factor,
+        or the control DOF's value); flipped: the tangent's determinant changed sign over
+        the step (a limit or bifurcation point crossed)."""
+        history, signs = [], []
         for it in range(1, self.max_iterations + 1):
             q, r, rz, K, T, Tp, Kf = self.asm.evaluate(z, lam)
             ref = self._reference(r, lam)
@@ -100,12 +101,14 @@ class _Stepper:
                 # converged; or at round-off: the last Newton correction ~ machine precision
                 floor = np.linalg.norm(dz) <= 1e-12 * np.linalg.norm(z) and norm <= 1e-6 * ref
                 if (norm <= self.tol * ref and self._small(dz, z)) or floor:
-                    return z, lam, q, r, it - 1
+                    return z, lam, q, r, it - 1, signs[0] != signs[-1]
             try:
+                F = Factor(K)
+                signs.append(F.sign)
                 if self.c_index is None and it > 1:
-                    a, b = solve(K, -rz), None
+                    a, b = F.solve(-rz), None
                 else:
-                    a, b = solve(K, np.column_stack([-rz, self.dr_dlam(Kf, T, Tp)])).T
+                    a, b = F.solve(np.column_stack([-rz, self.dr_dlam(Kf, T, Tp)])).T
                 if self.c_index is None:
                     dlam = target - lam if it == 1 else 0.0  # predictor: load increment
                     dz = a if b is None else a - dlam * b
@@ -145,11 +148,15 @@ def solve_beam_nonlinear(model: BeamModel, supports, loads=(), steps: int = 10,
     q0, r0, *_ = asm.evaluate(z, 0.0, tangent=False)
     states, lams, its = [make_state(asm, q0, r0, 0.0)], [0.0], [0]
     goal = 1.0 if control is None else float(stepper.c_value)
-    nominal, dt, cuts, good = 1.0 / steps, 1.0 / steps, 0, 0
+    nominal, dt, cuts, good, crossings = 1.0 / steps, 1.0 / steps, 0, 0, []
     while t < 1.0 - 1e-12:
         dt = min(dt, 1.0 - t)
         try:
-            z_new, lam_new, q, r, n_it = stepper.newton(z, lam, (t + dt) * goal)
+            z_new, lam_new, q, r, n_it, flipped = stepper.newton(z, lam, (t + dt) * goal)
+            if flipped and control is None:
+                raise _StepFailed("the tangent stiffness lost definiteness: the structure "
+                                  "buckles or snaps (a limit or bifurcation point) near load "
+                                  f"factor {lam:.6g}..{lam_new:.6g}", [])
         except _StepFailed as failure:
             if dt / 2 < min_step * (1 - 1e-9):
                 raise NonConvergenceError(
@@ -162,6 +169,8 @@ def solve_beam_nonlinear(model: BeamModel, supports, loads=(), steps: int = 10,
             dt, cuts, good = dt / 2, cuts + 1, 0
             continue
         t, z, lam = t + dt, z_new, lam_new
+        if flipped:
+            crossings.append(len(lams))
         states.append(make_state(asm, q, r, lam))
         lams.append(lam)
         its.append(n_it)
@@ -169,4 +178,5 @@ def solve_beam_nonlinear(model: BeamModel, supports, loads=(), steps: int = 10,
         if good >= 2 and dt < nominal:
             dt, good = min(2 * dt, nominal), 0
     return BeamNonlinearResult(model=model, load_factors=np.array(lams), states=states,
-                               iterations=its, info={"step_cuts": cuts, "n_unknowns": asm.space.n})
+                               iterations=its, info={"step_cuts": cuts, "n_unknowns": asm.space.n,
+                                     "definiteness_changes": crossings})
