@@ -142,17 +142,11 @@ class BeamMesh:
     def join(self, other: "BeamMesh", tol: float = 1e-12) -> "BeamMesh":
         """Union of two meshes, merging nodes closer than ``tol`` (m). The other mesh's
         point_nodes are appended, renumbered."""
-        index = []
-        nodes = list(self.nodes)
-        for p in other.nodes:
-            d = np.linalg.norm(np.asarray(nodes) - p, axis=1)
-            k = int(np.argmin(d))
-            if d[k] <= tol:
-                index.append(k)
-            else:
-                index.append(len(nodes))
-                nodes.append(p)
-        index = np.array(index)
+        d = np.linalg.norm(other.nodes[:, None, :] - self.nodes[None, :, :], axis=2)
+        nearest = d.argmin(axis=1)
+        shared = d[np.arange(len(other.nodes)), nearest] <= tol
+        index = np.where(shared, nearest, len(self.nodes) + np.cumsum(~shared) - 1)
+        nodes = np.vstack([self.nodes, other.nodes[~shared]])
         return BeamMesh(np.array(nodes), np.vstack([self.elements, index[other.elements]]),
                         list(self.sections) + list(other.sections),
                         list(self.point_nodes) + [int(index[k]) for k in other.point_nodes])
@@ -185,6 +179,7 @@ def beam_chain(points, sections, n_per_segment) -> BeamMesh:
             raise ValueError(f"points {j} and {j + 1} coincide")
         s = np.linspace(0.0, 1.0, int(counts[j]) + 1)[1:, None]
         nodes.extend(pts[j] + s * (pts[j + 1] - pts[j]))
+        nodes[-1] = pts[j + 1]  # exactly the given point
         sec_list += [secs[j]] * int(counts[j])
         point_nodes.append(len(nodes) - 1)
     n = len(nodes)

@@ -4,8 +4,8 @@ import numpy as np
 import pytest
 
 from conftest import parallel_guide
-from flexfem.fem.beam import (BeamModel, Fixed, NodalLoad, Prescribed, Section, beam_chain,
-                              compliance, solve_beam_nonlinear, solve_beam_static)
+from flexfem.fem.beam import (BeamModel, Fixed, NodalLoad, Prescribed, RigidLink, Section,
+                              beam_chain, compliance, solve_beam_nonlinear, solve_beam_static)
 
 L, W, T, GAP = 0.05, 0.01, 0.5e-3, 0.03
 
@@ -85,3 +85,20 @@ def test_linear_guide_static(steel):
     assert res.q[stage, 1] == pytest.approx(1 / k, rel=1e-3)
     total = res.reactions[0] + res.reactions[model.n_nodes - 2 - 10]
     assert total[:2] == pytest.approx([0.0, -1.0], abs=1e-9)
+
+
+def test_load_on_a_rigid_link_slave(steel):
+    """A dead force on the end of a rigid arm at the tip equals the same force on an arm
+    modelled as a much stiffer beam, at large rotation too (the arm turns with the tip)."""
+    mesh = beam_chain([(0, 0), (0.1, 0)], Section.rect(0.01, 1e-3), 20)
+    arm = (0.1, 0.02)
+    linked = BeamModel(np.vstack([mesh.nodes, [arm]]), mesh.elements, mesh.sections, steel,
+                       rigid_links=[RigidLink(20, (21,))])
+    g = mesh.join(beam_chain([(0.1, 0), arm], Section.rect(0.01, 0.1), 1))
+    beam = BeamModel(g.nodes, g.elements, g.sections, steel)
+    loads = [NodalLoad(21, fx=-5.0, fy=20.0)]
+    a = solve_beam_nonlinear(linked, [Fixed(0)], loads, steps=5).final
+    b = solve_beam_nonlinear(beam, [Fixed(0)], loads, steps=5).final
+    assert a.q[20, 2] > 0.5                                     # large rotation
+    assert a.q[[20, 21]] == pytest.approx(b.q[[20, 21]], rel=1e-5, abs=1e-9)
+    assert a.reactions[0] == pytest.approx(b.reactions[0], rel=1e-5)

@@ -34,7 +34,8 @@ def test_thick_cantilever_timoshenko(steel, n):
     L, w, h = 1.0, 0.1, 0.2            # L / h = 5
     model, _ = cantilever(steel, L, w, h, n=n, shear=True)
     modes = solve_beam_modes(model, [Fixed(0)], n=6)
-    f_ref = timoshenko_cantilever_hz(steel.E, steel.nu, steel.rho, w * h, w * h**3 / 12, L, 3)
+    f_ref = np.array(timoshenko_cantilever_hz(steel.E, steel.nu, steel.rho, w * h,
+                                              w * h**3 / 12, L, 3))
     tol = {20: 3e-3, 40: 1e-3}[n]  # measured: n = 20: 1.3e-5, 3.5e-4, 1.9e-3; n = 40: 3e-6, 9e-5, 4.8e-4
     assert bending_modes(modes)[:3] == pytest.approx(f_ref, rel=tol)
     # shear and rotary inertia matter here: Euler-Bernoulli is 2.4 % .. 19 % higher
@@ -73,3 +74,12 @@ def test_tension_stiffening_simply_supported(steel):
     unloaded = solve_beam_modes(model, supports, n=1).frequencies_hz[0]
     assert f[0] / unloaded == pytest.approx(np.sqrt(1 + tension / (k[0]**2 * steel.E * I)),
                                             rel=2e-3)
+
+
+def test_timoshenko_reference_tends_to_euler_bernoulli():
+    """The reference solver itself: for L/h = 200 it gives beta_n L within the shear and
+    rotary-inertia correction ~ (beta_n h / L)^2 (< 2e-4)."""
+    E, nu, rho, w, h, L = 200e9, 0.3, 7800.0, 0.01, 0.005, 1.0
+    f = np.array(timoshenko_cantilever_hz(E, nu, rho, w * h, w * h**3 / 12, L, 3))
+    beta_L = np.sqrt(2 * np.pi * f * L**2 / np.sqrt(E * h**2 / 12 / rho))
+    assert beta_L == pytest.approx(BETA_L, rel=2e-4)
