@@ -89,7 +89,7 @@ class _Stepper:
         """Converged (z, lam, q, r, iterations, flipped) reaching ``target`` (a load factor,
         or the control DOF's value); flipped: the tangent's determinant changed sign over
         the step (a limit or bifurcation point crossed)."""
-        history, signs = [], []
+        history, signs, dz = [], [], None
         for it in range(1, self.max_iterations + 1):
             q, r, rz, K, T, Tp, Kf = self.asm.evaluate(z, lam)
             ref = self._reference(r, lam)

@@ -53,15 +53,16 @@ class BeamState:
 BeamStaticResult = BeamState
 
 
-def make_state(assembler: Assembler, q, r, lam, info=None, fb=None) -> BeamState:
+def make_state(assembler: Assembler, q, r, lam, info=None, fb=None, jac=None) -> BeamState:
     """Package a converged state: reactions from the residual r = f_int - lam f_ext; basic
-    element forces ``fb`` (n_e, 3) from the co-rotational element unless given."""
+    element forces ``fb`` (n_e, 3) from the co-rotational element and the links' Jacobians
+    ``jac`` = (T, T_p) at q unless given."""
     model = assembler.model
     if fb is None:
         _, _, fb = corotational(model, assembler.Kb, q, tangent=False)
     space = assembler.space
     held_nodes = np.unique(space.held // 3)
-    T, Tp = space.jacobian(q)
+    T, Tp = space.jacobian(q) if jac is None else jac
     rr = np.zeros(model.n_dofs)  # generalised residual of the independent DOFs
     rr[space.free], rr[space.held] = T.T @ r, Tp.T @ r
     rr = rr.reshape(-1, 3)
@@ -86,7 +87,7 @@ def solve_beam_static(model: BeamModel, supports, loads=()) -> BeamState:
     q = (T @ z + Tp @ p).reshape(-1, 3)
     r = Kfull @ q.ravel() - asm.f_ext
     fb = np.einsum("eij,ej->ei", asm.Kb, _natural(model, q))
-    return make_state(asm, q, r, 1.0, {"n_unknowns": space.n}, fb=fb)
+    return make_state(asm, q, r, 1.0, {"n_unknowns": space.n}, fb=fb, jac=(T, Tp))
 
 
 def _natural(model: BeamModel, q) -> np.ndarray:

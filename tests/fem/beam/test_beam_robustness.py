@@ -1,6 +1,5 @@
 """Snap-through: load control stops with NonConvergenceError past the limit point,
 displacement control passes it; bad arguments raise ValueError naming them."""
-import numpy as np
 import pytest
 
 from conftest import cantilever
