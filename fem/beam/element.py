@@ -3,15 +3,16 @@
 Local element: axial bar + bending with the interdependent-interpolation (IIE) shape
 functions of Friedman & Kosmatka (1993), exact for a prismatic Timoshenko beam (phi =
 12 E I / (kappa G A L^2); phi = 0 gives the cubic Hermite Euler-Bernoulli element).
-Stiffness and consistent mass (translational + rotary inertia) are integrated with 4-point
-Gauss quadrature, exact for the linear A and cubic I of a tapered rectangular section.
+Stiffness and consistent mass (translational + rotary inertia) are integrated with 6-point
+Gauss quadrature, exact for the stiffness of a linearly or quadratically tapered rectangular
+section (I of degree 6 at most).
 The co-rotational element (Crisfield, Non-linear Finite Element Analysis of Solids and
 Structures, vol. 1, sec. 7.3) carries the basic forces (N, M1, M2) of the local element's
 natural deformations (extension, end rotations relative to the chord).
 """
 import numpy as np
 
-GAUSS_X, GAUSS_W = np.polynomial.legendre.leggauss(4)
+GAUSS_X, GAUSS_W = np.polynomial.legendre.leggauss(6)
 XI = 0.5 * (GAUSS_X + 1.0)
 WXI = 0.5 * GAUSS_W
 
@@ -58,14 +59,18 @@ def shear_parameter(model) -> np.ndarray:
 
 
 def axial_stiffness(model) -> np.ndarray:
-    """EA / L per element, exact for a linearly varying area: E / int_0^L ds / A(s)."""
+    """EA / L per element as E / int_0^L ds / A(s): exact (logarithmic mean) for a linear
+    taper, 6-point Gauss quadrature of 1 / A for a quadratic one."""
     A, _, _ = model.section_at([0.0, 1.0])
     a0, a1 = A[:, 0], A[:, 1]
     ratio = a1 / a0
     close = np.abs(ratio - 1.0) < 1e-6
-    log_mean = np.where(close, 0.5 * (a0 + a1),
-                        (a1 - a0) / np.log(np.where(close, 2.0, ratio)))
-    return model.material.E * log_mean / model.lengths
+    mean = np.where(close, 0.5 * (a0 + a1), (a1 - a0) / np.log(np.where(close, 2.0, ratio)))
+    quadratic = np.isfinite(model.section_table[:, 8])
+    if quadratic.any():
+        A_g, _, _ = model.section_at(XI)
+        mean = np.where(quadratic, 1.0 / (WXI / A_g).sum(axis=1), mean)
+    return model.material.E * mean / model.lengths
 
 
 def local_stiffness(model) -> np.ndarray:

@@ -91,3 +91,22 @@ def test_tapered_convergence_order(steel):
     assert np.all(rate_t > 3.6) and rate_t[-1] > 3.9, (tapered, rate_t)
     assert np.all((rate_s > 1.8) & (rate_s < 2.3)), (stepped, rate_s)
     assert tapered[-1] < 1e-6
+
+
+def test_circular_notch_hinge_rotational_compliance(steel):
+    """A circular notch hinge (radius R, waist t_min) from beam_from_profile converges to the
+    beam-theory compliance theta / M = 12 / (E w) int ds / t(s)^3 (Paros & Weisbord's exact
+    integral), evaluated here by quadrature."""
+    R, t_min, w = 2e-3, 0.1e-3, 5e-3
+    profile = lambda s: t_min + 2 * R - 2 * np.sqrt(max(R**2 - (s - R)**2, 0.0))
+    exact = 12 / (steel.E * w) * quad(lambda s: profile(s)**-3, 0, 2 * R, points=[R],
+                                      epsabs=0, epsrel=1e-12, limit=200)[0]
+    errors = []
+    for n in (10, 20, 40):
+        mesh = beam_from_profile((0, 0), (2 * R, 0), profile, w, n)
+        model = BeamModel(mesh.nodes, mesh.elements, mesh.sections, steel)
+        errors.append(compliance(model, [Fixed(0)], n)[2, 2] / exact - 1)
+    # quadratic thickness within each element; measured -7.0e-3, -1.3e-3, -9.1e-5 (linear
+    # tapers: -2.8e-1, -8.1e-2, -2.1e-2)
+    assert abs(errors[1]) < 2e-3 and abs(errors[2]) < 2e-4, errors
+    assert abs(errors[2]) < abs(errors[1]) < abs(errors[0]), errors
