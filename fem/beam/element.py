@@ -1,0 +1,187 @@
+"""The planar beam element: local stiffness and mass, and Crisfield's co-rotational kinematics.
+
+Local element: axial bar + bending with the interdependent-interpolation (IIE) shape
+functions of Friedman & Kosmatka (1993), exact for a prismatic Timoshenko beam (phi =
+12 E I / (kappa G A L^2); phi = 0 gives the cubic Hermite Euler-Bernoulli element).
+Stiffness and consistent mass (translational + rotary inertia) are integrated with 6-point
+Gauss quadrature, exact for the stiffness of a linearly or quadratically tapered rectangular
+section (I of degree 6 at most).
+The co-rotational element (Crisfield, Non-linear Finite Element Analysis of Solids and
+Structures, vol. 1, sec. 7.3) carries the basic forces (N, M1, M2) of the local element's
+natural deformations (extension, end rotations relative to the chord).
+"""
+import numpy as np
+
+GAUSS_X, GAUSS_W = np.polynomial.legendre.leggauss(6)
+XI = 0.5 * (GAUSS_X + 1.0)
+WXI = 0.5 * GAUSS_W
+
+
+def _shape(xi, L, phi):
+    """IIE shape functions at xi (k,) for (n_e,) elements: N_w, dN_w/dx, N_psi, dN_psi/dx,
+    each (n_e, k, 4) for DOFs (v1, theta1, v2, theta2)."""
+    x = xi[None, :]
+    L_, p = L[:, None], phi[:, None]
+    f = 1.0 / (1.0 + p)
+    Nw = np.stack([f * (2 * x**3 - 3 * x**2 - p * x + 1 + p),
+                   f * L_ * (x**3 - (2 + p / 2) * x**2 + (1 + p / 2) * x),
+                   -f * (2 * x**3 - 3 * x**2 - p * x),
+                   f * L_ * (x**3 - (1 - p / 2) * x**2 - (p / 2) * x)], axis=-1)
+    dNw = np.stack([f * (6 * x**2 - 6 * x - p) / L_,
+                    f * (3 * x**2 - (4 + p) * x + 1 + p / 2),
+                    -f * (6 * x**2 - 6 * x - p) / L_,
+                    f * (3 * x**2 - (2 - p) * x - p / 2)], axis=-1)
+    Np = np.stack([6 * f * (x**2 - x) / L_,
+                   f * (3 * x**2 - (4 + p) * x + 1 + p),
+                   -6 * f * (x**2 - x) / L_,
+                   f * (3 * x**2 - (2 - p) * x)], axis=-1)
+    dNp = np.stack([6 * f * (2 * x - 1) / L_**2,
+                    f * (6 * x - 4 - p) / L_,
+                    -6 * f * (2 * x - 1) / L_**2,
+                    f * (6 * x - 2 + p) / L_], axis=-1)
+    return Nw, dNw, Np, dNp
+
+
+BEND = [1, 2, 4, 5]  # local DOFs (v1, theta1, v2, theta2) in (u1, v1, theta1, u2, v2, theta2)
+AXIAL = [0, 3]
+
+
+def shear_parameter(model) -> np.ndarray:
+    """phi = 12 E I / (kappa G A L^2) per element, from the mid-length section (0 without
+    shear)."""
+    if not model.shear:
+        return np.zeros(model.n_elements)
+    mat = model.material
+    G = mat.E / (2.0 * (1.0 + mat.nu))
+    A, I, _ = model.section_at([0.5])
+    kappa = model.section_table[:, 7]
+    return 12.0 * mat.E * I[:, 0] / (kappa * G * A[:, 0] * model.lengths**2)
+
+
+def axial_stiffness(model) -> np.ndarray:
+    """EA / L per element as E / int_0^L ds / A(s): exact (logarithmic mean) for a linear
+    taper, 6-point Gauss quadrature of 1 / A for a quadratic one."""
+    A, _, _ = model.section_at([0.0, 1.0])
+    a0, a1 = A[:, 0], A[:, 1]
+    ratio = a1 / a0
+    close = np.abs(ratio - 1.0) < 1e-6
+    mean = np.where(close, 0.5 * (a0 + a1), (a1 - a0) / np.log(np.where(close, 2.0, ratio)))
+    quadratic = np.isfinite(model.section_table[:, 8])
+    if quadratic.any():
+        A_g, _, _ = model.section_at(XI)
+        mean = np.where(quadratic, 1.0 / (WXI / A_g).sum(axis=1), mean)
+    return model.material.E * mean / model.lengths
+
+
+def local_stiffness(model) -> np.ndarray:
+    """(n_e, 6, 6) linear stiffness in each element's local frame (N/m, N, N m)."""
+    L, mat = model.lengths, model.material
+    phi = shear_parameter(model)
+    A, I, _ = model.section_at(XI)
+    _, dNw, Np, dNp = _shape(XI, L, phi)
+    wdx = WXI[None, :] * L[:, None]
+    Kb = np.einsum("eg,egi,egj->eij", mat.E * I * wdx, dNp, dNp)
+    if model.shear:
+        G = mat.E / (2.0 * (1.0 + mat.nu))
+        gamma = dNw - Np
+        kGA = model.section_table[:, 7][:, None] * G * A
+        Kb += np.einsum("eg,egi,egj->eij", kGA * wdx, gamma, gamma)
+    K = np.zeros((model.n_elements, 6, 6))
+    K[:, np.array(BEND)[:, None], np.array(BEND)[None, :]] = Kb
+    ea = axial_stiffness(model)
+    K[:, 0, 0] = K[:, 3, 3] = ea
+    K[:, 0, 3] = K[:, 3, 0] = -ea
+    return K
+
+
+def basic_stiffness(model) -> np.ndarray:
+    """(n_e, 3, 3) stiffness of the natural deformations (extension, theta1, theta2) about
+    the chord: the local stiffness with node 1 and v2 held."""
+    K = local_stiffness(model)
+    idx = np.array([3, 2, 5])
+    return K[:, idx[:, None], idx[None, :]]
+
+
+def local_mass(model) -> np.ndarray:
+    """(n_e, 6, 6) consistent mass in the local frame (kg, kg m, kg m^2): translational
+    rho A and rotary inertia rho I, with the same shape functions as the stiffness."""
+    L, rho = model.lengths, model.material.rho
+    phi = shear_parameter(model)
+    A, I, _ = model.section_at(XI)
+    Nw, _, Np, _ = _shape(XI, L, phi)
+    wdx = WXI[None, :] * L[:, None]
+    Mb = (np.einsum("eg,egi,egj->eij", rho * A * wdx, Nw, Nw)
+          + np.einsum("eg,egi,egj->eij", rho * I * wdx, Np, Np))
+    Nu = np.stack([1.0 - XI, XI], axis=-1)
+    Ma = np.einsum("eg,gi,gj->eij", rho * A * wdx, Nu, Nu)
+    M = np.zeros((model.n_elements, 6, 6))
+    M[:, np.array(BEND)[:, None], np.array(BEND)[None, :]] = Mb
+    M[:, np.array(AXIAL)[:, None], np.array(AXIAL)[None, :]] = Ma
+    return M
+
+
+def rotation_to_global(angles) -> np.ndarray:
+    """(n_e, 6, 6) T with local = T @ global for element chord angles (rad)."""
+    c, s = np.cos(angles), np.sin(angles)
+    T = np.zeros((len(angles), 6, 6))
+    for k in (0, 3):
+        T[:, k, k] = T[:, k + 1, k + 1] = c
+        T[:, k, k + 1] = s
+        T[:, k + 1, k] = -s
+        T[:, k + 2, k + 2] = 1.0
+    return T
+
+
+def wrap(angle):
+    """Angle wrapped to (-pi, pi]."""
+    return np.arctan2(np.sin(angle), np.cos(angle))
+
+
+def corotational(model, Kb, q, tangent=True):
+    """Internal forces and tangents of all elements at nodal DOFs ``q`` (n_nodes, 3).
+
+    Returns f (n_e, 6) global element forces, K (n_e, 6, 6) tangent stiffness (None if not
+    ``tangent``) and the basic forces (n_e, 3): N (N, tension > 0), M1, M2 (N m, end
+    moments acting on the element, counter-clockwise)."""
+    e = model.elements
+    D = model.nodes[e[:, 1]] - model.nodes[e[:, 0]]
+    du = q[e[:, 1], :2] - q[e[:, 0], :2]
+    d = D + du  # chord; Ln^2 - L0^2 from the differences, accurate for small strains
+    Ln = np.hypot(d[:, 0], d[:, 1])
+    L0 = model.lengths
+    stretch = (2.0 * np.einsum("ei,ei->e", D, du) + np.einsum("ei,ei->e", du, du)) / (Ln + L0)
+    c, s = d[:, 0] / Ln, d[:, 1] / Ln
+    beta = np.arctan2(d[:, 1], d[:, 0])
+    rigid = wrap(beta - model.angles)
+    strain = np.stack([stretch,
+                       wrap(q[e[:, 0], 2] - rigid), wrap(q[e[:, 1], 2] - rigid)], axis=1)
+    fb = np.einsum("eij,ej->ei", Kb, strain)
+    z0 = np.zeros_like(c)
+    r = np.stack([-c, -s, z0, c, s, z0], axis=1)
+    zv = np.stack([s, -c, z0, -s, c, z0], axis=1)
+    B = np.empty((len(c), 3, 6))
+    B[:, 0] = r
+    B[:, 1] = -zv / Ln[:, None]
+    B[:, 2] = -zv / Ln[:, None]
+    B[:, 1, 2] += 1.0
+    B[:, 2, 5] += 1.0
+    f = np.einsum("eij,ei->ej", B, fb)
+    if not tangent:
+        return f, None, fb
+    K = np.einsum("eki,ekl,elj->eij", B, Kb, B)
+    K += (fb[:, 0] / Ln)[:, None, None] * np.einsum("ei,ej->eij", zv, zv)
+    rz = np.einsum("ei,ej->eij", r, zv)
+    K += ((fb[:, 1] + fb[:, 2]) / Ln**2)[:, None, None] * (rz + rz.transpose(0, 2, 1))
+    return f, K, fb
+
+
+def bending_stress(model, fb, n_points: int = 5):
+    """Largest |N/A| + |M| c / I (Pa) per element over ``n_points`` along it (the moment
+    is linear between the ends: M(0) = -M1, M(L) = M2). Returns (sigma (n_e,), xi (n_e,))."""
+    xi = np.linspace(0.0, 1.0, n_points)
+    A, I, c = model.section_at(xi)
+    M = -fb[:, 1:2] * (1.0 - xi) + fb[:, 2:3] * xi
+    sigma = np.abs(fb[:, 0:1]) / A + np.abs(M) * c / I
+    k = np.argmax(np.nan_to_num(sigma, nan=-1.0), axis=1)
+    rows = np.arange(len(k))
+    return sigma[rows, k], xi[k]

@@ -1,0 +1,70 @@
+"""Modal analysis of a beam model: ``solve_beam_modes(model, supports, n)``.
+
+Consistent mass (translational and rotary inertia, same shape functions as the stiffness),
+supports and rigid links eliminated; about the undeformed state, or about a converged
+nonlinear state (``about=``, its tangent stiffness: stress stiffening included).
+"""
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.linalg as sla
+import scipy.sparse.linalg as spla
+
+from .assembly import DENSE_EIGEN_LIMIT, Assembler, mass_matrix
+from .model import BeamModel
+
+
+@dataclass(frozen=True, eq=False)
+class BeamModes:
+    """frequencies_hz : (n,) ascending (Hz); shapes : (n, n_nodes, 3) mass-normalised mode
+    shapes (u, v, theta per node); effective_mass : (n, 2) effective modal mass (kg) in x
+    and y; total_mass : kg."""
+
+    model: BeamModel
+    frequencies_hz: np.ndarray
+    shapes: np.ndarray
+    effective_mass: np.ndarray
+    total_mass: float
+
+    @property
+    def effective_mass_fraction(self) -> np.ndarray:
+        """(n, 2) effective mass over the total mass."""
+        return self.effective_mass / self.total_mass
+
+
+def _state_z(asm, about):
+    """Unknowns z and load factor of a converged state (BeamState) ``about``."""
+    if about is None:
+        return np.zeros(asm.space.n), 0.0
+    return about.q.ravel()[asm.space.free], about.load_factor
+
+
+def solve_beam_modes(model: BeamModel, supports, n: int = 6, about=None, loads=()) -> BeamModes:
+    """The ``n`` lowest natural frequencies (Hz) and shapes. supports : Fixed/Prescribed
+    (held at their values at ``about``); about : a BeamState from solve_beam_nonlinear (with
+    the same supports and ``loads``) to linearise about (default: undeformed)."""
+    if not (isinstance(n, (int, np.integer)) and n >= 1):
+        raise ValueError(f"n = {n!r} must be an integer >= 1")
+    asm = Assembler(model, supports, loads)
+    z, lam = _state_z(asm, about)
+    q, r, rz, K, T, Tp, _ = asm.evaluate(z, lam)
+    if n > asm.space.n:
+        raise ValueError(f"n = {n} modes asked for but the model has {asm.space.n} free DOFs")
+    M_full = mass_matrix(model)
+    M = (T.T @ M_full @ T).tocsr()
+    if asm.space.n <= DENSE_EIGEN_LIMIT:
+        w2, phi = sla.eigh(K.toarray(), M.toarray(), subset_by_index=[0, n - 1])
+    else:
+        w2, phi = spla.eigsh(K.tocsc(), k=n, M=M.tocsc(), sigma=-1e-6 * abs(K.diagonal()).max()
+                             / max(abs(M.diagonal()).max(), 1e-300), which="LM")
+        order = np.argsort(w2)
+        w2, phi = w2[order], phi[:, order]
+    full = np.asarray(T @ phi).T  # (n, n_dofs)
+    trans = np.zeros((model.n_dofs, 2))
+    trans[0::3, 0] = 1.0
+    trans[1::3, 1] = 1.0
+    gamma = full @ (M_full @ trans)
+    total = float(trans[:, 0] @ (M_full @ trans[:, 0]))
+    freq = np.sqrt(np.clip(w2, 0.0, None)) / (2.0 * np.pi)
+    return BeamModes(model=model, frequencies_hz=freq, shapes=full.reshape(n, -1, 3),
+                     effective_mass=gamma**2, total_mass=total)

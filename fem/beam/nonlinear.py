@@ -1,0 +1,182 @@
+"""Geometrically exact (co-rotational) static analysis of a beam model.
+
+    res = solve_beam_nonlinear(model, [Fixed(0)], [NodalLoad(tip, fy=-P)], steps=20)
+    res.path(tip)                       # (n_steps + 1, 3): u, v, theta of the tip
+
+Load control: loads (dead) and prescribed DOFs scale with the load factor, stepped 0 -> 1.
+Displacement control (``control=(node, dof, value)``): the DOF is stepped 0 -> value and the
+load factor is the extra unknown (Batoz & Dhatt), which passes limit points of the load.
+Newton's method per step; a failing step is halved down to ``min_step``, then
+NonConvergenceError (no unconverged answer is ever returned).
+"""
+from dataclasses import dataclass, field
+import math
+
+import numpy as np
+
+from ..nonlinear import NonConvergenceError
+from .assembly import Assembler, Factor, SingularBeamError
+from .model import BeamModel, dof_index
+from .static import BeamState, make_state
+
+
+@dataclass(frozen=True, eq=False)
+class BeamNonlinearResult:
+    """Converged steps; index 0 is the unloaded state. load_factors (n,); states: BeamState
+    per step (q, reactions, element forces, stresses); iterations per step."""
+
+    model: BeamModel
+    load_factors: np.ndarray
+    states: list
+    iterations: list
+    info: dict = field(default_factory=dict)
+
+    @property
+    def final(self) -> BeamState:
+        return self.states[-1]
+
+    def path(self, node: int) -> np.ndarray:
+        """(n_steps + 1, 3) u (m), v (m), theta (rad) of ``node`` over the steps."""
+        return np.array([s.q[int(node)] for s in self.states])
+
+    def reaction_path(self, node: int) -> np.ndarray:
+        """(n_steps + 1, 3) reaction (F_x, F_y N, M N m) of a supported ``node``."""
+        return np.array([s.reactions[int(node)] for s in self.states])
+
+
+class _StepFailed(Exception):
+    def __init__(self, reason, history):
+        super().__init__(reason)
+        self.reason, self.history = reason, history
+
+
+def _check(steps, max_iterations, tol, min_step):
+    if not (isinstance(steps, (int, np.integer)) and steps >= 1):
+        raise ValueError(f"steps = {steps!r} must be an integer >= 1")
+    if not (isinstance(max_iterations, (int, np.integer)) and max_iterations >= 1):
+        raise ValueError(f"max_iterations = {max_iterations!r} must be an integer >= 1")
+    if not (0 < tol < 1):
+        raise ValueError(f"tol = {tol!r} must be in (0, 1)")
+    if not (0 < min_step <= 1):
+        raise ValueError(f"min_step = {min_step!r} must be in (0, 1]")
+
+
+class _Stepper:
+    """Newton iterations at a load factor (load control) or a control value (displacement
+    control), from a converged state."""
+
+    def __init__(self, asm: Assembler, control, tol, max_iterations):
+        self.asm, self.tol, self.max_iterations = asm, tol, max_iterations
+        self.c_index = None
+        if control is not None:
+            node, dof, self.c_value = control
+            full = 3 * int(node) + dof_index(dof)
+            where = np.flatnonzero(asm.space.free == full)
+            if not len(where):
+                raise ValueError(f"control = {control!r}: the DOF is held or on a rigid-link "
+                                 "slave; control a free DOF")
+            self.c_index = int(where[0])
+
+    def dr_dlam(self, K, T, Tp):
+        """d(rz)/d(lam) = T^T (K T_p p - f_ext)."""
+        p = self.asm.space.p_hat
+        g = -(T.T @ self.asm.f_ext)
+        if len(p):
+            g = g + T.T @ (K @ (Tp @ p))
+        return g
+
+    def newton(self, z, lam, target):
+        """Converged (z, lam, q, r, iterations, flipped) reaching ``target`` (a load factor,
+        or the control DOF's value); flipped: the tangent's determinant changed sign over
+        the step (a limit or bifurcation point crossed)."""
+        history, signs, dz = [], [], None
+        for it in range(1, self.max_iterations + 1):
+            q, r, rz, K, T, Tp, Kf = self.asm.evaluate(z, lam)
+            ref = self._reference(r, lam)
+            norm = float(np.linalg.norm(rz))
+            if it > 1:
+                history.append(norm / ref)
+                if not math.isfinite(norm) or norm > 1e6 * ref:
+                    raise _StepFailed("the residual diverged", history)
+                # converged; or at round-off: the last Newton correction ~ machine precision
+                floor = np.linalg.norm(dz) <= 1e-12 * np.linalg.norm(z) and norm <= 1e-6 * ref
+                if (norm <= self.tol * ref and self._small(dz, z)) or floor:
+                    return z, lam, q, r, it - 1, signs[0] != signs[-1]
+            try:
+                F = Factor(K)
+                signs.append(F.sign)
+                if self.c_index is None and it > 1:
+                    a, b = F.solve(-rz), None
+                else:
+                    a, b = F.solve(np.column_stack([-rz, self.dr_dlam(Kf, T, Tp)])).T
+                if self.c_index is None:
+                    dlam = target - lam if it == 1 else 0.0  # predictor: load increment
+                    dz = a if b is None else a - dlam * b
+                else:
+                    if abs(b[self.c_index]) < 1e-300:
+                        raise _StepFailed("the control DOF does not respond to the load",
+                                          history)
+                    dlam = (z[self.c_index] + a[self.c_index] - target) / b[self.c_index]
+                    dz = a - dlam * b
+            except SingularBeamError as exc:
+                raise _StepFailed(str(exc), history) from None
+            z, lam = z + dz, lam + dlam
+        raise _StepFailed(f"no convergence in {self.max_iterations} iterations", history)
+
+    def _reference(self, r, lam):
+        space = self.asm.space
+        ref = np.linalg.norm(lam * self.asm.f_ext) + np.linalg.norm(r[space.held])
+        return max(ref, 1e-12 * (1.0 + np.abs(self.asm.f_ext).max()))
+
+    def _small(self, dz, z):
+        return np.linalg.norm(dz) <= math.sqrt(self.tol) * max(np.linalg.norm(z), 1e-14)
+
+
+def solve_beam_nonlinear(model: BeamModel, supports, loads=(), steps: int = 10,
+                         control=None, max_iterations: int = 30, tol: float = 1e-9,
+                         min_step: float = 1e-4) -> BeamNonlinearResult:
+    """Large-rotation static solve of ``model`` under ``supports`` (Fixed, Prescribed) and
+    ``loads`` (NodalLoad, dead), in ``steps`` equal increments of the load factor 0 -> 1, or
+    with ``control=(node, dof, value)`` of that DOF 0 -> value (m or rad; the load factor
+    then follows). Converged when |r| <= tol * (|applied| + |reactions|) (N) and the last
+    increment |dz| <= sqrt(tol) |z|. Raises NonConvergenceError when a step cannot be cut
+    below ``min_step`` (a fraction of the total)."""
+    _check(steps, max_iterations, tol, min_step)
+    asm = Assembler(model, supports, loads)
+    stepper = _Stepper(asm, control, tol, max_iterations)
+    z, lam, t = np.zeros(asm.space.n), 0.0, 0.0
+    q0, r0, *_ = asm.evaluate(z, 0.0, tangent=False)
+    states, lams, its = [make_state(asm, q0, r0, 0.0)], [0.0], [0]
+    goal = 1.0 if control is None else float(stepper.c_value)
+    nominal, dt, cuts, good, crossings = 1.0 / steps, 1.0 / steps, 0, 0, []
+    while t < 1.0 - 1e-12:
+        dt = min(dt, 1.0 - t)
+        try:
+            z_new, lam_new, q, r, n_it, flipped = stepper.newton(z, lam, (t + dt) * goal)
+            if flipped and control is None:
+                raise _StepFailed("the tangent stiffness lost definiteness: the structure "
+                                  "buckles or snaps (a limit or bifurcation point) near load "
+                                  f"factor {lam:.6g}..{lam_new:.6g}", [])
+        except _StepFailed as failure:
+            if dt / 2 < min_step * (1 - 1e-9):
+                raise NonConvergenceError(
+                    f"no convergence beyond step fraction {t:.6g} (load factor {lam:.6g}; "
+                    f"trying {t + dt:.6g}) after {cuts} cuts: {failure.reason}; relative "
+                    f"residuals {', '.join(f'{h:.2e}' for h in failure.history) or 'none'}. "
+                    "Use more steps or a smaller min_step; under load control a limit point "
+                    "(buckling, snap-through) cannot be passed: use control=(node, dof, value)",
+                    lam, t + dt, len(failure.history), failure.history) from None
+            dt, cuts, good = dt / 2, cuts + 1, 0
+            continue
+        t, z, lam = t + dt, z_new, lam_new
+        if flipped:
+            crossings.append(len(lams))
+        states.append(make_state(asm, q, r, lam))
+        lams.append(lam)
+        its.append(n_it)
+        good += 1
+        if good >= 2 and dt < nominal:
+            dt, good = min(2 * dt, nominal), 0
+    return BeamNonlinearResult(model=model, load_factors=np.array(lams), states=states,
+                               iterations=its, info={"step_cuts": cuts, "n_unknowns": asm.space.n,
+                                     "definiteness_changes": crossings})

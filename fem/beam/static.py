@@ -1,0 +1,100 @@
+"""Linear static analysis of a beam model: ``solve_beam_static(model, supports, loads)``."""
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .assembly import Assembler, solve
+from .element import bending_stress, corotational
+from .model import BeamModel
+
+
+@dataclass(frozen=True, eq=False)
+class BeamState:
+    """One equilibrium state. q : (n_nodes, 3) DOFs (u m, v m, theta rad); reactions :
+    {node: (F_x N, F_y N, M N m)} at supported nodes; axial_force : (n_e,) N (tension > 0);
+    end_moments : (n_e, 2) bending moment (N m, sagging > 0) at each element's two ends;
+    stress : (n_e,) largest |N/A| + |M| c / I (Pa) per element; stress_xi : where along
+    each element (0..1)."""
+
+    model: BeamModel
+    q: np.ndarray
+    reactions: dict
+    axial_force: np.ndarray
+    end_moments: np.ndarray
+    stress: np.ndarray
+    stress_xi: np.ndarray
+    load_factor: float = 1.0
+    info: dict = field(default_factory=dict)
+
+    @property
+    def displacement(self) -> np.ndarray:
+        """(n_nodes, 2) displacement, m."""
+        return self.q[:, :2]
+
+    @property
+    def rotation(self) -> np.ndarray:
+        """(n_nodes,) rotation, rad (counter-clockwise)."""
+        return self.q[:, 2]
+
+    @property
+    def max_stress(self) -> float:
+        """Largest bending + axial stress |N/A| + |M| c / I in the model, Pa."""
+        return float(np.nanmax(self.stress)) if np.isfinite(self.stress).any() else float("nan")
+
+    @property
+    def max_stress_location(self) -> tuple:
+        """(element, xi along it 0..1, reference coordinates (2,) m) of max_stress."""
+        e = int(np.nanargmax(self.stress))
+        a, b = self.model.nodes[self.model.elements[e]]
+        xi = float(self.stress_xi[e])
+        return e, xi, a + xi * (b - a)
+
+
+BeamStaticResult = BeamState
+
+
+def make_state(assembler: Assembler, q, r, lam, info=None, fb=None, jac=None) -> BeamState:
+    """Package a converged state: reactions from the residual r = f_int - lam f_ext; basic
+    element forces ``fb`` (n_e, 3) from the co-rotational element and the links' Jacobians
+    ``jac`` = (T, T_p) at q unless given."""
+    model = assembler.model
+    if fb is None:
+        _, _, fb = corotational(model, assembler.Kb, q, tangent=False)
+    space = assembler.space
+    held_nodes = np.unique(space.held // 3)
+    T, Tp = space.jacobian(q) if jac is None else jac
+    rr = np.zeros(model.n_dofs)  # generalised residual of the independent DOFs
+    rr[space.free], rr[space.held] = T.T @ r, Tp.T @ r
+    rr = rr.reshape(-1, 3)
+    reactions = {int(k): rr[k].copy() for k in held_nodes}
+    sigma, xi = bending_stress(model, fb)
+    return BeamState(model=model, q=q.copy(), reactions=reactions, axial_force=fb[:, 0].copy(),
+                     end_moments=np.column_stack([-fb[:, 1], fb[:, 2]]), stress=sigma,
+                     stress_xi=xi, load_factor=float(lam), info=dict(info or {}))
+
+
+def solve_beam_static(model: BeamModel, supports, loads=()) -> BeamState:
+    """Linear (small-displacement) static solve: K z = f - K_p p for the loads (NodalLoad)
+    and the supports' values (Fixed, Prescribed) at load factor 1. Forces and stresses are
+    the linear element forces (no co-rotational update)."""
+    asm = Assembler(model, supports, loads)
+    space = asm.space
+    z0 = np.zeros(space.n)
+    _, _, _, K, T, Tp, Kfull = asm.evaluate(z0, 0.0)
+    p = space.p_hat
+    rhs = T.T @ (asm.f_ext - Kfull @ (Tp @ p))
+    z = solve(K, rhs)
+    q = (T @ z + Tp @ p).reshape(-1, 3)
+    r = Kfull @ q.ravel() - asm.f_ext
+    fb = np.einsum("eij,ej->ei", asm.Kb, _natural(model, q))
+    return make_state(asm, q, r, 1.0, {"n_unknowns": space.n}, fb=fb, jac=(T, Tp))
+
+
+def _natural(model: BeamModel, q) -> np.ndarray:
+    """Linearised natural deformations (extension, theta1 - chord, theta2 - chord), (n_e, 3)."""
+    e = model.elements
+    c, s = np.cos(model.angles), np.sin(model.angles)
+    du = q[e[:, 1], :2] - q[e[:, 0], :2]
+    along = c * du[:, 0] + s * du[:, 1]
+    chord = (-s * du[:, 0] + c * du[:, 1]) / model.lengths
+    return np.column_stack([along, q[e[:, 0], 2] - chord, q[e[:, 1], 2] - chord])
