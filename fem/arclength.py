@@ -16,6 +16,7 @@ import numpy as np
 
 from . import linsolve
 from .hyperelastic import _StepFailed
+from .newton import NonConvergenceError, _newton
 
 
 def _load_direction(problem, z, lam, rz) -> np.ndarray:
@@ -79,8 +80,6 @@ def limit_points(load_factors) -> list:
 def trace(problem, steps, max_iterations, tol, min_step, max_steps, on_step):
     """Follow the path from the unloaded state to lambda = 1; ``on_step(z, lam, u, r,
     iterations)`` records each converged point. Returns the number of step cuts."""
-    from .nonlinear import NonConvergenceError, _newton
-
     z, lam = np.zeros(problem.space.n), 0.0
     _, _, rz, K, _, _, _ = problem.evaluate(z, lam)
     _, dz_t = _solve2(K, np.zeros_like(rz), _load_direction(problem, z, lam, rz))

@@ -10,123 +10,24 @@ K(du, v) = t int [(grad du S) : grad v + (F dS(du)) : grad v] dX, dS = C : sym(F
 All loads, prescribed displacements and rigid-face motions are dead and scale with the
 load factor, stepped from 0 to 1 by Newton's method, halving a step that fails.
 """
-from dataclasses import dataclass, field
 import math
 
 import numpy as np
 import scipy.sparse as sp
 
 from . import linsolve
-from .boundary import component_indices, constrained_dofs, group_dofs, load_vector
+from .boundary import component_indices, constrained_dofs, load_vector
 from .hyperelastic import (STRAIN_LIMIT, Assembler, _StepFailed, cauchy_stress,  # noqa: F401
                            deformation, final_stress, green_lagrange, max_strain, svk_stress,
                            tangent_modulus)
 from .model import Model
 from .rigid_face import ReducedSpace
 from .rigid_static import check_held
-from .arclength import limit_points
+from .arclength import limit_points, trace
+from .newton import NonConvergenceError, _newton, _solve_direct  # noqa: F401
+from .nonlinear_result import NonlinearResult
 from .stability import count_negative_eigenvalues
-from .static import mean_field, rigid_body_dof_modes
-
-
-class NonConvergenceError(ValueError):
-    """Newton's method failed at the smallest allowed load step. Attributes: load_factor
-    (last converged), attempted (the load factor it failed to reach), iterations,
-    residual_history (relative residuals of the last attempt)."""
-
-    def __init__(self, message, load_factor, attempted, iterations, residual_history):
-        super().__init__(message)
-        self.load_factor = load_factor
-        self.attempted = attempted
-        self.iterations = iterations
-        self.residual_history = residual_history
-
-
-@dataclass(frozen=True, eq=False)
-class NonlinearResult:
-    """Converged steps of a nonlinear solve; index 0 is the unloaded state.
-
-    load_factors : (n,) ; u : list of DOF vectors (m) ; reactions : per step {group: force
-    (N)} of every supported group ; face_reactions : per step {group: (F_x, F_y, M)} (N, N,
-    N m about the current centroid) of every rigid face, equal to the applied load on a free
-    coordinate ; face_motion : per step {group:
-    (c_x, c_y, theta)} (m, m, rad) ; iterations : Newton iterations per step ;
-    von_mises_nodal / von_mises_element_max : final Cauchy von Mises stress (Pa), nodal from
-    the L2 projection of the stress components onto linear fields, and the maximum over each
-    element's quadrature points ; applied : full-load vector f_ext (N) ; negative_eigenvalues :
-    per step, the number of negative eigenvalues of the reduced tangent stiffness (None where
-    it is singular, a critical state; None everywhere if not checked) ; max_strain : per step
-    the largest absolute principal Green-Lagrange strain (-) ; strain_limit : the validity
-    limit of St. Venant-Kirchhoff (see :data:`.hyperelastic.STRAIN_LIMIT`)."""
-
-    model: Model
-    load_factors: np.ndarray
-    u: list
-    reactions: list
-    face_reactions: list
-    face_motion: list
-    iterations: list
-    von_mises_nodal: np.ndarray
-    von_mises_element_max: np.ndarray
-    applied: np.ndarray
-    info: dict = field(default_factory=dict)
-    negative_eigenvalues: list = field(default_factory=list)
-    max_strain: np.ndarray = field(default_factory=lambda: np.zeros(0))
-    strain_limit: float = STRAIN_LIMIT
-
-    @property
-    def stable(self) -> np.ndarray:
-        """(n,) bool per step: the reduced tangent stiffness is positive definite (a strict
-        minimum of the potential energy); False at a critical or unstable state, and where
-        not checked (negative_eigenvalues None)."""
-        return np.array([n == 0 for n in self.negative_eigenvalues], dtype=bool)
-
-    @property
-    def strain_valid(self) -> np.ndarray:
-        """(n,) bool per step: every Green-Lagrange principal strain within strain_limit."""
-        return np.asarray(self.max_strain) <= self.strain_limit
-
-    def stress_at_step(self, step: int) -> tuple[np.ndarray, np.ndarray]:
-        """(nodal (n_vertices,), element max (n_elements,)) Cauchy von Mises stress (Pa) at
-        ``step`` (as von_mises_nodal / von_mises_element_max at the last step)."""
-        if not (isinstance(step, (int, np.integer)) and -len(self.u) <= step < len(self.u)):
-            raise ValueError(f"step = {step!r} must index one of the {len(self.u)} steps")
-        return final_stress(self.model, self.u[step])
-
-    def mean_displacement(self, group: str, step: int = -1) -> np.ndarray:
-        """Measure-averaged displacement (m) of a group at ``step``."""
-        return mean_field(self.model, self.u[step], group)
-
-    def path(self, group: str) -> np.ndarray:
-        """(n_steps + 1, dim) mean displacement (m) of ``group`` over the steps."""
-        return np.array([mean_field(self.model, u, group) for u in self.u])
-
-    def force_displacement(self, group: str) -> tuple[np.ndarray, np.ndarray]:
-        """(displacement (n, dim) m, force (n, dim) N) of ``group``: its reaction if it is
-        supported, its face force if it is a rigid face, else the applied load on its DOFs."""
-        if group in self.reactions[0]:
-            force = np.array([r[group] for r in self.reactions])
-        elif group in self.face_reactions[0]:
-            force = np.array([r[group][:2] for r in self.face_reactions])
-        else:
-            total = np.array([self.applied[d].sum() for d in group_dofs(self.model, group).values()])
-            force = np.outer(self.load_factors, total)
-        return self.path(group), force
-
-    @property
-    def max_von_mises(self) -> float:
-        """Largest nodal von Mises stress (Pa) at the final step."""
-        return float(self.von_mises_nodal.max())
-
-    @property
-    def max_von_mises_element(self) -> float:
-        """Largest von Mises stress (Pa) at any quadrature point at the final step."""
-        return float(self.von_mises_element_max.max())
-
-    @property
-    def max_von_mises_location(self) -> np.ndarray:
-        """Reference coordinates (m) of the vertex with the largest nodal von Mises stress."""
-        return self.model.mesh.mesh.p[:, int(np.argmax(self.von_mises_nodal))]
+from .static import rigid_body_dof_modes
 
 
 def _check_arguments(steps, max_iterations, tol, min_step):
@@ -194,47 +95,6 @@ class _Problem:
 
     def _near_null_space(self):
         return rigid_body_dof_modes(self.model)[self.space.I]
-
-
-def _solve_direct(A, b) -> np.ndarray:
-    """Direct solve of a Newton step: the tangent is symmetric but need not be positive
-    definite (a compressed or buckling flexure), so the symmetric indefinite factorization."""
-    return linsolve.solve_direct(A, np.asarray(b, dtype=float), kind="symmetric")
-
-
-def _newton(problem, z, lam_old, lam, max_iterations, tol, guess=None):
-    """Converged z at load factor ``lam`` from the converged ``z`` at ``lam_old``. Starts
-    from ``guess`` (extrapolated from earlier steps) if given, else from the tangent
-    predictor: the increment of loads and prescribed motions applied through the tangent
-    at the old state (counted as the first iteration)."""
-    space = problem.space
-    history = []
-    try:
-        if guess is None:
-            u_old, r, _, K, _, T, full_K = problem.evaluate(z, lam_old)
-            jump = space.displacement(z, lam) - u_old
-            rz = T.T @ (r - (lam - lam_old) * problem.f_ext + full_K @ jump) - space.applied(lam)
-            dz = problem.solve(K, -rz)
-            first = 2
-        else:
-            dz, first = guess - z, 1
-        z = z + dz
-        for iteration in range(first, max_iterations + 2):
-            u, r, rz, _, reference, T, _ = problem.evaluate(z, lam, tangent=False)
-            norm = float(np.linalg.norm(rz))
-            history.append(norm / reference if reference > 0 else norm)
-            if not math.isfinite(norm) or (len(history) > 1 and norm > 1e8 * max(reference, 1e-300)):
-                raise _StepFailed("the residual diverged", history)
-            step_small = np.linalg.norm(dz) <= math.sqrt(tol) * max(np.linalg.norm(u), 1e-300)
-            if norm <= tol * reference and step_small:
-                return z, u, r, iteration - 1, history
-            if iteration == max_iterations + 1:
-                break
-            dz = problem.solve(problem.reduced_tangent(z, lam, u, r, T), -rz)
-            z = z + dz
-    except _StepFailed as failure:
-        raise _StepFailed(failure.reason, history + failure.history) from None
-    raise _StepFailed(f"no convergence in {max_iterations} iterations", history)
 
 
 def _stability(problem, z, u, r, lam):
@@ -340,7 +200,6 @@ def solve_nonlinear(model: Model, supports, loads, steps: int = 10, max_iteratio
         strains.append(max_strain(model, u))
 
     if control == "arc-length":
-        from .arclength import trace
         cuts = trace(problem, steps, max_iterations, tol, min_step,
                      20 * steps if max_steps is None else max_steps, on_step)
     else:

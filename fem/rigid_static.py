@@ -11,7 +11,7 @@ from . import linsolve
 from .boundary import component_indices, constrained_dofs, load_vector
 from .model import von_mises
 from .rigid_face import ReducedSpace
-from .static import (StaticResult, UnderConstrainedError, check_supports, nodal_average,
+from .static_result import (StaticResult, UnderConstrainedError, check_supports, nodal_average,
                      vertex_displacement)
 
 

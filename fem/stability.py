@@ -11,6 +11,8 @@ import scipy.sparse.linalg as spla
 
 from .hyperelastic import Assembler, geometric_stiffness
 from .model import Model
+from .nonlinear_result import NonlinearResult
+from .static_result import StaticResult
 
 
 def count_negative_eigenvalues(K) -> int:
@@ -43,9 +45,6 @@ def count_negative_eigenvalues(K) -> int:
 def state_displacement(model: Model, state) -> tuple:
     """(u (m), kind) of a state: 'linear' for a StaticResult, 'nonlinear' for a
     NonlinearResult (last step), a (NonlinearResult, step) pair or a DOF vector."""
-    from .nonlinear import NonlinearResult
-    from .static import StaticResult
-
     if isinstance(state, StaticResult):
         u, kind = state.u, "linear"
     elif isinstance(state, NonlinearResult):

@@ -27,21 +27,10 @@ import math
 from pathlib import Path
 
 import numpy as np
-import scipy.sparse.linalg as spla
 
 from ...data import load_toml
-from ...fem import (
-    Fixed,
-    Material,
-    Model,
-    PlaneStrain,
-    PlaneStress,
-    RigidFace,
-    von_mises,
-)
-from ...fem.boundary import constrained_dofs
-from ...fem.nonlinear import solve_nonlinear
-from ...fem.rigid_face import ReducedSpace
+from ...fem import (Fixed, Material, Model, PlaneStrain, PlaneStress, RigidFace, solve_nonlinear,
+                    solve_static, von_mises)
 from ...fem.static import nodal_average
 from ...geometry.flexure_pivot import PivotGeometry, mesh_pivot
 from ..engine.tables import write_rows
@@ -100,12 +89,9 @@ def pivot_model(pivot: FlexurePivot, formulation="plane_stress", elements_throug
 def linear_moment_solve(model: Model, moment: float = 1.0) -> tuple:
     """Small-deflection solve with a pure moment (N m) on the rigid, translation-free "hub"
     and "fixed" clamped: (rotation theta (rad), DOF vector u (m))."""
-    D, xD, _ = constrained_dofs(model, [Fixed("fixed")])
-    space = ReducedSpace(model, D, xD, [RigidFace("hub", moment=moment)])
-    T = space.jacobian(np.zeros(space.n), 1.0)
-    K = (T.T @ model.stiffness @ T).tocsc()
-    z = spla.spsolve(K, space.applied(1.0))
-    return float(space.coordinates(z, 1.0)[0][2]), T @ z
+    result = solve_static(model, [Fixed("fixed")], [],
+                          rigid_faces=[RigidFace("hub", moment=moment)])
+    return float(result.face_motion["hub"][2]), result.u
 
 
 def _leaf_middle(model: Model, geometry: PivotGeometry):

@@ -30,8 +30,6 @@ from ...fem import (
     solve_nonlinear,
     solve_static,
 )
-from ...fem.model import von_mises
-from ...fem.nonlinear import cauchy_stress, deformation, green_lagrange, svk_stress
 from ...geometry.eightbar.flexure import (
     EightBarFlexureParams,
     end_effector_point,
@@ -123,28 +121,16 @@ def modal_analysis(model: Model, n: int = 4) -> list:
             for f, m in zip(modes.frequencies_hz, modes.effective_mass)]
 
 
-def element_peak_stress(model: Model, u: np.ndarray) -> tuple:
-    """(max Cauchy von Mises at the quadrature points (Pa), element index) at state ``u``."""
-    basis = model.basis
-    lam, mu = model.lame
-    F = deformation(basis, u)
-    sig = cauchy_stress(F, svk_stress(green_lagrange(F), lam, mu))
-    full = np.zeros((3, 3) + sig.shape[2:])
-    full[:2, :2] = sig
-    vm = von_mises(full).max(axis=1)
-    k = int(np.argmax(vm))
-    return float(vm[k]), k
-
-
 def _half_stroke(model, end, steps):
     """One nonlinear solve from the middle to ``end`` (m): rows per converged step."""
     face = RigidFace("end_effector", x=end)
     result = solve_nonlinear(model, [Fixed("fixed")], [], steps=steps, tol=NEWTON_TOL,
                              rigid_faces=[face])
     rows = []
-    for u, motion, force in zip(result.u, result.face_motion, result.face_reactions):
-        peak, element = element_peak_stress(model, u)
-        vertex = int(model.mesh.mesh.t[0, element])
+    for k, (motion, force) in enumerate(zip(result.face_motion, result.face_reactions)):
+        element_max = result.stress_at_step(k)[1]
+        element = int(np.argmax(element_max))
+        peak, vertex = float(element_max[element]), int(model.mesh.mesh.t[0, element])
         rows.append({"x_m": float(motion["end_effector"][0]), "y_m": float(motion["end_effector"][1]),
                      "rotation_rad": float(motion["end_effector"][2]),
                      "force_x_n": float(force["end_effector"][0]),

@@ -4,7 +4,7 @@ import math
 import numpy as np
 import pytest
 import skfem
-from conftest import beam_2d, beam_3d
+from meshes import beam_2d, beam_3d
 from flexfem.fem import (
     BodyForce,
     FEMesh,

@@ -7,7 +7,7 @@ results agree to solver tolerance; the 0.5 % of the brief is far wider than need
 assert 1e-4 (ccx prints 7 significant digits; its eigen tolerance is ~1e-8)."""
 import numpy as np
 import pytest
-from conftest import beam_2d, beam_3d
+from meshes import beam_2d, beam_3d
 from flexfem.fem import (
     Fixed,
     Force,

@@ -1,7 +1,7 @@
 """Static elasticity against beam theory, and reactions against applied loads."""
 import numpy as np
 import pytest
-from conftest import beam_2d, beam_3d
+from meshes import beam_2d, beam_3d
 from flexfem.fem import (
     Fixed,
     Force,

@@ -5,7 +5,7 @@ import meshio
 import numpy as np
 import pytest
 import skfem
-from conftest import beam_2d, beam_3d
+from meshes import beam_2d, beam_3d
 from flexfem.fem import read_mesh
 from flexfem.fem.abaqus import (
     abaqus_mesh,

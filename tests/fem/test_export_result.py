@@ -2,7 +2,7 @@
 import meshio
 import numpy as np
 import pytest
-from conftest import beam_2d, beam_3d
+from meshes import beam_2d, beam_3d
 from flexfem.fem import (
     Fixed,
     Force,

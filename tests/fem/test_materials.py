@@ -3,7 +3,7 @@ import math
 
 import numpy as np
 import pytest
-from conftest import beam_2d
+from meshes import beam_2d
 from flexfem.data import load_toml
 from flexfem.fem import (
     Material,

@@ -2,7 +2,7 @@
 import numpy as np
 import pytest
 import skfem
-from conftest import beam_2d, beam_3d
+from meshes import beam_2d, beam_3d
 from flexfem.fem import gmsh_session, mesh_from_gmsh, read_mesh
 
 

@@ -2,7 +2,7 @@
 and the algebra of the modal solution (M-orthonormal shapes, effective masses)."""
 import numpy as np
 import pytest
-from conftest import beam_2d, beam_3d
+from meshes import beam_2d, beam_3d
 from flexfem.fem import Fixed, Model, PlaneStress, Solid3D, solve_modes
 
 L, H, W = 1.0, 0.05, 0.03  # L/H = 20, L/W = 33: slender, so the Timoshenko terms are small

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from beam_theory import elastica_tip
-from conftest import cantilever
+from beam_models import cantilever
 from flexfem.fem.beam import Fixed, NodalLoad, solve_beam_nonlinear
 
 # Mattiasson (1981), IJNME 17, 145-153, table 1: P L^2 / EI -> (u/L, v/L); the tip

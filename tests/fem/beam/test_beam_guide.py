@@ -3,7 +3,7 @@ rigid links, and the tangent compliance against finite differences of nonlinear 
 import numpy as np
 import pytest
 
-from conftest import parallel_guide
+from beam_models import parallel_guide
 from flexfem.fem.beam import (BeamModel, Fixed, NodalLoad, Prescribed, RigidLink, Section,
                               beam_chain, compliance, solve_beam_nonlinear, solve_beam_static)
 

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from conftest import cantilever
+from beam_models import cantilever
 from flexfem.fem.beam import (BeamModel, Fixed, NodalLoad, Prescribed, Section,
                               beam_chain, beam_from_profile, compliance, solve_beam_static)
 

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from beam_theory import timoshenko_cantilever_hz
-from conftest import cantilever
+from beam_models import cantilever
 from flexfem.fem.beam import (BeamModel, Fixed, NodalLoad, RigidLink, Section, beam_chain,
                               solve_beam_modes, solve_beam_nonlinear)
 

@@ -2,7 +2,7 @@
 displacement control passes it; bad arguments raise ValueError naming them."""
 import pytest
 
-from conftest import cantilever
+from beam_models import cantilever
 from flexfem.fem.beam import (BeamModel, Fixed, NodalLoad, NonConvergenceError, Prescribed,
                               RigidLink, Section, SingularBeamError, beam_chain,
                               beam_from_profile, compliance, solve_beam_modes,

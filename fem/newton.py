@@ -1,0 +1,62 @@
+"""Newton's method for one load step of a nonlinear solve, and the error it raises when
+it cannot converge (used by load control and by arc-length continuation)."""
+import math
+
+import numpy as np
+
+from . import linsolve
+from .hyperelastic import _StepFailed
+
+
+class NonConvergenceError(ValueError):
+    """Newton's method failed at the smallest allowed load step. Attributes: load_factor
+    (last converged), attempted (the load factor it failed to reach), iterations,
+    residual_history (relative residuals of the last attempt)."""
+
+    def __init__(self, message, load_factor, attempted, iterations, residual_history):
+        super().__init__(message)
+        self.load_factor = load_factor
+        self.attempted = attempted
+        self.iterations = iterations
+        self.residual_history = residual_history
+
+
+def _solve_direct(A, b) -> np.ndarray:
+    """Direct solve of a Newton step: the tangent is symmetric but need not be positive
+    definite (a compressed or buckling flexure), so the symmetric indefinite factorization."""
+    return linsolve.solve_direct(A, np.asarray(b, dtype=float), kind="symmetric")
+
+
+def _newton(problem, z, lam_old, lam, max_iterations, tol, guess=None):
+    """Converged z at load factor ``lam`` from the converged ``z`` at ``lam_old``. Starts
+    from ``guess`` (extrapolated from earlier steps) if given, else from the tangent
+    predictor: the increment of loads and prescribed motions applied through the tangent
+    at the old state (counted as the first iteration)."""
+    space = problem.space
+    history = []
+    try:
+        if guess is None:
+            u_old, r, _, K, _, T, full_K = problem.evaluate(z, lam_old)
+            jump = space.displacement(z, lam) - u_old
+            rz = T.T @ (r - (lam - lam_old) * problem.f_ext + full_K @ jump) - space.applied(lam)
+            dz = problem.solve(K, -rz)
+            first = 2
+        else:
+            dz, first = guess - z, 1
+        z = z + dz
+        for iteration in range(first, max_iterations + 2):
+            u, r, rz, _, reference, T, _ = problem.evaluate(z, lam, tangent=False)
+            norm = float(np.linalg.norm(rz))
+            history.append(norm / reference if reference > 0 else norm)
+            if not math.isfinite(norm) or (len(history) > 1 and norm > 1e8 * max(reference, 1e-300)):
+                raise _StepFailed("the residual diverged", history)
+            step_small = np.linalg.norm(dz) <= math.sqrt(tol) * max(np.linalg.norm(u), 1e-300)
+            if norm <= tol * reference and step_small:
+                return z, u, r, iteration - 1, history
+            if iteration == max_iterations + 1:
+                break
+            dz = problem.solve(problem.reduced_tangent(z, lam, u, r, T), -rz)
+            z = z + dz
+    except _StepFailed as failure:
+        raise _StepFailed(failure.reason, history + failure.history) from None
+    raise _StepFailed(f"no convergence in {max_iterations} iterations", history)

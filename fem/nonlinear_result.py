@@ -1,0 +1,96 @@
+"""The converged steps of a geometrically nonlinear solve."""
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .boundary import group_dofs
+from .hyperelastic import STRAIN_LIMIT, final_stress
+from .model import Model
+from .static_result import mean_field
+
+
+@dataclass(frozen=True, eq=False)
+class NonlinearResult:
+    """Converged steps of a nonlinear solve; index 0 is the unloaded state.
+
+    load_factors : (n,) ; u : list of DOF vectors (m) ; reactions : per step {group: force
+    (N)} of every supported group ; face_reactions : per step {group: (F_x, F_y, M)} (N, N,
+    N m about the current centroid) of every rigid face, equal to the applied load on a free
+    coordinate ; face_motion : per step {group:
+    (c_x, c_y, theta)} (m, m, rad) ; iterations : Newton iterations per step ;
+    von_mises_nodal / von_mises_element_max : final Cauchy von Mises stress (Pa), nodal from
+    the L2 projection of the stress components onto linear fields, and the maximum over each
+    element's quadrature points ; applied : full-load vector f_ext (N) ; negative_eigenvalues :
+    per step, the number of negative eigenvalues of the reduced tangent stiffness (None where
+    it is singular, a critical state; None everywhere if not checked) ; max_strain : per step
+    the largest absolute principal Green-Lagrange strain (-) ; strain_limit : the validity
+    limit of St. Venant-Kirchhoff (see :data:`.hyperelastic.STRAIN_LIMIT`)."""
+
+    model: Model
+    load_factors: np.ndarray
+    u: list
+    reactions: list
+    face_reactions: list
+    face_motion: list
+    iterations: list
+    von_mises_nodal: np.ndarray
+    von_mises_element_max: np.ndarray
+    applied: np.ndarray
+    info: dict = field(default_factory=dict)
+    negative_eigenvalues: list = field(default_factory=list)
+    max_strain: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    strain_limit: float = STRAIN_LIMIT
+
+    @property
+    def stable(self) -> np.ndarray:
+        """(n,) bool per step: the reduced tangent stiffness is positive definite (a strict
+        minimum of the potential energy); False at a critical or unstable state, and where
+        not checked (negative_eigenvalues None)."""
+        return np.array([n == 0 for n in self.negative_eigenvalues], dtype=bool)
+
+    @property
+    def strain_valid(self) -> np.ndarray:
+        """(n,) bool per step: every Green-Lagrange principal strain within strain_limit."""
+        return np.asarray(self.max_strain) <= self.strain_limit
+
+    def stress_at_step(self, step: int) -> tuple[np.ndarray, np.ndarray]:
+        """(nodal (n_vertices,), element max (n_elements,)) Cauchy von Mises stress (Pa) at
+        ``step`` (as von_mises_nodal / von_mises_element_max at the last step)."""
+        if not (isinstance(step, (int, np.integer)) and -len(self.u) <= step < len(self.u)):
+            raise ValueError(f"step = {step!r} must index one of the {len(self.u)} steps")
+        return final_stress(self.model, self.u[step])
+
+    def mean_displacement(self, group: str, step: int = -1) -> np.ndarray:
+        """Measure-averaged displacement (m) of a group at ``step``."""
+        return mean_field(self.model, self.u[step], group)
+
+    def path(self, group: str) -> np.ndarray:
+        """(n_steps + 1, dim) mean displacement (m) of ``group`` over the steps."""
+        return np.array([mean_field(self.model, u, group) for u in self.u])
+
+    def force_displacement(self, group: str) -> tuple[np.ndarray, np.ndarray]:
+        """(displacement (n, dim) m, force (n, dim) N) of ``group``: its reaction if it is
+        supported, its face force if it is a rigid face, else the applied load on its DOFs."""
+        if group in self.reactions[0]:
+            force = np.array([r[group] for r in self.reactions])
+        elif group in self.face_reactions[0]:
+            force = np.array([r[group][:2] for r in self.face_reactions])
+        else:
+            total = np.array([self.applied[d].sum() for d in group_dofs(self.model, group).values()])
+            force = np.outer(self.load_factors, total)
+        return self.path(group), force
+
+    @property
+    def max_von_mises(self) -> float:
+        """Largest nodal von Mises stress (Pa) at the final step."""
+        return float(self.von_mises_nodal.max())
+
+    @property
+    def max_von_mises_element(self) -> float:
+        """Largest von Mises stress (Pa) at any quadrature point at the final step."""
+        return float(self.von_mises_element_max.max())
+
+    @property
+    def max_von_mises_location(self) -> np.ndarray:
+        """Reference coordinates (m) of the vertex with the largest nodal von Mises stress."""
+        return self.model.mesh.mesh.p[:, int(np.argmax(self.von_mises_nodal))]
