@@ -1,7 +1,9 @@
 """``flexfem reproduce``: the main job, every comparison with the source documents."""
+from collections import Counter
 import sys
 
 from ..mechanisms import report_sections
+from .render import comparison_cells, headline_groups
 from .reproduce import reproduce
 
 
@@ -27,18 +29,20 @@ def _run(args) -> dict:
 
 
 def summarize(report: dict) -> str:
-    lines = [f"{'section':<16} {'quantity':<44} {'flexfem':>11} {'published':>11} {'diff':>8}"]
+    """The design summary in the terminal: per source document its headline comparisons with
+    their verdicts, then each section's count of comparisons by verdict; failures named."""
+    lines = []
+    for _, doc, _, rows, _ in headline_groups(report):
+        lines += ["", doc["title"]]
+        lines += [f"  {cells[0][:52]:<52} {cells[1]:>12} {cells[2]:>12} {cells[4]:>9}  {cells[6]}"
+                  for cells in map(comparison_cells, rows)]
+    lines.append("")
     for s in report["sections"]:
         if "error" in s:
-            lines.append(f"{s['section']:<16} FAILED: {s['error']}")
-        for row in s.get("comparisons", []):
-            flex, pub, rel = row.get("flexfem"), row.get("published"), row.get("rel_diff")
-            lines.append(f"{s['section']:<16} {str(row.get('quantity'))[:44]:<44} "
-                         f"{_num(flex):>11} {_num(pub):>11} "
-                         f"{'' if rel is None else f'{100 * rel:+.1f}%':>8}")
+            lines.append(f"{s['section']:<18} FAILED: {s['error']}")
+            continue
+        verdicts = Counter(row.get("verdict", "not judged") for row in s.get("comparisons", []))
+        counts = ", ".join(f"{n} {v}" for v, n in sorted(verdicts.items())) or "no comparisons"
+        lines.append(f"{s['section']:<18} {counts} ({s['wall_time_s']:.0f} s)")
     lines.append(f"report: {report['out']}/index.html ({report['wall_time_s']:.0f} s)")
-    return "\n".join(lines)
-
-
-def _num(value) -> str:
-    return f"{value:.4g}" if isinstance(value, (int, float)) else str(value if value is not None else "-")
+    return "\n".join(lines).lstrip("\n")

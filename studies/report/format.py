@@ -53,7 +53,7 @@ def difference_text(row: dict) -> str:
         return f"{d:+.3g} {unit}"
     if row.get("limit"):
         return f"{100 * d:+.1f} %"
-    return f"{100 * d:+.2g} %" if abs(d) < 0.01 else f"{100 * d:+.1f} %"
+    return f"{100 * d:+.2f} %" if abs(d) < 0.01 else f"{100 * d:+.1f} %"
 
 
 def tolerance_text(row: dict) -> str:

@@ -134,15 +134,15 @@ def test_run_convergence_and_plot_by_dofs(tmp_path):
     assert plot_convergence(result, tmp_path / "d.png", 2.0).stat().st_size > 5000
 
 
-def test_reproduce_quick_writes_its_files_and_agrees_with_theory(tmp_path):
+def test_reproduce_quick_writes_its_files_and_agrees_with_theory(tmp_path, section_contract):
     summary = reproduce(tmp_path, quick=True)
-    for name in summary["figures"] + summary["tables"]:
-        assert (tmp_path / name).stat().st_size > 0
+    section_contract(tmp_path, summary)
     rows = {row["quantity"]: row for row in summary["comparisons"]}
     # 8 elements: the trapezoid excess is exactly 1/(2 * 8^2) = 0.78125 %
-    assert rows["toy tip deflection L = 0.1 m, 8 elements (m)"]["rel_diff"] == pytest.approx(1 / 128, rel=1e-9)
-    assert abs(rows["toy taper observed order"]["rel_diff"]) < 0.05
-    assert abs(rows["toy taper Richardson tip deflection (m)"]["rel_diff"]) < 1e-6
+    tip = rows["toy tip deflection, L = 0.1 m, 8 elements"]
+    assert tip["difference"] == pytest.approx(1 / 128, rel=1e-9) and tip["verdict"] == "agrees"
+    assert abs(rows["toy taper, observed convergence order"]["difference"]) < 0.05
+    assert abs(rows["toy taper, Richardson-extrapolated tip deflection"]["difference"]) < 1e-6
 
 
 def test_run_convergence_starts_from_the_mechanisms_coarsest_level():
