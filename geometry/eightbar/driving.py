@@ -27,6 +27,7 @@ from dataclasses import dataclass, field, fields
 
 import numpy as np
 
+from ...data import load_toml
 from ...fem.materials import material
 from ..flexure_drawing import mesh_layout
 from ..flexure_linkage import FlexureLayout, flexure_layout
@@ -59,15 +60,12 @@ def chebyshev_lambda_linkage(h: float = 0.1) -> StraightLineMechanism:
     return StraightLineMechanism("chebyshev_lambda", linkage, ("coupler", "P"), (-np.pi / 2, np.pi / 2))
 
 
-# Coupler length (m) of the suspensions driven here, against the Chapter 5 design's 50 mm.
-# The flexure suspension bows: its large-deflection path is y ~ c2 x^2 with c2 ~ 0.57 /m
-# (suspension alone, FEM), while its rigid-body linkage is straight (c2 balanced against c4).
-# Of the rigid design's dimensions the coupler length moves c2 most (dc2/dh = -116 /m^2 over
-# the driven stroke; p would need -49 mm, h +4.9 mm); two FEM evaluations of the driven path
-# (h = 50 and 54.9 mm, coarse mesh) and the secant through them give c2 = 0 at h = 56.8 mm:
-# the rigid path is pre-bowed by the flexures' elastic bow (docs/eightbar.md, "Driving
-# linkage"; tests/geometry/test_driving_linkage.py checks the driven c2 stays near zero).
-FLEXURE_COMPENSATED_COUPLER_LENGTH = 56.8e-3
+# Coupler length (m) of the suspensions driven here, against the Chapter 5 design's 50 mm:
+# the flexure suspension bows (its large-deflection path is y ~ c2 x^2) where its rigid-body
+# linkage runs straight, and a longer coupler pre-bows the rigid path the other way. Derived by
+# flexfem.studies.eightbar.compensation.compensated_coupler_length (data/eightbar_design.toml).
+FLEXURE_COMPENSATED_COUPLER_LENGTH = load_toml("eightbar_design.toml")["driving"][
+    "compensated_coupler_length_m"]
 
 
 def compensated_suspension() -> EightBarParams:

@@ -76,5 +76,6 @@ def test_docs_example_runs():
     block = next(b for b in re.findall(r"```python\n(.*?)```", page, re.S) if "trace_eightbar" in b)
     scope = {}
     exec(block, scope)
+    # regression values: the numbers the page quotes, so that the page cannot drift from the code
     assert scope["tr"].deviation.band_m == pytest.approx(1.53e-6, rel=0.01)
     assert scope["tr"].deviation.deviation_pct == pytest.approx(0.0026, rel=0.01)
