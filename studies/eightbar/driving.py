@@ -24,6 +24,7 @@ FLEXURE_COMPENSATED_COUPLER_LENGTH) so that the flexure path, not the rigid one,
 from dataclasses import replace
 from pathlib import Path
 
+from matplotlib.tri import Triangulation
 import numpy as np
 
 from ...fem import (
@@ -49,6 +50,8 @@ from ...geometry.eightbar.driving import (
 from ...geometry.eightbar.flexure import EightBarFlexureParams
 from ...geometry.straight_line import straight_line_deviation
 from ..engine.tables import write_rows
+from ..report.comparison import Comparison, rows as comparison_rows
+from ..report.figures import axis_label, legend_outside, pyplot, save
 from .analysis import NEWTON_TOL as TOL
 from .analysis import build_model as build_suspension
 
@@ -151,11 +154,8 @@ def _write_csv(path: Path, rows: list) -> str:
     return write_rows(path, rows).name
 
 
-def _draw_rigid(path: Path, tr, params: DrivingParams) -> str:
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
+def _draw_rigid(path: Path, tr, params: DrivingParams) -> dict:
+    plt = pyplot()
     linkage = tr.linkage
     fig, ax = plt.subplots(figsize=(11, 4))
     for k, colour in zip((0, len(tr.s) // 2, len(tr.s) - 1), ("tab:blue", "k", "tab:red")):
@@ -177,22 +177,17 @@ def _draw_rigid(path: Path, tr, params: DrivingParams) -> str:
     for pts in (tr.ee_left, tr.ee_right):
         ax.plot(pts[:, 0] * 1e3, pts[:, 1] * 1e3, "g-", lw=2)
     ax.set_aspect("equal")
-    ax.set_xlabel("x (mm)")
-    ax.set_ylabel("y (mm)")
-    ax.set_title("Driving linkage (Ch. 6): two Chebyshev lambdas and two eight-bar suspensions")
-    ax.legend(fontsize=7, loc="upper right")
+    ax.set_xlabel(axis_label("x", "mm"))
+    ax.set_ylabel(axis_label("y", "mm"))
+    legend_outside(ax)
     fig.tight_layout()
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-    return path.name
+    return save(fig, path, "The driving linkage of Chapter 6 as a rigid linkage: two Chebyshev "
+                "lambdas drive the two eight-bar suspensions in opposite directions, at both ends "
+                "and the middle of the shuttle's stroke, with the end effectors' paths (green).")
 
 
-def _draw_fem(path: Path, model: Model, lin: dict, scale: float) -> str:
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    from matplotlib.tri import Triangulation
-
+def _draw_fem(path: Path, model: Model, lin: dict, scale: float) -> dict:
+    plt = pyplot()
     p, t = model.mesh.mesh.p, model.mesh.mesh.t
     u = lin["result"].displacement
     mag = np.hypot(u[:, 0], u[:, 1])
@@ -204,12 +199,12 @@ def _draw_fem(path: Path, model: Model, lin: dict, scale: float) -> str:
     ax.set_aspect("equal")
     ax.set_title(f"Linear FEM, input {lin['input_m'] * 1e6:.0f} um along y (drawn x{scale:.0f}): "
                  f"ee_L/ee_R = {lin['ratio_left_right']:.6f}")
-    ax.set_xlabel("x (mm)")
-    ax.set_ylabel("y (mm)")
+    ax.set_xlabel(axis_label("x", "mm"))
+    ax.set_ylabel(axis_label("y", "mm"))
     fig.tight_layout()
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-    return path.name
+    return save(fig, path, "The driving linkage's flexure part by linear FEM: displacement "
+                "magnitude per unit input on the deformed shape (magnified); the two end "
+                "effectors move in opposite directions.")
 
 
 def driving_study(out_dir, quick: bool = False, params: DrivingParams | None = None,
@@ -308,21 +303,20 @@ def _nonlinear_note(summary: dict) -> str:
             f"{summary['lever_tilt_prbm_rad'] * 1e3:.2f} mrad), removed by the best-line fit.")
 
 
-def _comparisons(lin: dict, ratio: float) -> list:
+def _comparisons(lin: dict, ratio: float) -> list[dict]:
     """The report's rows: the linear FEM's left/right ratio and transmission (-). The thesis
-    states only "opposite directions" (Ch. 6, Fig. 6.3), so the symmetric value -1 stands in
-    the published column, marked as such."""
-    return [
-        {"quantity": "driving linkage: end-effector x ratio left/right (linear FEM)",
-         "flexfem": lin["ratio_left_right"], "published": -1.0,
-         "rel_diff": lin["ratio_left_right"] / -1.0 - 1.0,
-         "note": "thesis: 'opposite directions' (Ch. 6, Fig. 6.3), no number; -1 is the mirror "
-                 "symmetry, the difference is the mesh's asymmetry"},
-        {"quantity": "driving linkage: transmission d x_R / d s, linear FEM",
-         "flexfem": lin["transmission"], "published": ratio,
-         "rel_diff": lin["transmission"] / ratio - 1.0,
-         "note": "published column: our rigid linkage (the thesis gives no dimensions)"},
-    ]
+    states only "opposite directions" (Ch. 6, Fig. 6.3): the mirror symmetry's -1 and the
+    rigid linkage's transmission are flexfem's own references (kind 'derived')."""
+    return comparison_rows([
+        # the mesh is not exactly mirror-symmetric: 1 % bounds its asymmetry
+        Comparison("driving linkage: end-effector x ratio left/right (linear FEM)",
+                   lin["ratio_left_right"], -1.0, "-", "mirror symmetry (Ch. 6, Fig. 6.3)",
+                   "derived", 0.01, "thesis: 'opposite directions', no number"),
+        # the flexures' elastic compliance lowers the rigid transmission a little
+        Comparison("driving linkage: transmission d x_R / d s, linear FEM", lin["transmission"],
+                   ratio, "-", "flexfem's rigid linkage", "derived", 0.05,
+                   "the thesis gives no dimensions"),
+    ])
 
 
 def _notes(params: DrivingParams, summary: dict) -> list:

@@ -131,7 +131,7 @@ def test_bad_lambda_and_trace_inputs():
         trace_driving(DrivingParams(), n=2)
 
 
-def test_flexure_fem_opposite_motion(tmp_path):
+def test_flexure_fem_opposite_motion(tmp_path, section_contract):
     from flexfem.studies.eightbar.driving import driving_study
     out = driving_study(tmp_path, quick=True)
     s = out["summary"]
@@ -140,8 +140,7 @@ def test_flexure_fem_opposite_motion(tmp_path):
     # flexures add compliance: the FEM transmission lies just below the rigid one
     assert 0.9 < s["transmission"] / s["rigid_transmission"] <= 1.0
     assert s["cross_motion_right"] < 0.01
-    for name in out["figures"] + out["tables"]:
-        assert (tmp_path / name).stat().st_size > 0
+    section_contract(tmp_path, out)
 
 
 # -- where the nonlinear path deviation comes from (docs/eightbar.md, "Driving linkage") --------
