@@ -4,6 +4,7 @@ import csv
 from pathlib import Path
 
 from ...geometry.dbma.params import paper_design
+from ..report.figures import entry, legend_outside, pyplot, save
 from .optimize import Evaluations, fem_metrics, optimize
 from .optimize_spec import (
     NAMES,
@@ -40,12 +41,15 @@ def write_history_csv(result: dict, path) -> Path:
     return Path(path)
 
 
+HISTORY_CAPTION = ("The DBMA design search: the amplification ratio of each FEM evaluation, "
+                   "filled where the design meets every constraint on its own mesh; the search "
+                   "mesh (circles) and the finer check mesh (squares).")
+
+
 def plot_history(result: dict, path) -> Path:
     """R_fem_per_side against the evaluation number: filled where the design meets every
     constraint on its own mesh, hollow where not; search circles, checks squares."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
     rows = history_rows(result)
     fig, ax = plt.subplots(figsize=(6.5, 4))
     for stages, mesh, marker, label in (
@@ -63,11 +67,10 @@ def plot_history(result: dict, path) -> Path:
                label=f"optimum R = {result['R_fem_per_side']:.3f}")
     ax.set_xlabel("FEM evaluation")
     ax.set_ylabel("R (output / one pad's motion)")
-    ax.legend(fontsize=7)
+    legend_outside(ax)
     ax.grid(alpha=0.3)
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    save(fig, path, HISTORY_CAPTION)
     return Path(path)
 
 
@@ -155,7 +158,8 @@ def reproduce(out_dir, quick: bool = False, full: bool = False) -> dict:
              "Beyond the sources: the paper has no design search; nothing here is compared "
              "with a published number."]
     return {"rows": rows, "comparisons": [], "tables": result["tables"] + ["optimize_optimum.csv"],
-            "figures": result["figures"], "notes": notes, "optimum": result["optimum"],
+            "figures": [entry(name, HISTORY_CAPTION) for name in result["figures"]],
+            "notes": notes, "optimum": result["optimum"],
             "R_fem": result["R_fem"], "active_constraints": result["active_constraints"],
             "n_fem_evaluations": result["n_fem_evaluations"], "paper_design": paper,
             "paper_design_constraints": paper_table}

@@ -1,6 +1,10 @@
-"""The reproduction report: sections that fail do not stop the others, and the HTML renders
-in a real browser with every figure decoded and every table filled."""
+"""The reproduction report: a design summary per source document before the audit, sections
+that fail do not stop the others, and the HTML renders in a real browser with every figure
+decoded, every table filled and no table wider than the page; the quick report prints every
+number it printed before the mechanism contract reshaped the code."""
 import json
+import math
+from pathlib import Path
 import re
 import shutil
 import subprocess
@@ -9,25 +13,32 @@ import types
 
 import numpy as np
 import pytest
+
 from flexfem.studies.cli import main
 from flexfem.studies.mechanisms import Mechanism, Section
 from flexfem.studies.report import reproduce as reproduce_module
+from flexfem.studies.report.comparison import Comparison, rows
+from flexfem.studies.report.figures import entry, pyplot, save
+
+BEFORE = Path(__file__).resolve().parents[1] / "data" / "quick_report_before.json"
 
 
 def _fake_section(out_dir, quick=False):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
+    plt = pyplot()
     fig, ax = plt.subplots()
     ax.plot(np.arange(3), np.arange(3) ** 2)
-    fig.savefig(out_dir / "curve.png")
-    plt.close(fig)
+    curve = save(fig, out_dir / "curve.png", "y = x^2 at three points")
     (out_dir / "table.csv").write_text("x,y\n0,0\n1,1\n2,4\n")
     (out_dir / "field.vtu").write_text("<VTKFile/>")
-    return {"comparisons": [{"quantity": "y(2)", "flexfem": 4.0, "published": 4.1,
-                             "rel_diff": 4.0 / 4.1 - 1, "note": "fake"}],
-            "figures": ["curve.png", "field.vtu"], "tables": ["table.csv"]}
+    return {"paragraph": "A fake section.",
+            "comparisons": rows([Comparison("y(2)", 4.0, 4.1, "m", "Table 9", tolerance=0.05,
+                                            headline=True),
+                                 Comparison("angle", 10.0, 12.5, "deg", "Fig. 3", tolerance=1.0,
+                                            headline=True),
+                                 Comparison("input length", 1.0, 1.0, "m", "Table 1", "input",
+                                            headline=True)]),
+            "figures": [curve, entry("field.vtu", "the field, for ParaView")],
+            "tables": ["table.csv"]}
 
 
 def _broken_section(out_dir, quick=False):
@@ -39,7 +50,7 @@ def fake_sections(monkeypatch):
     module = types.ModuleType("flexfem.studies.fake.sections")
     module.good, module.bad = _fake_section, _broken_section
     monkeypatch.setitem(sys.modules, "flexfem.studies.fake.sections", module)
-    fake = Mechanism("fake", "A fake mechanism", "fake",
+    fake = Mechanism("fake", "A fake mechanism", "fake", document="dbma",
                      sections=(Section("good", "A good section", "sections:good"),
                                Section("bad", "A broken section", "sections:bad")))
     monkeypatch.setattr(reproduce_module, "report_sections",
@@ -55,11 +66,26 @@ def test_failing_section_is_reported_and_others_kept(tmp_path, fake_sections):
     assert "This section failed" in (tmp_path / "report.md").read_text()
 
 
-def test_field_files_are_linked_not_shown_as_images(tmp_path, fake_sections):
+def test_the_design_summary_comes_first_with_verdicts_and_without_inputs(tmp_path, fake_sections):
+    reproduce_module.reproduce(tmp_path)
+    page = (tmp_path / "report.md").read_text()
+    summary, audit = page.split("## Audit")
+    # the source document is cited; its headline rows carry their verdicts
+    assert "Double-Row Bow-Type" in summary and "10.3390/mi11030312" in summary
+    assert "| y(2) | 4 m | 4.1 m | Table 9 | -2.4 % | ±5 % | agrees |" in summary
+    # an angle is compared by its absolute difference, in degrees, never relatively
+    assert "| angle | 10 deg | 12.5 deg | Fig. 3 | -2.5 deg | ±1 deg | differs |" in summary
+    # an input compared with itself is no headline
+    assert "input length" not in summary and "input length" in audit
+
+
+def test_field_files_are_linked_and_tables_linked_not_printed(tmp_path, fake_sections):
     reproduce_module.reproduce(tmp_path)
     page = (tmp_path / "index.html").read_text()
-    assert "<img src='good/curve.png'" in page
+    assert "<img src='good/curve.png' alt='y = x^2 at three points'>" in page
+    assert "<figcaption>y = x^2 at three points</figcaption>" in page
     assert "<a href='good/field.vtu'>" in page and "<img src='good/field.vtu'" not in page
+    assert "<a href='good/table.csv'>table.csv</a>" in page and "<td>0</td>" not in page
     assert "Field file [field.vtu](good/field.vtu)" in (tmp_path / "report.md").read_text()
 
 
@@ -78,18 +104,26 @@ def test_cli_json_is_one_object(tmp_path, fake_sections, capsys):
     assert [s["section"] for s in report["sections"]] == ["good", "bad"]
 
 
-def rendered_counts(index_html) -> dict:
-    """Load the page in headless Chromium; return the counts its load script wrote."""
+def _chromium():
     chromium = shutil.which("chromium") or shutil.which("chromium-browser")
     if chromium is None:
         pytest.skip("chromium is not installed (Debian package 'chromium'; .ci/run installs it)")
-    profile = index_html.parent / ".chromium-profile"
-    dom = subprocess.run(
-        [chromium, "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic",
-         "--no-first-run", "--disable-background-networking", "--disable-component-update",
-         "--disable-sync", f"--user-data-dir={profile}", "--allow-file-access-from-files",
-         "--virtual-time-budget=5000", "--dump-dom", index_html.as_uri()],
-        capture_output=True, text=True, timeout=120).stdout
+    return chromium
+
+
+def _chromium_args(index_html: Path) -> list[str]:
+    return [_chromium(), "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic",
+            "--no-first-run", "--disable-background-networking", "--disable-component-update",
+            "--disable-sync", f"--user-data-dir={index_html.parent / '.chromium-profile'}",
+            "--allow-file-access-from-files", "--virtual-time-budget=5000"]
+
+
+def rendered_counts(index_html: Path, width: int = 1280) -> dict:
+    """Load the page in headless Chromium at ``width`` px; return the counts its load
+    script wrote (images, tables, tables wider than the page)."""
+    dom = subprocess.run(_chromium_args(index_html) + [f"--window-size={width},1000",
+                                                       "--dump-dom", index_html.as_uri()],
+                         capture_output=True, text=True, timeout=120).stdout
     body = re.search(r"<body([^>]*)>", dom)
     assert body, "chromium returned no document"
     return {k: int(v) for k, v in re.findall(r'data-([a-z-]+)="(\d+)"', body.group(1))}
@@ -100,22 +134,78 @@ def test_html_renders_in_chromium(tmp_path, fake_sections):
     counts = rendered_counts(tmp_path / "index.html")
     assert counts["images-total"] == 1
     assert counts["images-loaded"] == counts["images-total"]
-    assert counts["tables-total"] == 2  # the summary and table.csv
+    assert counts["tables-total"] == 2  # the headline table and the section's comparisons
     assert counts["tables-with-rows"] == counts["tables-total"]
+    assert counts["tables-overflowing"] == 0
+
+
+def test_a_table_too_wide_for_the_page_is_detected(tmp_path, fake_sections):
+    """The overflow check can fail: a table with one long unbreakable word is wider than a
+    narrow page."""
+    reproduce_module.reproduce(tmp_path)
+    page = tmp_path / "index.html"
+    page.write_text(page.read_text().replace(
+        "</body>", "<table style='width:auto'><tr><td style='overflow-wrap:normal'>"
+                   + "x" * 400 + "</td></tr></table></body>"))
+    assert rendered_counts(page, width=800)["tables-overflowing"] >= 1
+
+
+def _numbers(value, path=()) -> list[tuple[str, float]]:
+    """(path, number) of every finite number a summary holds, leaving out run times, the
+    settings and relative differences (angles' relative differences are no longer printed)."""
+    skip = {"wall_time_s", "wall_s", "settings", "environment", "rel_diff", "difference", "published",
+            "reference", "tolerance"}
+    if isinstance(value, dict):
+        return [n for k, v in value.items() if k not in skip for n in _numbers(v, path + (k,))]
+    if isinstance(value, list):
+        return [n for i, v in enumerate(value) for n in _numbers(v, path + (str(i),))]
+    if isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value):
+        return [("/".join(path), float(value))]
+    return []
+
+
+@pytest.fixture(scope="module")
+def quick_report(tmp_path_factory):
+    out = tmp_path_factory.mktemp("quick_report")
+    return out, reproduce_module.reproduce(out, quick=True)
 
 
 @pytest.mark.slow
-def test_quick_reproduction_report_renders(tmp_path):
-    """The real main job (--quick): every section runs, every figure loads, every table has rows."""
-    report = reproduce_module.reproduce(tmp_path, quick=True)
+def test_quick_reproduction_report_renders(quick_report):
+    """The real main job (--quick): every section runs, every figure loads, every table has
+    rows, none runs off a laptop's page, and the design summary covers every source."""
+    out, report = quick_report
     failed = {s["section"]: s["error"] for s in report["sections"] if "error" in s}
     assert not failed, failed
-    # every section that reproduces a source compares with it; the others say what they did
     sourced = {"dbma_analytical", "dbma_fem", "eightbar_rigid", "eightbar_fem", "balancing"}
     assert sourced <= {s["section"] for s in report["sections"]}
     assert all(s.get("comparisons") for s in report["sections"] if s["section"] in sourced)
-    assert all(s.get("comparisons") or s.get("notes") for s in report["sections"])
-    counts = rendered_counts(tmp_path / "index.html")
+    assert all(s.get("paragraph") for s in report["sections"] if s["section"] in sourced)
+    headlines = {s["document"] for s in report["sections"]
+                 for r in s.get("comparisons", []) if r["headline"]}
+    assert {"dbma", "eightbar", "balancing"} <= headlines
+    counts = rendered_counts(out / "index.html")
     assert counts["images-total"] >= len(report["sections"])
     assert counts["images-loaded"] == counts["images-total"]
     assert counts["tables-with-rows"] == counts["tables-total"]
+    assert counts["tables-overflowing"] == 0
+    subprocess.run(_chromium_args(out / "index.html") + [
+        "--window-size=1280,4000", f"--screenshot={out / 'screenshot.png'}",
+        (out / "index.html").as_uri()], capture_output=True, timeout=120)
+    assert (out / "screenshot.png").stat().st_size > 10_000
+
+
+@pytest.mark.slow
+def test_quick_report_prints_every_number_it_printed_before(quick_report):
+    """Every number of the quick report's summary.json before the mechanism contract
+    reshaped the code (tests/data/quick_report_before.json) is printed again, within solver
+    round-off, except the relative differences that are no longer printed."""
+    _, report = quick_report
+    after = np.sort([v for _, v in _numbers(json.loads(json.dumps(report, default=float)))])
+    missing = []
+    for path, value in _numbers(json.loads(BEFORE.read_text())):
+        k = np.searchsorted(after, value)
+        near = after[max(k - 1, 0):k + 1]
+        if not np.any(np.isclose(near, value, rtol=1e-6, atol=1e-9)):
+            missing.append(f"{path} = {value}")
+    assert missing == []
