@@ -193,6 +193,12 @@ def test_quick_reproduction_report_renders(quick_report):
         "--window-size=1280,4000", f"--screenshot={out / 'screenshot.png'}",
         (out / "index.html").as_uri()], capture_output=True, timeout=120)
     assert (out / "screenshot.png").stat().st_size > 10_000
+    # printed, it fits a few pages per source document (13 pages for three when written)
+    subprocess.run(_chromium_args(out / "index.html") + [
+        f"--print-to-pdf={out / 'report.pdf'}", (out / "index.html").as_uri()],
+        capture_output=True, timeout=120)
+    pages = len(re.findall(rb"/Type\s*/Page[^s]", (out / "report.pdf").read_bytes()))
+    assert 0 < pages <= 8 * 3
 
 
 @pytest.mark.slow
