@@ -9,6 +9,7 @@ with the paper, docs/balancing.md).
 import numpy as np
 
 from ...data import load_toml
+from ...fem import material as library_material
 from .gravity import Workspace, load_robot, workspace_torques
 from .optimum import (
     max_reduction_pct,
@@ -19,7 +20,7 @@ from .optimum import (
     optimal_torsion_spring,
     rms_reduction_pct,
 )
-from .pivots import flexure_material, negative_stiffness_preload, size_flexure_pivot
+from .pivots import negative_stiffness_preload, size_flexure_pivot
 
 METHODS = {"spring": optimal_spring, "torsion": optimal_torsion_spring,
            "counterweight": optimal_counterweight}
@@ -121,7 +122,7 @@ def pivot_designs(workspace: Workspace | None = None, robot=None, material="spri
     preload (N) on a 0.1 m lever that would give it. SI units throughout.
     """
     wt = workspace_torques(robot or load_robot(), workspace or default_workspace())
-    mat = flexure_material(material)
+    mat = library_material(material)
     rows = []
     for i, motor in enumerate(wt.motors):
         q, tau = wt.q[:, i], wt.tau[:, i]

@@ -43,7 +43,7 @@ import numpy as np
 from scipy.integrate import solve_bvp, solve_ivp
 from scipy.optimize import brentq
 
-from .pivots import FlexureMaterial
+from ...fem import Material
 
 KL_DEFAULT = 0.75 * math.pi
 
@@ -166,7 +166,7 @@ class CompressedLeafPivot:
     t: float
     w: float
     P: float
-    material: FlexureMaterial
+    material: Material
     transmission_ratio: float
     theta_max: float
     stiffness: float
@@ -211,7 +211,7 @@ def compressed_leaf_stress(E, t, w, L, P, theta):
     return E * t * abs(theta) * bending_stress_factor(kL) / (2.0 * L) + P / (w * t)
 
 
-def size_negative_pivot(K, theta_range_rad, material: FlexureMaterial, safety_factor=2.0,
+def size_negative_pivot(K, theta_range_rad, material: Material, safety_factor=2.0,
                         transmission_ratio=1.0, kL=KL_DEFAULT, max_width=0.1, lengths=None,
                         thickness_step=1e-5) -> CompressedLeafPivot:
     """Size a compressed leaf of motor-side stiffness K < 0 (N m/rad) over a motor rotation

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ...fem import Fixed, RigidFace
+from ...fem import Fixed, RigidFace, material as library_material
 from ...fem.nonlinear import solve_nonlinear
 from ...geometry.flexure_pivot import PivotGeometry
 from ..engine.tables import write_rows
@@ -25,7 +25,6 @@ from .negative_pivot import (
 )
 from .optimum import optimal_torsion_spring, rms_reduction_pct
 from .pivot_fem import pivot_model
-from .pivots import flexure_material
 
 
 # ---------------------------------------------------------------- FEM check (large deflection)
@@ -143,7 +142,7 @@ def negative_pivot_designs(workspace=None, material="spring_steel_aisi1095", saf
             continue
         half = 0.5 * (q.max() - q.min())
         N = float(math.ceil(half / max_pivot_rotation_rad))
-        pivot = size_negative_pivot(spring.K, (-half, half), flexure_material(material),
+        pivot = size_negative_pivot(spring.K, (-half, half), library_material(material),
                                     safety_factor, transmission_ratio=N, kL=kL)
         out.append((motor, spring.K, spring.q_k, q, tau, pivot))
     return out

@@ -23,13 +23,13 @@ free. Stress: von Mises at theta_max, nodal (L2-projected) and element maximum (
 points), over the whole leaf and over its middle part (more than t from either end, away from
 the clamps' boundary layers), beside E t theta / (2 L). SI units throughout.
 """
+import dataclasses
 import math
 from pathlib import Path
 
 import numpy as np
 
-from ...data import load_toml
-from ...fem import (Fixed, Material, Model, PlaneStrain, PlaneStress, RigidFace, solve_nonlinear,
+from ...fem import (Fixed, Model, PlaneStrain, PlaneStress, RigidFace, material, solve_nonlinear,
                     solve_static, von_mises)
 from ...fem.static import nodal_average
 from ...geometry.flexure_pivot import PivotGeometry, mesh_pivot
@@ -38,29 +38,11 @@ from ..report.figures import axis_label, pyplot, save
 from .design import pivot_designs
 from .pivots import (
     FlexurePivot,
-    flexure_material,
     leaf_bending_stress,
     pivot_stiffness_beam_theory,
 )
 
 FORMULATIONS = ("plane_stress", "plane_strain")
-
-
-def poisson_ratio(material_name: str) -> tuple:
-    """(nu, source) of a flexure material: its own ``nu`` in [flexure_materials] of
-    balancing_robot.toml if given, else the same-named row of materials.toml, else for a
-    steel that of materials.toml's structural steel (Poisson's ratio of carbon steels,
-    0.29-0.30, hardly depends on carbon content or heat treatment)."""
-    own = load_toml("balancing_robot.toml")["flexure_materials"].get(material_name, {})
-    if "nu" in own:
-        return float(own["nu"]), f"balancing_robot.toml [flexure_materials.{material_name}]"
-    library = load_toml("materials.toml")
-    if material_name in library:
-        return float(library[material_name]["nu"]), f"materials.toml [{material_name}]"
-    if "steel" in material_name:
-        return float(library["structural_steel"]["nu"]), "materials.toml [structural_steel]"
-    raise ValueError(f"material = {material_name!r}: no Poisson's ratio in balancing_robot.toml "
-                     "or materials.toml; pass nu")
 
 
 def pivot_geometry(pivot: FlexurePivot, crossing_angle=math.pi / 2) -> PivotGeometry:
@@ -77,10 +59,7 @@ def pivot_model(pivot: FlexurePivot, formulation="plane_stress", elements_throug
     """P2 plane model of the pivot, out-of-plane thickness = leaf width w (m)."""
     if formulation not in FORMULATIONS:
         raise ValueError(f"formulation = {formulation!r} must be one of {FORMULATIONS}")
-    if nu is None:
-        nu, _ = poisson_ratio(pivot.material.name)
-    mat = Material(pivot.material.name, E=pivot.material.E, nu=nu, rho=7850.0,
-                   yield_strength=pivot.material.yield_strength)  # rho unused in statics
+    mat = pivot.material if nu is None else dataclasses.replace(pivot.material, nu=nu)
     mesh = mesh_pivot(geometry or pivot_geometry(pivot), elements_through_thickness)
     plane = PlaneStress(pivot.w) if formulation == "plane_stress" else PlaneStrain(pivot.w)
     return Model(mesh, mat, plane, order=2)
@@ -184,7 +163,7 @@ def pivot_fem_check(pivot: FlexurePivot, theta_max: float | None = None, steps: 
 def pivot_from_dict(row: dict) -> FlexurePivot:
     """Rebuild a FlexurePivot from its as_dict() (pivot_designs rows)."""
     return FlexurePivot(L=row["L_m"], t=row["t_m"], w=row["w_m"], n_leaves=row["n_leaves"],
-                        material=flexure_material(row["material"]),
+                        material=material(row["material"]),
                         transmission_ratio=row["transmission_ratio"],
                         theta_max=row["theta_max_rad"], stiffness=row["stiffness_Nm_per_rad"],
                         max_stress=row["max_stress_Pa"], safety_factor=row["safety_factor"])

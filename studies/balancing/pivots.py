@@ -20,30 +20,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ...data import load_toml
-
-
-@dataclass(frozen=True)
-class FlexureMaterial:
-    """Young's modulus E (Pa) and yield (or design) strength (Pa) of a flexure material."""
-
-    name: str
-    E: float
-    yield_strength: float
-
-    def __post_init__(self):
-        for attr in ("E", "yield_strength"):
-            if not getattr(self, attr) > 0.0:
-                raise ValueError(f"{attr} = {getattr(self, attr)} must be > 0")
-
-
-def flexure_material(name: str) -> FlexureMaterial:
-    """A material of the [flexure_materials] table of data/balancing_robot.toml, in SI."""
-    table = load_toml("balancing_robot.toml")["flexure_materials"]
-    if name not in table:
-        raise ValueError(f"material = {name!r} not in {sorted(table)}")
-    row = table[name]
-    return FlexureMaterial(name, row["E_GPa"] * 1e9, row["yield_MPa"] * 1e6)
+from ...fem import Material
 
 
 @dataclass(frozen=True)
@@ -57,7 +34,7 @@ class FlexurePivot:
     t: float
     w: float
     n_leaves: int
-    material: FlexureMaterial
+    material: Material
     transmission_ratio: float
     theta_max: float
     stiffness: float
@@ -104,7 +81,7 @@ def pivot_stiffness_beam_theory(pivot: FlexurePivot) -> float:
     return cross_spring_stiffness(pivot.material.E, pivot.w, pivot.t, pivot.L, pivot.n_leaves)
 
 
-def size_flexure_pivot(K, theta_range_rad, material: FlexureMaterial, safety_factor=2.0,
+def size_flexure_pivot(K, theta_range_rad, material: Material, safety_factor=2.0,
                        n_leaves=2, transmission_ratio=1.0, max_width=0.1,
                        lengths=None, thickness_step=1e-5) -> FlexurePivot:
     """Size a cross-spring pivot of motor-side stiffness K over a motor rotation range.

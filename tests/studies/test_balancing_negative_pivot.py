@@ -20,9 +20,9 @@ from flexfem.studies.balancing.negative_pivot import (
     stiffness_factor,
 )
 from flexfem.studies.balancing.negative_pivot_study import negative_pivot_fem_check, negative_pivot_study
-from flexfem.studies.balancing.pivots import flexure_material
+from flexfem.fem import material
 
-STEEL = flexure_material("spring_steel_aisi1095")
+STEEL = material("spring_steel_aisi1095")
 E, L, T, W = STEEL.E, 0.1, 1.25e-3, 0.05
 I = W * T**3 / 12
 EI_L = E * I / L

@@ -14,11 +14,11 @@ from flexfem.studies.balancing.pivot_fem import (
     pivot_fem_study,
     pivot_geometry,
     pivot_model,
-    poisson_ratio,
 )
-from flexfem.studies.balancing.pivots import FlexurePivot, flexure_material
+from flexfem.fem import material
+from flexfem.studies.balancing.pivots import FlexurePivot
 
-STEEL = flexure_material("spring_steel_aisi1095")
+STEEL = material("spring_steel_aisi1095")
 L, T, W = 0.02, 0.67e-3, 0.074  # m
 EI = STEEL.E * W * T**3 / 12  # N m^2
 
@@ -58,7 +58,7 @@ def test_single_leaf_stiffness_is_EI_over_L():
     theta, _ = linear_moment_solve(model, moment=1.0)
     assert (1.0 / theta) / (EI / L) == pytest.approx(1.0, rel=0.01)
     # plane strain across the width (a wide leaf, plate bending): E / (1 - nu^2)
-    nu, _ = poisson_ratio(STEEL.name)
+    nu = STEEL.nu
     strain = pivot_model(pivot(1), "plane_strain")
     theta_s, _ = linear_moment_solve(strain, moment=1.0)
     assert theta / theta_s == pytest.approx(1.0 / (1.0 - nu**2), rel=0.01)
@@ -142,8 +142,4 @@ def test_bad_input():
         pivot_fem_check(pivot(2), formulation="shell")
     with pytest.raises(ValueError, match="n_leaves"):
         pivot_geometry(FlexurePivot(**{**pivot(2).__dict__, "n_leaves": 3}))
-    with pytest.raises(ValueError, match="nu"):
-        poisson_ratio("unobtainium")
-    assert poisson_ratio("titanium_ti6al4v")[0] == pytest.approx(0.342)
-    nu, source = poisson_ratio(STEEL.name)  # its own entry, with its source
-    assert math.isclose(nu, 0.29) and "balancing_robot.toml" in source
+    assert math.isclose(STEEL.nu, 0.29) and "Shigley" in STEEL.source

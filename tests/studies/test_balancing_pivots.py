@@ -1,23 +1,23 @@
 """Cross-spring flexure pivots sized by beam theory to replace the torsion springs."""
 import pytest
+from flexfem.fem import Material, material
 from flexfem.studies.balancing.pivots import (
-    FlexureMaterial,
     FlexurePivot,
     cross_spring_stiffness,
-    flexure_material,
     leaf_bending_stress,
     negative_stiffness_preload,
     pivot_stiffness_beam_theory,
     size_flexure_pivot,
 )
 
-STEEL = flexure_material("spring_steel_aisi1095")
+STEEL = material("spring_steel_aisi1095")
 
 
-def test_material_table_in_si():
+def test_the_pivot_materials_come_from_the_one_material_library_in_si():
     assert STEEL.E == pytest.approx(205e9) and STEEL.yield_strength == pytest.approx(1.3e9)
+    assert "AISI 1095" in STEEL.source
     with pytest.raises(ValueError, match="unobtainium"):
-        flexure_material("unobtainium")
+        material("unobtainium")
 
 
 def test_beam_formulas_by_hand():
@@ -53,7 +53,7 @@ def test_negative_or_impossible_stiffness_raises():
 
 def test_validation_and_negative_stiffness_preload():
     with pytest.raises(ValueError, match="E = 0"):
-        FlexureMaterial("x", 0.0, 1e6)
+        Material("x", 0.0, 0.3, 7850.0, 1e6)
     good = size_flexure_pivot(4.23, (-0.2, 0.2), STEEL)
     with pytest.raises(ValueError, match="n_leaves"):
         FlexurePivot(**{**good.__dict__, "n_leaves": 0})
