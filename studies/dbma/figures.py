@@ -5,7 +5,6 @@ and the elastic-beam model of studies/dbma_enhanced.py, for the same parameter s
 the paper's design (Table 1, h = 2.6 mm, b = 0.6 mm). Outputs: CSV tables and PNG figures in a
 folder the caller gives; quantities in SI units in the tables (lengths in m).
 """
-import csv
 from dataclasses import replace
 from pathlib import Path
 
@@ -70,13 +69,10 @@ def parameter_sweep(base: DBMAParams, name: str, values) -> dict:
 
 
 def write_csv(path: Path, columns: dict) -> None:
-    """Write equal-length columns (numbers or strings) as a CSV file with a header row."""
+    """Write equal-length columns as a CSV file (the one CSV writer, by rows)."""
     names = list(columns)
-    with open(path, "w", newline="") as f:
-        writer = csv.writer(f)
-        writer.writerow(names)
-        for row in zip(*(columns[n] for n in names)):
-            writer.writerow([v if isinstance(v, str) else f"{v:.9g}" for v in row])
+    write_rows(path, [dict(zip(names, values)) for values in zip(*(columns[n] for n in names))],
+               names)
 
 
 def figure_sweeps(out_dir: Path, base: DBMAParams, names, quantity: str, n: int,

@@ -1,9 +1,9 @@
 """A DBMA design search with its outputs: tables, figure and text of ``optimize.optimize``'s
 result, and the report section."""
-import csv
 from pathlib import Path
 
 from ...geometry.dbma.params import paper_design
+from ..engine.tables import write_rows
 from ..report.figures import entry, legend_outside, pyplot, save
 from .optimize import Evaluations, fem_metrics, optimize
 from .optimize_spec import (
@@ -34,10 +34,7 @@ def history_rows(result: dict) -> list[dict]:
 
 def write_history_csv(result: dict, path) -> Path:
     """optimize_history.csv: one row per FEM evaluation (SI units)."""
-    with open(path, "w", newline="") as fh:
-        writer = csv.DictWriter(fh, fieldnames=list(HISTORY_COLUMNS))
-        writer.writeheader()
-        writer.writerows(history_rows(result))
+    write_rows(path, history_rows(result), HISTORY_COLUMNS)
     return Path(path)
 
 
@@ -110,11 +107,7 @@ def summarize(result: dict) -> str:
 
 def write_rows_csv(rows: list[dict], path) -> Path:
     """A table of summary_rows as CSV (quantity, value, bound, active)."""
-    with open(path, "w", newline="") as fh:
-        writer = csv.DictWriter(fh, fieldnames=["quantity", "value", "bound", "active"])
-        writer.writeheader()
-        writer.writerows(rows)
-    return Path(path)
+    return write_rows(path, rows, ["quantity", "value", "bound", "active"])
 
 
 def run(spec: OptimizeSpec, out_dir=None, quick: bool = False) -> dict:

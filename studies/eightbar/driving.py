@@ -150,10 +150,6 @@ def k_y_alone(model: Model) -> float:
     return float(res.reactions["end_effector"][1] / probe)
 
 
-def _write_csv(path: Path, rows: list) -> str:
-    return write_rows(path, rows).name
-
-
 def _draw_rigid(path: Path, tr, params: DrivingParams) -> dict:
     plt = pyplot()
     linkage = tr.linkage
@@ -218,7 +214,7 @@ def driving_study(out_dir, quick: bool = False, params: DrivingParams | None = N
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     tr = trace_driving(params, n=31 if quick else 121)
-    tables = [_write_csv(out / "driving_rigid.csv", _rigid_rows(tr))]
+    tables = [write_rows(out / "driving_rigid.csv", _rigid_rows(tr)).name]
     figures = [_draw_rigid(out / "driving_rigid.png", tr, params)]
     size_factor = 3.0 if quick else 1.5
     model, _ = build_model(params, flexure, size_factor=size_factor)
@@ -233,7 +229,7 @@ def driving_study(out_dir, quick: bool = False, params: DrivingParams | None = N
         tables.append(table)
         summary.update(nonlinear)
         extra_notes.append(_nonlinear_note(summary))
-    tables.append(_write_csv(out / "driving_fem.csv", [fem_row]))
+    tables.append(write_rows(out / "driving_fem.csv", [fem_row]).name)
     return {"comparisons": _comparisons(lin, summary["rigid_transmission"]), "tables": tables,
             "figures": figures, "notes": _notes(params, summary) + extra_notes, "summary": summary}
 
@@ -265,7 +261,7 @@ def _nonlinear_study(out: Path, model: Model, params: DrivingParams, flexure, si
     the suspension alone over the same x stroke: (table name, summary entries, SI)."""
     half = params.input_travel / 4
     rows = nonlinear_drive(model, -half, 4)[::-1] + nonlinear_drive(model, half, 4)[1:]
-    table = _write_csv(out / "driving_fem_nonlinear.csv", rows)
+    table = write_rows(out / "driving_fem_nonlinear.csv", rows).name
     left = np.array([[r["x_left_m"], r["y_left_m"]] for r in rows])
     right = np.array([[r["x_right_m"], r["y_right_m"]] for r in rows])
     dl, dr = straight_line_deviation(left), straight_line_deviation(right)

@@ -102,10 +102,6 @@ def convergence_note(rows: list) -> str:
     return "stress convergence (linear, half travel): " + "; ".join(parts)
 
 
-def _write_csv(path: Path, rows: list) -> str:
-    return write_rows(path, rows).name
-
-
 def plot_fields(out: dict, path: Path) -> dict:
     """Deformed shape at the end of the stroke (nonlinear) and linear von Mises at half travel."""
     plt = pyplot()
@@ -239,16 +235,16 @@ def reproduce(out_dir, quick: bool = False, full: bool = False) -> dict:
     figures = [plot_fields(out, out_dir / "eightbar_fem_fields.png"),
                plot_path(out, rigid_rows, out_dir / "eightbar_fem_path.png"),
                plot_force(out, out_dir / "eightbar_fem_force.png")]
-    tables = [_write_csv(out_dir / "eightbar_fem_path.csv", out["path"]),
-              _write_csv(out_dir / "eightbar_fem_modes.csv", out["modes"]),
-              _write_csv(out_dir / "eightbar_fem_prbm.csv", prbm_table(out, params))]
+    tables = [write_rows(out_dir / "eightbar_fem_path.csv", out["path"]).name,
+              write_rows(out_dir / "eightbar_fem_modes.csv", out["modes"]).name,
+              write_rows(out_dir / "eightbar_fem_prbm.csv", prbm_table(out, params)).name]
     convergence = stress_convergence(params, (2.0, 1.0) if quick else (1.0, 0.7, 0.5))
-    tables.append(_write_csv(out_dir / "eightbar_fem_stress_convergence.csv", convergence))
+    tables.append(write_rows(out_dir / "eightbar_fem_stress_convergence.csv", convergence).name)
     write_result(out["linear_result"], out_dir / "eightbar_linear.vtu")
     mems = mems_check(params)
     violations = mems["scaled"]["violations"] + mems["widened"]["violations"]
     if violations:
-        tables.append(_write_csv(out_dir / "eightbar_mems_violations.csv", violations))
+        tables.append(write_rows(out_dir / "eightbar_mems_violations.csv", violations).name)
     rows = comparison_rows(comparisons(out, mems))
     figures.append(entry("eightbar_linear.vtu", "the linear solve's fields, for ParaView"))
     summary = {"paragraph": paragraph(out, params), "comparisons": rows, "figures": figures,

@@ -6,7 +6,6 @@ keyed by ``case_key``: the sha256 of the canonical JSON of mechanism, parameters
 options and the flexfem version, so a re-run finds what is already done, and a new flexfem
 version recomputes everything. Rows export to CSV (and Parquet where pyarrow is importable).
 """
-import csv
 import datetime
 import hashlib
 import json
@@ -14,6 +13,8 @@ import math
 import sqlite3
 from dataclasses import dataclass, field
 from pathlib import Path
+
+from .tables import write_rows
 
 SCHEMA = """
 CREATE TABLE IF NOT EXISTS cases (
@@ -175,13 +176,8 @@ def table_columns(cases: list[CaseResult], rows: list[dict]) -> list[str]:
 
 def export_csv(cases: list[CaseResult], path) -> Path:
     """Write one CSV row per case (see CaseResult.to_row); missing values are empty."""
-    rows = [c.to_row() for c in cases]
-    path = Path(path)
-    with path.open("w", newline="") as f:
-        writer = csv.DictWriter(f, fieldnames=table_columns(cases, rows), restval="")
-        writer.writeheader()
-        writer.writerows({k: ("" if v is None else v) for k, v in row.items()} for row in rows)
-    return path
+    rows = [{k: ("" if v is None else v) for k, v in c.to_row().items()} for c in cases]
+    return write_rows(path, rows, table_columns(cases, rows))
 
 
 def parquet_available() -> bool:

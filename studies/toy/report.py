@@ -1,10 +1,10 @@
 """The engine's own check for the report, on the toy cantilever: a sweep against the closed
 form and a convergence study against the known order 2 and the exact taper integral."""
-import csv
 from pathlib import Path
 
 from ..engine.convergence import converge, default_levels, plot_convergence
 from ..engine.store import export_csv
+from ..engine.tables import write_rows
 from ..engine.sweep import Study, plot_metric, run_study
 from ..report.comparison import Comparison, rows as comparison_rows
 from ..report.figures import entry
@@ -38,11 +38,9 @@ def reproduce(out_dir, quick: bool = False) -> dict:
     taper = {"thickness_tip_m": 0.001}
     conv = converge(evaluate, "tip_deflection", default_levels(4 if quick else 6), params=taper, tol=0.005)
     plot_convergence(conv, out / "toy_convergence.png", theoretical_order=2.0)
-    with (out / "toy_convergence.csv").open("w", newline="") as f:
-        writer = csv.writer(f)
-        writer.writerow(["size_factor", "h_m", "dofs", "tip_deflection_m"])
-        writer.writerows([lv["size_factor"], h, d, v]
-                         for lv, h, d, v in zip(conv.levels, conv.sizes, conv.dofs, conv.values))
+    write_rows(out / "toy_convergence.csv",
+               [{"size_factor": lv["size_factor"], "h_m": h, "dofs": d, "tip_deflection_m": v}
+                for lv, h, d, v in zip(conv.levels, conv.sizes, conv.dofs, conv.values)])
     case = next(c for c in result.cases if c.params == {"length_m": 0.1, "width_m": 0.01})
     exact = tip_deflection_exact(CantileverParams(**taper))
     rows = comparison_rows([
