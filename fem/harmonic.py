@@ -21,7 +21,7 @@ from . import linsolve
 from .boundary import component_indices, constrained_dofs, group_dofs, load_vector
 from .modal import Modes, solve_modes
 from .model import Model
-from .static import check_supports
+from .static_result import check_supports, group_basis
 
 
 @dataclass(frozen=True)
@@ -122,12 +122,7 @@ def mean_weights(model: Model, group: str) -> np.ndarray:
     """(dim, n_dofs) weights w with w @ u the measure-averaged displacement (m) of a
     boundary group or subdomain."""
     group_dofs(model, group)  # validates the name
-    mesh = model.mesh
-    if group in mesh.boundaries:
-        basis = skfem.FacetBasis(mesh.mesh, model.basis.elem, facets=mesh.facets(group),
-                                 intorder=2 * model.order)
-    else:
-        basis = model.basis.with_elements(mesh.elements(group))
+    basis = group_basis(model, group)
     total = skfem.LinearForm(lambda v, w: sum(v[i] for i in range(model.dim))).assemble(basis)
     weights = np.zeros((model.dim, model.n_dofs))
     for i, idx in enumerate(component_indices(model)):

@@ -63,14 +63,19 @@ class StaticResult:
         return mean_field(self.model, self.u, group)
 
 
-def mean_field(model: Model, u: np.ndarray, group: str) -> np.ndarray:
-    """Average of the vector field ``u`` (DOF vector) over a boundary group or subdomain."""
+def group_basis(model: Model, group: str):
+    """The basis over a boundary group (a FacetBasis) or a subdomain, exact for products of
+    the model's shape functions."""
     mesh = model.mesh
     if group in mesh.boundaries:
-        basis = skfem.FacetBasis(mesh.mesh, model.basis.elem, facets=mesh.facets(group),
-                                 intorder=2 * model.order)
-    else:
-        basis = model.basis.with_elements(mesh.elements(group))
+        return skfem.FacetBasis(mesh.mesh, model.basis.elem, facets=mesh.facets(group),
+                                intorder=2 * model.order)
+    return model.basis.with_elements(mesh.elements(group))
+
+
+def mean_field(model: Model, u: np.ndarray, group: str) -> np.ndarray:
+    """Average of the vector field ``u`` (DOF vector) over a boundary group or subdomain."""
+    basis = group_basis(model, group)
     uh = basis.interpolate(u)
     w = basis.dx
     return np.array([np.sum(uh[i] * w) for i in range(model.dim)]) / np.sum(w)
