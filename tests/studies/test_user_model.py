@@ -11,8 +11,8 @@ import shutil
 import pytest
 
 from flexfem.geometry.user_model import load_spec
-from flexfem.studies.balancing_pivots import cross_spring_stiffness
-from flexfem.studies.serialize import jsonable
+from flexfem.studies.balancing.pivots import cross_spring_stiffness
+from flexfem.studies.engine.serialize import jsonable
 from flexfem.studies.user_model import analyze_model, evaluate
 from flexfem.studies.user_model import cli
 
