@@ -18,12 +18,13 @@ from .nonlinear import NonConvergenceError, NonlinearResult, solve_nonlinear
 from .rigid_face import RigidFace
 from .model import Model, PlaneStrain, PlaneStress, Solid3D, von_mises
 from .static import StaticResult, UnderConstrainedError, solve_static
+from .stress import nonlinear_stress, nonlinear_stress_at
 
 __all__ = [
     "BodyForce", "FEMesh", "Fixed", "Force", "Gravity", "Material", "Model", "Modes",
     "NonConvergenceError", "NonlinearResult", "PlaneStrain", "PlaneStress", "PointForce",
     "Prescribed", "RigidFace", "SingularSystemError", "Solid3D", "StaticResult", "Traction",
     "UnderConstrainedError", "facets_where", "gmsh_session", "material", "material_names",
-    "mesh_from_gmsh", "read_mesh", "solve_modes", "solve_nonlinear", "solve_static",
+    "mesh_from_gmsh", "nonlinear_stress", "nonlinear_stress_at", "read_mesh", "solve_modes", "solve_nonlinear", "solve_static",
     "von_mises", "write_mesh", "write_result",
 ]

@@ -7,7 +7,7 @@ import scipy.sparse.linalg as spla
 from scipy.sparse.csgraph import connected_components
 import skfem
 
-from . import linsolve
+from . import linsolve, stress
 from .boundary import component_indices, constrained_dofs, load_vector
 from .model import Model, rigid_body_modes, scalar_element, von_mises
 
@@ -23,7 +23,8 @@ class StaticResult:
 
     u : DOF vector; displacement : (n_vertices, dim) at the mesh vertices;
     von_mises_nodal : (n_vertices,) from the stress components L2-projected onto
-    continuous linear fields; von_mises_element_max :
+    continuous linear fields; nodal_stress_full : (n_vertices, 3, 3) those projected Cauchy
+    stress components (2-D: with sigma_zz); von_mises_element_max :
     (n_elements,) maximum over each element's quadrature points; reactions : {group: force
     vector} on every supported group; strain_energy : 1/2 u.K.u.
     """
@@ -38,6 +39,20 @@ class StaticResult:
     strain_energy: float
     solver: str = "direct"
     info: dict = field(default_factory=dict)
+    nodal_stress_full: np.ndarray | None = None
+
+    @property
+    def nodal_stress(self) -> np.ndarray:
+        """(n_vertices, dim, dim) Cauchy stress (Pa), L2-projected onto continuous linear
+        fields (``nodal_stress_full`` has the 3 x 3 tensors)."""
+        d = self.model.dim
+        return self.nodal_stress_full[:, :d, :d]
+
+    def stress_at(self, points, full: bool = False) -> np.ndarray:
+        """(n, dim, dim) Cauchy stress (Pa) at ``points`` ((n, dim), m), evaluated in the
+        element containing each point (no smoothing); (n, 3, 3) with ``full``. A point outside
+        the body raises ValueError."""
+        return stress.stress_at(self, points, full)
 
     @property
     def max_von_mises(self) -> float:
@@ -193,4 +208,5 @@ def solve_static(model: Model, supports, loads, solver: str = "auto") -> StaticR
         model=model, u=u, displacement=vertex_displacement(model, u),
         von_mises_nodal=von_mises(nodal), von_mises_element_max=vm_qp.max(axis=1),
         reactions=reactions, applied_force=applied, strain_energy=0.5 * float(u @ (K @ u)),
-        solver=chosen, info={"n_dofs": model.n_dofs, "n_constrained": len(D)})
+        solver=chosen, info={"n_dofs": model.n_dofs, "n_constrained": len(D)},
+        nodal_stress_full=np.moveaxis(nodal, 2, 0))
