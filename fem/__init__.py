@@ -7,7 +7,8 @@
     write_result(result, "result.vtu")                  # ParaView; write_mesh for .msh/.inp
     large = solve_nonlinear(model, [Fixed("fixed")], [Force("tip", (0.0, -1e3))], steps=20)
 """
-from .boundary import BodyForce, Fixed, Force, Gravity, PointForce, Prescribed, Traction
+from .boundary import (BodyForce, Fixed, Force, Gravity, PointForce, Prescribed, Pressure,
+                       Traction)
 from .export import write_mesh, write_result
 from .gmsh_session import gmsh_session
 from .linsolve import SingularSystemError
@@ -22,7 +23,7 @@ from .stress import nonlinear_stress, nonlinear_stress_at
 
 __all__ = [
     "BodyForce", "FEMesh", "Fixed", "Force", "Gravity", "Material", "Model", "Modes",
-    "NonConvergenceError", "NonlinearResult", "PlaneStrain", "PlaneStress", "PointForce",
+    "NonConvergenceError", "NonlinearResult", "PlaneStrain", "PlaneStress", "PointForce", "Pressure",
     "Prescribed", "RigidFace", "SingularSystemError", "Solid3D", "StaticResult", "Traction",
     "UnderConstrainedError", "facets_where", "gmsh_session", "material", "material_names",
     "mesh_from_gmsh", "nonlinear_stress", "nonlinear_stress_at", "read_mesh", "solve_modes", "solve_nonlinear", "solve_static",

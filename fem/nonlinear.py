@@ -19,7 +19,7 @@ import skfem
 from skfem.helpers import ddot, eye, grad, mul, transpose, trace
 
 from . import linsolve
-from .boundary import component_indices, constrained_dofs, group_dofs, load_vector
+from .boundary import component_indices, constrained_dofs, follower_pressure, group_dofs, load_vector
 from .model import Model, PlaneStrain, von_mises
 from .rigid_face import ReducedSpace
 from .static import (UnderConstrainedError, check_supports, mean_field, nodal_average,
@@ -238,11 +238,11 @@ class _Problem:
         _check_held(model, self.space)
         self.model = model
         self.assembler = Assembler(model)
-        self.f_ext = load_vector(model, loads)
+        self.f_ext, self.follower = load_vector(model, loads), follower_pressure(model, loads)
         self.solver = linsolve.choose_solver(self.space.n, model.dim, solver)
-        if self.solver == "amg" and rigid_faces:
-            raise ValueError(f"solver = {solver!r} with rigid faces: AMG is not set up for face "
-                             "coordinates; use solver='direct'")
+        if self.solver == "amg" and (rigid_faces or self.follower.active):
+            raise ValueError(f"solver = {solver!r} with rigid faces or follower pressure: AMG is "
+                             "not set up for them; use solver='direct'")
 
     def evaluate(self, z, lam, tangent=True):
         """(u, r = f_int - lam f_ext (full), r_z, K_zz or None, reference force (N), T = du/dz,
@@ -250,7 +250,7 @@ class _Problem:
         space = self.space
         u = space.displacement(z, lam)
         F, S = self.assembler.state(u)
-        r = self.assembler.internal_force(F, S) - lam * self.f_ext
+        r = self.assembler.internal_force(F, S) - lam * (self.f_ext + self.follower.force(u))
         T = space.jacobian(z, lam)
         g = space.applied(lam)
         rz = T.T @ r - g
@@ -259,13 +259,13 @@ class _Problem:
         reference = max(np.linalg.norm(lam * self.f_ext), np.linalg.norm(g), np.linalg.norm(r[held]))
         K = K_zz = None
         if tangent:
-            K = self.assembler.tangent(F, S)
+            K = self.assembler.tangent(F, S) + lam * self.follower.stiffness(u)
             K_zz = (T.T @ K @ T + sp.diags(space.geometric_term(z, lam, r))).tocsr()
         return u, r, rz, K_zz, reference, T, K
 
     def reduced_tangent(self, z, lam, u, r, T):
         """K_zz = T^T K T + the rotation's geometric term (N/m)."""
-        K = self.assembler.tangent(*self.assembler.state(u))
+        K = self.assembler.tangent(*self.assembler.state(u)) + lam * self.follower.stiffness(u)
         return (T.T @ K @ T + sp.diags(self.space.geometric_term(z, lam, r))).tocsr()
 
     def solve(self, K, b):
@@ -273,7 +273,7 @@ class _Problem:
             if self.solver == "amg":
                 x = linsolve.solve_amg(K, b, self._near_null_space())
             else:
-                x = _solve_direct(K, b)
+                x = _solve_direct(K, b, self.follower.matrix_kind)
             linsolve.check_solution(K, x, b, "Newton step", rtol=1e-6)
         except (RuntimeError, linsolve.SingularSystemError) as error:
             raise _StepFailed(f"the tangent is singular ({error})", []) from None
@@ -285,10 +285,10 @@ class _Problem:
         return rigid_body_dof_modes(self.model)[self.space.I]
 
 
-def _solve_direct(A, b) -> np.ndarray:
+def _solve_direct(A, b, kind="symmetric") -> np.ndarray:
     """Direct solve of a Newton step: the tangent is symmetric but need not be positive
-    definite (a compressed or buckling flexure), so the symmetric indefinite factorization."""
-    return linsolve.solve_direct(A, np.asarray(b, dtype=float), kind="symmetric")
+    definite (a compressed or buckling flexure); ``kind`` 'general' for follower pressure."""
+    return linsolve.solve_direct(A, np.asarray(b, dtype=float), kind=kind)
 
 
 def _newton(problem, z, lam_old, lam, max_iterations, tol, guess=None):
@@ -341,7 +341,7 @@ def solve_nonlinear(model: Model, supports, loads, steps: int = 10, max_iteratio
                     tol: float = 1e-8, min_step: float = 1e-4, rigid_faces=(),
                     solver: str = "direct") -> NonlinearResult:
     """Large-deflection static solve of ``model`` under ``supports`` (Fixed, Prescribed),
-    ``loads`` (Force, Traction, PointForce, BodyForce, Gravity; dead loads, N) and
+    ``loads`` (Force, Traction, PointForce, BodyForce, Gravity: dead; Pressure: follower) and
     ``rigid_faces`` (RigidFace, 2-D), all scaled by a load factor stepped 0 -> 1 in
     ``steps`` equal increments. A step whose Newton iterations fail (``max_iterations``
     reached, residual diverging, an element inverted, a singular tangent) is halved, down
