@@ -13,7 +13,7 @@ from .export import write_mesh, write_result
 from .gmsh_session import gmsh_session
 from .linsolve import SingularSystemError
 from .materials import Material, material, material_names
-from .mesh import FEMesh, facets_where, mesh_from_gmsh, read_mesh
+from .mesh import FEMesh, drop_unused_vertices, facets_where, mesh_from_gmsh, read_mesh
 from .modal import Modes, solve_modes
 from .nonlinear import NonConvergenceError, NonlinearResult, solve_nonlinear
 from .rigid_face import RigidFace
@@ -25,7 +25,7 @@ __all__ = [
     "BodyForce", "FEMesh", "Fixed", "Force", "Gravity", "Material", "Model", "Modes",
     "NonConvergenceError", "NonlinearResult", "PlaneStrain", "PlaneStress", "PointForce", "Pressure",
     "Prescribed", "RigidFace", "SingularSystemError", "Solid3D", "StaticResult", "Traction",
-    "UnderConstrainedError", "facets_where", "gmsh_session", "material", "material_names",
+    "UnderConstrainedError", "drop_unused_vertices", "facets_where", "gmsh_session", "material", "material_names",
     "mesh_from_gmsh", "nonlinear_stress", "nonlinear_stress_at", "read_mesh", "solve_modes", "solve_nonlinear", "solve_static",
     "von_mises", "write_mesh", "write_result",
 ]
