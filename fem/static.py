@@ -26,7 +26,8 @@ class StaticResult:
     continuous linear fields; nodal_stress_full : (n_vertices, 3, 3) those projected Cauchy
     stress components (2-D: with sigma_zz); von_mises_element_max :
     (n_elements,) maximum over each element's quadrature points; reactions : {group: force
-    vector} on every supported group; strain_energy : 1/2 u.K.u.
+    vector} on every supported group; strain_energy : 1/2 u.K.u; solver : the linear solver
+    used, 'mkl-pardiso', 'cholmod', 'superlu' (direct) or 'amg-cg' ('none': no load).
     """
 
     model: Model
@@ -37,7 +38,7 @@ class StaticResult:
     reactions: dict
     applied_force: np.ndarray
     strain_energy: float
-    solver: str = "direct"
+    solver: str = "none"
     info: dict = field(default_factory=dict)
     nodal_stress_full: np.ndarray | None = None
 
@@ -174,7 +175,8 @@ def body_parts(model: Model) -> list[np.ndarray]:
 
 def solve_static(model: Model, supports, loads, solver: str = "auto") -> StaticResult:
     """Solve K u = f with the displacement ``supports`` (Fixed, Prescribed) and ``loads``
-    (Force, Traction, PointForce, BodyForce, Gravity). ``solver``: 'auto', 'direct' or 'amg'."""
+    (Force, Traction, Pressure, PointForce, BodyForce, Gravity). ``solver``: 'auto', 'direct'
+    or 'amg'; the one used, by name, is ``result.solver``."""
     D, xD, owned = constrained_dofs(model, supports)
     check_supports(model, D)
     K = model.stiffness
@@ -191,7 +193,9 @@ def solve_static(model: Model, supports, loads, solver: str = "auto") -> StaticR
         if chosen == "amg":
             u[I] = linsolve.solve_amg(K_II, rhs, rigid_body_dof_modes(model)[I])
             linsolve.check_solution(K_II, u[I], rhs, rtol=1e-6)
+            chosen = "amg-cg"
         else:
+            chosen = linsolve.direct_backend("spd")
             # K_II is symmetric positive definite once check_supports has passed: Cholesky
             u[I] = linsolve.solve_and_check(K_II, rhs, kind="spd", rtol=1e-6)
 
