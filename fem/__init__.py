@@ -3,6 +3,8 @@
     mesh = mesh_from_gmsh(gmsh)                         # inside gmsh_session()
     model = Model(mesh, material("structural_steel"), PlaneStress(thickness=0.01), order=2)
     result = solve_static(model, [Fixed("fixed")], [Force("tip", (0.0, -10.0))])
+    result.stress_at([(0.05, 0.0)]), result.nodal_stress, result.solver   # Pa; 'mkl-pardiso'
+    solve_static(model, [Fixed("fixed")], [Pressure("bore", 1e6)])       # Pa, into the body
     modes = solve_modes(model, n=6, supports=[Fixed("fixed")])
     write_result(result, "result.vtu")                  # ParaView; write_mesh for .msh/.inp
     large = solve_nonlinear(model, [Fixed("fixed")], [Force("tip", (0.0, -1e3))], steps=20)
