@@ -65,8 +65,9 @@ def test_stress_at_reproduces_pure_bending_2d(steel, quads):
     assert result.stress_at(pts, full=True).shape == (len(pts), 3, 3)
 
 
-def test_stress_at_reproduces_pure_bending_3d(steel):
-    result = bent(steel, beam_3d(L, H, H, 0.05), Solid3D())
+@pytest.mark.parametrize("hexes", [False, True])
+def test_stress_at_reproduces_pure_bending_3d(steel, hexes):
+    result = bent(steel, beam_3d(L, H, H, 0.05, hexes=hexes), Solid3D())
     pts = interior_points(3)
     sig = result.stress_at(pts)
     scale = steel.E * KAPPA * H
