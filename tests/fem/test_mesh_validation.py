@@ -59,6 +59,15 @@ def test_a_tangled_triangle_mesh_overlaps():
         FEMesh(skfem.MeshTri(p, mesh.t))
 
 
+def test_a_tangled_tetrahedral_mesh_overlaps():
+    mesh = skfem.MeshTet.init_tensor(*[np.linspace(0, 1, 4)] * 3)
+    p = mesh.p.copy()
+    inner = int(np.argmin(np.linalg.norm(p - 1 / 3, axis=0)))
+    p[:, inner] = 0.9  # pushed through the cells around it
+    with pytest.raises(ValueError, match="the mesh overlaps"):
+        FEMesh(skfem.MeshTet(p, mesh.t))
+
+
 def test_a_facet_of_three_elements_overlaps():
     p = np.array([[0, 1, 0.5, 0.5, 0.3], [0, 0, 1, -1, 0.8]], dtype=float)
     t = np.array([[0, 1, 2], [0, 3, 1], [0, 1, 4]]).T
