@@ -14,8 +14,8 @@ import skfem
 import skfem.io.meshio
 
 from .gmsh_session import gmsh_session
-from .mesh_check import (check_facet_sharing, check_hanging_nodes, check_orientation_signs,
-                         check_simplex_orientation, check_unused_vertices, unused_vertices)
+from .mesh_check import (check_facet_sharing, check_hanging_nodes, check_unused_vertices,
+                         unused_vertices)
 
 # gmsh element type -> (skfem mesh class, number of corner nodes). Higher-order types (9 and
 # 11: 6/10-node simplices; 10 and 16: 9/8-node quadrangles; 12 and 17: 27/20-node hexahedra)
@@ -131,14 +131,12 @@ def corner_jacobians(mesh: skfem.Mesh) -> np.ndarray:
 
 
 def _check_cells(mesh: skfem.Mesh) -> None:
-    """Reject degenerate cells (zero area or volume), for quadrilaterals and hexahedra
+    """Reject degenerate cells (zero area or volume) and, for quadrilaterals and hexahedra,
     cells whose map folds over (Jacobian changing sign inside: non-convex, twisted or
-    self-intersecting), and quadrilaterals and hexahedra turning against the mesh's majority
-    (inverted; triangles and tetrahedra are checked when read: scikit-fem sorts triangle
-    vertices and its own tetrahedral meshes mix both turns). A mesh inverted as a whole is fine:
-    scikit-fem integrates with |det J|, so a consistent vertex order does not matter."""
+    self-intersecting). A cell's turn alone is fine: scikit-fem sorts simplex vertices and
+    integrates with |det J|; cells inverted into their neighbours are refused by
+    :func:`~flexfem.fem.mesh_check.check_facet_sharing`."""
     det = corner_jacobians(mesh)
-    simplex = isinstance(mesh, (skfem.MeshTri, skfem.MeshTet))
     # relative to each element's own size, so that strongly graded meshes pass
     diameter = np.max([np.linalg.norm(mesh.p[:, mesh.t[i]] - mesh.p[:, mesh.t[j]], axis=0)
                        for i, j in combinations(range(mesh.t.shape[0]), 2)], axis=0)
@@ -151,10 +149,6 @@ def _check_cells(mesh: skfem.Mesh) -> None:
         raise ValueError(f"the mesh has {int(np.sum(folded))} folded elements (Jacobian changes "
                          f"sign: non-convex or self-intersecting), e.g. element "
                          f"{int(np.flatnonzero(folded)[0])}; check the vertex order or remesh")
-    if not simplex:  # scikit-fem's own tetrahedra turn either way; simplices: when read
-        sign = np.sign(det[:, 0])
-        majority = 1.0 if np.sum(sign > 0) >= np.sum(sign < 0) else -1.0
-        check_orientation_signs(np.flatnonzero(sign != majority), len(sign))
 
 
 def _facet_keys(facet_nodes: np.ndarray, n_vertices: int) -> np.ndarray:
@@ -208,8 +202,6 @@ def mesh_from_gmsh(gmsh) -> FEMesh:
     t = tag_to_index[conn].T.copy()
     if mesh_type is skfem.MeshHex:
         t = t[_HEX_FROM_GMSH]
-    if mesh_type in (skfem.MeshTri, skfem.MeshTet):
-        check_simplex_orientation(p, t)
     mesh = mesh_type(p, t)
 
     element_index = np.full(int(np.max(elem_tags[0])) + 1, -1, dtype=np.int64)
@@ -243,7 +235,7 @@ def read_mesh(path) -> FEMesh:
     """Read a mesh file with its physical groups: ``.msh`` through gmsh, other formats
     (e.g. ``.vtu``, ``.xdmf``) through meshio, using their cell sets as groups (or, in a
     ``.vtu`` from :func:`~flexfem.fem.export.write_mesh`, its 0/1 group arrays). Vertices in
-    no element are dropped; inverted triangles or tetrahedra raise ValueError."""
+    no element are dropped."""
     path = Path(path)
     if not path.exists():
         raise FileNotFoundError(f"mesh file {path} does not exist")
@@ -258,11 +250,6 @@ def read_mesh(path) -> FEMesh:
                        if name != "group_id" and not name.startswith("gmsh:")
                        and all(np.issubdtype(np.asarray(a).dtype, np.integer) and
                                np.all((np.asarray(a) == 0) | (np.asarray(a) == 1)) for a in arrays)}
-    for cell_type in ("tetra", "triangle"):
-        if cell_type in m.cells_dict and len(m.cells_dict[cell_type]):
-            check_simplex_orientation(m.points[:, :3 if cell_type == "tetra" else 2].T,
-                                      m.cells_dict[cell_type].T)
-            break
     mesh = skfem.io.meshio.from_meshio(m)  # cell sets become groups
     return drop_unused_vertices(mesh, {k: np.asarray(v) for k, v in (mesh.boundaries or {}).items()},
                                 {k: np.asarray(v) for k, v in (mesh.subdomains or {}).items()})

@@ -2,12 +2,12 @@
 elements, and vertices that belong to no element. Each raises ValueError naming the elements
 or vertices (at most ``_SHOWN`` of them) so that the mesh can be repaired.
 
-Orientation is judged against the mesh's own: a mesh whose cells all turn the same way
-(counter-clockwise or clockwise) is accepted, cells turning the other way are inverted
-(scikit-fem sorts triangle vertices, so for triangles this is checked on the connectivity as
-read, by :func:`check_simplex_orientation`). Overlaps are found without orientation: the two
+Inverted and tangled cells are found geometrically, not by the sign of det J: the two
 elements on an interior facet must lie on opposite sides of it, and no facet may belong to
-three or more elements. A hanging node is a boundary vertex inside another boundary facet.
+three or more elements. The sign of det J alone says nothing: scikit-fem integrates with
+|det J| and sorts triangle vertices, and a valid gmsh mesh of several surfaces has cells of both
+turns (each surface meshed along its own normal). A hanging node is a boundary vertex inside
+another boundary facet.
 """
 from itertools import combinations
 
@@ -23,31 +23,6 @@ def _name(indices) -> str:
     indices = np.asarray(indices)
     more = f" and {len(indices) - _SHOWN} more" if len(indices) > _SHOWN else ""
     return f"{np.asarray(indices[:_SHOWN]).tolist()}{more}"
-
-
-def simplex_volumes(p: np.ndarray, t: np.ndarray) -> np.ndarray:
-    """(n_elements,) signed measure of each triangle or tetrahedron ((dim + 1, n) vertex
-    indices ``t`` into (dim, n_vertices) ``p``): positive counter-clockwise / right-handed."""
-    edges = np.stack([p[:, t[k]] - p[:, t[0]] for k in range(1, t.shape[0])], axis=-1)
-    dim = p.shape[0]
-    return np.linalg.det(edges.transpose(1, 0, 2)) / (2.0 if dim == 2 else 6.0)
-
-
-def check_simplex_orientation(p: np.ndarray, t: np.ndarray) -> None:
-    """Refuse triangles or tetrahedra, given in their original vertex order, whose orientation
-    (sign of det J) is opposite to the majority's: inverted cells of a tangled mesh."""
-    det = simplex_volumes(p, t)
-    positive = np.sum(det > 0) >= np.sum(det < 0)
-    bad = np.flatnonzero(det <= 0) if positive else np.flatnonzero(det >= 0)
-    bad = bad[det[bad] != 0]  # zero measure is reported as degenerate
-    check_orientation_signs(bad, len(det))
-
-
-def check_orientation_signs(bad: np.ndarray, n: int) -> None:
-    if len(bad):
-        raise ValueError(f"the mesh has {len(bad)} inverted elements (non-positive Jacobian "
-                         f"determinant, turning against the other {n - len(bad)}): elements "
-                         f"{_name(bad)}; the mesh is tangled: remesh or fix their vertex order")
 
 
 def check_facet_sharing(mesh: skfem.Mesh) -> None:
@@ -75,8 +50,9 @@ def check_facet_sharing(mesh: skfem.Mesh) -> None:
     if len(same):
         pairs = mesh.f2t[:, interior[same]].T
         raise ValueError(f"the mesh overlaps: {len(same)} pairs of elements sharing a facet lie "
-                         f"on the same side of it (folded or inverted elements): element pairs "
-                         f"{_name(pairs.tolist())}; remesh")
+                         f"on the same side of it (inverted, folded or tangled elements): "
+                         f"elements {_name(np.unique(pairs))}, in pairs {_name(pairs.tolist())}; "
+                         "remesh")
 
 
 def _on_facet(points: np.ndarray, corners: np.ndarray) -> np.ndarray:
