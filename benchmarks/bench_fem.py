@@ -4,6 +4,13 @@ first 6 modes of a cantilever, with peak memory. Not a test: prints a table (and
     .venv/bin/python benchmarks/bench_fem.py                 # all rows (~15 min on 2 cores)
     .venv/bin/python benchmarks/bench_fem.py --sizes small   # smallest 2-D and 3-D rows
     .venv/bin/python benchmarks/bench_fem.py --case 3d-300k --program calculix  # one JSON line
+    python3 benchmarks/bench_fem.py --install default        # what a plain `pip install .` gives
+
+``--install default`` measures flexfem as a plain ``pip install .`` (no extras) installs it: it
+builds a fresh virtual environment (``--venv``, default /tmp/flexfem-default-venv) from this
+checkout, runs flexfem's cases with that environment's Python, and runs the 3-D rows of about
+30k and 100k DOFs unless ``--rows`` says otherwise. Every flexfem line names the linear solver
+that the results recorded (``solver``: mkl-pardiso, cholmod, superlu or amg-cg).
 
 Each (row, program) runs in its own subprocess so that its peak resident memory is measured
 cleanly: flexfem's from ``getrusage(RUSAGE_SELF)`` of that process, CalculiX's from
@@ -11,6 +18,7 @@ cleanly: flexfem's from ``getrusage(RUSAGE_SELF)`` of that process, CalculiX's f
 reading its deck (it cannot be split), not writing it.
 """
 import argparse
+import importlib.util
 import json
 import os
 from pathlib import Path
@@ -26,8 +34,10 @@ LENGTH, HEIGHT = 1.0, 0.1  # m: cantilever 10:1 (3-D: square section HEIGHT x HE
 TIP_FORCE = 100.0          # N, -y on the tip face
 N_MODES = 6
 ROWS = {"2d-50k": (2, 50_000), "2d-200k": (2, 200_000), "2d-1M": (2, 1_000_000),
-        "3d-100k": (3, 100_000), "3d-300k": (3, 300_000)}
+        "3d-30k": (3, 30_000), "3d-100k": (3, 100_000), "3d-300k": (3, 300_000)}
 SMALL = ["2d-50k", "3d-100k"]
+DEFAULT_INSTALL_ROWS = ["3d-30k", "3d-100k"]
+REPO = Path(__file__).resolve().parents[1]
 
 
 def cantilever_mesh(dim: int, target_dofs: int):
@@ -72,7 +82,10 @@ def run_flexfem(row: str) -> dict:
     dim, target = ROWS[row]
     model = cantilever_model(dim, target)
     supports, loads = _loads(dim)
-    out = {"row": row, "program": "flexfem", "n_dofs": int(model.n_dofs)}
+    out = {"row": row, "program": "flexfem", "n_dofs": int(model.n_dofs),
+           "pypardiso": importlib.util.find_spec("pypardiso") is not None,
+           "mkl": importlib.util.find_spec("mkl") is not None or any(
+               Path(sys.prefix, "lib").glob("libmkl_rt.*"))}
     t = time.perf_counter()
     model.stiffness
     out["assemble_K_s"] = time.perf_counter() - t
@@ -84,6 +97,7 @@ def run_flexfem(row: str) -> dict:
         result = solve_static(model, supports, loads, solver="direct")
         out["static_s"] = time.perf_counter() - t
         out["tip_uy_m"] = float(result.mean_displacement("tip")[1])
+        out["solver"] = result.solver
     except Exception as error:  # residual check refused it, or PARDISO ran out of memory
         # the time until the refusal: factorization, solve and residual check, no stress
         # recovery (AMG-CG, the other solver, does not converge on the slender 2d-1M row)
@@ -93,6 +107,7 @@ def run_flexfem(row: str) -> dict:
         modes = solve_modes(model, N_MODES, supports)
         out["modes_s"] = time.perf_counter() - t
         out["f1_hz"] = float(modes.frequencies_hz[0])
+        out["modes_solver"] = modes.solver
     except Exception as error:  # e.g. PARDISO out of memory under --mem-gb
         out["modes_error"] = f"after {time.perf_counter() - t:.0f} s: {type(error).__name__} {error}"
     out["peak_rss_mb"] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
@@ -122,8 +137,19 @@ def run_calculix(row: str, threads: int) -> dict:
     return out
 
 
-def _in_subprocess(row: str, program: str, threads: int, timeout_s: float, mem_gb: float) -> dict:
-    cmd = [sys.executable, __file__, "--case", row, "--program", program, "--threads", str(threads),
+def default_install(venv: Path) -> str:
+    """Python of a virtual environment with flexfem installed from this checkout by a plain
+    ``pip install .`` (no extras), made once at ``venv`` and reused."""
+    python = venv / ("Scripts/python.exe" if os.name == "nt" else "bin/python")
+    if not python.exists():
+        subprocess.run([sys.executable, "-m", "venv", str(venv)], check=True)
+        subprocess.run([str(python), "-m", "pip", "install", "-q", str(REPO)], check=True)
+    return str(python)
+
+
+def _in_subprocess(row: str, program: str, threads: int, timeout_s: float, mem_gb: float,
+                   python: str = sys.executable) -> dict:
+    cmd = [python, __file__, "--case", row, "--program", program, "--threads", str(threads),
            "--mem-gb", str(mem_gb)]
     proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, text=True, start_new_session=True)
     try:
@@ -150,7 +176,7 @@ def table(rows: list[dict]) -> str:
     fallbacks in the notes column (details in the JSON lines)."""
     head = ("| mesh | DOFs | flexfem assembly K+M (s) | flexfem static (s) | ccx static (s) | "
             "ratio static | flexfem 6 modes (s) | ccx 6 modes (s) | ratio modes | "
-            "flexfem peak MB | ccx peak MB | f1 flexfem / ccx (Hz) | notes |")
+            "flexfem peak MB | ccx peak MB | f1 flexfem / ccx (Hz) | flexfem solver | notes |")
     lines = [head, "|" + "---|" * (head.count("|") - 1)]
     for f, c in rows:
         asm = f.get("assemble_K_s", np.nan) + f.get("assemble_M_s", np.nan)
@@ -172,7 +198,7 @@ def table(rows: list[dict]) -> str:
             f"{_cell(cm, c.get('error') or c.get('modes_error'))} | "
             f"{_fmt(fm / cm if cm else None, '.2f')} | {_fmt(f.get('peak_rss_mb'), '.0f')} | "
             f"{_fmt(c.get('peak_rss_mb'), '.0f')} | {_fmt(f.get('f1_hz'), '.3f')} / "
-            f"{_fmt(c.get('f1_hz'), '.3f')} | {'; '.join(notes)[:120]} |")
+            f"{_fmt(c.get('f1_hz'), '.3f')} | {f.get('solver', '-')} | {'; '.join(notes)[:120]} |")
     return "\n".join(lines)
 
 
@@ -187,6 +213,11 @@ def main(argv=None) -> int:
     parser.add_argument("--mem-gb", type=float, default=16.0,
                         help="address-space limit of each measured process (and its ccx), GiB: "
                              "a row that needs more fails instead of exhausting the machine")
+    parser.add_argument("--install", choices=["current", "default"], default="current",
+                        help="'default': measure flexfem as a plain `pip install .` gives it, "
+                             "in a fresh virtual environment (--venv)")
+    parser.add_argument("--venv", type=Path, default=Path("/tmp/flexfem-default-venv"),
+                        help="where --install default builds its environment")
     parser.add_argument("--case", help=argparse.SUPPRESS)
     parser.add_argument("--program", help=argparse.SUPPRESS)
     args = parser.parse_args(argv)
@@ -201,9 +232,14 @@ def main(argv=None) -> int:
         print(json.dumps(out))
         return 0
     rows = args.rows or (SMALL if args.sizes == "small" else list(ROWS))
+    python = sys.executable
+    if args.install == "default":
+        rows = args.rows or DEFAULT_INSTALL_ROWS
+        python = default_install(args.venv)
     results = []
     for row in rows:
-        f = _in_subprocess(row, "flexfem", args.threads, args.timeout, args.mem_gb)
+        f = _in_subprocess(row, "flexfem", args.threads, args.timeout, args.mem_gb, python)
+        f["install"] = args.install
         print(json.dumps(f), flush=True)
         if row in args.skip_ccx:
             c = {"row": row, "program": "calculix", "error": "not run"}

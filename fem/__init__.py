@@ -3,6 +3,8 @@
     mesh = mesh_from_gmsh(gmsh)                         # inside gmsh_session()
     model = Model(mesh, material("structural_steel"), PlaneStress(thickness=0.01), order=2)
     result = solve_static(model, [Fixed("fixed")], [Force("tip", (0.0, -10.0))])
+    result.stress_at([(0.05, 0.0)]), result.nodal_stress, result.solver   # Pa; 'mkl-pardiso'
+    solve_static(model, [Fixed("fixed")], [Pressure("bore", 1e6)])       # Pa, into the body
     modes = solve_modes(model, n=6, supports=[Fixed("fixed")])
     write_result(result, "result.vtu")                  # ParaView; write_mesh for .msh/.inp
     large = solve_nonlinear(model, [Fixed("fixed")], [Force("tip", (0.0, -1e3))], steps=20)
@@ -12,12 +14,13 @@
     buckling = solve_buckling(model, [Fixed("fixed")], [Force("tip", (-1.0, 0.0))], n=3)
     frf = solve_harmonic(model, [Fixed("fixed")], loads, freqs, damping=0.02).frf("tip", "y")
 """
-from .boundary import BodyForce, Fixed, Force, Gravity, PointForce, Prescribed, Traction
+from .boundary import (BodyForce, Fixed, Force, Gravity, PointForce, Prescribed, Pressure,
+                       Traction)
 from .export import write_mesh, write_result
 from .gmsh_session import gmsh_session
 from .linsolve import SingularSystemError
 from .materials import Material, material, material_names
-from .mesh import FEMesh, facets_where, mesh_from_gmsh, read_mesh
+from .mesh import FEMesh, drop_unused_vertices, facets_where, mesh_from_gmsh, read_mesh
 from .modal import Modes, solve_modes
 from .model import Model, PlaneStrain, PlaneStress, Solid3D, von_mises
 from .nonlinear import NonConvergenceError, NonlinearResult, solve_nonlinear
@@ -26,13 +29,14 @@ from .static import StaticResult, UnderConstrainedError, solve_static
 from .buckling import Buckling, solve_buckling
 from .compliance import Compliance, compliance_matrix
 from .harmonic import FRF, HarmonicResult, Rayleigh, solve_harmonic
+from .stress import nonlinear_stress, nonlinear_stress_at
 
 __all__ = [
     "BodyForce", "FEMesh", "Fixed", "Force", "Gravity", "Material", "Model", "Modes",
-    "NonConvergenceError", "NonlinearResult", "PlaneStrain", "PlaneStress", "PointForce",
+    "NonConvergenceError", "NonlinearResult", "PlaneStrain", "PlaneStress", "PointForce", "Pressure",
     "Prescribed", "RigidFace", "SingularSystemError", "Solid3D", "StaticResult", "Traction",
-    "UnderConstrainedError", "facets_where", "gmsh_session", "material", "material_names",
-    "mesh_from_gmsh", "read_mesh", "solve_modes", "solve_nonlinear", "solve_static",
+    "UnderConstrainedError", "drop_unused_vertices", "facets_where", "gmsh_session", "material", "material_names",
+    "mesh_from_gmsh", "nonlinear_stress", "nonlinear_stress_at", "read_mesh", "solve_modes", "solve_nonlinear", "solve_static",
     "von_mises", "write_mesh", "write_result",
     "Buckling", "Compliance", "FRF", "HarmonicResult", "Rayleigh", "compliance_matrix",
     "solve_buckling", "solve_harmonic",

@@ -71,13 +71,52 @@ class Force:
 
 @dataclass(frozen=True)
 class Traction:
-    """Surface traction ``vector`` (Pa) on boundary group ``group``."""
+    """Surface traction ``vector`` (Pa) on boundary group ``group``: a constant vector or a
+    function of position ``f(x) -> values``, ``x`` a (dim, n) array of points (m), values
+    (dim, n) (Pa)."""
 
     group: str
-    vector: tuple
+    vector: object
 
     def __post_init__(self):
-        object.__setattr__(self, "vector", _finite_vector(self.vector, f"Traction({self.group!r}).vector"))
+        if not callable(self.vector):
+            object.__setattr__(self, "vector",
+                               _finite_vector(self.vector, f"Traction({self.group!r}).vector"))
+
+
+@dataclass(frozen=True)
+class Pressure:
+    """Pressure ``p`` (Pa) on boundary group ``group``, positive pushing into the body (the
+    sign of CalculiX's *DLOAD P): traction -p n, n the outward unit normal. ``p`` is a number
+    or a function of position ``f(x) -> values``, ``x`` a (dim, n) array of points (m).
+    ``follower``: in solve_nonlinear, act on the deformed surface (normal and area follow the
+    deformation) rather than as a dead load on the undeformed one; linear solves ignore it."""
+
+    group: str
+    p: object
+    follower: bool = True
+
+    def __post_init__(self):
+        if not callable(self.p) and not (_is_number(self.p) and math.isfinite(self.p)):
+            raise ValueError(f"Pressure({self.group!r}).p = {self.p!r} must be a finite number "
+                             "(Pa) or a function of the coordinates")
+
+
+def evaluate_on_points(function, x: np.ndarray, rows: int, name: str) -> np.ndarray:
+    """Values of a load ``function`` at quadrature points ``x`` ((dim, ...), m), called on the
+    flattened (dim, n) points; returns (rows, ...) (``rows`` = 0: one number per point)."""
+    flat = x.reshape(x.shape[0], -1)
+    shape = ((rows,) if rows else ()) + (flat.shape[1],)
+    try:
+        values = np.broadcast_to(np.asarray(function(flat), dtype=float), shape)
+    except (TypeError, ValueError) as error:
+        raise ValueError(f"{name}: the function must return an array of shape {shape} for a "
+                         f"(dim, n) array of points, here n = {flat.shape[1]} ({error})") from None
+    if not np.all(np.isfinite(values)):
+        bad = np.flatnonzero(~np.all(np.isfinite(values.reshape(-1, flat.shape[1])), axis=0))[0]
+        raise ValueError(f"{name}: the function returns a non-finite value at "
+                         f"{flat[:, bad].tolist()} m")
+    return values.reshape(shape[:-1] + x.shape[1:])
 
 
 @dataclass(frozen=True)
@@ -208,21 +247,42 @@ def nearest_vertex(model, point, what: str = "PointForce.point") -> int:
     return node
 
 
+def _traction_form(model, load):
+    """Traction (Pa) of a Traction or Pressure at the quadrature points of a FacetBasis, as a
+    function of the form's ``w``."""
+    name = f"{type(load).__name__}({load.group!r})"
+    if isinstance(load, Pressure):
+        if callable(load.p):
+            return lambda w: -evaluate_on_points(load.p, w.x, 0, f"{name}.p") * w.n
+        return lambda w: -load.p * w.n
+    if callable(load.vector):
+        return lambda w: evaluate_on_points(load.vector, w.x, model.dim, f"{name}.vector")
+    _check_dim(load.vector, model.dim, "Traction")
+    tr = np.array(load.vector).reshape(-1, 1, 1)
+    return lambda w: tr + 0 * w.x
+
+
+def _surface_load(model, load) -> np.ndarray:
+    """Nodal forces (N) of a Force, Traction or Pressure on the undeformed surface."""
+    fb = _facet_basis(model, load.group)
+    t = model.thickness
+    if isinstance(load, Force):
+        _check_dim(load.vector, model.dim, "Force")
+        measure = skfem.Functional(lambda w: 1.0 + 0 * w.x[0]).assemble(fb)
+        tr = (np.array(load.vector) / (measure * t)).reshape(-1, 1, 1)
+        traction = lambda w: tr + 0 * w.x  # noqa: E731
+    else:
+        traction = _traction_form(model, load)
+    return t * skfem.LinearForm(lambda v, w: dot(traction(w), v)).assemble(fb)
+
+
 def load_vector(model, loads) -> np.ndarray:
     """Assembled nodal force vector (N) of ``loads``."""
     f = np.zeros(model.n_dofs)
     t = model.thickness
     for load in loads:
-        if isinstance(load, (Force, Traction)):
-            _check_dim(load.vector, model.dim, type(load).__name__)
-            fb = _facet_basis(model, load.group)
-            if isinstance(load, Force):
-                measure = skfem.Functional(lambda w: 1.0 + 0 * w.x[0]).assemble(fb)
-                traction = np.array(load.vector) / (measure * t)
-            else:
-                traction = np.array(load.vector)
-            tr = traction.reshape(-1, 1, 1)
-            f += t * skfem.LinearForm(lambda v, w: dot(tr + 0 * w.x, v)).assemble(fb)
+        if isinstance(load, (Force, Traction, Pressure)):
+            f += _surface_load(model, load)
         elif isinstance(load, PointForce):
             _check_dim(load.vector, model.dim, "PointForce.vector")
             node = nearest_vertex(model, load.point)

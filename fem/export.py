@@ -3,7 +3,7 @@ points.
 
     write_mesh(femesh, "part.msh")           # .msh (gmsh 2.2) .vtu .xdmf .inp, by extension
     write_mesh(femesh, "part.inp", order=2)  # quadratic CalculiX mesh, same nodes as flexfem P2
-    write_result(static_result, "u.vtu")     # displacement and von Mises at the vertices
+    write_result(static_result, "u.vtu")     # displacement, von Mises, stress at the vertices
     write_result(modes, "modes.xdmf")        # every mode shape
 
 Fields are written at the mesh vertices on the first-order mesh: the quadratic (P2) fields are
@@ -25,7 +25,9 @@ from .abaqus import (
 )
 from .mesh import FEMesh
 from .modal import Modes
-from .static import StaticResult
+from .nonlinear_result import NonlinearResult
+from .static_result import StaticResult, vertex_displacement
+from .stress import nonlinear_stress
 
 # skfem mesh type -> (meshio cell type of the element for order 1, 2; meshio facet cell type)
 _MESHIO_CELLS = {
@@ -180,27 +182,44 @@ def mode_field_name(k: int, frequency_hz: float) -> str:
     return f"mode_{k + 1} ({frequency_hz:.6g} Hz)"
 
 
+def _tensor9(tensors: np.ndarray) -> np.ndarray:
+    """(n, 3, 3) -> (n, 9) row-major: ParaView's tensor layout (XX XY XZ YX ... ZZ)."""
+    return np.ascontiguousarray(tensors.reshape(len(tensors), 9))
+
+
 def result_fields(result_or_modes) -> tuple[dict, dict, dict]:
-    """(point_data, cell_data, field_data) of a StaticResult or Modes at the mesh vertices:
-    ``displacement`` (m), ``von_mises`` (Pa, nodal), ``von_mises_element_max`` (Pa, per element);
-    or one field per mode, named by :func:`mode_field_name` (mass-normalised, m/sqrt(kg)).
+    """(point_data, cell_data, field_data) of a StaticResult, NonlinearResult (final step) or
+    Modes at the mesh vertices: ``displacement`` (m), ``von_mises`` (Pa, nodal),
+    ``von_mises_element_max`` (Pa, per element), ``stress`` (Pa, the nodal L2-projected Cauchy
+    tensor, 9 components; a NonlinearResult has ``stress_cauchy`` and
+    ``stress_second_piola_kirchhoff`` instead, on the reference mesh); or one field per mode,
+    named by :func:`mode_field_name` (mass-normalised, m/sqrt(kg)).
     meshio's VTU writer drops field data, so each mode's frequency is in its field's name."""
 
-    if isinstance(result_or_modes, StaticResult):
-        r = result_or_modes
+    r = result_or_modes
+    if isinstance(r, StaticResult):
         point = {"displacement": _pad3(r.displacement), "von_mises": r.von_mises_nodal}
+        if r.nodal_stress_full is not None:
+            point["stress"] = _tensor9(r.nodal_stress_full)
         return point, {"von_mises_element_max": [r.von_mises_element_max]}, {}
-    if isinstance(result_or_modes, Modes):
-        m = result_or_modes
-        point = {mode_field_name(k, f): _pad3(m.vertex_shape(k))
-                 for k, f in enumerate(m.frequencies_hz)}
+    if isinstance(r, NonlinearResult):
+        point = {"displacement": _pad3(vertex_displacement(r.model, r.u[-1])),
+                 "von_mises": r.von_mises_nodal}
+        for name, value in nonlinear_stress(r, full=True).items():
+            point[f"stress_{name}"] = _tensor9(value)
+        return point, {"von_mises_element_max": [r.von_mises_element_max]}, {}
+    if isinstance(r, Modes):
+        point = {mode_field_name(k, f): _pad3(r.vertex_shape(k))
+                 for k, f in enumerate(r.frequencies_hz)}
         return point, {}, {}
-    raise ValueError(f"write_result needs a StaticResult or Modes, not {type(result_or_modes).__name__}")
+    raise ValueError(f"write_result needs a StaticResult, NonlinearResult or Modes, not "
+                     f"{type(r).__name__}")
 
 
 def write_result(result_or_modes, path) -> Path:
-    """Write a StaticResult (displacement, von Mises) or Modes (every mode shape) to ``.vtu``
-    or ``.xdmf`` for ParaView, on the first-order mesh (fields at the vertices)."""
+    """Write a StaticResult or NonlinearResult (displacement, von Mises, stress tensors) or
+    Modes (every mode shape) to ``.vtu`` or ``.xdmf`` for ParaView, on the first-order mesh
+    (fields at the vertices; see :func:`result_fields`)."""
     path = Path(path)
     suffix = _format(path, RESULT_FORMATS)
     point, cell, field = result_fields(result_or_modes)

@@ -15,7 +15,7 @@ import skfem
 from skfem.helpers import ddot, eye, grad, mul, transpose, trace
 
 from .model import Model, PlaneStrain, von_mises
-from .static import nodal_average
+from .projection import nodal_average
 
 STRAIN_LIMIT = 0.05
 

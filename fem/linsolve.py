@@ -1,5 +1,5 @@
-"""Sparse linear solvers: a direct factorization (MKL PARDISO where pypardiso is installed,
-CHOLMOD or SuperLU otherwise) and smoothed-aggregation AMG-preconditioned CG with rigid-body
+"""Sparse linear solvers: a direct factorization (MKL PARDISO where MKL is installed, as it is
+by default on x86-64; CHOLMOD or SuperLU otherwise) and smoothed-aggregation AMG-preconditioned CG with rigid-body
 modes as the near null space. :func:`choose_solver` picks one by problem size.
 
 A factorization is kept in a :class:`Factorization` object: factorize once, call it for many
@@ -38,25 +38,42 @@ class SingularSystemError(ValueError):
     """The stiffness matrix is singular: the model can move without straining."""
 
 
+def _mkl_candidates() -> list:
+    """Paths where a pip-installed MKL keeps its runtime library (the ``mkl`` wheel, a
+    dependency of flexfem on x86-64 Linux, Windows and Intel macOS): the environment's, then
+    the user site's; FLEXFEM_MKL_RT or PYPARDISO_MKL_RT name one explicitly."""
+    import site
+
+    paths = [os.environ.get("FLEXFEM_MKL_RT"), os.environ.get("PYPARDISO_MKL_RT")]
+    for base in dict.fromkeys([sys.prefix, sys.base_prefix, getattr(site, "USER_BASE", None)]):
+        if base:
+            paths += sorted(glob.glob(os.path.join(base, "lib", "libmkl_rt.*")))
+            paths += sorted(glob.glob(os.path.join(base, "Library", "bin", "mkl_rt*.dll")))
+    return [p for p in paths if p]
+
+
 @functools.cache
 def _mkl_pardiso():
-    """MKL's ``pardiso`` entry point (ctypes), found once through pypardiso (its library
-    search takes ~0.8 s); None where pypardiso is not installed."""
-    try:
-        import pypardiso
-    except ImportError:
-        return None
+    """MKL's ``pardiso`` entry point (ctypes), found once: the runtime library of the
+    installed ``mkl`` wheel (see :func:`_mkl_candidates`), else through pypardiso's search
+    (~0.8 s); None where neither is found."""
     library = None
-    # the usual place of a pip-installed MKL first: pypardiso's recursive search of
-    # sys.prefix is what makes its solver's construction slow
-    for path in [os.environ.get("PYPARDISO_MKL_RT")] + sorted(glob.glob(f"{sys.prefix}/lib/libmkl_rt.*")):
+    for path in _mkl_candidates():
         try:
-            library = ctypes.CDLL(path) if path else None
+            library = ctypes.CDLL(path)
+            break
         except OSError:
             continue
-        if library is not None:
-            break
-    fn = (library or pypardiso.PyPardisoSolver().libmkl).pardiso
+    if library is None:
+        try:
+            import pypardiso
+            library = pypardiso.PyPardisoSolver().libmkl
+        except Exception:  # not installed, or its library search failed
+            return None
+    try:
+        fn = library.pardiso
+    except AttributeError:
+        return None
     i32p, dp = ctypes.POINTER(ctypes.c_int32), ctypes.c_void_p
     # pt, maxfct, mnum, mtype, phase, n, a, ia, ja, perm, nrhs, iparm, msglvl, b, x, error
     fn.argtypes = [ctypes.POINTER(ctypes.c_int64)] + [i32p] * 5 + [dp] * 4 + [i32p] * 3 \
@@ -102,8 +119,8 @@ class Factorization:
     """A sparse direct factorization of ``A``, kept for many solves: ``x = fact(b)`` for
     b of shape (n,) or (n, k). ``kind``: 'spd' (symmetric positive definite: Cholesky),
     'symmetric' (indefinite) or 'general'; symmetric kinds read the upper triangle only.
-    ``backend``: 'pardiso', 'cholmod' or 'superlu' (the first available, in that order, with
-    cholmod for SPD matrices only). Free its memory with ``free()`` or ``with``.
+    ``backend``: :func:`direct_backend` of ``kind``, 'mkl-pardiso', 'cholmod' or 'superlu'.
+    Free its memory with ``free()`` or ``with``.
     """
 
     def __init__(self, A, kind: str = "general"):
@@ -114,23 +131,21 @@ class Factorization:
             raise ValueError(f"the matrix must be square, not {A.shape}")
         self.kind, self.n = kind, A.shape[0]
         self._finalizer = None
-        if _mkl_pardiso() is not None:
+        self.backend = direct_backend(kind)
+        if self.backend == "mkl-pardiso":
             self._init_pardiso(A)
-        elif kind == "spd" and _cholmod() is not None:
-            self.backend = "cholmod"
+        elif self.backend == "cholmod":
             try:
                 self._factor = _cholmod().cholesky(A.tocsc())
             except Exception as error:  # sksparse's CholmodNotPositiveDefiniteError
                 raise SingularSystemError(f"CHOLMOD: {error}") from None
         else:
-            self.backend = "superlu"
             try:
                 self._factor = spla.splu(A.tocsc(), permc_spec="MMD_AT_PLUS_A")
             except RuntimeError as error:  # "Factor is exactly singular"
                 raise SingularSystemError(f"SuperLU: {error}") from None
 
     def _init_pardiso(self, A):
-        self.backend = "pardiso"
         self._mtype = MATRIX_KINDS[self.kind]
         if self.kind != "general":
             A = sp.triu(A, format="csr")
@@ -165,7 +180,7 @@ class Factorization:
         b = np.asarray(b, dtype=float)
         if b.shape[0] != self.n:
             raise ValueError(f"right-hand side has {b.shape[0]} rows, the matrix {self.n}")
-        if self.backend == "pardiso":
+        if self.backend == "mkl-pardiso":
             if not np.any(self._pt):
                 raise RuntimeError("this factorization was freed")
             b = np.asfortranarray(b)
@@ -196,6 +211,17 @@ def _cholmod():
     except ImportError:
         return None
     return cholmod
+
+
+def direct_backend(kind: str = "spd") -> str:
+    """The direct solver a factorization of ``kind`` uses here: 'mkl-pardiso' where MKL is
+    installed (flexfem's default on x86-64), else 'cholmod' for SPD matrices where
+    scikit-sparse is, else 'superlu' (SciPy's, single-threaded: ~16x slower on 3-D P2)."""
+    if _mkl_pardiso() is not None:
+        return "mkl-pardiso"
+    if kind == "spd" and _cholmod() is not None:
+        return "cholmod"
+    return "superlu"
 
 
 def factorize(A: sp.spmatrix, kind: str = "general") -> Factorization:

@@ -8,10 +8,14 @@ from dataclasses import dataclass, field
 from itertools import combinations
 from pathlib import Path
 
+import meshio
 import numpy as np
 import skfem
+import skfem.io.meshio
 
 from .gmsh_session import gmsh_session
+from .mesh_check import (check_facet_sharing, check_hanging_nodes, check_unused_vertices,
+                         unused_vertices)
 
 # gmsh element type -> (skfem mesh class, number of corner nodes). Higher-order types (9 and
 # 11: 6/10-node simplices; 10 and 16: 9/8-node quadrangles; 12 and 17: 27/20-node hexahedra)
@@ -32,7 +36,9 @@ _HEX_FROM_GMSH = [0, 4, 3, 1, 7, 5, 2, 6]
 @dataclass(frozen=True, eq=False)
 class FEMesh:
     """A first-order skfem mesh with named boundaries (facet indices) and subdomains
-    (element indices). Coordinates in metres."""
+    (element indices). Coordinates in metres. Refused with ValueError: no elements, non-finite
+    coordinates, vertices in no element, degenerate, folded, inverted or overlapping elements,
+    and non-conforming meshes (hanging nodes); see :mod:`~flexfem.fem.mesh_check`."""
 
     mesh: skfem.Mesh
     boundaries: dict = field(default_factory=dict)
@@ -45,10 +51,25 @@ class FEMesh:
             raise ValueError(f"the mesh has {np.sum(~np.all(np.isfinite(self.mesh.p), axis=0))} "
                              "vertices with non-finite coordinates; fix the geometry")
         _check_cells(self.mesh)
+        check_unused_vertices(self.mesh)
+        check_facet_sharing(self.mesh)
+        check_hanging_nodes(self.mesh)
 
     @property
     def dim(self) -> int:
         return self.mesh.dim()
+
+    @property
+    def edge_lengths(self) -> np.ndarray:
+        """(n_edges,) length (m) of every element edge, each counted once."""
+        edges = self.mesh.facets if self.dim == 2 else self.mesh.edges
+        return np.linalg.norm(self.mesh.p[:, edges[1]] - self.mesh.p[:, edges[0]], axis=0)
+
+    @property
+    def characteristic_size(self) -> float:
+        """The mesh's own element size h (m): the mean edge length (``edge_lengths.max()``
+        is the largest)."""
+        return float(self.edge_lengths.mean())
 
     @property
     def group_names(self) -> list[str]:
@@ -112,8 +133,9 @@ def corner_jacobians(mesh: skfem.Mesh) -> np.ndarray:
 def _check_cells(mesh: skfem.Mesh) -> None:
     """Reject degenerate cells (zero area or volume) and, for quadrilaterals and hexahedra,
     cells whose map folds over (Jacobian changing sign inside: non-convex, twisted or
-    self-intersecting). A consistently inverted cell is fine: scikit-fem sorts simplex vertices
-    and integrates with |det J|, so vertex order does not matter."""
+    self-intersecting). A cell's turn alone is fine: scikit-fem sorts simplex vertices and
+    integrates with |det J|; cells inverted into their neighbours are refused by
+    :func:`~flexfem.fem.mesh_check.check_facet_sharing`."""
     det = corner_jacobians(mesh)
     # relative to each element's own size, so that strongly graded meshes pass
     diameter = np.max([np.linalg.norm(mesh.p[:, mesh.t[i]] - mesh.p[:, mesh.t[j]], axis=0)
@@ -211,7 +233,9 @@ def mesh_from_gmsh(gmsh) -> FEMesh:
 
 def read_mesh(path) -> FEMesh:
     """Read a mesh file with its physical groups: ``.msh`` through gmsh, other formats
-    (e.g. ``.vtu``, ``.xdmf``) through meshio, using their cell sets as groups."""
+    (e.g. ``.vtu``, ``.xdmf``) through meshio, using their cell sets as groups (or, in a
+    ``.vtu`` from :func:`~flexfem.fem.export.write_mesh`, its 0/1 group arrays). Vertices in
+    no element are dropped."""
     path = Path(path)
     if not path.exists():
         raise FileNotFoundError(f"mesh file {path} does not exist")
@@ -219,6 +243,34 @@ def read_mesh(path) -> FEMesh:
         with gmsh_session() as gmsh:
             gmsh.open(str(path))
             return mesh_from_gmsh(gmsh)
-    mesh = skfem.Mesh.load(str(path))  # meshio underneath; cell sets become groups
-    return FEMesh(mesh, dict(mesh.boundaries or {}),
-                  dict(mesh.subdomains or {}))
+    m = meshio.read(path)
+    if not m.cell_sets:  # write_mesh's .vtu: one 0/1 cell-data array per group
+        m.cell_sets = {name: [np.flatnonzero(a) for a in arrays]
+                       for name, arrays in m.cell_data.items()
+                       if name != "group_id" and not name.startswith("gmsh:")
+                       and all(np.issubdtype(np.asarray(a).dtype, np.integer) and
+                               np.all((np.asarray(a) == 0) | (np.asarray(a) == 1)) for a in arrays)}
+    mesh = skfem.io.meshio.from_meshio(m)  # cell sets become groups
+    return drop_unused_vertices(mesh, {k: np.asarray(v) for k, v in (mesh.boundaries or {}).items()},
+                                {k: np.asarray(v) for k, v in (mesh.subdomains or {}).items()})
+
+
+def drop_unused_vertices(mesh: skfem.Mesh, boundaries=None, subdomains=None) -> FEMesh:
+    """A FEMesh of ``mesh`` without the vertices that belong to no element (meshio keeps
+    them), vertices renumbered in their order and boundary groups (facet indices) matched
+    anew."""
+    boundaries, subdomains = dict(boundaries or {}), dict(subdomains or {})
+    unused = unused_vertices(mesh)
+    if len(unused) == 0:
+        return FEMesh(mesh, boundaries, subdomains)
+    keep = np.setdiff1d(np.arange(mesh.p.shape[1]), unused)
+    new_index = np.full(mesh.p.shape[1], -1, dtype=np.int64)
+    new_index[keep] = np.arange(len(keep))
+    t = new_index[mesh.t]
+    if isinstance(mesh, skfem.MeshHex):  # skfem's own vertex order is kept as it is
+        new = type(mesh)(mesh.p[:, keep], t, validate=False)
+    else:
+        new = type(mesh)(mesh.p[:, keep], t)
+    groups = {name: _match_facets(new, new_index[mesh.facets[:, facets]], name)
+              for name, facets in boundaries.items()}
+    return FEMesh(new, groups, subdomains)

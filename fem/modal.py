@@ -26,6 +26,7 @@ class Modes:
     shapes: np.ndarray
     effective_mass: np.ndarray
     total_mass: float
+    solver: str = ""  # the factorization's backend: 'mkl-pardiso', 'cholmod' or 'superlu'
 
     @property
     def effective_mass_fraction(self) -> np.ndarray:
@@ -96,4 +97,4 @@ def solve_modes(model: Model, n: int = 6, supports=(), shift_hz: float | None = 
     participation = shapes @ (Mfull @ influence.T)  # (n, dim)
     total_mass = float(influence[0] @ (Mfull @ influence[0]))
     frequencies = np.sqrt(np.clip(eigvals, 0.0, None)) / (2 * np.pi)
-    return Modes(model, frequencies, shapes, participation ** 2, total_mass)
+    return Modes(model, frequencies, shapes, participation ** 2, total_mass, solve.backend)

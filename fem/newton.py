@@ -21,10 +21,10 @@ class NonConvergenceError(ValueError):
         self.residual_history = residual_history
 
 
-def _solve_direct(A, b) -> np.ndarray:
+def _solve_direct(A, b, kind="symmetric") -> np.ndarray:
     """Direct solve of a Newton step: the tangent is symmetric but need not be positive
-    definite (a compressed or buckling flexure), so the symmetric indefinite factorization."""
-    return linsolve.solve_direct(A, np.asarray(b, dtype=float), kind="symmetric")
+    definite (a compressed or buckling flexure); ``kind`` 'general' for follower pressure."""
+    return linsolve.solve_direct(A, np.asarray(b, dtype=float), kind=kind)
 
 
 def _newton(problem, z, lam_old, lam, max_iterations, tol, guess=None):

@@ -21,6 +21,7 @@ from .hyperelastic import (STRAIN_LIMIT, Assembler, _StepFailed, cauchy_stress, 
                            deformation, final_stress, green_lagrange, max_strain, svk_stress,
                            tangent_modulus)
 from .model import Model
+from .pressure import FollowerPressure
 from .rigid_face import ReducedSpace
 from .rigid_static import check_held
 from .arclength import limit_points, trace
@@ -50,11 +51,11 @@ class _Problem:
         check_held(model, self.space)
         self.model = model
         self.assembler = Assembler(model)
-        self.f_ext = load_vector(model, loads)
+        self.f_ext, self.follower = load_vector(model, loads), FollowerPressure(model, loads)
         self.solver = linsolve.choose_solver(self.space.n, model.dim, solver)
-        if self.solver == "amg" and rigid_faces:
-            raise ValueError(f"solver = {solver!r} with rigid faces: AMG is not set up for face "
-                             "coordinates; use solver='direct'")
+        if self.solver == "amg" and (rigid_faces or self.follower.active):
+            raise ValueError(f"solver = {solver!r} with rigid faces or follower pressure: AMG is "
+                             "not set up for them; use solver='direct'")
 
     def evaluate(self, z, lam, tangent=True):
         """(u, r = f_int - lam f_ext (full), r_z, K_zz or None, reference force (N), T = du/dz,
@@ -62,7 +63,7 @@ class _Problem:
         space = self.space
         u = space.displacement(z, lam)
         F, S = self.assembler.state(u)
-        r = self.assembler.internal_force(F, S) - lam * self.f_ext
+        r = self.assembler.internal_force(F, S) - lam * (self.f_ext + self.follower.force(u))
         T = space.jacobian(z, lam)
         g = space.applied(lam)
         rz = T.T @ r - g
@@ -71,13 +72,13 @@ class _Problem:
         reference = max(np.linalg.norm(lam * self.f_ext), np.linalg.norm(g), np.linalg.norm(r[held]))
         K = K_zz = None
         if tangent:
-            K = self.assembler.tangent(F, S)
+            K = self.assembler.tangent(F, S) + lam * self.follower.stiffness(u)
             K_zz = (T.T @ K @ T + sp.diags(space.geometric_term(z, lam, r))).tocsr()
         return u, r, rz, K_zz, reference, T, K
 
     def reduced_tangent(self, z, lam, u, r, T):
         """K_zz = T^T K T + the rotation's geometric term (N/m)."""
-        K = self.assembler.tangent(*self.assembler.state(u))
+        K = self.assembler.tangent(*self.assembler.state(u)) + lam * self.follower.stiffness(u)
         return (T.T @ K @ T + sp.diags(self.space.geometric_term(z, lam, r))).tocsr()
 
     def solve(self, K, b):
@@ -85,7 +86,7 @@ class _Problem:
             if self.solver == "amg":
                 x = linsolve.solve_amg(K, b, self._near_null_space())
             else:
-                x = _solve_direct(K, b)
+                x = _solve_direct(K, b, self.follower.matrix_kind)
             linsolve.check_solution(K, x, b, "Newton step", rtol=1e-6)
         except (RuntimeError, linsolve.SingularSystemError) as error:
             raise _StepFailed(f"the tangent is singular ({error})", []) from None
@@ -160,7 +161,7 @@ def solve_nonlinear(model: Model, supports, loads, steps: int = 10, max_iteratio
                     strain_limit: float = STRAIN_LIMIT, control: str = "load",
                     max_steps: int | None = None) -> NonlinearResult:
     """Large-deflection static solve of ``model`` under ``supports`` (Fixed, Prescribed),
-    ``loads`` (Force, Traction, PointForce, BodyForce, Gravity; dead loads, N) and
+    ``loads`` (Force, Traction, PointForce, BodyForce, Gravity: dead; Pressure: follower) and
     ``rigid_faces`` (RigidFace, 2-D), all scaled by a load factor stepped 0 -> 1 in
     ``steps`` equal increments. A step whose Newton iterations fail (``max_iterations``
     reached, residual diverging, an element inverted, a singular tangent) is halved, down

@@ -77,11 +77,12 @@ def solve_static_faces(model, supports, loads, rigid_faces, solver: str = "auto"
                  for g, dofs in owned.items()}
     face_forces, motion = face_results(space, z, r)
     sig = model.stress(u)
+    nodal = nodal_average(model, sig)
     return StaticResult(
         model=model, u=u, displacement=vertex_displacement(model, u),
-        von_mises_nodal=von_mises(nodal_average(model, sig)),
+        von_mises_nodal=von_mises(nodal), nodal_stress_full=np.moveaxis(nodal, 2, 0),
         von_mises_element_max=von_mises(sig).max(axis=1), reactions=reactions,
         applied_force=np.array([f[idx].sum() for idx in component_indices(model)]),
-        strain_energy=0.5 * float(u @ (K @ u)), solver="direct",
+        strain_energy=0.5 * float(u @ (K @ u)), solver=linsolve.direct_backend("spd"),
         info={"n_dofs": model.n_dofs, "n_unknowns": space.n}, face_motion=motion,
         face_reactions=face_forces)

@@ -13,8 +13,9 @@ from .static_result import (StaticResult, UnderConstrainedError, body_parts,  # 
 def solve_static(model: Model, supports, loads, solver: str = "auto",
                  rigid_faces=()) -> StaticResult:
     """Solve K u = f with the displacement ``supports`` (Fixed, Prescribed) and ``loads``
-    (Force, Traction, PointForce, BodyForce, Gravity). ``solver``: 'auto', 'direct' or 'amg'.
-    ``rigid_faces``: RigidFace (2-D), linearised; see :mod:`.rigid_static`."""
+    (Force, Traction, Pressure, PointForce, BodyForce, Gravity). ``solver``: 'auto', 'direct'
+    or 'amg'; the one used, by name, is ``result.solver``. ``rigid_faces``: RigidFace (2-D),
+    linearised; see :mod:`.rigid_static`."""
     if rigid_faces:
         return solve_static_faces(model, supports, loads, rigid_faces, solver)
     D, xD, owned = constrained_dofs(model, supports)
@@ -33,7 +34,9 @@ def solve_static(model: Model, supports, loads, solver: str = "auto",
         if chosen == "amg":
             u[I] = linsolve.solve_amg(K_II, rhs, rigid_body_dof_modes(model)[I])
             linsolve.check_solution(K_II, u[I], rhs, rtol=1e-6)
+            chosen = "amg-cg"
         else:
+            chosen = linsolve.direct_backend("spd")
             # K_II is symmetric positive definite once check_supports has passed: Cholesky
             u[I] = linsolve.solve_and_check(K_II, rhs, kind="spd", rtol=1e-6)
 
@@ -50,4 +53,5 @@ def solve_static(model: Model, supports, loads, solver: str = "auto",
         model=model, u=u, displacement=vertex_displacement(model, u),
         von_mises_nodal=von_mises(nodal), von_mises_element_max=vm_qp.max(axis=1),
         reactions=reactions, applied_force=applied, strain_energy=0.5 * float(u @ (K @ u)),
-        solver=chosen, info={"n_dofs": model.n_dofs, "n_constrained": len(D)})
+        solver=chosen, info={"n_dofs": model.n_dofs, "n_constrained": len(D)},
+        nodal_stress_full=np.moveaxis(nodal, 2, 0))

@@ -3,13 +3,13 @@ from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.sparse as sp
-import scipy.sparse.linalg as spla
 import skfem
 from scipy.sparse.csgraph import connected_components
 
-from . import linsolve
+from . import linsolve, stress
 from .boundary import component_indices
-from .model import Model, rigid_body_modes, scalar_element
+from .model import Model, rigid_body_modes
+from .projection import nodal_average  # noqa: F401 (public here too)
 
 
 class UnderConstrainedError(linsolve.SingularSystemError):
@@ -23,11 +23,13 @@ class StaticResult:
 
     u : DOF vector; displacement : (n_vertices, dim) at the mesh vertices;
     von_mises_nodal : (n_vertices,) from the stress components L2-projected onto
-    continuous linear fields; von_mises_element_max :
+    continuous linear fields; nodal_stress_full : (n_vertices, 3, 3) those projected Cauchy
+    stress components (2-D: with sigma_zz); von_mises_element_max :
     (n_elements,) maximum over each element's quadrature points; reactions : {group: force
-    vector} on every supported group; strain_energy : 1/2 u.K.u; face_motion / face_reactions :
-    {group: (c_x, c_y, theta)} (m, m, rad) / {group: (F_x, F_y, M)} (N, N, N m about the
-    centroid) of each rigid face (``solve_static(..., rigid_faces=...)``).
+    vector} on every supported group; strain_energy : 1/2 u.K.u; solver : the linear solver
+    used, 'mkl-pardiso', 'cholmod', 'superlu' (direct) or 'amg-cg' ('none': no load);
+    face_motion / face_reactions : {group: (c_x, c_y, theta)} (m, m, rad) and {group: (F_x,
+    F_y, M about the centroid)} (N, N, N m) of the rigid faces of a solve with them.
     """
 
     model: Model
@@ -38,10 +40,24 @@ class StaticResult:
     reactions: dict
     applied_force: np.ndarray
     strain_energy: float
-    solver: str = "direct"
+    solver: str = "none"
     info: dict = field(default_factory=dict)
+    nodal_stress_full: np.ndarray | None = None
     face_motion: dict = field(default_factory=dict)
     face_reactions: dict = field(default_factory=dict)
+
+    @property
+    def nodal_stress(self) -> np.ndarray:
+        """(n_vertices, dim, dim) Cauchy stress (Pa), L2-projected onto continuous linear
+        fields (``nodal_stress_full`` has the 3 x 3 tensors)."""
+        d = self.model.dim
+        return self.nodal_stress_full[:, :d, :d]
+
+    def stress_at(self, points, full: bool = False) -> np.ndarray:
+        """(n, dim, dim) Cauchy stress (Pa) at ``points`` ((n, dim), m), evaluated in the
+        element containing each point (no smoothing); (n, 3, 3) with ``full``. A point outside
+        the body raises ValueError."""
+        return stress.stress_at(self, points, full)
 
     @property
     def max_von_mises(self) -> float:
@@ -79,30 +95,6 @@ def mean_field(model: Model, u: np.ndarray, group: str) -> np.ndarray:
     uh = basis.interpolate(u)
     w = basis.dx
     return np.array([np.sum(uh[i] * w) for i in range(model.dim)]) / np.sum(w)
-
-
-def nodal_average(model: Model, values: np.ndarray) -> np.ndarray:
-    """L2 projection of quadrature-point values ((..., n_elements, n_points)) onto continuous
-    piecewise-linear fields at the mesh vertices (consistent P1 mass matrix, so a linear stress
-    field is recovered exactly; scikit-fem issue #618)."""
-    mesh = model.mesh.mesh
-    hat = skfem.CellBasis(mesh, scalar_element(mesh, 1), quadrature=(model.basis.X, model.basis.W))
-    flat = values.reshape((-1,) + hat.dx.shape)
-    M = skfem.BilinearForm(lambda u, v, w: u * v).assemble(hat).tocsr()
-    jacobi = sp.diags(1.0 / M.diagonal())
-    nodal = np.zeros((len(flat), mesh.p.shape[1]))
-    done = []  # components projected so far; a zero or repeated one (sigma_ji) is not redone
-    for k, component in enumerate(flat):
-        if not np.any(component):
-            continue
-        same = next((j for j in done if np.array_equal(flat[j], component)), None)
-        if same is not None:
-            nodal[k] = nodal[same]
-            continue
-        b = skfem.LinearForm(lambda v, w: w["s"] * v).assemble(hat, s=component)
-        nodal[k], info = spla.cg(M, b, rtol=1e-12, atol=0.0, M=jacobi, maxiter=1000)
-        done.append(k)
-    return nodal.reshape(values.shape[:-2] + (mesh.p.shape[1],))
 
 
 def vertex_displacement(model: Model, u: np.ndarray) -> np.ndarray:

@@ -120,7 +120,8 @@ def test_folded_quadrilateral():
 
 @pytest.mark.parametrize("quads", [False, True])
 def test_inverted_elements_give_the_same_answer(steel, quads):
-    """Decision: clockwise (inverted) cells are accepted. scikit-fem sorts simplex vertices
+    """Decision: a mesh whose cells are all clockwise (inverted as a whole) is accepted; a
+    cell turning against the rest is refused (test_mesh_validation). scikit-fem sorts simplex vertices
     and integrates with |det J|, and the gradients use the inverse map, so the vertex order
     of a cell that does not fold over does not change the result."""
     mesh = square_mesh(4, quads)

@@ -57,7 +57,7 @@ def test_every_mode_shape_is_written(solved_2d, solved_3d, suffix, tmp_path):
 
 
 def test_write_result_rejects_other_objects_and_formats(solved_2d, tmp_path):
-    with pytest.raises(ValueError, match="StaticResult or Modes"):
+    with pytest.raises(ValueError, match="StaticResult, NonlinearResult or Modes"):
         write_result(solved_2d[0].model, tmp_path / "x.vtu")
     with pytest.raises(ValueError, match=r"'\.msh'.*\.vtu, \.xdmf"):
         write_result(solved_2d[0], tmp_path / "x.msh")

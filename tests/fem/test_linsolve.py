@@ -35,7 +35,7 @@ def laplacian(n, neumann=False):
 @pytest.fixture(params=["pardiso", "fallback"])
 def backend(request, monkeypatch):
     if request.param == "pardiso" and not HAS_PARDISO:
-        pytest.skip("pypardiso (extra 'fast') not installed")
+        pytest.skip("MKL (a default dependency on x86-64) not installed")
     if request.param == "fallback":
         monkeypatch.setattr(linsolve, "_mkl_pardiso", lambda: None)
     return request.param
@@ -51,7 +51,8 @@ def test_factorization_solves_many_right_hand_sides(backend, kind):
     rng = np.random.default_rng(0)
     b, B = rng.standard_normal(n), rng.standard_normal((n, 3))
     with linsolve.factorize(A, kind) as solve:
-        assert solve.backend in (("pardiso",) if backend == "pardiso" else ("cholmod", "superlu"))
+        assert solve.backend in (("mkl-pardiso",) if backend == "pardiso" else ("cholmod", "superlu"))
+        assert solve.backend == linsolve.direct_backend(kind)
         x, X = solve(b), solve(B)
     # cond(A) <= ~4 n^2 / pi^2 + ... = 1e5: backward-stable solves, residual ~ eps cond
     assert np.linalg.norm(A @ x - b) <= 1e-10 * np.linalg.norm(b)
@@ -59,7 +60,7 @@ def test_factorization_solves_many_right_hand_sides(backend, kind):
     assert np.allclose(x, sp.linalg.spsolve(A.tocsc(), b), rtol=1e-8, atol=0)
 
 
-@pytest.mark.skipif(not HAS_PARDISO, reason="pypardiso (extra 'fast') not installed")
+@pytest.mark.skipif(not HAS_PARDISO, reason="MKL (a default dependency on x86-64) not installed")
 def test_pardiso_symmetric_indefinite_and_not_positive_definite():
     A = (laplacian(300) - 0.5 * sp.eye(300)).tocsr()  # eigenvalues 2 - 2 cos(k pi / 301) - 0.5
     b = np.ones(300)
@@ -69,7 +70,7 @@ def test_pardiso_symmetric_indefinite_and_not_positive_definite():
         linsolve.solve_direct(A, b, kind="spd")  # Cholesky meets a negative pivot
 
 
-@pytest.mark.skipif(not HAS_PARDISO, reason="pypardiso (extra 'fast') not installed")
+@pytest.mark.skipif(not HAS_PARDISO, reason="MKL (a default dependency on x86-64) not installed")
 def test_pardiso_memory_is_released():
     A = laplacian(100)
     solve = linsolve.factorize(A, "spd")
@@ -148,3 +149,29 @@ def test_modes_with_a_positive_shift_match_the_default():
     shifted = solve_modes(model, 4, [Fixed("fixed")], shift_hz=1.1 * float(default.frequencies_hz[0]))
     # eigsh tol 1e-10 on the shift-inverted eigenvalues: frequencies agree to ~1e-9
     assert np.allclose(np.sort(shifted.frequencies_hz), default.frequencies_hz, rtol=1e-8)
+
+
+def test_results_name_their_solver():
+    model = Model(_cantilever(1.0, 0.1, 2), STEEL, PlaneStress(0.01), order=2)
+    result = solve_static(model, [Fixed("fixed")], [Force("tip", (0.0, -1.0))])
+    modes = solve_modes(model, 2, [Fixed("fixed")])
+    assert result.solver == linsolve.direct_backend("spd")
+    assert modes.solver == linsolve.direct_backend("spd")  # negative shift: Cholesky
+    assert result.solver in ("mkl-pardiso", "cholmod", "superlu")
+    amg = solve_static(model, [Fixed("fixed")], [Force("tip", (0.0, -1.0))], solver="amg")
+    assert amg.solver == "amg-cg"
+
+
+@pytest.mark.skipif(not HAS_PARDISO, reason="MKL (a default dependency on x86-64) not installed")
+def test_mkl_is_found_without_pypardiso(monkeypatch):
+    """The default install has the mkl wheel but not pypardiso: its runtime library is found
+    in the environment directly."""
+    import sys
+    monkeypatch.setitem(sys.modules, "pypardiso", None)  # import pypardiso -> ImportError
+    linsolve._mkl_pardiso.cache_clear()
+    try:
+        assert any("mkl_rt" in p for p in linsolve._mkl_candidates())
+        assert linsolve._mkl_pardiso() is not None
+        assert linsolve.direct_backend("symmetric") == "mkl-pardiso"
+    finally:
+        linsolve._mkl_pardiso.cache_clear()
