@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 
 from .abaqus import abaqus_mesh, inp_lines, set_name
-from .boundary import Fixed, load_vector
+from .boundary import Fixed, Prescribed, load_vector
 from .modal import solve_modes
 from .model import Model, PlaneStrain, PlaneStress
 from .static import solve_static
@@ -52,8 +52,23 @@ def _check_model(model: Model, supports) -> None:
         raise ValueError("CalculiX decks are written for plane stress and 3-D solids only "
                          "(CalculiX's CPE elements are not wired up)")
     for s in supports:
-        if not isinstance(s, Fixed):
-            raise ValueError(f"support {s!r}: only Fixed supports are written to CalculiX decks")
+        constant = isinstance(s, Prescribed) and not any(callable(v) for v in s.components().values())
+        if not (isinstance(s, Fixed) or constant):
+            raise ValueError(f"support {s!r}: only Fixed supports and Prescribed ones with constant "
+                             "values are written to CalculiX decks")
+
+
+def boundary_lines(model: Model, supports) -> list[str]:
+    """*BOUNDARY data lines: every component of a Fixed group, and each prescribed component
+    of a Prescribed one with its value (m)."""
+    lines = []
+    for s in supports:
+        if isinstance(s, Fixed):
+            lines.append(f"{set_name(s.group)}, 1, {model.dim}")
+        else:
+            lines += [f"{set_name(s.group)}, {i + 1}, {i + 1}, {_number(float(v))}"
+                      for i, v in s.components().items() if i < model.dim]
+    return lines
 
 
 def nodal_forces(model: Model, loads) -> np.ndarray:
@@ -81,7 +96,7 @@ def deck_lines(model: Model, supports, loads=(), n_modes: int | None = None) -> 
     if isinstance(model.formulation, PlaneStress):
         lines.append(_number(model.formulation.thickness))
     lines.append("*BOUNDARY")
-    lines += [f"{set_name(s.group)}, 1, {model.dim}" for s in supports]
+    lines += boundary_lines(model, supports)
     lines.append("*STEP")
     if n_modes is not None:
         if not (isinstance(n_modes, (int, np.integer)) and n_modes >= 1):

@@ -2,12 +2,15 @@
 import dataclasses
 from pathlib import Path
 
+from ...fem.calculix import deck_lines
 from ...fem.export import write_mesh
 from ...geometry.dbma.drawing import mesh_dbma
 from ...geometry.dbma.params import paper_design
-from .analysis import analyze_dbma
+from .analysis import (actuator_loads, analyze_dbma, build_model, modal_supports,
+                       static_supports)
 
 MESH_SUFFIXES = (".msh", ".vtu", ".xdmf", ".inp")
+DECK_FORCE = 800.0  # N, the actuator force of the paper's tests (Sec. 5) and of analyze
 
 
 def _params(args):
@@ -44,15 +47,35 @@ def run_mesh(args) -> dict:
     path = Path(args.out)
     if path.suffix not in MESH_SUFFIXES:
         raise ValueError(f"OUT = {args.out!r}: the extension must be one of {MESH_SUFFIXES}")
+    if args.deck:
+        return write_deck(path, _params(args), args.dim, args.size_factor, args.deck)
     mesh = mesh_dbma(_params(args), dim=args.dim, size_factor=args.size_factor)
-    write_mesh(mesh, path)
-    return {"path": str(path), "dim": args.dim, "vertices": int(mesh.mesh.p.shape[1]),
-            "elements": int(mesh.mesh.t.shape[1]), "groups": mesh.group_names}
+    write_mesh(mesh, path, order=args.order)
+    return {"path": str(path), "dim": args.dim, "order": args.order,
+            "vertices": int(mesh.mesh.p.shape[1]), "elements": int(mesh.mesh.t.shape[1]),
+            "groups": mesh.group_names}
+
+
+def write_deck(path: Path, params, dim: int, size_factor: float, kind: str) -> dict:
+    """The model ``analyze`` solves (quadratic elements) as a complete CalculiX deck: its
+    supports and the paper's 800 N actuator force (static), or the modal supports and six
+    modes (modal)."""
+    if path.suffix != ".inp":
+        raise ValueError(f"--deck writes a CalculiX deck: OUT = {str(path)!r} must end in .inp")
+    model = build_model(params, None, dim, size_factor)
+    lines = (deck_lines(model, static_supports(), actuator_loads(DECK_FORCE, dim))
+             if kind == "static" else deck_lines(model, modal_supports(), n_modes=6))
+    path.write_text("\n".join(lines) + "\n")
+    return {"path": str(path), "dim": dim, "order": model.order, "deck": kind,
+            "vertices": int(model.mesh.mesh.p.shape[1]),
+            "elements": int(model.mesh.mesh.t.shape[1]), "groups": model.mesh.group_names}
 
 
 def summarize_mesh(r: dict) -> str:
-    return (f"wrote {r['path']}: {r['dim']}-D, {r['vertices']} vertices, {r['elements']} "
-            f"elements, groups {', '.join(r['groups'])}")
+    what = f"CalculiX {r['deck']} deck" if r.get("deck") else "mesh"
+    return (f"wrote {r['path']} ({what}): {r['dim']}-D, order {r['order']} "
+            f"({'quadratic, as analyze solves' if r['order'] == 2 else 'linear'}), "
+            f"{r['vertices']} vertices, {r['elements']} elements, groups {', '.join(r['groups'])}")
 
 
 def _positive(text: str) -> float:
@@ -79,5 +102,11 @@ def register(subparsers):
     mesh.add_argument("--b", type=float, help="hinge thickness b (m), default 0.6e-3")
     mesh.add_argument("--dim", type=int, choices=(2, 3), default=3)
     mesh.add_argument("--size-factor", type=_positive, default=1.0)
+    mesh.add_argument("--order", type=int, choices=(1, 2), default=2,
+                      help="element order written (default 2: the quadratic elements analyze "
+                           "solves; CalculiX reads them as C3D10 / CPS6)")
+    mesh.add_argument("--deck", choices=("static", "modal"),
+                      help="write a complete CalculiX deck (OUT.inp): the mesh, material, "
+                           "supports and the 800 N actuator force (static) or six modes (modal)")
     mesh.add_argument("--json", action="store_true", help="print one JSON object")
     mesh.set_defaults(run=run_mesh, summarize=summarize_mesh)

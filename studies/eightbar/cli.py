@@ -52,13 +52,14 @@ def _summarize_eightbar_analyze(r: dict) -> str:
 
 def _run_eightbar_mesh(args) -> dict:
     mesh, sizes = mesh_eightbar_flexure(EightBarFlexureParams(), size_factor=args.size_factor)
-    path = write_mesh(mesh, args.out, order=args.order) if args.order != 1 else write_mesh(mesh, args.out)
-    return {"path": str(path), "vertices": int(mesh.mesh.p.shape[1]),
+    path = write_mesh(mesh, args.out, order=args.order)
+    return {"path": str(path), "order": args.order, "vertices": int(mesh.mesh.p.shape[1]),
             "elements": int(mesh.mesh.t.shape[1]), "groups": mesh.group_names, **sizes}
 
 
 def _summarize_eightbar_mesh(r: dict) -> str:
-    return (f"wrote {r['path']}: {r['elements']} triangles, {r['vertices']} vertices, flexure "
+    return (f"wrote {r['path']}: {r['elements']} triangles of order {r['order']}, "
+            f"{r['vertices']} vertices, flexure "
             f"element {r['flexure_size'] * 1e3:.3g} mm; groups {', '.join(r['groups'])}")
 
 
@@ -78,7 +79,8 @@ def add_eightbar_commands(eb_sub) -> None:
     p = eb_sub.add_parser("mesh", help="write the flexure suspension's mesh (.msh .vtu .xdmf .inp)")
     p.add_argument("out", help="output file; the format follows the extension")
     p.add_argument("--size-factor", type=float, default=1.0, help="element size factor")
-    p.add_argument("--order", type=int, default=1, choices=(1, 2), help="element order written")
+    p.add_argument("--order", type=int, default=2, choices=(1, 2),
+                   help="element order written (default 2: the quadratic elements analyze solves)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(run=_run_eightbar_mesh, summarize=_summarize_eightbar_mesh)
 
