@@ -13,6 +13,7 @@ import sys
 from . import run_cli
 from .engine.serialize import jsonable
 from .mechanisms import command_modules, optimizers
+from .options import Parser
 from .report import cli as report_cli
 
 
@@ -27,7 +28,7 @@ def register_optimize(subparsers) -> None:
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(prog="flexfem", description=__doc__.splitlines()[0])
+    parser = Parser(prog="flexfem", description=__doc__.splitlines()[0])
     subparsers = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
     report_cli.register(subparsers)
     for module in command_modules():

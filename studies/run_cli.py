@@ -1,7 +1,5 @@
 """``flexfem sweep`` and ``flexfem converge``: parameter and mesh-convergence studies."""
-import json
-
-from .engine.convergence import parse_tolerance
+from .options import json_object, tolerance
 from .run import run_convergence, sweep
 
 
@@ -19,13 +17,13 @@ def register(subparsers):
     c.add_argument("mechanism", help="registered mechanism name (toy, dbma, eightbar) or a "
                                      "model file (MODEL.toml)")
     c.add_argument("--metric", required=True, help="metric returned by the mechanism's evaluate")
-    c.add_argument("--tol", default="0.5%", type=parse_tolerance,
+    c.add_argument("--tol", default="0.5%", type=tolerance,
                    help="relative tolerance, '0.5%%' or 0.005 (default 0.5%%)")
     c.add_argument("--levels", type=int, default=4, help="refinement levels, >= 3 (default 4)")
     c.add_argument("--ratio", type=float, default=2.0, help="refinement ratio between levels (default 2)")
     c.add_argument("--start", type=float, default=None,
                    help="size_factor of the coarsest level (default: the mechanism's, 4 for dbma)")
-    c.add_argument("--params", type=json.loads, default=None,
+    c.add_argument("--params", type=json_object, default=None,
                    help='design parameters as JSON, e.g. \'{"length_m": 0.05}\' (default: the base design)')
     c.add_argument("--out", help="folder for the log-log plot")
     c.add_argument("--json", action="store_true", help="print the result as one JSON object")
@@ -56,14 +54,26 @@ def summarize_sweep(result: dict) -> str:
     return "\n".join(lines)
 
 
+def _level(level: dict) -> str:
+    return ", ".join(f"{k} {v:g}" if isinstance(v, float) else f"{k} {v}" for k, v in level.items())
+
+
 def summarize_convergence(result: dict) -> str:
-    lines = [f"{result['mechanism']} {result['metric']}: level, h or dofs, value"]
+    lines = [f"{result['mechanism']} {result['metric']}: level, {result['size_key']}, dofs, value"]
     for i, (size, dofs, value) in enumerate(zip(result["sizes"], result["dofs"], result["values"])):
-        lines.append(f"  {i}  {size:.4g}  {dofs}  {value:.8g}")
-    lines.append(f"observed order {result['order']:.3f} ({result['behaviour']}); extrapolated "
-                 f"{result['extrapolated']:.8g} +- {result['error_estimate']:.2g} "
-                 f"(GCI {100 * result['gci']:.3g} %)")
-    within = result["coarsest_within_tol"]
-    lines.append(f"coarsest level within {100 * result['tol']:.3g} %: "
-                 + (f"{within} {result['levels'][within]}" if within is not None else "none"))
+        lines.append(f"  {i}  {_level(result['levels'][i])}  {size:.4g}  {dofs}  {value:.6g}")
+    tol, within = 100 * result["tol"], result["coarsest_within_tol"]
+    if result["behaviour"] in ("converged", "exact"):
+        lines.append(f"converged within {100 * result['gci']:.2g} % on every level (tolerance "
+                     f"{tol:.3g} %); order not measurable")
+    elif result["behaviour"] == "divergent":
+        lines.append("not converging: the finest levels differ more than the coarser ones; "
+                     "refine further or check the model")
+    else:
+        lines.append(f"observed order {result['order']:.3g} ({result['behaviour']}); "
+                     f"extrapolated {result['extrapolated']:.6g} +- "
+                     f"{result['error_estimate']:.2g} (GCI {100 * result['gci']:.2g} %)")
+    lines.append(f"coarsest level within {tol:.3g} %: "
+                 + (f"{within} ({_level(result['levels'][within])})" if within is not None
+                    else "none: refine further"))
     return "\n".join(lines)

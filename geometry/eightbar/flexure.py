@@ -21,6 +21,7 @@ from dataclasses import dataclass, field, fields, replace
 
 import numpy as np
 
+from ...data import load_toml
 from ...fem.materials import material as material_named
 from ..flexure_drawing import mesh_layout
 from ..flexure_linkage import (
@@ -39,7 +40,7 @@ from .rigid import (
     eightbar_points,
 )
 
-THESIS_TRAVEL = 33.1e-3  # m, data/eightbar_thesis.toml [design_targets] travel_mm
+THESIS_TRAVEL = load_toml("eightbar_thesis.toml")["design_targets"]["travel_mm"] * 1e-3  # m, Ch. 5
 # m, our choice (docs/eightbar.md, "Flexure suspension (FEM)"): see the module docstring
 DEFAULT_ROOT_FILLET_RADIUS = 0.3e-3
 

@@ -6,6 +6,7 @@ from ...fem.calculix import deck_lines
 from ...fem.export import write_mesh
 from ...geometry.dbma.drawing import mesh_dbma
 from ...geometry.dbma.params import paper_design
+from ..options import positive
 from .analysis import (actuator_loads, analyze_dbma, build_model, modal_supports,
                        static_supports)
 
@@ -78,12 +79,6 @@ def summarize_mesh(r: dict) -> str:
             f"{r['vertices']} vertices, {r['elements']} elements, groups {', '.join(r['groups'])}")
 
 
-def _positive(text: str) -> float:
-    value = float(text)
-    if not value > 0:
-        raise ValueError(f"{text!r} must be > 0")
-    return value
-
 
 def register(subparsers):
     parser = subparsers.add_parser("dbma", help="double-row bow-type amplifier: FEM and mesh")
@@ -91,8 +86,10 @@ def register(subparsers):
     analyze = commands.add_parser("analyze", help="static and modal FEM beside the formulas")
     analyze.add_argument("--h", type=float, help="hinge offset h (m), default the paper's 2.6e-3")
     analyze.add_argument("--b", type=float, help="hinge thickness b (m), default 0.6e-3")
-    analyze.add_argument("--dim", type=int, choices=(2, 3), default=3)
-    analyze.add_argument("--size-factor", type=_positive, default=1.0,
+    analyze.add_argument("--dim", type=int, choices=(2, 3), default=3,
+                         help="3: statics and modes on the 3-D mesh (default); 2: plane stress, "
+                              "the report's statics (R differs by the out-of-plane stiffness)")
+    analyze.add_argument("--size-factor", type=positive, default=1.0,
                          help="mesh size multiplier (default 1)")
     analyze.add_argument("--json", action="store_true", help="print one JSON object")
     analyze.set_defaults(run=run_analyze, summarize=summarize_analyze)
@@ -100,8 +97,8 @@ def register(subparsers):
     mesh.add_argument("out", help="output file: .msh, .vtu, .xdmf or .inp")
     mesh.add_argument("--h", type=float, help="hinge offset h (m), default the paper's 2.6e-3")
     mesh.add_argument("--b", type=float, help="hinge thickness b (m), default 0.6e-3")
-    mesh.add_argument("--dim", type=int, choices=(2, 3), default=3)
-    mesh.add_argument("--size-factor", type=_positive, default=1.0)
+    mesh.add_argument("--dim", type=int, choices=(2, 3), default=3, help="mesh dimension")
+    mesh.add_argument("--size-factor", type=positive, default=1.0, help="mesh size multiplier")
     mesh.add_argument("--order", type=int, choices=(1, 2), default=2,
                       help="element order written (default 2: the quadratic elements analyze "
                            "solves; CalculiX reads them as C3D10 / CPS6)")

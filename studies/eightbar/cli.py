@@ -4,6 +4,9 @@ from ...fem import write_mesh
 from ...geometry.eightbar.flexure import EightBarFlexureParams, mesh_eightbar_flexure
 from ...geometry.straight_line import CLASSIC_LINKAGES
 from .analysis import analyze_eightbar, summary_row
+from ...geometry.eightbar.flexure import THESIS_TRAVEL
+from ...geometry.eightbar.rigid import EightBarParams
+from ..options import positive
 from .path import eightbar_path_summary, trace_classic
 
 LINKAGE_CHOICES = ["watt", "roberts", "chebyshev", "peaucellier", "modified_peaucellier"]
@@ -19,7 +22,7 @@ def _summarize_linkage_trace(result: dict) -> str:
 
 
 def _run_eightbar_trace(args) -> dict:
-    return eightbar_path_summary(n=args.points)
+    return eightbar_path_summary(EightBarParams(travel=args.travel), n=args.points)
 
 
 def _summarize_eightbar_trace(result: dict) -> str:
@@ -66,6 +69,8 @@ def _summarize_eightbar_mesh(r: dict) -> str:
 def add_eightbar_commands(eb_sub) -> None:
     """Add ``trace``, ``analyze`` and ``mesh`` to the ``eightbar`` sub-command parsers."""
     p = eb_sub.add_parser("trace", help="trace the rigid-body eight-bar's end-effector path")
+    p.add_argument("--travel", type=positive, default=THESIS_TRAVEL,
+                   help="end-effector stroke traced, m (default the thesis' 33.1 mm, Ch. 5)")
     p.add_argument("--points", type=int, default=251, help="points along the travel")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(run=_run_eightbar_trace, summarize=_summarize_eightbar_trace)

@@ -93,7 +93,8 @@ class ConvergenceResult:
     """A convergence study of ``metric`` (SI units of the metric): per level its options,
     value, size h (m, or dofs^(-1/dim) when sized by dofs), dofs and wall time (s); the
     observed order, the extrapolated value with its absolute error estimate and relative GCI,
-    the behaviour ("monotone", "oscillatory", "divergent" or "exact") and the coarsest level
+    the behaviour ("monotone", "oscillatory", "divergent", "exact", or "converged": every level
+    within ``tol`` of the finest, the order not measurable) and the coarsest level
     within ``tol`` of the extrapolated value (None: none is); ``dim`` relates dofs to h."""
 
     metric: str
@@ -163,6 +164,10 @@ def converge(evaluate, metric: str, levels: list, mesh_size_key: str | None = No
         extrapolated = richardson_extrapolate(f_m, f_f, r_mf, p)
         error = SAFETY_FACTOR * abs(f_f - f_m) / (r_mf**p - 1)
         gci = grid_convergence_index(f_m, f_f, r_mf, p)
+    spread = max(abs(v - f_f) for v in values) / max(abs(f_f), 1e-300)
+    if behaviour in ("divergent", "oscillatory") and tol is not None and spread <= tol:
+        # every level within the tolerance of the finest: converged, the order lost in noise
+        behaviour, extrapolated, error, gci = "converged", f_f, spread * abs(f_f), spread
     within = coarsest_within(values, extrapolated, tol) if tol is not None else None
     return ConvergenceResult(
         metric=metric, size_key=key, levels=[dict(level) for level in levels], values=values,

@@ -120,7 +120,7 @@ def test_converge_command_and_plot(tmp_path, capsys):
     assert abs(result["order"] - 2.0) < 0.1
     assert (tmp_path / "convergence_tip_deflection.png").read_bytes()[:4] == b"\x89PNG"
     assert main(["converge", "toy", "--metric", "tip_deflection"]) == 0
-    assert "observed order 2.000" in capsys.readouterr().out
+    assert "observed order 2 (" in capsys.readouterr().out
     assert main(["converge", "toy", "--metric", "nope"]) == 2
     assert "nope" in capsys.readouterr().err
 
@@ -152,3 +152,20 @@ def test_run_convergence_starts_from_the_mechanisms_coarsest_level():
     assert [level["size_factor"] for level in summary["levels"]] == [2.0, 1.0, 0.5]
     with pytest.raises(ValueError, match="start"):
         run_convergence("toy", "tip_deflection", n_levels=3, start=0.0)
+
+
+def test_levels_that_agree_within_noise_are_converged_not_nan(capsys):
+    """Round-off on a converged metric makes the observed order meaningless: the study says
+    it converged within the spread and recommends the coarsest level, with no nan printed."""
+    noise = [1e-10, -3e-10, 2e-10, -1e-10]
+
+    def evaluate(params, h):
+        return {"f": 2.0 * (1 + noise[int(round(-math.log2(h)))]), "h": h}
+
+    result = converge(evaluate, "f", [{"h": 2.0 ** -k} for k in range(4)], tol=0.005)
+    assert result.behaviour == "converged" and result.coarsest_within_tol == 0
+    assert result.extrapolated == pytest.approx(2.0, rel=1e-9) and result.gci < 1e-9
+    from flexfem.studies.run_cli import summarize_convergence
+    text = summarize_convergence({"mechanism": "noise", **result.to_dict()})
+    assert "converged within" in text and "order not measurable" in text and "nan" not in text
+    assert "coarsest level within 0.5 %: 0 (h 1)" in text

@@ -1,0 +1,57 @@
+"""Command-line value types: each refuses a bad value with a message that names what it
+expects, which argparse prints after the option's name ("argument --tol: ...")."""
+import argparse
+import json
+import math
+
+from .engine.convergence import parse_tolerance
+
+
+def positive(text: str) -> float:
+    """A finite number > 0."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number; expected a number > 0") from None
+    if not (math.isfinite(value) and value > 0):
+        raise argparse.ArgumentTypeError(f"{text!r} must be a finite number > 0")
+    return value
+
+
+def tolerance(text: str) -> float:
+    """A relative tolerance, '0.5%' or 0.005."""
+    try:
+        return parse_tolerance(text)
+    except ValueError as error:
+        raise argparse.ArgumentTypeError(str(error).replace("tol = ", "")) from None
+
+
+def json_object(text: str) -> dict:
+    """A JSON object, e.g. '{"length_m": 0.05}'."""
+    try:
+        value = json.loads(text)
+    except json.JSONDecodeError as error:
+        raise argparse.ArgumentTypeError(f"{text!r} is not JSON ({error.msg}); expected an "
+                                         "object such as '{\"length_m\": 0.05}'") from None
+    if not isinstance(value, dict):
+        raise argparse.ArgumentTypeError(f"{text!r} must be a JSON object of parameters")
+    return value
+
+
+class DefaultsHelp(argparse.ArgumentDefaultsHelpFormatter):
+    """Help that shows every option's default, unless the help text already says it."""
+
+    def _get_help_string(self, action):
+        text = action.help or ""
+        if "default" in text or action.default in (None, False, argparse.SUPPRESS):
+            return text
+        return super()._get_help_string(action)
+
+
+class Parser(argparse.ArgumentParser):
+    """An argument parser whose help shows defaults; its sub-command parsers are Parsers too
+    (argparse makes sub-parsers of the parent's class)."""
+
+    def __init__(self, *args, **kwargs):
+        kwargs.setdefault("formatter_class", DefaultsHelp)
+        super().__init__(*args, **kwargs)
