@@ -127,7 +127,7 @@ def analyze_dbma(params: DBMAParams | None = None, layout: DBMALayout | None = N
     modal, modes = modal_response(model, n_modes)
     out.update(modal)
     out.update({"dim": dim, "size_factor": size_factor, "dofs": int(model.n_dofs),
-                "mass": part_mass(p, layout),
+                "solver": modes.solver, "mass": part_mass(p, layout),
                 "material": {"E": p.E, "nu": p.nu, "rho": p.rho,
                              "yield_strength": model.material.yield_strength}})
     if return_modes:

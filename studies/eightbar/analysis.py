@@ -197,7 +197,8 @@ def analyze_eightbar(params: EightBarFlexureParams | None = None, travel: float 
            "max_stress_location": lin["max_stress_location"],
            "prbm_bending_stress": prbm_stress, "travel_m": travel,
            "dofs": model.n_dofs, "h": sizes["flexure_size"], "mesh_sizes": sizes,
-           "n_elements": int(model.mesh.mesh.t.shape[1]), "linear_result": lin["result"]}
+           "n_elements": int(model.mesh.mesh.t.shape[1]), "linear_result": lin["result"],
+           "solver": lin["result"].solver}
     if n_modes:
         out["modes"] = modal_analysis(model, n_modes)
     if nonlinear:
@@ -246,7 +247,7 @@ def summary_row(out: dict) -> dict:
     keys = ("k_x", "k_y", "k_x_prbm", "max_von_mises", "max_stress_location", "travel_m",
             "fem_deviation_pct", "fem_deviation_m", "fem_band_m", "rigid_deviation_pct",
             "rigid_deviation_m", "peak_von_mises_travel", "peak_von_mises_flexure",
-            "safety_factor", "max_rotation_rad", "end_force_n", "dofs")
+            "safety_factor", "max_rotation_rad", "end_force_n", "dofs", "solver")
     row = {k: out[k] for k in keys if k in out}
     if "modes" in out:
         row["modes"] = out["modes"]
