@@ -154,6 +154,7 @@ def evaluate(params_dict: dict, dim: int = 2, size_factor: float = 1.0,
     static = static_response(model, force)
     out = {k: v for k, v in analytical_metrics(p).items() if isinstance(v, (int, float))}
     out.update({k: static[k] for k in ("R_fem", "R_fem_per_side", "k_in", "max_von_mises")})
+    out["force_N"] = float(force)  # the load case max_von_mises belongs to
     out.update({"dofs": int(model.n_dofs), "h": p.b / (4 if dim == 2 else 2) * size_factor})
     if modes:
         modal, _ = modal_response(model)
