@@ -32,7 +32,7 @@ def test_the_dbma_sweep_runs_and_follows_the_paper(tmp_path):
     paper = next(r for r in rows if (r["b"], r["h"]) == (0.6e-3, 2.6e-3))
     # through the engine, the paper's design gives what analyze gives for the same model
     direct = analyze_dbma(paper_design(), dim=2, size_factor=2.0, force=100.0)
-    assert paper["R_fem_per_side"] == pytest.approx(direct["R_fem_per_side"], rel=1e-9)
+    assert paper["R_fem_per_side"] == pytest.approx(direct["R_fem_per_side"], rel=1e-6)  # solve rtol
     # Fig. 13a: thicker hinges amplify less, at either offset
     for h in (1.2e-3, 2.6e-3):
         line = sorted((r["b"], r["R_fem_per_side"]) for r in rows if r["h"] == h and r["b"] in
