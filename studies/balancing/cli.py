@@ -1,5 +1,7 @@
 """``flexfem balance``: RMS-optimal static balancing of the five-bar robot's motors 2-5."""
-from .report import METHODS, balance_robot
+import math
+
+from .design import METHODS, balance_robot
 
 
 def run(args) -> dict:
@@ -7,10 +9,18 @@ def run(args) -> dict:
     return balance_robot(args.method)
 
 
+def _parameter(name: str, value: float) -> str:
+    """A balancer's parameter as the paper prints it: angles in degrees, sizes in SI."""
+    if name.startswith("q_"):  # q_k, q_c: angles, radians in the code
+        return f"{name[:-4]} = {math.degrees(value):.1f} deg"
+    unit = {"C_Nm": "N m", "K_Nm_per_rad": "N m/rad"}.get(name, "")
+    return f"{name.split('_')[0]} = {value:.4g} {unit}".rstrip()
+
+
 def summarize(result: dict) -> str:
-    lines = [f"{'motor':>5}  {'method':<13} {'RMS red. %':>10} {'max red. %':>10}  parameters (SI)"]
+    lines = [f"{'motor':>5}  {'method':<13} {'RMS red. %':>10} {'max red. %':>10}  balancer"]
     for r in result["results"]:
-        params = ", ".join(f"{k} = {v:.4g}" for k, v in r["params"].items())
+        params = ", ".join(_parameter(k, v) for k, v in r["params"].items())
         lines.append(f"{r['motor']:>5}  {r['method']:<13} {r['rms_reduction_pct']:>10.1f} "
                      f"{r['max_reduction_pct']:>10.1f}  {params}")
     lines.append(f"({result['n_samples']} workspace samples)")

@@ -17,8 +17,12 @@ def _run_linkage_trace(args) -> dict:
 
 
 def _summarize_linkage_trace(result: dict) -> str:
-    return (f"{result['linkage']}: travel {result['travel_m'] * 1e3:.3f} mm, max deviation "
-            f"{result['max_deviation_m'] * 1e6:.4g} um = {result['deviation_pct']:.4g} % of travel")
+    travel, deviation = result["travel_m"], result["max_deviation_m"]
+    if deviation <= 1e-9 * travel:  # an exact straight-line linkage: round-off only
+        shown = "0 (exact to round-off)"
+    else:
+        shown = f"{deviation * 1e6:.4g} um = {result['deviation_pct']:.3g} % of travel"
+    return f"{result['linkage']}: travel {travel * 1e3:.2f} mm, max deviation {shown}"
 
 
 def _run_eightbar_trace(args) -> dict:

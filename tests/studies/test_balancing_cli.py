@@ -23,7 +23,8 @@ def test_balance_json_all_methods(capsys):
 def test_balance_summary_one_method(capsys):
     assert main(["balance", "--method", "torsion"]) == 0
     text = capsys.readouterr().out
-    assert "K_Nm_per_rad" in text and "spring " not in text and text.count("torsion") == 4
+    assert "N m/rad" in text and " deg" in text and "spring " not in text
+    assert text.count("torsion") == 4
 
 
 def test_invalid_method_is_an_argparse_error(capsys):
