@@ -20,6 +20,8 @@ import time
 from dataclasses import asdict, dataclass
 from pathlib import Path
 
+from ..report.figures import legend_outside, pyplot
+
 SAFETY_FACTOR = 1.25  # Roache's factor for three grids (Celik et al. 2008, eq. 6)
 
 
@@ -178,10 +180,7 @@ def converge(evaluate, metric: str, levels: list, mesh_size_key: str | None = No
 
 def plot_convergence(result: ConvergenceResult, path, theoretical_order: float | None = None) -> Path:
     """Log-log PNG of |f - f_ext| against h (or dofs), with the observed-order slope."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
+    plt = pyplot()
     by_dofs = result.size_key == "dofs"
     x = [float(d) for d in result.dofs] if by_dofs else result.sizes
     errors = [abs(v - result.extrapolated) for v in result.values]
@@ -197,14 +196,15 @@ def plot_convergence(result: ConvergenceResult, path, theoretical_order: float |
                           style, color="gray", label=f"{name} order {order:.2f}")
     ax.set_xlabel("degrees of freedom" if by_dofs else "element size h (m)")
     ax.set_ylabel("|value - extrapolated value|")
-    ax.set_title(f"{result.metric}: p = {result.order:.2f}, GCI = {100 * result.gci:.2g} %")
+    order = "not measurable" if not math.isfinite(result.order) else f"{result.order:.2f}"
+    ax.set_title(f"{result.metric}: order {order}, GCI = {100 * result.gci:.2g} %")
     if shown:
-        ax.legend(fontsize="small")
+        legend_outside(ax)
     else:
         ax.text(0.5, 0.5, "no change between levels", transform=ax.transAxes, ha="center")
     ax.grid(True, which="both", alpha=0.3)
     fig.tight_layout()
-    fig.savefig(path, dpi=120)
+    fig.savefig(path, dpi=120, bbox_inches="tight")
     plt.close(fig)
     return Path(path)
 

@@ -19,6 +19,7 @@ from pathlib import Path
 
 import tomllib
 
+from ..report.figures import legend_outside, pyplot
 from .executors import make_executor
 from .progress import Progress
 from .store import (
@@ -290,10 +291,7 @@ def plot_metric(cases, metric: str, parameter: str, path, overlay=()) -> Path:
     one line per combination of the other varied parameters, ``overlay`` metrics (e.g. the
     analytical value) dashed or dotted in the same colour; designs that share no line with
     another (a space-filling sample) as grey points."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
+    plt = pyplot()
     ok = [c for c in cases if c.ok and parameter in c.params and metric in c.metrics]
     if not ok:
         raise ValueError(f"no successful case has both parameter {parameter!r} and metric {metric!r}")
@@ -322,12 +320,12 @@ def plot_metric(cases, metric: str, parameter: str, path, overlay=()) -> Path:
         ax.plot([c.params[parameter] for c in scattered], [c.metrics[metric] for c in scattered],
                 "o", color="0.35", label=f"{metric}, other designs ({len(scattered)})")
     if len(lines) * (1 + len(overlay)) + bool(scattered) <= 12:
-        ax.legend(fontsize="small")
+        legend_outside(ax)  # beside the axes: no curve hidden
     ax.set_xlabel(parameter)
     ax.set_ylabel(metric)
     ax.grid(True, alpha=0.3)
     fig.tight_layout()
-    fig.savefig(path, dpi=120)
+    fig.savefig(path, dpi=120, bbox_inches="tight")
     plt.close(fig)
     return Path(path)
 
