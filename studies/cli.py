@@ -5,9 +5,16 @@ defaults on its parser: ``run(args) -> dict`` (JSON-able, computed by one public
 ``summarize(result) -> str`` (the human summary). The mechanisms' commands come from the
 registry (studies/mechanisms.py); this module only dispatches: with ``--json`` it prints the
 dict as one JSON object and nothing else on stdout, otherwise the summary.
+
+Every error the user can cause is one ``flexfem COMMAND: error: ...`` line on stderr and exit
+status 2: a bad value (ValueError, TypeError), a file that cannot be read or written
+(OSError: missing, a folder, no permission), a damaged result store (sqlite3). Ctrl-C exits
+with 130 (what completed is stored); a closed stdout (``| head -1``) exits quietly.
 """
 import argparse
 import json
+import os
+import sqlite3
 import sys
 
 from . import run_cli
@@ -37,19 +44,39 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
-def main(argv=None) -> int:
-    parser = build_parser()
-    args = parser.parse_args(argv)
-    try:
-        result = args.run(args)
-    except (ValueError, FileNotFoundError) as error:
-        print(f"flexfem {args.command}: error: {error}", file=sys.stderr)
-        return 2
+USER_ERRORS = (ValueError, TypeError, OSError, sqlite3.Error)
+
+
+def _one_line(error: BaseException) -> str:
+    text = " ".join(str(error).split()) or type(error).__name__
+    return text if isinstance(error, (ValueError, TypeError)) else f"{type(error).__name__}: {text}"
+
+
+def _output(args, result) -> None:
     if getattr(args, "json", False):
         json.dump(jsonable(result), sys.stdout)
         sys.stdout.write("\n")
     else:
         print(args.summarize(result))
+    sys.stdout.flush()
+
+
+def main(argv=None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    try:
+        _output(args, args.run(args))
+    except BrokenPipeError:  # the reader went away (| head -1): nothing more to say
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())  # Python's flush at exit would fail again
+        return 0
+    except KeyboardInterrupt as error:
+        detail = f": {error}" if str(error) else ""
+        print(f"flexfem {args.command}: interrupted{detail}", file=sys.stderr)
+        return 130
+    except USER_ERRORS as error:
+        print(f"flexfem {args.command}: error: {_one_line(error)}", file=sys.stderr)
+        return 2
     return 0
 
 
