@@ -39,12 +39,9 @@ def register(subparsers):
 
 
 def _run_sweep(args) -> dict:
-    try:
-        return sweep(args.study, args.out, workers=args.workers, scheduler=args.scheduler,
-                     retry_failed=args.retry_failed, allow_code=args.allow_code,
-                     max_cases=args.max_cases)
-    except KeyboardInterrupt:
-        raise KeyboardInterrupt("completed cases are stored, run again to resume") from None
+    return sweep(args.study, args.out, workers=args.workers, scheduler=args.scheduler,
+                 retry_failed=args.retry_failed, allow_code=args.allow_code,
+                 max_cases=args.max_cases)
 
 
 def _run_converge(args) -> dict:

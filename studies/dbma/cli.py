@@ -18,7 +18,8 @@ def _params(args):
 
 def run_analyze(args) -> dict:
 
-    return analyze_dbma(_params(args), dim=args.dim, size_factor=args.size_factor)
+    return analyze_dbma(_params(args), dim=args.dim, size_factor=args.size_factor,
+                        max_dofs=args.max_dofs)
 
 
 def summarize_analyze(r: dict) -> str:
@@ -62,6 +63,13 @@ def _positive(text: str) -> float:
     return value
 
 
+def _count(text: str) -> int:
+    value = float(text)
+    if not (value >= 1 and value == int(value)):
+        raise ValueError(f"{text!r} must be an integer >= 1")
+    return int(value)
+
+
 def register(subparsers):
     parser = subparsers.add_parser("dbma", help="double-row bow-type amplifier: FEM and mesh")
     commands = parser.add_subparsers(dest="dbma_command", required=True, metavar="ACTION")
@@ -71,6 +79,9 @@ def register(subparsers):
     analyze.add_argument("--dim", type=int, choices=(2, 3), default=3)
     analyze.add_argument("--size-factor", type=_positive, default=1.0,
                          help="mesh size multiplier (default 1)")
+    analyze.add_argument("--max-dofs", type=_count, default=None,
+                         help="refuse a mesh above this many unknowns (default: what half the "
+                              "available memory affords)")
     analyze.add_argument("--json", action="store_true", help="print one JSON object")
     analyze.set_defaults(run=run_analyze, summarize=summarize_analyze)
     mesh = commands.add_parser("mesh", help="write the default mesh that analyze solves")

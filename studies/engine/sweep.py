@@ -237,8 +237,10 @@ ENVIRONMENT_ERRORS = (OSError, MemoryError, ImportError, RuntimeError, SystemErr
 
 def failure_status(exc: BaseException) -> str:
     """"error" when ``exc`` comes from the environment (ENVIRONMENT_ERRORS, but not
-    NotImplementedError), else "failed" (the design)."""
-    environment = isinstance(exc, ENVIRONMENT_ERRORS) and not isinstance(exc, NotImplementedError)
+    NotImplementedError, or an error marked ``environmental``: a mesh above this machine's
+    memory budget), else "failed" (the design)."""
+    environment = (isinstance(exc, ENVIRONMENT_ERRORS) and not isinstance(exc, NotImplementedError)
+                   or getattr(exc, "environmental", False) is True)
     return "error" if environment else "failed"
 
 
