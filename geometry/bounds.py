@@ -1,8 +1,8 @@
 """Physically meaningful bounds shared by the parameter classes of the mechanisms.
 
 A value that passes these checks can be drawn, meshed and solved in double precision: a
-length between 1 um and 10 m (below, a machined part is no continuum and gmsh's geometric
-tolerance is reached; above, no flexure), at most SPAN_MAX between the largest and smallest
+length between 10 nm and 10 m (below, a part is no elastic continuum -- MEMS flexures are
+some 100 nm and more; above, no flexure), at most SPAN_MAX between the largest and smallest
 length of one design (a mesh that resolves the smallest feature of a part 10^4 times larger
 already has millions of elements), a Young's modulus between 1 kPa (gels) and 10 TPa, and a
 density between 1 kg/m^3 (aerogels) and 10^5 kg/m^3. Types are checked first: a length is a
@@ -11,7 +11,7 @@ real number (not a bool, a string, None, a list or a complex), as in DBMAParams.
 import math
 import numbers
 
-LENGTH_MIN = 1e-6   # m
+LENGTH_MIN = 1e-8   # m
 LENGTH_MAX = 10.0   # m
 SPAN_MAX = 1e4      # largest / smallest length of one design
 MODULUS_RANGE = (1e3, 1e13)   # Pa
@@ -33,7 +33,7 @@ def length(owner: str, name: str, value, zero_allowed: bool = False) -> float:
         return value
     if not LENGTH_MIN <= value <= LENGTH_MAX:
         raise ValueError(f"{owner}: {name} = {value!r} m must be in [{LENGTH_MIN:g}, "
-                         f"{LENGTH_MAX:g}] m (1 um to 10 m)")
+                         f"{LENGTH_MAX:g}] m (10 nm to 10 m)")
     return value
 
 

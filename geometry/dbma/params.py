@@ -29,7 +29,7 @@ class DBMAParams:
     nu : Poisson's ratio of the material (-), not given by the paper
     rho : density of the material (kg/m^3), not given by the paper
 
-    Bounds: every length a finite number in [1 um, 10 m] (geometry/bounds.py) except h, which
+    Bounds: every length a finite number in [10 nm, 10 m] (geometry/bounds.py) except h, which
     may also be 0 (h = 0 puts the two hinges on one line, a valid limit of the drawing; the
     analyses need h > 0), at most 10^4 between the largest and smallest length; b < c and b < a (the hinge is thinner than the arms it joins);
     h <= c - b (both hinges, each of thickness b, lie within the width c of the arm that

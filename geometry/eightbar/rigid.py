@@ -32,7 +32,7 @@ class EightBarParams:
     between the halves' axes); ee_drop: the end-effector bar lies this far below P;
     travel: end-effector stroke traced, centred on the drawn pose.
 
-    Every length is a finite real number in [1 um, 10 m] (not a bool, string, None, list or
+    Every length is a finite real number in [10 nm, 10 m] (not a bool, string, None, list or
     complex: ValueError naming it, as DBMAParams), at most 10^4 between the largest and the
     smallest (geometry/bounds.py).
     """
