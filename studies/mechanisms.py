@@ -131,6 +131,8 @@ def model_mechanism(path, base_dir=None) -> str:
     """The mechanism name of a model file: "model:<absolute path>@<digest>", the digest over
     the model file and the geometry file it names, so that a study's stored cases are not
     reused once either file changes. ``path`` is relative to ``base_dir`` (default: cwd)."""
+    if not isinstance(path, (str, Path)) or not str(path):
+        raise ValueError(f"mechanism.model = {path!r} must be the path of a model file")
     path = Path(base_dir or ".") / path
     if not path.is_file():
         raise ValueError(f"mechanism.model = {str(path)!r}: no such model file")
