@@ -10,12 +10,10 @@ amplifier whose output moves against its input (h too small next to the hinge's 
 bending, say h = 1 um with b = 0.6 mm) is outside what its models describe; it is refused
 with the numbers rather than printed as an amplification ratio.
 """
-import math
-import numbers
-
 from ...fem.budget import check_budget
 from ...geometry.dbma.estimate import estimate_mesh
 from ...geometry.dbma.params import DBMAParams
+from ..engine.validate import require_finite
 
 
 def check_analysable(p: DBMAParams) -> None:
@@ -38,10 +36,7 @@ def check_mesh_budget(p: DBMAParams, layout, dim: int, size_factor: float,
 
 def check_result(out: dict, p: DBMAParams) -> dict:
     """``out`` if its numbers are finite and R_fem > 0, else ValueError with the numbers."""
-    bad = sorted(k for k, v in out.items() if isinstance(v, numbers.Real)
-                 and not isinstance(v, bool) and not math.isfinite(v))
-    if bad:
-        raise ValueError(f"DBMA result not finite: {', '.join(f'{k} = {out[k]}' for k in bad)}")
+    require_finite(out, "DBMA")
     if "R_fem" in out and not out["R_fem"] > 0:
         raise ValueError(
             f"R_fem = {out['R_fem']:.3g}: the output moves against the amplifying direction, "

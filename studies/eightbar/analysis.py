@@ -39,6 +39,7 @@ from ...geometry.eightbar.flexure import (
 )
 from ...geometry.eightbar.rigid import EightBarParams, trace_eightbar
 from ...geometry.straight_line import straight_line_deviation
+from ..engine.validate import require_finite
 
 # Newton tolerance (relative to the reaction): the residual of this part stagnates near 3e-6
 # of the drive force -- round-off in the internal forces of the stiff links (E t ~ 4e8 N/m)
@@ -237,7 +238,7 @@ def evaluate(params: dict | None = None, size_factor: float = 1.0, nonlinear: bo
         for k in ("fem_deviation_pct", "rigid_deviation_pct", "peak_von_mises_travel",
                   "safety_factor", "max_rotation_rad"):
             metrics[k] = float(out[k])
-    return metrics
+    return require_finite(metrics, "eight-bar")
 
 
 def summary_row(out: dict) -> dict:
@@ -247,7 +248,7 @@ def summary_row(out: dict) -> dict:
             "fem_deviation_pct", "fem_deviation_m", "fem_band_m", "rigid_deviation_pct",
             "rigid_deviation_m", "peak_von_mises_travel", "peak_von_mises_flexure",
             "safety_factor", "max_rotation_rad", "end_force_n", "dofs")
-    row = {k: out[k] for k in keys if k in out}
+    row = require_finite({k: out[k] for k in keys if k in out}, "eight-bar")
     if "modes" in out:
         row["modes"] = out["modes"]
     return row

@@ -95,3 +95,14 @@ def normalise_options(evaluate, options: dict, mechanism: str) -> dict:
                              f"its options: {sorted(declared)}")
         out[name] = _normalise(f"options.{name}", value, declared.get(name))
     return out
+
+
+def require_finite(values: dict, what: str) -> dict:
+    """``values`` if every real number in it is finite, else ValueError naming those that
+    are not: a NaN or an infinity is never printed or stored as a result."""
+    bad = sorted(k for k, v in values.items() if isinstance(v, numbers.Real)
+                 and not isinstance(v, bool) and not math.isfinite(v))
+    if bad:
+        raise ValueError(f"{what}: result not finite: "
+                         + ", ".join(f"{k} = {values[k]}" for k in bad))
+    return values

@@ -147,3 +147,15 @@ def test_unused_module_is_not_imported_by_a_refusal():
     with pytest.raises(ValueError, match="is Python code"):
         mechanisms.check_mechanism("antigravity:fly")
     assert "antigravity" not in sys.modules
+
+
+def test_a_dbma_study_with_dim_2_0_runs_and_is_the_case_of_dim_2(tmp_path):
+    # dim = 2.0 used to reach gmsh as a float and fail there, under the key of dim = 2
+    store = tmp_path / "r.sqlite"
+    first = run_study(Study("dbma", options={"dim": 2.0, "size_factor": 4}), store, workers=1,
+                      progress=False)
+    assert first.cases[0].ok, first.cases[0].error
+    assert first.cases[0].options == {"dim": 2, "size_factor": 4.0}
+    again = run_study(Study("dbma", options={"dim": 2, "size_factor": 4.0}), store, workers=1,
+                      progress=False)
+    assert (again.computed, again.reused) == (0, 1)
