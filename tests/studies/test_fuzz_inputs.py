@@ -136,3 +136,16 @@ def test_study_dictionaries(data, mechanism):
     if study.case_count() <= 1000:
         for task in study_tasks(study, version="0"):
             assert len(task["key"]) == 64
+
+
+@pytest.mark.parametrize("value", [None, "0.09", [0.09], 0.09 + 0j, True, float("nan"), 1e-300, 1e100])
+def test_eightbar_params_are_type_checked_as_the_dbma_ones(value):
+    with pytest.raises(ValueError, match="EightBarParams: crank_length"):
+        EightBarParams(crank_length=value)
+
+
+@pytest.mark.parametrize("name, value", [("flexure_width", 1e-300), ("thickness", 1e100),
+                                         ("link_width", True), ("flexure_length", "0.02")])
+def test_eightbar_flexure_sizes_are_bounded(name, value):
+    with pytest.raises(ValueError, match=name):
+        EightBarFlexureParams(**{name: value})

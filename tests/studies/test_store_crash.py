@@ -165,3 +165,17 @@ def test_workers_exit_by_themselves_when_the_parent_is_killed(tmp_path):
     finally:
         if _group_alive(process.pid):
             os.killpg(process.pid, signal.SIGKILL)
+
+
+def test_a_store_from_before_the_error_status_is_migrated(tmp_path):
+    from flexfem.studies.engine.store import SCHEMA
+    path = tmp_path / "old.sqlite"
+    with sqlite3.connect(path) as db:
+        db.execute(SCHEMA.replace("'ok', 'failed', 'error'", "'ok', 'failed'"))
+        db.execute("INSERT INTO cases VALUES ('k1', 'toy', '{}', '{}', 'ok', '{\"a\": 1.0}', "
+                   "NULL, 0.1, NULL, NULL, '0.1.0', '2026-01-01')")
+    with ResultStore(path) as store:
+        store.record(CaseResult(key="k2", mechanism="toy", params={}, status="error",
+                                error="BrokenProcessPool: a worker process died"))
+        assert store.statuses() == {"k1": "ok", "k2": "error"}
+        assert store.results(["k1"])[0].metrics == {"a": 1.0}
