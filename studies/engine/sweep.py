@@ -28,6 +28,7 @@ from .validate import check_value, normalise_options
 from .store import (
     CaseResult,
     ResultStore,
+    canonical_json,
     case_key,
     flexfem_version,
 )
@@ -135,16 +136,19 @@ class Study:
         self._check_values()
 
     def _check_values(self) -> None:
-        """No number written as a string anywhere (it would hash as another case)."""
-        for table in ("base", "options"):
-            for name, value in getattr(self, table).items():
-                check_value(f"{table}.{name}", value)
-        for name, values in self.grid.items():
-            for value in values:
-                check_value(f"grid.{name}", value)
-        for i, case in enumerate(self.cases):
-            for name, value in case.items():
-                check_value(f"cases[{i}].{name}", value)
+        """No number written as a string anywhere (it would hash as another case), and
+        nothing that cannot be part of a case key (store.canonical_json)."""
+        named = [(f"{table}.{name}", value) for table in ("base", "options")
+                 for name, value in getattr(self, table).items()]
+        named += [(f"grid.{name}", value) for name, values in self.grid.items() for value in values]
+        named += [(f"cases[{i}].{name}", value) for i, case in enumerate(self.cases)
+                  for name, value in case.items()]
+        for where, value in named:
+            check_value(where, value)
+            try:
+                canonical_json(value)
+            except ValueError as error:
+                raise ValueError(f"{where} = {value!r}: {error}") from None
 
     def case_count(self) -> int:
         """How many designs the study expands to (before duplicates are dropped), computed

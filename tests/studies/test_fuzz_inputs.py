@@ -8,7 +8,7 @@ import numbers
 import pytest
 
 hypothesis = pytest.importorskip("hypothesis")
-from hypothesis import HealthCheck, given, settings  # noqa: E402
+from hypothesis import HealthCheck, example, given, settings  # noqa: E402
 from hypothesis import strategies as st  # noqa: E402
 
 from flexfem.fem.boundary import Fixed, Force, Gravity, PointForce, Prescribed, Traction  # noqa: E402
@@ -126,6 +126,8 @@ VALUES = st.recursive(ANYTHING, lambda inner: st.one_of(
 
 @FAST
 @given(st.dictionaries(KEYS, VALUES, max_size=5), st.sampled_from(["toy", "dbma", None]))
+@example({"base": {"length_m": [0j]}}, "toy")  # found by hypothesis: failed only when hashed
+@example({"mechanism": {"model": 0.0}}, None)  # found by hypothesis: a TypeError
 def test_study_dictionaries(data, mechanism):
     if mechanism is not None:
         data = {**data, "mechanism": mechanism}
