@@ -35,7 +35,7 @@ from ...geometry.dbma.drawing import (
 from ...geometry.dbma.params import DBMAParams, paper_design
 from ..engine.convergence import converge, plot_convergence
 from .figures import analytical_metrics
-from .guards import check_analysable, check_mesh_budget, check_result
+from .guards import check_analysable, check_mesh_budget, check_result, validity_notes
 
 OUTPUT_AXIS = 1  # the output moves along y
 
@@ -133,6 +133,7 @@ def analyze_dbma(params: DBMAParams | None = None, layout: DBMALayout | None = N
     model = build_model(p, layout, dim, size_factor, max_dofs=max_dofs)
     out = {**analytical_metrics(p), **static_response(model, force)}
     check_result(out, p)
+    out["validity_notes"] = validity_notes(p, out)
     modal, modes = modal_response(model, n_modes)
     out.update(modal)
     out.update({"dim": dim, "size_factor": size_factor, "dofs": int(model.n_dofs),

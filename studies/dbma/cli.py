@@ -37,6 +37,7 @@ def summarize_analyze(r: dict) -> str:
         f"{'first %d frequencies (Hz)' % len(r['frequencies_hz']):<36}{freqs}",
         f"working mode                        {r['working_mode']} "
         f"({r['fn_working']:.1f} Hz; Eq. 20: {r['fn_eq20']:.1f} Hz)",
+        *(f"note: {note}" for note in r.get("validity_notes", [])),
     ])
 
 

@@ -8,7 +8,9 @@ size is estimated from its size field (geometry/dbma/estimate.py) and checked ag
 DOF budget (fem/budget.py). After: every number finite, and R_fem > 0 -- a bow-type
 amplifier whose output moves against its input (h too small next to the hinge's own
 bending, say h = 1 um with b = 0.6 mm) is outside what its models describe; it is refused
-with the numbers rather than printed as an amplification ratio.
+with the numbers rather than printed as an amplification ratio. A formula used beyond its
+assumptions is flagged (``validity_notes``): Eq. 7's rigid-lever ratio when h < b (the
+hinges' own bending then dominates the lever and Eq. 7 overestimates R many times).
 """
 from ...fem.budget import check_budget
 from ...geometry.dbma.estimate import estimate_mesh
@@ -43,3 +45,13 @@ def check_result(out: dict, p: DBMAParams) -> dict:
             f"outside the validity of the DBMA's models (h = {p.h:g} m is too small next to "
             f"the hinge thickness b = {p.b:g} m); no amplification ratio to report")
     return out
+
+
+def validity_notes(p: DBMAParams, out: dict) -> list[str]:
+    """Sentences flagging the formulas of ``out`` used beyond their assumptions."""
+    notes = []
+    if p.h < p.b:
+        notes.append(f"h = {p.h:g} m < b = {p.b:g} m: Eq. 7 (R_eq7 = {out.get('R_eq7', 0):.3g}) "
+                     "assumes rigid levers; here the hinges' bending dominates, trust R_fem "
+                     "and R_enhanced")
+    return notes

@@ -79,3 +79,11 @@ def test_ctrl_c_stops_a_running_mesh_at_once():
         if process.poll() is None:
             process.kill()
     assert process.returncode == 130 and "interrupted" in err and "Traceback" not in err
+
+
+def test_eq7_beyond_its_assumptions_is_flagged():
+    from flexfem.studies.dbma.guards import validity_notes
+    p = paper_design()
+    assert validity_notes(p, {"R_eq7": 9.0}) == []
+    notes = validity_notes(dataclasses.replace(p, h=0.3e-3), {"R_eq7": 90.0})
+    assert len(notes) == 1 and "Eq. 7" in notes[0] and "h = 0.0003 m < b = 0.0006 m" in notes[0]
