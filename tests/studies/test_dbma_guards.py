@@ -1,6 +1,7 @@
-"""The DBMA analysis refuses at once what it cannot do well: a mesh above the memory budget
-(estimated from the size field, in seconds), h = 0, absurd sizes, and a result outside its
-models' validity; Ctrl-C stops a running mesh with exit status 130."""
+"""The DBMA analysis (and the eight-bar's budget) refuses at once what it cannot do well: a
+mesh above the memory budget (estimated from the size field, in seconds), h = 0, absurd
+sizes, and a result outside its models' validity; Ctrl-C stops a running mesh with exit
+status 130."""
 import dataclasses
 import os
 import signal
@@ -87,3 +88,22 @@ def test_eq7_beyond_its_assumptions_is_flagged():
     assert validity_notes(p, {"R_eq7": 9.0}) == []
     notes = validity_notes(dataclasses.replace(p, h=0.3e-3), {"R_eq7": 90.0})
     assert len(notes) == 1 and "Eq. 7" in notes[0] and "h = 0.0003 m < b = 0.0006 m" in notes[0]
+
+
+@pytest.mark.parametrize("size_factor", [1.0, 0.5])
+def test_the_eightbar_estimate_is_close_to_its_mesh(size_factor):
+    from flexfem.geometry.eightbar.estimate import estimate_mesh as estimate_eightbar
+    from flexfem.geometry.eightbar.flexure import EightBarFlexureParams
+    from flexfem.studies.eightbar.analysis import build_model as build_eightbar
+    p = EightBarFlexureParams()
+    estimate = estimate_eightbar(p, size_factor=size_factor)
+    model, _ = build_eightbar(p, size_factor)
+    assert 0.6 < model.n_dofs / estimate["dofs"] < 1.7, (model.n_dofs, estimate)
+
+
+def test_an_eightbar_mesh_above_the_budget_is_refused_before_meshing():
+    from flexfem.studies.eightbar.analysis import evaluate as evaluate_eightbar
+    start = time.monotonic()
+    with pytest.raises(BudgetError, match="eight-bar mesh.*above the budget of 10,000 DOFs"):
+        evaluate_eightbar({}, size_factor=0.5, max_dofs=10_000)
+    assert time.monotonic() - start < 5
