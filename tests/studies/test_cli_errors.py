@@ -103,3 +103,20 @@ def test_a_closed_pipe_exits_quietly(tmp_path, study):
     process.stdout.close()  # the reader is gone before anything is written (| head -0)
     err = process.stderr.read().decode()
     assert process.wait(timeout=120) == 0 and err == "", err
+
+
+@pytest.mark.parametrize("error", [PermissionError(13, "Permission denied", "results.sqlite"),
+                                   sqlite3.OperationalError("database is locked"),
+                                   TypeError("unsupported operand")])
+def test_every_error_kind_is_one_line_in_process(monkeypatch, capsys, study, error):
+    # the subprocess tests above cannot provoke a PermissionError as root: raise it directly
+    from flexfem.studies import run_cli
+    from flexfem.studies.cli import main
+
+    def fail(*args, **kwargs):
+        raise error
+    monkeypatch.setattr(run_cli, "sweep", fail)
+    assert main(["sweep", str(study)]) == 2
+    err = capsys.readouterr().err
+    assert len(err.strip().splitlines()) == 1 and err.startswith("flexfem sweep: error: ")
+    assert str(error).split()[0] in err
