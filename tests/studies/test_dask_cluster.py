@@ -2,6 +2,7 @@
 started here as subprocesses with the dask command-line tools) gives the results of the local
 run: the toy with its test hooks, and the real mechanisms, which mesh with gmsh in Dask's
 worker threads."""
+import contextlib
 import os
 import socket
 import subprocess
@@ -31,9 +32,11 @@ def _free_port() -> int:
         return s.getsockname()[1]
 
 
-@pytest.fixture
-def dask_cluster(tmp_path):
-    """tcp://127.0.0.1:<port> of a scheduler with two single-thread workers; torn down after."""
+@contextlib.contextmanager
+def local_cluster(folder: Path, workers: int = 2, nanny: bool = False, scheduler_env=None):
+    """tcp://127.0.0.1:<port> of a scheduler with ``workers`` single-thread workers started
+    with the dask command-line tools (with ``nanny``: restarted when they die); torn down
+    after."""
     dask = str(Path(sys.executable).with_name("dask"))
     port = _free_port()
     address = f"tcp://127.0.0.1:{port}"
@@ -41,17 +44,19 @@ def dask_cluster(tmp_path):
     env.pop("FLEXFEM_SCHEDULER", None)
     # the workers import the test-only mechanism (toy_hooks) from the tests' folder
     env["PYTHONPATH"] = os.pathsep.join(filter(None, [HOOKS_PATH, env.get("PYTHONPATH")]))
-    log = (tmp_path / "dask.log").open("w")
+    log = (folder / "dask.log").open("w")
     processes = [subprocess.Popen([dask, "scheduler", "--host", "127.0.0.1", "--port", str(port),
-                                   "--no-dashboard"], stdout=log, stderr=log, env=env, cwd=tmp_path)]
-    for i in range(2):
+                                   "--no-dashboard"], stdout=log, stderr=log,
+                                  env={**env, **(scheduler_env or {})}, cwd=folder)]
+    for i in range(workers):
         processes.append(subprocess.Popen(
-            [dask, "worker", address, "--nthreads", "1", "--nworkers", "1", "--no-nanny", "--host", "127.0.0.1",
-             "--no-dashboard", "--name", f"w{i}", "--local-directory", str(tmp_path / f"w{i}")],
-            stdout=log, stderr=log, env=env, cwd=tmp_path))
+            [dask, "worker", address, "--nthreads", "1", "--nworkers", "1",
+             "--nanny" if nanny else "--no-nanny", "--host", "127.0.0.1",
+             "--no-dashboard", "--name", f"w{i}", "--local-directory", str(folder / f"w{i}")],
+            stdout=log, stderr=log, env=env, cwd=folder))
     try:
         with distributed.Client(address, timeout=60) as client:
-            client.wait_for_workers(2, timeout=60)
+            client.wait_for_workers(workers, timeout=60)
         yield address
     finally:
         try:  # ask the scheduler to stop itself and its workers; then make sure
@@ -66,6 +71,13 @@ def dask_cluster(tmp_path):
                 process.kill()
                 process.wait()
         log.close()
+
+
+@pytest.fixture
+def dask_cluster(tmp_path):
+    """A scheduler and two single-thread workers without nannies."""
+    with local_cluster(tmp_path) as address:
+        yield address
 
 
 def test_dask_cluster_matches_the_local_run(tmp_path, dask_cluster, monkeypatch):
@@ -125,3 +137,19 @@ def test_unreachable_scheduler_is_a_clear_error(tmp_path, monkeypatch):
             pass
     with pytest.raises(ValueError, match="scheduler"):
         DaskExecutor("localhost")
+
+
+def test_a_lost_worker_is_an_error_not_a_failed_design(tmp_path):
+    # the scheduler gives up on a task at the first worker it kills (allowed-failures 0);
+    # the nanny restarts the worker, which computes the other cases
+    with local_cluster(tmp_path, workers=1, nanny=True, scheduler_env={
+            "DASK_DISTRIBUTED__SCHEDULER__ALLOWED_FAILURES": "0"}) as address:
+        study = Study(HOOKED, grid={"length_m": [0.05, 0.1]}, cases=({"crash_if": 1},))
+        first = run_study(study, tmp_path / "r.sqlite", scheduler=address, progress=False,
+                          allow_code=True)
+        crashed = next(c for c in first.cases if c.params.get("crash_if") == 1)
+        assert crashed.status == "error" and crashed.error.startswith("KilledWorker"), crashed
+        assert sorted(c.status for c in first.cases) == ["error", "ok", "ok"]
+        again = run_study(study, tmp_path / "r.sqlite", scheduler=address, progress=False,
+                          allow_code=True)
+        assert (again.computed, again.reused) == (1, 2)  # the lost case only, no retry asked
