@@ -24,7 +24,6 @@ import tomllib
 
 from .executors import make_executor
 from .progress import Progress
-from .validate import check_value, normalise_options
 from .store import (
     CaseResult,
     ResultStore,
@@ -32,6 +31,7 @@ from .store import (
     case_key,
     flexfem_version,
 )
+from .validate import check_value, normalise_options
 
 SAMPLE_METHODS = ("lhs", "sobol")
 STUDY_KEYS = {"mechanism", "name", "base", "options", "grid", "cases", "sample", "plots"}
