@@ -11,7 +11,11 @@ _AXES = ("x", "y", "z")
 
 
 def _finite_vector(value, name: str) -> tuple:
+    """A tuple of 2 or 3 finite floats; a string ("12" is not (1, 2)), a mapping, a bool
+    component or a number written as a string are refused."""
     try:
+        if isinstance(value, (str, bytes, dict)) or not all(_is_number(c) for c in value):
+            raise TypeError
         v = tuple(float(c) for c in value)
     except (TypeError, ValueError):
         raise ValueError(f"{name} = {value!r} must be a sequence of 2 (2-D) or 3 (3-D) numbers, "
@@ -19,6 +23,11 @@ def _finite_vector(value, name: str) -> tuple:
     if not all(math.isfinite(c) for c in v):
         raise ValueError(f"{name} = {value} must be finite")
     return v
+
+
+def _check_group(owner: str, group) -> None:
+    if not (isinstance(group, str) and group):
+        raise ValueError(f"{owner}: group = {group!r} must be a group's name (a string)")
 
 
 def _is_number(value) -> bool:
@@ -30,6 +39,9 @@ class Fixed:
     """All displacement components of group ``group`` held at zero."""
 
     group: str
+
+    def __post_init__(self):
+        _check_group("Fixed", self.group)
 
 
 @dataclass(frozen=True)
@@ -44,6 +56,7 @@ class Prescribed:
     z: object = None
 
     def __post_init__(self):
+        _check_group("Prescribed", self.group)
         if self.x is None and self.y is None and self.z is None:
             raise ValueError(f"Prescribed({self.group!r}) prescribes no component; give x, y or z")
         for axis in _AXES:
@@ -66,6 +79,7 @@ class Force:
     vector: tuple
 
     def __post_init__(self):
+        _check_group("Force", self.group)
         object.__setattr__(self, "vector", _finite_vector(self.vector, f"Force({self.group!r}).vector"))
 
 
@@ -79,6 +93,7 @@ class Traction:
     vector: object
 
     def __post_init__(self):
+        _check_group("Traction", self.group)
         if not callable(self.vector):
             object.__setattr__(self, "vector",
                                _finite_vector(self.vector, f"Traction({self.group!r}).vector"))
@@ -97,6 +112,7 @@ class Pressure:
     follower: bool = True
 
     def __post_init__(self):
+        _check_group("Pressure", self.group)
         if not callable(self.p) and not (_is_number(self.p) and math.isfinite(self.p)):
             raise ValueError(f"Pressure({self.group!r}).p = {self.p!r} must be a finite number "
                              "(Pa) or a function of the coordinates")

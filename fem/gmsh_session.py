@@ -2,17 +2,34 @@
 
 gmsh keeps process-global state; every use goes through :func:`gmsh_session`, which initialises
 it, hands the ``gmsh`` module to the caller and finalises it on exit, so two models built in one
-process never see each other. gmsh must run in the main thread of a process: parallel studies
-use worker processes, never threads.
+process never see each other. Sessions are serialised by a process-wide lock: threads of one
+process (a Dask worker's, say) take turns, each with a fresh gmsh.
 
-gmsh's initialisation also resets SIGPIPE to the default action (terminate), where Python
-ignores it: a write to a closed pipe -- to a worker of a process pool that died, say -- would
-then kill the process instead of raising BrokenPipeError. The session restores Python's
-disposition.
+gmsh is initialised with ``interruptible=False``: it then installs no SIGINT handler, which
+only the main thread may do, and meshes and finalises from any thread (gmsh >= 4.11). Its
+initialisation still resets SIGPIPE to the default action (terminate), where Python ignores
+it: a write to a closed pipe -- to a worker of a process pool that died, or a Dask peer --
+would then kill the process instead of raising BrokenPipeError. The session restores Python's
+disposition: with ``signal.signal`` in the main thread, through the C library elsewhere
+(``signal.signal`` refuses other threads, but the disposition is the process's).
 """
+import ctypes
 import signal
 import threading
 from contextlib import contextmanager
+
+_LOCK = threading.RLock()  # re-entered by the same thread: refused below, not a deadlock
+
+
+def _restore_sigpipe(disposition) -> None:
+    """Set SIGPIPE back to Python's ``disposition`` (SIG_IGN, normally), from any thread."""
+    if threading.current_thread() is threading.main_thread():
+        signal.signal(signal.SIGPIPE, disposition)
+    elif disposition in (signal.SIG_IGN, signal.SIG_DFL):
+        libc = ctypes.CDLL(None, use_errno=True)
+        libc.signal.restype = ctypes.c_void_p
+        libc.signal.argtypes = (ctypes.c_int, ctypes.c_void_p)
+        libc.signal(int(signal.SIGPIPE), int(disposition))
 
 
 @contextmanager
@@ -20,18 +37,21 @@ def gmsh_session(name: str = "flexfem", verbose: bool = False):
     """Yield an initialised ``gmsh`` module holding one empty model called ``name``."""
     import gmsh
 
-    if threading.current_thread() is not threading.main_thread():
-        raise RuntimeError("gmsh must run in the main thread; use worker processes, not threads")
-    if gmsh.isInitialized():
-        raise RuntimeError("a gmsh session is already open in this process; close it first")
-    sigpipe = signal.getsignal(signal.SIGPIPE)  # Python's own (SIG_IGN), not the kernel's
-    gmsh.initialize(readConfigFiles=False, interruptible=False)
-    signal.signal(signal.SIGPIPE, sigpipe)
+    if not _LOCK.acquire(timeout=3600):
+        raise RuntimeError("gmsh: waited an hour for another thread's session to close")
     try:
-        gmsh.option.setNumber("General.Terminal", 1 if verbose else 0)
-        gmsh.option.setNumber("General.NumThreads", 1)
-        gmsh.model.add(name)
-        yield gmsh
+        if gmsh.isInitialized():
+            raise RuntimeError("a gmsh session is already open in this process; close it first")
+        sigpipe = signal.getsignal(signal.SIGPIPE)  # Python's own (SIG_IGN), not the kernel's
+        gmsh.initialize(readConfigFiles=False, interruptible=False)
+        _restore_sigpipe(sigpipe)
+        try:
+            gmsh.option.setNumber("General.Terminal", 1 if verbose else 0)
+            gmsh.option.setNumber("General.NumThreads", 1)
+            gmsh.model.add(name)
+            yield gmsh
+        finally:
+            gmsh.finalize()
+            _restore_sigpipe(sigpipe)
     finally:
-        gmsh.finalize()
-        signal.signal(signal.SIGPIPE, sigpipe)
+        _LOCK.release()

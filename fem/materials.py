@@ -64,6 +64,6 @@ def material_names() -> list[str]:
 def material(name: str) -> Material:
     """A material from the library by name, e.g. ``material("aluminium_6061_t6")``."""
     table = load_toml("materials.toml")
-    if name not in table:
+    if not isinstance(name, str) or name not in table:
         raise ValueError(f"unknown material {name!r}; known: {', '.join(sorted(table))}")
     return Material(name=name, **table[name])

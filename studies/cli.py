@@ -5,10 +5,21 @@ defaults on its parser: ``run(args) -> dict`` (JSON-able, computed by one public
 ``summarize(result) -> str`` (the human summary). The mechanisms' commands come from the
 registry (studies/mechanisms.py); this module only dispatches: with ``--json`` it prints the
 dict as one JSON object and nothing else on stdout, otherwise the summary.
+
+Every error the user can cause is one ``flexfem COMMAND: error: ...`` line on stderr and exit
+status 2: a bad value (ValueError, TypeError), a file that cannot be read or written
+(OSError: missing, a folder, no permission), a damaged result store (sqlite3). Ctrl-C exits
+with 130 at once, even inside gmsh or a solver: the command runs in a worker thread and the
+main thread, which receives SIGINT, ends the process (a study's store commits each case
+atomically, so nothing is left half-written; its worker processes exit with their parent).
+A closed stdout (``| head -1``) exits quietly.
 """
 import argparse
 import json
+import os
+import sqlite3
 import sys
+import threading
 
 from . import run_cli
 from .engine.serialize import jsonable
@@ -38,19 +49,65 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
-def main(argv=None) -> int:
-    parser = build_parser()
-    args = parser.parse_args(argv)
-    try:
-        result = args.run(args)
-    except (ValueError, FileNotFoundError) as error:
-        print(f"flexfem {args.command}: error: {error}", file=sys.stderr)
-        return 2
+USER_ERRORS = (ValueError, TypeError, OSError, sqlite3.Error)
+
+
+def _one_line(error: BaseException) -> str:
+    text = " ".join(str(error).split()) or type(error).__name__
+    return text if isinstance(error, (ValueError, TypeError)) else f"{type(error).__name__}: {text}"
+
+
+def _output(args, result) -> None:
     if getattr(args, "json", False):
         json.dump(jsonable(result), sys.stdout)
         sys.stdout.write("\n")
     else:
         print(args.summarize(result))
+    sys.stdout.flush()
+
+
+def run_interruptibly(function, *args):
+    """``function(*args)`` in a worker thread, the main thread waiting in short joins: Ctrl-C
+    reaches it (as KeyboardInterrupt) while the worker is inside C code (gmsh, a solver)."""
+    box = {}
+
+    def target():
+        try:
+            box["result"] = function(*args)
+        except BaseException as error:  # noqa: BLE001 - handed to the main thread
+            box["error"] = error
+
+    thread = threading.Thread(target=target, name="flexfem-command", daemon=True)
+    thread.start()
+    while thread.is_alive():
+        thread.join(0.1)
+    if "error" in box:
+        raise box["error"]
+    return box["result"]
+
+
+def _interrupted(command: str) -> int:
+    print(f"flexfem {command}: interrupted; what completed is stored", file=sys.stderr)
+    sys.stderr.flush()
+    if threading.active_count() > 1:  # the command's thread may be inside gmsh: end here
+        os._exit(130)
+    return 130
+
+
+def main(argv=None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    try:
+        _output(args, run_interruptibly(args.run, args))
+    except BrokenPipeError:  # the reader went away (| head -1): nothing more to say
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())  # Python's flush at exit would fail again
+        return 0
+    except KeyboardInterrupt:
+        return _interrupted(args.command)
+    except USER_ERRORS as error:
+        print(f"flexfem {args.command}: error: {_one_line(error)}", file=sys.stderr)
+        return 2
     return 0
 
 

@@ -7,6 +7,14 @@ study engine (sweep, convergence), the optimiser, the report and the CLI find me
 here. Targets are ``"module:attribute"`` strings inside the mechanism's package, imported when
 first used, as Python entry points are: a study of the toy never imports gmsh.
 
+Which code a study may run: a study file names a mechanism, never code. The mechanisms are the
+built-in ones below, model files ("model:<path>@<digest>") and those that installed packages
+register under the entry-point group ``flexfem.mechanisms`` (name = "module:function", loaded
+with importlib.metadata). An arbitrary "module:function" is Python code: it is refused unless
+the caller opts in (``allow_code=True``, ``flexfem sweep --allow-code``), as importing and
+calling any function with the file's values (``subprocess:run`` with ``shell = true``) runs
+anything.
+
 ``evaluate`` fills defaults for the parameters it is not given (the base design is the
 mechanism's own) and returns its metrics, FEM and analytical side by side; it may also return
 ``"h"`` (a characteristic element size, m) and ``"dofs"`` (the number of unknowns) for
@@ -16,6 +24,7 @@ from dataclasses import dataclass
 import functools
 import hashlib
 import importlib
+import importlib.metadata
 from pathlib import Path
 import tomllib
 
@@ -107,12 +116,23 @@ BUILTIN = (
 
 MECHANISMS = {m.name: m for m in BUILTIN}
 MODEL_PREFIX = "model:"
+ENTRY_POINT_GROUP = "flexfem.mechanisms"
+
+
+@functools.lru_cache(maxsize=1)
+def plugin_mechanisms() -> dict:
+    """{name: entry point} of the mechanisms installed packages register in the group
+    ``flexfem.mechanisms`` (a built-in name wins over a package's)."""
+    points = importlib.metadata.entry_points(group=ENTRY_POINT_GROUP)
+    return {ep.name: ep for ep in points if ep.name not in MECHANISMS}
 
 
 def model_mechanism(path, base_dir=None) -> str:
     """The mechanism name of a model file: "model:<absolute path>@<digest>", the digest over
     the model file and the geometry file it names, so that a study's stored cases are not
     reused once either file changes. ``path`` is relative to ``base_dir`` (default: cwd)."""
+    if not isinstance(path, (str, Path)) or not str(path):
+        raise ValueError(f"mechanism.model = {path!r} must be the path of a model file")
     path = Path(base_dir or ".") / path
     if not path.is_file():
         raise ValueError(f"mechanism.model = {str(path)!r}: no such model file")
@@ -139,43 +159,56 @@ def is_target(name: str) -> bool:
 
 
 def _known() -> list[str]:
-    return sorted(n for n, m in MECHANISMS.items() if m.evaluate and n != "model")
+    builtin = [n for n, m in MECHANISMS.items() if m.evaluate and n != "model"]
+    return sorted(builtin + list(plugin_mechanisms()))
 
 
-def check_mechanism(name: str, key: str = "mechanism") -> str:
-    """Return ``name`` if it is a registered mechanism with an evaluate, a model file's
-    mechanism (``model_mechanism``) or a "module:function" target, without importing
-    anything; else ValueError naming ``key``."""
+def check_mechanism(name: str, key: str = "mechanism", allow_code: bool = False) -> str:
+    """Return ``name`` if it is a registered mechanism with an evaluate, a package's
+    (``plugin_mechanisms``), a model file's mechanism (``model_mechanism``), or with
+    ``allow_code`` a "module:function" target, without importing anything; else ValueError
+    naming ``key``."""
     if name == "model":
         raise ValueError(f"{key} = 'model' needs its model file: "
                          "mechanism = { model = \"FILE.toml\" } in a study file, or the file's "
                          "path on the command line")
-    known = isinstance(name, str) and name in MECHANISMS and MECHANISMS[name].evaluate
-    if not (known or _model_path(name) or (isinstance(name, str) and is_target(name))):
-        raise ValueError(f"{key} = {name!r} is not a known mechanism; known: {_known()}"
-                         " (or a 'package.module:function' evaluate)")
-    return name
+    if not isinstance(name, str):
+        raise ValueError(f"{key} = {name!r} must be a mechanism's name; known: {_known()}")
+    known = (name in MECHANISMS and MECHANISMS[name].evaluate) or name in plugin_mechanisms()
+    if known or _model_path(name):
+        return name
+    if is_target(name):
+        if allow_code:
+            return name
+        raise ValueError(f"{key} = {name!r} is Python code (module:function), not a registered "
+                         f"mechanism (known: {_known()}); a study runs only registered "
+                         "mechanisms. If you trust this study, pass --allow-code "
+                         "(allow_code=True in Python): the function is imported and called "
+                         "with the study's values")
+    raise ValueError(f"{key} = {name!r} is not a known mechanism; known: {_known()}")
 
 
-def get_evaluator(name: str):
-    """The evaluate function of mechanism ``name`` (a registered name or "module:function").
+def get_evaluator(name: str, allow_code: bool = False):
+    """The evaluate function of mechanism ``name`` (a registered name, a package's, a model
+    file's, or with ``allow_code`` a "module:function").
 
-    Raises ValueError listing the known names when the name is unknown, or when its module
-    cannot be imported or lacks the function.
+    Raises ValueError listing the known names when the name is unknown or refused, or when
+    its module cannot be imported or lacks the function.
     """
-    check_mechanism(name)
+    check_mechanism(name, allow_code=allow_code)
     if _model_path(name):
         model = MECHANISMS["model"]
         return functools.partial(model.load(model.evaluate), model=_model_path(name))
     if name in MECHANISMS:
         return MECHANISMS[name].load(MECHANISMS[name].evaluate)
-    module_name, _, function_name = name.partition(":")
+    target = plugin_mechanisms()[name].value if name in plugin_mechanisms() else name
+    module_name, _, function_name = target.partition(":")
     try:
-        module = importlib.import_module(module_name)
+        module = importlib.import_module(module_name.strip())
     except ModuleNotFoundError as error:
         raise ValueError(f"mechanism {name!r}: module {module_name!r} is not importable "
                          f"({error}); known: {_known()}") from error
-    evaluate = getattr(module, function_name, None)
+    evaluate = getattr(module, function_name.strip(), None)
     if not callable(evaluate):
         raise ValueError(f"mechanism {name!r}: {module_name} has no function {function_name!r}; "
                          f"known: {_known()}")

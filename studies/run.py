@@ -15,44 +15,53 @@ from .engine.sweep import Study, plot_metric
 from .mechanisms import check_mechanism, coarsest_size_factor, get_evaluator, model_mechanism
 
 
-def study_from_dict(data: dict, base_dir=None) -> Study:
-    """The engine's ``study_from_dict``, its mechanism checked against the registry; a
+def study_from_dict(data: dict, base_dir=None, allow_code: bool = False) -> Study:
+    """The engine's ``study_from_dict``, its mechanism checked against the registry (a
+    "module:function" only with ``allow_code``, see studies/mechanisms.py); a
     ``mechanism = { model = "guide.toml" }`` table names a model file (relative to
-    ``base_dir``, default the working directory)."""
-    mechanism = data.get("mechanism")
+    ``base_dir``, default the working directory). ValueError for any malformed value."""
+    mechanism = data.get("mechanism") if isinstance(data, dict) else None
     if isinstance(mechanism, dict):
         if set(mechanism) != {"model"}:
             raise ValueError(f"mechanism = {mechanism!r}: a table must be {{ model = \"FILE.toml\" }}")
         data = {**data, "mechanism": model_mechanism(mechanism["model"], base_dir)}
-    study = engine.study_from_dict(data)
-    check_mechanism(study.mechanism)
+    try:
+        study = engine.study_from_dict(data)
+    except (TypeError, AttributeError) as error:  # a value of the wrong shape (cases = 3, ...)
+        raise ValueError(f"malformed study: {error}") from None
+    check_mechanism(study.mechanism, allow_code=allow_code)
     return study
 
 
-def load_study(path) -> Study:
+def load_study(path, allow_code: bool = False) -> Study:
     """A study file, its mechanism checked against the registry (a model file it names is
     found relative to the study file)."""
     path = Path(path)
-    return study_from_dict(engine.read_study_file(path), base_dir=path.parent)
+    return study_from_dict(engine.read_study_file(path), base_dir=path.parent,
+                           allow_code=allow_code)
 
 
-def run_study(study: Study, store_path, **options) -> engine.StudyResult:
+def run_study(study: Study, store_path, allow_code: bool = False, **options) -> engine.StudyResult:
     """The engine's ``run_study`` with the study's mechanism resolved by name (ValueError
-    listing the known names for an unknown one); ``options`` as the engine's."""
-    check_mechanism(study.mechanism)
-    return engine.run_study(study, store_path, get_evaluator(study.mechanism), **options)
+    listing the known names for an unknown one, or for code without ``allow_code``);
+    ``options`` as the engine's."""
+    evaluate = get_evaluator(study.mechanism, allow_code=allow_code)
+    return engine.run_study(study, store_path, evaluate, **options)
 
 
 def sweep(study, out_dir=None, workers: int | None = None, scheduler: str | None = None,
-          retry_failed: bool = False, progress: bool | None = None) -> dict:
+          retry_failed: bool = False, progress: bool | None = None, allow_code: bool = False,
+          max_cases: int = engine.MAX_CASES) -> dict:
     """Run a study (a Study or the path of its TOML file) into ``out_dir`` (default: a folder
     named after the study): results.sqlite, results.csv (and .parquet with pyarrow), the
-    study's plots. Returns a JSON-able summary with every case's row."""
+    study's plots. Returns a JSON-able summary with every case's row. ``allow_code``: let the
+    study name a "module:function" (Python code; see studies/mechanisms.py)."""
     if not isinstance(study, Study):
-        study = load_study(study)
+        study = load_study(study, allow_code=allow_code)
     out = Path(out_dir if out_dir is not None else study.name)
-    result = run_study(study, out / "results.sqlite", workers=workers, scheduler=scheduler,
-                       retry_failed=retry_failed, progress=progress)
+    result = run_study(study, out / "results.sqlite", allow_code=allow_code, workers=workers,
+                       scheduler=scheduler, retry_failed=retry_failed, progress=progress,
+                       max_cases=max_cases)
     tables = [export_csv(result.cases, out / "results.csv").name]
     if parquet_available():
         tables.append(export_parquet(result.cases, out / "results.parquet").name)
@@ -65,7 +74,9 @@ def sweep(study, out_dir=None, workers: int | None = None, scheduler: str | None
             "cases": len(result.cases), "computed": result.computed, "reused": result.reused,
             "failed": len(result.failed), "wall_time_s": result.wall_time_s,
             "tables": tables, "figures": figures,
-            "failures": [{"params": c.params, "error": c.error} for c in result.failed],
+            "errors": sum(c.status == "error" for c in result.cases),
+            "failures": [{"params": c.params, "status": c.status, "error": c.error}
+                         for c in result.failed],
             "results": [c.to_row() for c in result.cases]}
 
 

@@ -1,4 +1,5 @@
 """``flexfem sweep`` and ``flexfem converge``: parameter and mesh-convergence studies."""
+from .engine.sweep import MAX_CASES
 from .options import json_object, tolerance
 from .run import run_convergence, sweep
 
@@ -10,6 +11,11 @@ def register(subparsers):
     p.add_argument("--workers", type=int, help="local worker processes (default: one per CPU; 1: in-process)")
     p.add_argument("--scheduler", help="Dask scheduler tcp://HOST:PORT (default: $FLEXFEM_SCHEDULER)")
     p.add_argument("--retry-failed", action="store_true", help="re-run cases stored as failed")
+    p.add_argument("--allow-code", action="store_true",
+                   help="let the study name a Python 'module:function' as its mechanism: "
+                        "that code runs with the study's values; only for study files you trust")
+    p.add_argument("--max-cases", type=int, default=MAX_CASES,
+                   help=f"refuse a study of more cases than this (default {MAX_CASES:,})")
     p.add_argument("--json", action="store_true", help="print the summary as one JSON object")
     p.set_defaults(run=_run_sweep, summarize=summarize_sweep)
 
@@ -31,11 +37,9 @@ def register(subparsers):
 
 
 def _run_sweep(args) -> dict:
-    try:
-        return sweep(args.study, args.out, workers=args.workers, scheduler=args.scheduler,
-                     retry_failed=args.retry_failed)
-    except KeyboardInterrupt:
-        raise ValueError("interrupted; completed cases are stored, run again to resume") from None
+    return sweep(args.study, args.out, workers=args.workers, scheduler=args.scheduler,
+                 retry_failed=args.retry_failed, allow_code=args.allow_code,
+                 max_cases=args.max_cases)
 
 
 def _run_converge(args) -> dict:
@@ -48,7 +52,11 @@ def summarize_sweep(result: dict) -> str:
     lines = [f"study {result['name']} ({result['mechanism']}): {result['cases']} cases, "
              f"{result['computed']} computed, {result['reused']} reused, {result['failed']} failed "
              f"on {result['executor']} in {result['wall_time_s']:.1f} s"]
-    lines += [f"  failed {f['params']}: {f['error']}" for f in result["failures"][:10]]
+    if result.get("errors"):
+        lines.append(f"  {result['errors']} case(s) failed by the environment (status 'error'):"
+                     " they are computed again by the next run")
+    lines += [f"  {f.get('status', 'failed')} {f['params']}: {f['error']}"
+              for f in result["failures"][:10]]
     files = result["tables"] + result["figures"]
     lines.append(f"results in {result['out']}: {', '.join(files)}")
     return "\n".join(lines)

@@ -4,11 +4,10 @@ Symbols and words are those of the DBMA paper (Micromachines 2020, 11(3), 312, T
 Eqs. 5-7); values are in SI units (m, Pa, kg/m^3). ``paper_design()`` loads the paper's design
 from data/dbma_paper.toml.
 """
-import math
-import numbers
 from dataclasses import dataclass, fields
 
 from ...data import load_toml
+from .. import bounds
 
 MM = 1e-3  # metres per millimetre
 
@@ -30,11 +29,12 @@ class DBMAParams:
     nu : Poisson's ratio of the material (-), not given by the paper
     rho : density of the material (kg/m^3), not given by the paper
 
-    Bounds: every length finite and > 0 except h >= 0 (h = 0 puts the two hinges on one
-    line, a valid limit); b < c and b < a (the hinge is thinner than the arms it joins);
+    Bounds: every length a finite number in [10 nm, 10 m] (geometry/bounds.py) except h, which
+    may also be 0 (h = 0 puts the two hinges on one line, a valid limit of the drawing; the
+    analyses need h > 0), at most 10^4 between the largest and smallest length; b < c and b < a (the hinge is thinner than the arms it joins);
     h <= c - b (both hinges, each of thickness b, lie within the width c of the arm that
-    joins them, so their centre lines are at most c - b apart); E > 0; -1 < nu < 0.5;
-    rho > 0.
+    joins them, so their centre lines are at most c - b apart); E in [1 kPa, 10 TPa];
+    -1 < nu < 0.5; rho in [1, 1e5] kg/m^3.
     """
 
     c: float
@@ -52,21 +52,23 @@ class DBMAParams:
 
     def __post_init__(self):
         for f in fields(self):
-            value = getattr(self, f.name)
-            if not (isinstance(value, numbers.Real) and not isinstance(value, bool)
-                    and math.isfinite(value)):
-                raise ValueError(f"DBMAParams: {f.name} = {value!r} must be a finite number")
-            object.__setattr__(self, f.name, float(value))
-        for name in ("c", "a", "d", "l", "e", "ls", "ll", "b"):
+            object.__setattr__(self, f.name, bounds.real("DBMAParams", f.name, getattr(self, f.name)))
+        lengths = ("c", "a", "d", "l", "e", "ls", "ll", "b")
+        for name in lengths:
             _require(self, name, getattr(self, name) > 0, "> 0 (m)")
+            bounds.length("DBMAParams", name, getattr(self, name))
         _require(self, "h", self.h >= 0, ">= 0 (m)")
+        bounds.length("DBMAParams", "h", self.h, zero_allowed=True)
+        bounds.span("DBMAParams", {name: getattr(self, name) for name in lengths})
         _require(self, "b", self.b < self.c, f"< c = {self.c!r} m (hinge thinner than the arm)")
         _require(self, "b", self.b < self.a, f"< a = {self.a!r} m (hinge thinner than the arm)")
         _require(self, "h", self.h <= self.c - self.b,
                  f"<= c - b = {self.c - self.b!r} m (both hinges inside the arm width)")
         _require(self, "E", self.E > 0, "> 0 (Pa)")
+        bounds.in_range("DBMAParams", "E", self.E, bounds.MODULUS_RANGE, "Pa")
         _require(self, "nu", -1.0 < self.nu < 0.5, "in (-1, 0.5)")
         _require(self, "rho", self.rho > 0, "> 0 (kg/m^3)")
+        bounds.in_range("DBMAParams", "rho", self.rho, bounds.DENSITY_RANGE, "kg/m^3")
 
 
 def _require(params, name, ok, bound):

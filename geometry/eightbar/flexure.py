@@ -23,6 +23,7 @@ import numpy as np
 
 from ...data import load_toml
 from ...fem.materials import material as material_named
+from .. import bounds
 from ..flexure_drawing import mesh_layout
 from ..flexure_linkage import (
     FlexureLayout,
@@ -78,7 +79,9 @@ class EightBarFlexureParams:
             if not (isinstance(value, numbers.Real) and not isinstance(value, bool)
                     and math.isfinite(value) and value > 0):
                 raise ValueError(f"{name} = {value!r} m, must be a finite number > 0")
-            object.__setattr__(self, name, float(value))
+            object.__setattr__(self, name, bounds.length("EightBarFlexureParams", name, value))
+        bounds.span("EightBarFlexureParams", {name: getattr(self, name) for name in _LENGTHS}
+                    | {"rigid.ground_spacing": self.rigid.ground_spacing})
         material_named(self.material)  # raises ValueError naming the known materials
         for name in ("base_flexure_width", "flexure_width"):
             if not getattr(self, name) < self.link_width:

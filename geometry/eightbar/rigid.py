@@ -18,6 +18,7 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 
+from .. import bounds
 from ..linkage import Joint, Link, Linkage, PointCoordinate, trace_from_reference
 from ..straight_line import LineDeviation, straight_line_deviation
 
@@ -30,6 +31,10 @@ class EightBarParams:
     coupler_point_depth p: P below the midpoint of AB; module_spacing: |P_L P_R| (distance
     between the halves' axes); ee_drop: the end-effector bar lies this far below P;
     travel: end-effector stroke traced, centred on the drawn pose.
+
+    Every length is a finite real number in [10 nm, 10 m] (not a bool, string, None, list or
+    complex: ValueError naming it, as DBMAParams), at most 10^4 between the largest and the
+    smallest (geometry/bounds.py).
     """
 
     ground_spacing: float = 90e-3
@@ -42,9 +47,11 @@ class EightBarParams:
 
     def __post_init__(self):
         for f in fields(self):
-            value = getattr(self, f.name)
-            if not (np.isfinite(value) and value > 0):
+            value = bounds.real("EightBarParams", f.name, getattr(self, f.name))
+            if not value > 0:
                 raise ValueError(f"{f.name} = {value} m, must be > 0")
+            object.__setattr__(self, f.name, bounds.length("EightBarParams", f.name, value))
+        bounds.span("EightBarParams", {f.name: getattr(self, f.name) for f in fields(self)})
         reach = abs(self.ground_spacing - self.coupler_length) / 2
         if not self.crank_length > reach:
             raise ValueError(f"crank_length = {self.crank_length} m, must be > |g - h|/2 = "

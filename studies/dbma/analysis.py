@@ -35,6 +35,7 @@ from ...geometry.dbma.drawing import (
 from ...geometry.dbma.params import DBMAParams, paper_design
 from ..engine.convergence import converge, plot_convergence
 from .figures import analytical_metrics
+from .guards import check_analysable, check_mesh_budget, check_result, validity_notes
 
 OUTPUT_AXIS = 1  # the output moves along y
 
@@ -67,8 +68,13 @@ def modal_supports() -> list:
 
 
 def build_model(p: DBMAParams, layout: DBMALayout | None = None, dim: int = 2,
-                size_factor: float = 1.0, hinge_elements: int | None = None) -> Model:
-    """Quadratic-element model of the DBMA: plane stress of thickness d (2-D) or solid (3-D)."""
+                size_factor: float = 1.0, hinge_elements: int | None = None,
+                max_dofs: int | None = None) -> Model:
+    """Quadratic-element model of the DBMA: plane stress of thickness d (2-D) or solid (3-D).
+    Refused before meshing (studies/dbma/guards.py) for h = 0 or a mesh above ``max_dofs``
+    (None: what the machine's available memory affords)."""
+    check_analysable(p)
+    check_mesh_budget(p, layout, dim, size_factor, hinge_elements, max_dofs)
     mesh = mesh_dbma(p, layout, dim, hinge_elements, size_factor)
     formulation = PlaneStress(p.d) if dim == 2 else Solid3D()
     return Model(mesh, dbma_material(p), formulation, order=2)
@@ -112,18 +118,22 @@ def modal_response(model: Model, n_modes: int = 6) -> tuple[dict, object]:
 
 def analyze_dbma(params: DBMAParams | None = None, layout: DBMALayout | None = None,
                  dim: int = 3, size_factor: float = 1.0, n_modes: int = 6,
-                 force: float | None = None, return_modes: bool = False) -> dict:
+                 force: float | None = None, return_modes: bool = False,
+                 max_dofs: int | None = None) -> dict:
     """Static and modal FEM of one DBMA beside the analytical models (SI units).
 
     Keys: R_fem, R_eq7, R_enhanced, Ke_eq14, me_eq19, fn_eq20, k_in, max_von_mises (at
     ``force``, default the 800 N top of Fig. 14), safety_factor, frequencies_hz, working_mode
-    (1-based), fn_working, material {E, nu, rho}, dofs, mass (kg) and the static details."""
+    (1-based), fn_working, material {E, nu, rho}, dofs, mass (kg) and the static details.
+    ValueError for a result outside the models' validity (guards.check_result)."""
     p = params or paper_design()
     force = float(published()["loading"]["force_max_N"] if force is None else force)
     if not (math.isfinite(force) and force > 0):
         raise ValueError(f"force = {force!r} must be a finite number > 0 (N)")
-    model = build_model(p, layout, dim, size_factor)
+    model = build_model(p, layout, dim, size_factor, max_dofs=max_dofs)
     out = {**analytical_metrics(p), **static_response(model, force)}
+    check_result(out, p)
+    out["validity_notes"] = validity_notes(p, out)
     modal, modes = modal_response(model, n_modes)
     out.update(modal)
     out.update({"dim": dim, "size_factor": size_factor, "dofs": int(model.n_dofs),
@@ -141,20 +151,21 @@ def params_from_dict(values: dict) -> DBMAParams:
     unknown = sorted(set(values) - known)
     if unknown:
         raise ValueError(f"unknown DBMA parameter(s) {unknown}; known: {sorted(known)}")
-    return dataclasses.replace(paper_design(), **{k: float(v) for k, v in values.items()})
+    return dataclasses.replace(paper_design(), **values)  # DBMAParams checks the types
 
 
 def evaluate(params_dict: dict, dim: int = 2, size_factor: float = 1.0,
-             modes: bool = False, force: float = 100.0) -> dict:
+             modes: bool = False, force: float = 100.0, max_dofs: int | None = None) -> dict:
     """Metrics for the sweep engine: R_fem, k_in (N/m), max_von_mises (Pa, at ``force`` N),
     dofs, h (hinge element size, m), the analytical metrics, and with ``modes`` fn_working
-    (Hz) and working_mode."""
+    (Hz) and working_mode. ``max_dofs``: the mesh budget (None: the machine's)."""
     p = params_from_dict(params_dict)
-    model = build_model(p, None, dim, size_factor)
+    model = build_model(p, None, dim, size_factor, max_dofs=max_dofs)
     static = static_response(model, force)
     out = {k: v for k, v in analytical_metrics(p).items() if isinstance(v, (int, float))}
     out.update({k: static[k] for k in ("R_fem", "R_fem_per_side", "k_in", "max_von_mises")})
     out["force_N"] = float(force)  # the load case max_von_mises belongs to
+    check_result(out, p)
     out.update({"dofs": int(model.n_dofs), "h": p.b / (4 if dim == 2 else 2) * size_factor})
     if modes:
         modal, _ = modal_response(model)

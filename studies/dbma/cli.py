@@ -22,7 +22,8 @@ def _params(args):
 
 def run_analyze(args) -> dict:
 
-    return analyze_dbma(_params(args), dim=args.dim, size_factor=args.size_factor)
+    return analyze_dbma(_params(args), dim=args.dim, size_factor=args.size_factor,
+                        max_dofs=args.max_dofs)
 
 
 def summarize_analyze(r: dict) -> str:
@@ -40,6 +41,7 @@ def summarize_analyze(r: dict) -> str:
         f"{'first %d frequencies (Hz)' % len(r['frequencies_hz']):<36}{freqs}",
         f"working mode                        {r['working_mode']} "
         f"({r['fn_working']:.1f} Hz; Eq. 20: {r['fn_eq20']:.1f} Hz)",
+        *(f"note: {note}" for note in r.get("validity_notes", [])),
     ])
 
 
@@ -80,6 +82,13 @@ def summarize_mesh(r: dict) -> str:
 
 
 
+def _count(text: str) -> int:
+    value = float(text)
+    if not (value >= 1 and value == int(value)):
+        raise ValueError(f"{text!r} must be an integer >= 1")
+    return int(value)
+
+
 def register(subparsers):
     parser = subparsers.add_parser("dbma", help="double-row bow-type amplifier: FEM and mesh")
     commands = parser.add_subparsers(dest="dbma_command", required=True, metavar="ACTION")
@@ -91,6 +100,9 @@ def register(subparsers):
                               "the report's statics (R differs by the out-of-plane stiffness)")
     analyze.add_argument("--size-factor", type=positive, default=1.0,
                          help="mesh size multiplier (default 1)")
+    analyze.add_argument("--max-dofs", type=_count, default=None,
+                         help="refuse a mesh above this many unknowns (default: what half the "
+                              "available memory affords)")
     analyze.add_argument("--json", action="store_true", help="print one JSON object")
     analyze.set_defaults(run=run_analyze, summarize=summarize_analyze)
     mesh = commands.add_parser("mesh", help="write the default mesh that analyze solves")

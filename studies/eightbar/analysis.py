@@ -39,6 +39,9 @@ from ...geometry.eightbar.flexure import (
 )
 from ...geometry.eightbar.rigid import EightBarParams, trace_eightbar
 from ...geometry.straight_line import straight_line_deviation
+from ...fem.budget import check_budget
+from ...geometry.eightbar.estimate import estimate_mesh
+from ..engine.validate import require_finite
 
 # Newton tolerance (relative to the reaction): the residual of this part stagnates near 3e-6
 # of the drive force -- round-off in the internal forces of the stiff links (E t ~ 4e8 N/m)
@@ -46,8 +49,12 @@ from ...geometry.straight_line import straight_line_deviation
 NEWTON_TOL = 1e-5
 
 
-def build_model(params: EightBarFlexureParams, size_factor: float = 1.0, n_across: int = 3):
-    """(Model (plane stress, P2), mesh sizes dict) of the flexure suspension."""
+def build_model(params: EightBarFlexureParams, size_factor: float = 1.0, n_across: int = 3,
+                max_dofs: int | None = None):
+    """(Model (plane stress, P2), mesh sizes dict) of the flexure suspension; a mesh above
+    ``max_dofs`` (None: what half the available memory affords) is refused before meshing."""
+    check_budget(estimate_mesh(params, n_across, size_factor), 2, max_dofs,
+                 what=f"the eight-bar mesh at size_factor {size_factor:g}")
     mesh, sizes = mesh_eightbar_flexure(params, n_across=n_across, size_factor=size_factor)
     return Model(mesh, material(params.material), PlaneStress(params.thickness), order=2), sizes
 
@@ -178,7 +185,8 @@ def _mirror_name(name: str) -> str:
 
 def analyze_eightbar(params: EightBarFlexureParams | None = None, travel: float | None = None,
                      size_factor: float = 1.0, steps: int = 8, n_modes: int = 4,
-                     both_halves: bool = True, nonlinear: bool = True) -> dict:
+                     both_halves: bool = True, nonlinear: bool = True,
+                     max_dofs: int | None = None) -> dict:
     """Linear stiffness and stress, modes, pseudo-rigid-body estimate and (``nonlinear``) the
     large-deflection trace over ``travel`` (m, default the rigid design's travel). SI units.
     The linear stress is at half the travel (the end of the stroke from the middle)."""
@@ -187,7 +195,7 @@ def analyze_eightbar(params: EightBarFlexureParams | None = None, travel: float 
     if not (math.isfinite(travel) and 0 < travel < params.rigid.ground_spacing):
         raise ValueError(f"travel = {travel!r} m must be in (0, ground_spacing = "
                          f"{params.rigid.ground_spacing} m)")
-    model, sizes = build_model(params, size_factor)
+    model, sizes = build_model(params, size_factor, max_dofs=max_dofs)
     lin = linear_analysis(model, travel / 2)
     prbm = prbm_stiffness(params)
     prbm_stress = prbm_peak_stress(params, travel / 2)
@@ -223,14 +231,15 @@ def params_from_dict(values: dict) -> EightBarFlexureParams:
 
 
 def evaluate(params: dict | None = None, size_factor: float = 1.0, nonlinear: bool = False,
-             steps: int = 6, **options) -> dict:
+             steps: int = 6, max_dofs: int | None = None, **options) -> dict:
     """Study-registry entry: flat float metrics of the design ``params`` (a flat dict, see
     :func:`params_from_dict`), plus "h" (flexure element size, m) and "dofs". The nonlinear
     trace (fem_deviation_pct, peak stress) only with ``nonlinear=True``."""
     if options:
-        raise ValueError(f"unknown option(s) {sorted(options)}; known: size_factor, nonlinear, steps")
+        raise ValueError(f"unknown option(s) {sorted(options)}; known: size_factor, nonlinear, "
+                         "steps, max_dofs")
     out = analyze_eightbar(params_from_dict(params or {}), size_factor=size_factor, steps=steps,
-                           n_modes=1, both_halves=False, nonlinear=nonlinear)
+                           n_modes=1, both_halves=False, nonlinear=nonlinear, max_dofs=max_dofs)
     metrics = {k: float(out[k]) for k in ("k_x", "k_y", "k_x_prbm", "max_von_mises",
                                           "max_von_mises_element", "h", "dofs")}
     metrics["f1_hz"] = out["modes"][0]["f_hz"]
@@ -238,7 +247,7 @@ def evaluate(params: dict | None = None, size_factor: float = 1.0, nonlinear: bo
         for k in ("fem_deviation_pct", "rigid_deviation_pct", "peak_von_mises_travel",
                   "safety_factor", "max_rotation_rad"):
             metrics[k] = float(out[k])
-    return metrics
+    return require_finite(metrics, "eight-bar")
 
 
 def summary_row(out: dict) -> dict:
@@ -248,7 +257,7 @@ def summary_row(out: dict) -> dict:
             "fem_deviation_pct", "fem_deviation_m", "fem_band_m", "rigid_deviation_pct",
             "rigid_deviation_m", "peak_von_mises_travel", "peak_von_mises_flexure",
             "safety_factor", "max_rotation_rad", "end_force_n", "dofs", "solver")
-    row = {k: out[k] for k in keys if k in out}
+    row = require_finite({k: out[k] for k in keys if k in out}, "eight-bar")
     if "modes" in out:
         row["modes"] = out["modes"]
     return row

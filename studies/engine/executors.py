@@ -10,20 +10,37 @@ Local workers are started with the 'spawn' method, so no gmsh session (process-g
 is inherited half-used, and with OMP_NUM_THREADS, OPENBLAS_NUM_THREADS and MKL_NUM_THREADS set
 to 1 both in the environment they inherit and by their initializer, so that N workers use N
 cores, not N times the BLAS threads. This module imports no numpy, so the variables are set
-before any worker imports it.
+before any worker imports it. Each local worker also watches its parent: when the parent dies
+(SIGKILL, a crash) the worker exits within a second, even in the middle of a case, instead of
+computing on as an orphan.
 """
 import concurrent.futures
 import multiprocessing
 import os
+import threading
+import time
 
 THREAD_VARIABLES = ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS")
 SCHEDULER_VARIABLE = "FLEXFEM_SCHEDULER"
 
 
 def limit_threads() -> None:
-    """Worker initializer: one BLAS/OpenMP thread per process."""
+    """One BLAS/OpenMP thread per process."""
     for name in THREAD_VARIABLES:
         os.environ[name] = "1"
+
+
+def _exit_with_parent(parent: int, period_s: float) -> None:
+    while os.getppid() == parent:
+        time.sleep(period_s)
+    os._exit(1)  # the parent died: nobody will read this worker's results
+
+
+def init_worker(parent: int, period_s: float = 0.5) -> None:
+    """Worker initializer: one BLAS thread, and exit when process ``parent`` is gone."""
+    limit_threads()
+    threading.Thread(target=_exit_with_parent, args=(parent, period_s), daemon=True,
+                     name="flexfem-parent-watch").start()
 
 
 class InProcessExecutor:
@@ -58,7 +75,7 @@ class LocalProcessExecutor:
         limit_threads()  # inherited by the spawned workers, before they import anything
         self._pool = concurrent.futures.ProcessPoolExecutor(
             max_workers=self.workers, mp_context=multiprocessing.get_context("spawn"),
-            initializer=limit_threads)
+            initializer=init_worker, initargs=(os.getpid(),))
         return self
 
     def __exit__(self, exc_type, exc, tb):

@@ -4,7 +4,13 @@ The database runs in WAL mode and every case is committed on its own, so killing
 (SIGINT or SIGKILL) loses at most the cases in flight, and the file stays readable. A case is
 keyed by ``case_key``: the sha256 of the canonical JSON of mechanism, parameters, evaluate
 options and the flexfem version, so a re-run finds what is already done, and a new flexfem
-version recomputes everything. Rows export to CSV (and Parquet where pyarrow is importable).
+version recomputes everything.
+
+A case's status is "ok", "failed" (the design itself failed: a deterministic error that a
+re-run would repeat, kept and not re-run unless asked) or "error" (the environment failed it:
+a lost worker, an out-of-memory, an OSError or RuntimeError around the evaluation; its cause
+is stored and it is computed again by the next run). Stores written before "error" existed are
+migrated when opened. Rows export to CSV (and Parquet where pyarrow is importable).
 """
 import datetime
 import hashlib
@@ -22,7 +28,7 @@ CREATE TABLE IF NOT EXISTS cases (
     mechanism TEXT NOT NULL,
     params TEXT NOT NULL,
     options TEXT NOT NULL,
-    status TEXT NOT NULL CHECK (status IN ('ok', 'failed')),
+    status TEXT NOT NULL CHECK (status IN ('ok', 'failed', 'error')),
     metrics TEXT NOT NULL,
     error TEXT,
     wall_time_s REAL,
@@ -32,6 +38,10 @@ CREATE TABLE IF NOT EXISTS cases (
     finished_at TEXT NOT NULL
 )
 """
+
+
+STATUSES = ("ok", "failed", "error")
+KEY_SCHEMA = 2  # in every case key: 2 = options normalised to their declared types first
 
 
 def flexfem_version() -> str:
@@ -65,16 +75,20 @@ def canonical_json(value) -> str:
 
 
 def case_key(mechanism: str, params: dict, options: dict, version: str | None = None) -> str:
-    """sha256 hex of the canonical JSON of mechanism, params, options and flexfem version."""
+    """sha256 hex of the canonical JSON of mechanism, params, options, flexfem version and
+    the key schema (KEY_SCHEMA: cases keyed before options were normalised, such as a
+    ``dim = 2.0`` that failed in gmsh, are never reused for the normalised ``dim = 2``)."""
     payload = {"mechanism": mechanism, "params": params, "options": options,
-               "flexfem": flexfem_version() if version is None else version}
+               "flexfem": flexfem_version() if version is None else version,
+               "schema": KEY_SCHEMA}
     return hashlib.sha256(canonical_json(payload).encode()).hexdigest()
 
 
 @dataclass(frozen=True)
 class CaseResult:
     """One evaluated case: parameters, metrics (SI), wall time (s), dofs, and on failure the
-    error as "Type: message" (``status`` is "ok" or "failed")."""
+    error as "Type: message" (``status``: "ok", "failed" for the design, "error" for the
+    environment; see the module)."""
 
     key: str
     mechanism: str
@@ -90,8 +104,8 @@ class CaseResult:
     finished_at: str | None = None
 
     def __post_init__(self):
-        if self.status not in ("ok", "failed"):
-            raise ValueError(f"status = {self.status!r} must be 'ok' or 'failed'")
+        if self.status not in STATUSES:
+            raise ValueError(f"status = {self.status!r} must be one of {STATUSES}")
 
     @property
     def ok(self) -> bool:
@@ -120,13 +134,42 @@ class ResultStore:
 
     def __init__(self, path):
         self.path = Path(path)
+        if self.path.is_file() and self.path.stat().st_size == 0:
+            raise ValueError(f"{self.path}: an empty file, not a flexfem result store; delete it "
+                             "(or choose another --out) to start a new store")
         self.path.parent.mkdir(parents=True, exist_ok=True)
         self._db = sqlite3.connect(self.path, timeout=30.0)
-        self._db.execute("PRAGMA journal_mode=WAL")
-        # NORMAL in WAL mode survives a process crash (not a power cut) and keeps commits fast
-        self._db.execute("PRAGMA synchronous=NORMAL")
+        try:
+            self._db.execute("PRAGMA journal_mode=WAL")
+            # NORMAL in WAL mode survives a process crash (not a power cut), keeps commits fast
+            self._db.execute("PRAGMA synchronous=NORMAL")
+            self._migrate()
+            self._db.execute(SCHEMA)
+            self._db.commit()
+        except sqlite3.DatabaseError as error:
+            self._db.close()
+            raise self._unreadable(error) from None
+
+    def _unreadable(self, error) -> ValueError:
+        return ValueError(f"{self.path}: not a readable flexfem result store ({error}); move it "
+                          "aside or delete it and run again: its cases will be computed anew")
+
+    def _migrate(self) -> None:
+        """A store from before the "error" status: rebuild its table with the new CHECK."""
+        row = self._db.execute("SELECT sql FROM sqlite_master WHERE name = 'cases'").fetchone()
+        if row is None or "'error'" in row[0]:
+            return
+        self._db.execute("ALTER TABLE cases RENAME TO cases_before_error_status")
         self._db.execute(SCHEMA)
+        self._db.execute("INSERT INTO cases SELECT * FROM cases_before_error_status")
+        self._db.execute("DROP TABLE cases_before_error_status")
         self._db.commit()
+
+    def _query(self, sql: str) -> list:
+        try:
+            return self._db.execute(sql).fetchall()
+        except sqlite3.DatabaseError as error:
+            raise self._unreadable(error) from None
 
     def __enter__(self):
         return self
@@ -148,21 +191,27 @@ class ResultStore:
         self._db.commit()
 
     def statuses(self) -> dict[str, str]:
-        """key -> "ok" / "failed" for every stored case."""
-        return dict(self._db.execute("SELECT key, status FROM cases"))
+        """key -> "ok" / "failed" / "error" for every stored case."""
+        return dict(self._query("SELECT key, status FROM cases"))
 
     def results(self, keys=None) -> list[CaseResult]:
         """Stored cases (all, or those whose key is in ``keys``, in that order)."""
-        rows = {r[0]: r for r in self._db.execute("SELECT * FROM cases")}
+        rows = {r[0]: r for r in self._query("SELECT * FROM cases")}
         order = list(rows) if keys is None else [k for k in keys if k in rows]
-        return [_case_from_row(rows[k]) for k in order]
+        return [_case_from_row(rows[k], self.path) for k in order]
 
 
-def _case_from_row(r) -> CaseResult:
-    metrics = {k: (math.nan if v is None else v) for k, v in json.loads(r[5]).items()}
-    return CaseResult(key=r[0], mechanism=r[1], params=json.loads(r[2]), options=json.loads(r[3]),
-                      status=r[4], metrics=metrics, error=r[6], wall_time_s=r[7], dofs=r[8],
-                      worker=r[9], flexfem_version=r[10], finished_at=r[11])
+def _case_from_row(r, path) -> CaseResult:
+    try:
+        metrics = {k: (math.nan if v is None else v) for k, v in json.loads(r[5]).items()}
+        return CaseResult(key=r[0], mechanism=r[1], params=json.loads(r[2]),
+                          options=json.loads(r[3]), status=r[4], metrics=metrics, error=r[6],
+                          wall_time_s=r[7], dofs=r[8], worker=r[9], flexfem_version=r[10],
+                          finished_at=r[11])
+    except (TypeError, ValueError, AttributeError) as error:  # JSONDecodeError is a ValueError
+        raise ValueError(f"{path}: case {r[0]!r} is damaged ({type(error).__name__}: {error}); "
+                         f"delete its row (DELETE FROM cases WHERE key = '{r[0]}') or the file, "
+                         "and run again to recompute it") from None
 
 
 def table_columns(cases: list[CaseResult], rows: list[dict]) -> list[str]:

@@ -6,7 +6,10 @@ mechanism's own defaults), the evaluate options, and the designs to evaluate: th
 hypercube or Sobol, seeded, over [low, high] ranges). ``run_study`` evaluates the cases not
 yet in the SQLite store (store.py), in parallel (executors.py), recording each as it completes;
 a failing case is recorded with its error and never stops the study. Failed cases are not
-re-run unless asked (``retry_failed``): a deterministic error would only fail again.
+re-run unless asked (``retry_failed``): a deterministic error would only fail again. A case
+that the environment failed (status "error": a lost worker, an OSError, MemoryError,
+ImportError or RuntimeError -- flexfem raises ValueError subclasses for a bad design) is
+recorded with its cause and computed again by the next run.
 """
 import itertools
 import math
@@ -25,14 +28,17 @@ from .progress import Progress
 from .store import (
     CaseResult,
     ResultStore,
+    canonical_json,
     case_key,
     flexfem_version,
 )
+from .validate import check_value, normalise_options
 
 SAMPLE_METHODS = ("lhs", "sobol")
 STUDY_KEYS = {"mechanism", "name", "base", "options", "grid", "cases", "sample", "plots"}
 SAMPLE_KEYS = {"method", "n", "seed", "ranges"}
 PLOT_KEYS = {"metric", "parameter", "overlay"}
+MAX_CASES = 100_000  # designs a study may expand to unless run_study(max_cases=...) says more
 
 
 def _check_keys(table: dict, allowed: set, where: str) -> None:
@@ -63,8 +69,10 @@ class Sample:
             raise ValueError("sample.ranges is empty: give at least one parameter range")
         for name, bounds in self.ranges.items():
             if not (isinstance(bounds, (list, tuple)) and len(bounds) == 2
-                    and all(isinstance(b, (int, float)) for b in bounds)):
-                raise ValueError(f"sample.ranges.{name} = {bounds!r} must be [low, high]")
+                    and all(isinstance(b, (int, float)) and not isinstance(b, bool)
+                            and math.isfinite(b) for b in bounds)):
+                raise ValueError(f"sample.ranges.{name} = {bounds!r} must be [low, high], "
+                                 "finite numbers")
             if not bounds[0] < bounds[1]:
                 raise ValueError(f"sample.ranges.{name} = {list(bounds)!r}: lower bound "
                                  f"{bounds[0]} must be < upper bound {bounds[1]} (empty range)")
@@ -114,8 +122,10 @@ class Study:
     def __post_init__(self):
         if not isinstance(self.mechanism, str) or not self.mechanism.strip():
             raise ValueError(f"mechanism = {self.mechanism!r} must be a mechanism's name")
-        if not isinstance(self.name, str) or not self.name.strip() or "/" in self.name:
-            raise ValueError(f"name = {self.name!r} must be a non-empty name without '/'")
+        if (not isinstance(self.name, str) or not self.name.strip() or self.name in (".", "..")
+                or any(c in self.name for c in "/\\\0")):
+            raise ValueError(f"name = {self.name!r} must be a non-empty file name (no '/', "
+                             "'\\', '.' or '..'): the study's default output folder")
         for name, values in self.grid.items():
             if not isinstance(values, (list, tuple)):
                 raise ValueError(f"grid.{name} = {values!r} must be a list of values")
@@ -124,6 +134,29 @@ class Study:
         for i, case in enumerate(self.cases):
             if not isinstance(case, dict):
                 raise ValueError(f"cases[{i}] = {case!r} must be a table of parameters")
+        self._check_values()
+
+    def _check_values(self) -> None:
+        """No number written as a string anywhere (it would hash as another case), and
+        nothing that cannot be part of a case key (store.canonical_json)."""
+        named = [(f"{table}.{name}", value) for table in ("base", "options")
+                 for name, value in getattr(self, table).items()]
+        named += [(f"grid.{name}", value) for name, values in self.grid.items() for value in values]
+        named += [(f"cases[{i}].{name}", value) for i, case in enumerate(self.cases)
+                  for name, value in case.items()]
+        for where, value in named:
+            check_value(where, value)
+            try:
+                canonical_json(value)
+            except ValueError as error:
+                raise ValueError(f"{where} = {value!r}: {error}") from None
+
+    def case_count(self) -> int:
+        """How many designs the study expands to (before duplicates are dropped), computed
+        without expanding it."""
+        grid = math.prod(len(v) for v in self.grid.values()) if self.grid else 0
+        total = grid + len(self.cases) + (self.sample.n if self.sample is not None else 0)
+        return max(total, 1)
 
 
 def study_from_dict(data: dict) -> Study:
@@ -203,10 +236,24 @@ def _as_metric(value):
         return str(value)
 
 
+# raised by the machine, not the design: the case is computed again by the next run
+ENVIRONMENT_ERRORS = (OSError, MemoryError, ImportError, RuntimeError, SystemError)
+
+
+def failure_status(exc: BaseException) -> str:
+    """"error" when ``exc`` comes from the environment (ENVIRONMENT_ERRORS, but not
+    NotImplementedError, or an error marked ``environmental``: a mesh above this machine's
+    memory budget), else "failed" (the design)."""
+    environment = (isinstance(exc, ENVIRONMENT_ERRORS) and not isinstance(exc, NotImplementedError)
+                   or getattr(exc, "environmental", False) is True)
+    return "error" if environment else "failed"
+
+
 def run_case(task: dict) -> dict:
     """Evaluate one task (in whatever process runs it); never raises for a failing case.
 
-    Returns {status, metrics, error ("Type: message"), wall_time_s (s), dofs, worker}.
+    Returns {status ("ok", "failed" or "error", see failure_status), metrics, error
+    ("Type: message"), wall_time_s (s), dofs, worker}.
     """
     start = time.perf_counter()
     try:
@@ -214,7 +261,7 @@ def run_case(task: dict) -> dict:
                                                                       **task["options"]).items()}
         status, error = "ok", None
     except Exception as exc:  # a failing case is a result, not the end of the study
-        metrics, status = {}, "failed"
+        metrics, status = {}, failure_status(exc)
         error = f"{type(exc).__name__}: {exc}"
         last = traceback.extract_tb(exc.__traceback__)[-1:]
         if last:
@@ -228,7 +275,7 @@ def run_case(task: dict) -> dict:
 
 def _case_result(task: dict, result: dict | None, lost: str | None) -> CaseResult:
     if result is None:
-        result = {"status": "failed", "metrics": {}, "error": lost}
+        result = {"status": "error", "metrics": {}, "error": lost}
     return CaseResult(key=task["key"], mechanism=task["mechanism"], params=task["params"],
                       options=task["options"], flexfem_version=task["flexfem_version"], **result)
 
@@ -253,7 +300,7 @@ class StudyResult:
 
 def run_study(study: Study, store_path, evaluate, workers: int | None = None,
               scheduler: str | None = None, retry_failed: bool = False,
-              progress: bool | None = None) -> StudyResult:
+              progress: bool | None = None, max_cases: int = MAX_CASES) -> StudyResult:
     """Evaluate the study's cases missing from the store at ``store_path`` (and the failed
     ones when ``retry_failed``) with ``evaluate(params, **options) -> metrics`` (a module-level
     function, so that worker processes can import it), recording each as it completes.
@@ -262,13 +309,21 @@ def run_study(study: Study, store_path, evaluate, workers: int | None = None,
     a Dask address "tcp://HOST:PORT" (default: the FLEXFEM_SCHEDULER variable). ``progress``:
     draw a progress line on stderr (None: when stderr is a terminal). On Ctrl-C the cases in
     flight are stopped and KeyboardInterrupt propagates; what completed stays stored.
+    ``max_cases``: a study that expands to more designs is refused before expansion. The
+    options are normalised to the types ``evaluate`` declares (validate.normalise_options).
     """
     start = time.perf_counter()
+    count = study.case_count()
+    if count > max_cases:
+        raise ValueError(f"study {study.name!r} has {count:,} cases, above the limit of "
+                         f"{max_cases:,}: split it, or raise the limit (--max-cases)")
+    options = normalise_options(evaluate, study.options, study.mechanism)
+    study = Study(**{**study.__dict__, "options": options})
     tasks = [{**task, "evaluate": evaluate} for task in study_tasks(study)]
     executor = make_executor(workers, scheduler)
     with ResultStore(store_path) as store:
         statuses = store.statuses()
-        todo = [t for t in tasks if t["key"] not in statuses
+        todo = [t for t in tasks if statuses.get(t["key"], "error") == "error"
                 or (retry_failed and statuses[t["key"]] == "failed")]
         bar = Progress(len(todo), enabled=progress)
         try:

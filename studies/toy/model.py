@@ -12,13 +12,10 @@ beam, the closed-form integral for a taper). For a uniform beam the integrand is
 the trapezoid error is exactly L h^2 f''/12 = delta h^2 / (2 L^2): a pure power law, on which
 Richardson extrapolation is exact.
 
-Three extra parameters exist for testing the engine: ``sleep_s`` (wait before returning, for
-kills and parallelism), ``fail_if`` (raise a RuntimeError when non-zero) and ``crash_if`` (the
-process exits at once when non-zero, as after a segfault: only for worker processes).
+The engine's tests add hooks (sleep, fail, crash) in a mechanism of their own
+(tests/studies/toy_hooks.py), not here.
 """
 import math
-import os
-import time
 from dataclasses import dataclass, fields
 
 BASE_ELEMENTS = 8  # elements at size_factor = 1
@@ -27,8 +24,7 @@ BASE_ELEMENTS = 8  # elements at size_factor = 1
 @dataclass(frozen=True)
 class CantileverParams:
     """Cantilever design (SI units): length, width and thickness in m, Young's modulus in Pa,
-    tip load in N; ``sleep_s`` in s, ``fail_if`` (non-zero: raise) and ``crash_if`` (non-zero:
-    exit the process) are for tests only."""
+    tip load in N."""
 
     length_m: float = 0.1
     width_m: float = 0.01
@@ -36,9 +32,6 @@ class CantileverParams:
     thickness_tip_m: float = 0.002
     youngs_modulus_pa: float = 200e9
     load_n: float = 1.0
-    sleep_s: float = 0.0
-    fail_if: float = 0.0
-    crash_if: float = 0.0
 
     def __post_init__(self):
         for name in ("length_m", "width_m", "thickness_root_m", "thickness_tip_m",
@@ -46,8 +39,6 @@ class CantileverParams:
             value = getattr(self, name)
             if not value > 0:
                 raise ValueError(f"{name} = {value!r} must be > 0")
-        if not self.sleep_s >= 0:
-            raise ValueError(f"sleep_s = {self.sleep_s!r} must be >= 0")
 
 
 def second_moment_of_area(width_m: float, thickness_m: float) -> float:
@@ -113,23 +104,9 @@ def evaluate(params: dict, size_factor: float = 1.0, n_elements: int | None = No
     if unknown:
         raise ValueError(f"unknown toy parameter(s) {unknown}; known: {sorted(known)}")
     p = CantileverParams(**params)
-    if p.sleep_s:
-        time.sleep(p.sleep_s)
-    if p.crash_if:  # as a segfault in a native library would: never use in-process
-        os._exit(70)
-    if p.fail_if:
-        raise RuntimeError(f"toy cantilever asked to fail (fail_if = {p.fail_if})")
     n = elements_for(size_factor, n_elements)
     deflection = tip_deflection_trapezoid(p, n)
     exact = tip_deflection_exact(p)
     return {"tip_deflection": deflection, "tip_deflection_analytical": exact,
             "stiffness": p.load_n / deflection, "stiffness_analytical": p.load_n / exact,
             "root_stress": root_stress(p), "h": p.length_m / n, "dofs": n + 1}
-
-
-def environment_probe(params: dict, **options) -> dict:
-    """An evaluate for testing executors: the worker's process id and its OMP_NUM_THREADS /
-    OPENBLAS_NUM_THREADS / MKL_NUM_THREADS (-1 when unset), after ``params["sleep_s"]`` s."""
-    time.sleep(float(params.get("sleep_s", 0.0)))
-    return {"pid": os.getpid(), **{name.lower(): float(os.environ.get(name, -1)) for name in
-                                   ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS")}}

@@ -38,3 +38,33 @@ def test_sessions_do_not_nest():
         with pytest.raises(RuntimeError, match="already open"):
             with gmsh_session():
                 pass
+
+
+BROKEN_PIPE_AFTER_GMSH_IN_A_THREAD = """
+import os, threading
+from flexfem.fem import gmsh_session
+def mesh():
+    with gmsh_session() as gmsh:
+        gmsh.model.occ.addRectangle(0, 0, 0, 1, 1)
+        gmsh.model.occ.synchronize()
+        gmsh.model.mesh.generate(2)
+        print("nodes", len(gmsh.model.mesh.getNodes()[0]) > 4)
+thread = threading.Thread(target=mesh)
+thread.start()
+thread.join()
+read, write = os.pipe()
+os.close(read)
+try:
+    os.write(write, b"x")
+except BrokenPipeError:
+    print("after: BrokenPipeError")
+"""
+
+
+def test_a_session_runs_in_a_thread_and_keeps_sigpipe_ignored():
+    # Dask runs tasks in worker threads: a session there meshes, finalises, and leaves SIGPIPE
+    # as Python set it (restored through the C library: signal.signal refuses other threads)
+    run = subprocess.run([sys.executable, "-c", BROKEN_PIPE_AFTER_GMSH_IN_A_THREAD],
+                         capture_output=True, text=True, timeout=60)
+    assert run.returncode == 0, (run.returncode, run.stderr)
+    assert run.stdout.split("\n")[:2] == ["nodes True", "after: BrokenPipeError"]

@@ -12,6 +12,8 @@ import pytest
 from flexfem.studies.engine.store import CaseResult, ResultStore, case_key
 from flexfem.studies.engine.sweep import load_study
 from flexfem.studies.run import run_study
+from toy_hooks import HOOKS_PATH
+from toy_hooks import MECHANISM as HOOKED
 
 
 @pytest.fixture(autouse=True)
@@ -51,7 +53,7 @@ def test_store_round_trip_in_wal_mode(tmp_path):
         CaseResult(key="k", mechanism="toy", params={}, status="done")
 
 
-SLOW_STUDY = """mechanism = "toy"
+SLOW_STUDY = f"""mechanism = "{HOOKED}"
 name = "slow"
 [base]
 sleep_s = 0.25
@@ -61,7 +63,7 @@ length_m = [0.05, 0.06, 0.07, 0.08, 0.09, 0.10, 0.11, 0.12, 0.13, 0.14, 0.15, 0.
 
 
 # four quick cases, then eight that would take 30 s each: stopping must not wait for them
-STUCK_STUDY = 'mechanism = "toy"\nname = "stuck"\n' + "".join(
+STUCK_STUDY = f'mechanism = "{HOOKED}"\nname = "stuck"\n' + "".join(
     f"[[cases]]\nlength_m = {0.05 + 0.01 * i:.2f}\nsleep_s = {0.2 if i < 4 else 30.0}\n" for i in range(12))
 
 
@@ -70,9 +72,10 @@ def _start_sweep(tmp_path: Path, text: str = SLOW_STUDY) -> tuple[subprocess.Pop
     toml.write_text(text)
     out = tmp_path / "out"
     env = {k: v for k, v in os.environ.items() if k != "FLEXFEM_SCHEDULER"}
+    env["PYTHONPATH"] = os.pathsep.join(filter(None, [HOOKS_PATH, env.get("PYTHONPATH")]))
     process = subprocess.Popen(
         [sys.executable, "-m", "flexfem.studies.cli", "sweep", str(toml), "--out", str(out),
-         "--workers", "2"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env,
+         "--workers", "2", "--allow-code"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env,
         start_new_session=True,  # its own process group: the kill reaches its workers too
         # a shell without job control starts background jobs with SIGINT ignored, and Python
         # keeps it ignored: give the study the default a user's terminal gives it
@@ -113,7 +116,7 @@ def test_sigkill_loses_only_cases_in_flight_and_rerun_completes(tmp_path):
     # at most the 2 cases in flight (and the one being committed) are lost: 12 were asked
     assert 3 <= stored[0] < 12 and stored[0] == stored[1]
     study = load_study(tmp_path / "slow.toml")
-    again = run_study(study, db_path, workers=2, progress=False)
+    again = run_study(study, db_path, workers=2, progress=False, allow_code=True)
     assert (again.computed, again.reused) == (12 - stored[0], stored[0])
     assert len(again.cases) == 12 and not again.failed
 
@@ -139,7 +142,7 @@ def test_sigint_stops_the_study_at_once_and_keeps_its_rows(tmp_path):
     finally:
         if process.poll() is None:
             os.killpg(process.pid, signal.SIGKILL)
-    assert process.returncode == 2 and b"interrupted" in err
+    assert process.returncode == 130 and b"interrupted" in err and b"Traceback" not in err
     # no worker left running in its group (give the resource tracker a moment to exit)
     deadline = time.monotonic() + 3
     while _group_alive(process.pid) and time.monotonic() < deadline:
@@ -147,3 +150,32 @@ def test_sigint_stops_the_study_at_once_and_keeps_its_rows(tmp_path):
     assert not _group_alive(process.pid)
     with ResultStore(db_path) as store:
         assert list(store.statuses().values()) == ["ok"] * 4
+
+
+def test_workers_exit_by_themselves_when_the_parent_is_killed(tmp_path):
+    process, db_path = _start_sweep(tmp_path, STUCK_STUDY)
+    try:
+        _wait_for_rows(process, db_path, 4)  # both workers are now in 30-s cases
+        os.kill(process.pid, signal.SIGKILL)  # the parent only: nobody stops the workers
+        process.wait(timeout=10)
+        deadline = time.monotonic() + 10
+        while _group_alive(process.pid) and time.monotonic() < deadline:
+            time.sleep(0.1)
+        assert not _group_alive(process.pid), "orphaned workers still running"
+    finally:
+        if _group_alive(process.pid):
+            os.killpg(process.pid, signal.SIGKILL)
+
+
+def test_a_store_from_before_the_error_status_is_migrated(tmp_path):
+    from flexfem.studies.engine.store import SCHEMA
+    path = tmp_path / "old.sqlite"
+    with sqlite3.connect(path) as db:
+        db.execute(SCHEMA.replace("'ok', 'failed', 'error'", "'ok', 'failed'"))
+        db.execute("INSERT INTO cases VALUES ('k1', 'toy', '{}', '{}', 'ok', '{\"a\": 1.0}', "
+                   "NULL, 0.1, NULL, NULL, '0.1.0', '2026-01-01')")
+    with ResultStore(path) as store:
+        store.record(CaseResult(key="k2", mechanism="toy", params={}, status="error",
+                                error="BrokenProcessPool: a worker process died"))
+        assert store.statuses() == {"k1": "ok", "k2": "error"}
+        assert store.results(["k1"])[0].metrics == {"a": 1.0}

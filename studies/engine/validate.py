@@ -1,0 +1,108 @@
+"""Study values checked and normalised before they are hashed into case keys.
+
+A case key is the hash of the values a study gives (store.case_key), so two spellings of one
+design must become one value first, and a value the mechanism cannot take must be refused by
+name before anything runs: ``dim = 2.0`` is the integer option 2 (``dim = 2.5`` is refused),
+a number written as a string (``b = "0.6e-3"``) is refused rather than hashed as another case,
+an option the mechanism's evaluate does not declare is refused. The declared options and their
+types are read from the evaluate's signature: each keyword parameter's default (an int, float
+or bool) or its annotation (``int | None``) gives its type.
+"""
+import functools
+import inspect
+import math
+import numbers
+import types
+import typing
+
+KINDS = (bool, int, float, str)
+
+
+def _kind(parameter: inspect.Parameter):
+    default = parameter.default
+    if default is not inspect.Parameter.empty and default is not None:
+        return next((k for k in KINDS if isinstance(default, k)), None)
+    annotation = parameter.annotation
+    if isinstance(annotation, (types.UnionType,)) or typing.get_origin(annotation) is typing.Union:
+        annotation = next((a for a in typing.get_args(annotation) if a is not type(None)), None)
+    return annotation if annotation in KINDS else None
+
+
+def declared_options(evaluate) -> tuple[dict, bool]:
+    """({option: type or None}, accepts_any) of ``evaluate(params, **options)``; options a
+    functools.partial binds (a model file's path) are not the study's to set."""
+    try:
+        parameters = list(inspect.signature(evaluate).parameters.values())[1:]
+    except (TypeError, ValueError):  # no signature: accept anything, as before
+        return {}, True
+    bound = set(evaluate.keywords) if isinstance(evaluate, functools.partial) else set()
+    accepts_any = any(p.kind is p.VAR_KEYWORD for p in parameters)
+    options = {p.name: _kind(p) for p in parameters
+               if p.kind in (p.POSITIONAL_OR_KEYWORD, p.KEYWORD_ONLY) and p.name not in bound}
+    return options, accepts_any
+
+
+def _number_string(value) -> bool:
+    if not isinstance(value, str):
+        return False
+    try:
+        float(value)
+    except ValueError:
+        return False
+    return True
+
+
+def check_value(where: str, value) -> None:
+    """Refuse a number written as a string (``"0.6e-3"``), anywhere in a study's values."""
+    if _number_string(value):
+        raise ValueError(f"{where} = {value!r} is a number written as a string: write it "
+                         "without quotes (a string would be another case)")
+    if isinstance(value, numbers.Complex) and not isinstance(value, numbers.Real):
+        raise ValueError(f"{where} = {value!r} must be a real number")
+
+
+def _normalise(where: str, value, kind):
+    if kind is bool:
+        if not isinstance(value, bool):
+            raise ValueError(f"{where} = {value!r} must be true or false")
+        return value
+    if kind in (int, float):
+        if isinstance(value, bool) or not isinstance(value, numbers.Real):
+            raise ValueError(f"{where} = {value!r} must be a number"
+                             + (" (write it without quotes)" if _number_string(value) else ""))
+        if not math.isfinite(value):
+            raise ValueError(f"{where} = {value!r} must be finite")
+        if kind is int:
+            if value != int(value):
+                raise ValueError(f"{where} = {value!r} must be an integer")
+            return int(value)
+        return float(value)
+    if kind is str and not isinstance(value, str):
+        raise ValueError(f"{where} = {value!r} must be a string")
+    check_value(where, value)
+    return value
+
+
+def normalise_options(evaluate, options: dict, mechanism: str) -> dict:
+    """``options`` with each value of its declared type (an integral 2.0 for an int option
+    is 2); ValueError naming ``options.<name>`` for an unknown option or a value of the
+    wrong type."""
+    declared, accepts_any = declared_options(evaluate)
+    out = {}
+    for name, value in options.items():
+        if name not in declared and not accepts_any:
+            raise ValueError(f"options.{name} is not an option of mechanism {mechanism!r}; "
+                             f"its options: {sorted(declared)}")
+        out[name] = _normalise(f"options.{name}", value, declared.get(name))
+    return out
+
+
+def require_finite(values: dict, what: str) -> dict:
+    """``values`` if every real number in it is finite, else ValueError naming those that
+    are not: a NaN or an infinity is never printed or stored as a result."""
+    bad = sorted(k for k, v in values.items() if isinstance(v, numbers.Real)
+                 and not isinstance(v, bool) and not math.isfinite(v))
+    if bad:
+        raise ValueError(f"{what}: result not finite: "
+                         + ", ".join(f"{k} = {values[k]}" for k in bad))
+    return values
