@@ -98,8 +98,12 @@ def test_unsupported_models_raise(steel):
     with pytest.raises(ValueError, match="plane stress"):
         deck_lines(model, SUPPORTS)
     model = Model(beam_2d(1.0, 0.1, 0.05), steel, PlaneStress(0.01), order=1)
-    with pytest.raises(ValueError, match="only Fixed"):
-        deck_lines(model, [Prescribed("fixed", x=0.0)])
+    with pytest.raises(ValueError, match="only Fixed supports and Prescribed ones with constant"):
+        deck_lines(model, [Prescribed("fixed", x=lambda p: 0.0 * p[0])])
+    # a constant prescribed component is a *BOUNDARY line with its value
+    lines = deck_lines(model, [Prescribed("fixed", x=0.0, y=1e-3)])
+    boundary = lines[lines.index("*BOUNDARY") + 1:lines.index("*STEP")]
+    assert boundary == ["fixed, 1, 1, 0.000000000000e+00", "fixed, 2, 2, 1.000000000000e-03"]
     with pytest.raises(ValueError, match="n_modes = 0"):
         deck_lines(model, SUPPORTS, n_modes=0)
 
