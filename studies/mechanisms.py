@@ -84,6 +84,7 @@ BUILTIN = (
             Section("eightbar_fem",
                     "Eight-bar flexure suspension: FEM, stress and large-deflection path",
                     "report:reproduce"),
+            Section("eightbar_stage", "Eight-bar as a stage: compliance, modes, buckling", "stage_report:reproduce"),
         )),
     Mechanism(
         "balancing", "Five-bar parallel robot: optimum static balancing and flexure pivots",
