@@ -73,6 +73,7 @@ BUILTIN = (
                     "report:reproduce"),
             Section("dbma_optimize", "DBMA: FEM-decided hinge design search (beyond the sources)",
                     "optimize_output:reproduce"),
+            Section("dbma_dynamics", "DBMA: output compliance, FRF, bandwidth, buckling", "dynamics_report:reproduce"),
         )),
     Mechanism(
         "eightbar", "Symmetric rectilinear eight-bar flexure suspension", "eightbar",
