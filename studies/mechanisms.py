@@ -93,6 +93,7 @@ BUILTIN = (
         sections=(
             Section("balancing", "Five-bar robot: optimum static balancing and flexure pivots",
                     "report:reproduce"),
+            Section("balancing_pivot_stability", "Flexure pivots: limit point, stability margin, centre shift", "pivot_stability_report:reproduce"),
         )),
     Mechanism(
         "model", "Your own flexure from a model file (TOML + .geo, .step or .msh)", "user_model",
