@@ -11,7 +11,8 @@ the working range to well past it: the hub moment M (N m) beside the elastica cl
 free: 1 / C_tt) and the stability of the state with the hub's rotation held
 (result.stable: the reduced tangent positive definite). The moment-rotation curve has a
 limit point where dM/dtheta crosses 0: held by a moment instead of a rotation, the pivot
-would snap there; ``limit_rotation_rad`` (interpolated) over the working range's
+would snap there; ``limit_rotation_rad`` (the stationary point of the cubic Hermite
+interpolant of M and dM/dtheta around it) over the working range's
 theta_max is the snap margin. The preload margin with the rotation held is the clamped-
 guided leaf's buckling load pi^2 E I / L^2 over P = (pi / kL)^2.
 
@@ -65,12 +66,25 @@ def leaf_state(model, P: float, theta: float, steps: int) -> dict:
             "hub_dx_m": float(motion[0]), "hub_dy_m": float(motion[1])}
 
 
-def _zero_crossing(x, y) -> float:
-    """The first x where y changes sign (linear interpolation), nan if none."""
-    for k in range(1, len(y)):
-        if y[k - 1] * y[k] <= 0 and y[k] != y[k - 1]:
-            return float(x[k - 1] - y[k - 1] * (x[k] - x[k - 1]) / (y[k] - y[k - 1]))
-    return math.nan
+def hermite_extremum(theta, moment, slope) -> tuple[float, float]:
+    """(theta, moment) of the first extremum of the moment-rotation curve: where the slope
+    dM/dtheta changes sign, the stationary point of the cubic Hermite interpolant of M and its
+    slope on that interval; (nan, nan) if the slope keeps its sign."""
+    for k in range(1, len(slope)):
+        if slope[k - 1] * slope[k] > 0 or slope[k] == slope[k - 1]:
+            continue
+        h = theta[k] - theta[k - 1]
+        m0, m1, d0, d1 = moment[k - 1], moment[k], slope[k - 1] * h, slope[k] * h
+        # p(s) = a s^3 + b s^2 + d0 s + m0 on s in [0, 1]; p'(s) = 3a s^2 + 2b s + d0
+        a, b = 2 * (m0 - m1) + d0 + d1, 3 * (m1 - m0) - 2 * d0 - d1
+        roots = np.roots([3 * a, 2 * b, d0]) if abs(a) > 0 else np.array([-d0 / (2 * b)])
+        s = [float(r.real) for r in np.atleast_1d(roots) if abs(r.imag) < 1e-12
+             and -1e-9 <= r.real <= 1 + 1e-9]
+        if s:
+            u = min(s)
+            return (float(theta[k - 1] + u * h),
+                    float(a * u ** 3 + b * u ** 2 + d0 * u + m0))
+    return math.nan, math.nan
 
 
 def negative_pivot_limit(pivot, fractions, steps: int = 3) -> dict:
@@ -86,18 +100,17 @@ def negative_pivot_limit(pivot, fractions, steps: int = 3) -> dict:
                     "elastica_stable": bool(ela.stable)})
         rows.append(row)
     theta = [r["theta_rad"] for r in rows]
-    limit = _zero_crossing(theta, [r["tangent_stiffness_Nm_per_rad"] for r in rows])
+    slopes = [r["tangent_stiffness_Nm_per_rad"] for r in rows]
+    limit, limit_moment = hermite_extremum(theta, [r["moment_fem_Nm"] for r in rows], slopes)
     working = [r for r in rows if r["fraction_of_theta_max"] <= 1.0]
     buckling = math.pi ** 2 * E * I / L ** 2
     return {"L_m": L, "P_N": P, "kL": pivot.kL, "theta_max_rad": pivot.theta_max,
             "stiffness_design_Nm_per_rad": pivot.stiffness, "rows": rows,
             "limit_rotation_rad": limit, "limit_margin": limit / pivot.theta_max,
-            "limit_moment_Nm": float(np.interp(limit, theta, [r["moment_fem_Nm"] for r in rows]))
-            if math.isfinite(limit) else math.nan,
+            "limit_moment_Nm": limit_moment,
             "stable_over_working_range": all(r["stable_rotation_held"] for r in working),
             "tangent_stiffness_at_theta_max_Nm_per_rad":
-                float(np.interp(pivot.theta_max, theta,
-                                [r["tangent_stiffness_Nm_per_rad"] for r in rows])),
+                float(np.interp(pivot.theta_max, theta, slopes)),
             "preload_buckling_N": buckling, "preload_margin": buckling / P}
 
 

@@ -59,7 +59,7 @@ def comparisons(out: dict) -> list[Comparison]:
               "compressed-leaf elastica (negative_pivot.py)", "derived", tolerance=0.01),
             C(f"negative pivot (motor {n['motor']}): limit-point rotation / theta_max",
               n["limit_margin"], 1.0, "-", "the working range", "derived", limit="lower",
-              headline=True, note=f"dM/dtheta = 0 at {math.degrees(n['limit_rotation_rad']):.1f}"
+              headline=n is out["negative"][0], note=f"dM/dtheta = 0 at {math.degrees(n['limit_rotation_rad']):.1f}"
               f" deg; stable with the rotation held over the working range: "
               f"{n['stable_over_working_range']}; preload margin (pi/kL)^2 = "
               f"{n['preload_margin']:.3g}"),
