@@ -64,8 +64,9 @@ def _summarize_eightbar_stage(r: dict) -> str:
             f"{s['parasitic_rotation_max']:.3g} rad/m\nmodes f1 {s['f1_hz_min']:.4g}-"
             f"{s['f1_hz_max']:.4g} Hz, f2 {s['f2_hz_min']:.4g}-{s['f2_hz_max']:.4g} Hz, f3 "
             f"{s['f3_hz_min']:.4g}-{s['f3_hz_max']:.4g} Hz; buckling: drive force "
-            f"{b['drive_critical_n']:.4g} N = {b['drive_factor']:.3g} x the end-of-stroke drive, "
-            f"off-axis (y) {b['off_axis_critical_n']:.4g} N")
+            f"{b['drive_critical_n']:.4g} N = {b['drive_factor']:.3g} x the end-of-stroke drive"
+            + (f", off-axis (y) {b['off_axis_critical_n']:.4g} N" if "off_axis_critical_n" in b
+               else ""))
 
 
 def _run_eightbar_mesh(args) -> dict:

@@ -5,6 +5,7 @@ import json
 
 import numpy as np
 import pytest
+from flexfem.geometry.eightbar.flexure import EightBarFlexureParams
 from flexfem.studies.cli import main
 from flexfem.studies.eightbar import cli as eightbar_cli
 from flexfem.studies.eightbar.stage import stage_study
@@ -48,7 +49,19 @@ def test_modes_and_buckling(stage):
     assert stage["summary"]["f1_hz_max"] / stage["summary"]["f1_hz_min"] < 1.01
     b = stage["buckling"]
     assert b["drive_factor"] > 10 and b["drive_critical_n"] > b["drive_force_n"]
-    assert b["off_axis_critical_n"] > 0
+    assert "off_axis_critical_n" not in b  # full mode only
+
+
+def test_off_axis_buckling_both_senses():
+    # the stage_study's full-mode load case on the coarse mesh: a force across the stroke
+    from flexfem.studies.eightbar.analysis import build_model
+    from flexfem.studies.eightbar.stage import buckling
+    model, _ = build_model(EightBarFlexureParams(), 2.0)
+    b = buckling(model, 0.757, (1.0, -1.0))
+    assert b["off_axis_critical_plus_y_n"] > 0 and b["off_axis_critical_minus_y_n"] > 0
+    assert b["off_axis_critical_n"] == min(b["off_axis_critical_plus_y_n"],
+                                           b["off_axis_critical_minus_y_n"])
+    assert b["drive_factor"] == pytest.approx(b["drive_critical_n"] / 0.757)
 
 
 def test_cli_stage_json(stage, capsys, monkeypatch):
