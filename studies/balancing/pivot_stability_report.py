@@ -15,7 +15,8 @@ from .pivot_stability import pivot_stability_study
 def plot_curves(out: dict, path: Path) -> dict:
     """Left: hub moment against rotation (FEM, elastica); right: centre shift (FEM, closed)."""
     plt = pyplot()
-    fig, (ax, ax2) = plt.subplots(1, 2, figsize=(11, 4))
+    fig, (ax, ax2) = plt.subplots(1, 2, figsize=(13, 4),
+                                  gridspec_kw={"width_ratios": (1, 1), "wspace": 0.9})
     for n in out["negative"]:
         th = np.degrees([r["theta_rad"] for r in n["rows"]])
         ax.plot(th, [r["moment_fem_Nm"] for r in n["rows"]], "o-",
@@ -39,7 +40,6 @@ def plot_curves(out: dict, path: Path) -> dict:
         ax2.set_xlabel(axis_label("pivot rotation", "deg"))
         ax2.set_ylabel(axis_label("centre shift", "um"))
         ax2.legend(fontsize="small")
-    fig.tight_layout()
     return save(fig, path, (
         "Left: compressed-leaf (negative-stiffness) pivots, hub moment against rotation at the "
         "design preload, FEM (rotation control, each point its own large-deflection solve) and "
@@ -57,6 +57,11 @@ def comparisons(out: dict) -> list[Comparison]:
             C(f"negative pivot (motor {n['motor']}): hub moment at theta_max",
               last["moment_fem_Nm"], last["moment_elastica_Nm"], "N m",
               "compressed-leaf elastica (negative_pivot.py)", "derived", tolerance=0.01),
+            C(f"negative pivot (motor {n['motor']}): limit-point rotation",
+              n["limit_rotation_rad"], n["limit_rotation_elastica_rad"], "rad",
+              "compressed-leaf elastica: largest |M| at the design preload", "derived",
+              tolerance=0.03, note=f"moment there {n['limit_moment_Nm']:.4g} N m (elastica "
+              f"{n['limit_moment_elastica_Nm']:.4g})"),
             C(f"negative pivot (motor {n['motor']}): limit-point rotation / theta_max",
               n["limit_margin"], 1.0, "-", "the working range", "derived", limit="lower",
               headline=n is out["negative"][0], note=f"dM/dtheta = 0 at {math.degrees(n['limit_rotation_rad']):.1f}"
