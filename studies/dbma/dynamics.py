@@ -139,15 +139,25 @@ def working_frequency(model, supports=None) -> tuple[float, list]:
     return float(modes.frequencies_hz[k]), [float(f) for f in modes.frequencies_hz]
 
 
+def actuator_sweep(bare, stiffnesses=(1e7, 4e7, 1.6e8, 6.4e8, 2.56e9)) -> list:
+    """The working frequency (Hz) with the actuator rod's stiffness (N/m) at each of
+    ``stiffnesses``: [{"actuator_stiffness", "working_frequency_hz"}]."""
+    return [{"actuator_stiffness": float(k),
+             "working_frequency_hz": working_frequency(with_actuator(bare, k))[0]}
+            for k in stiffnesses]
+
+
 def frf_study(damping: float | None = None, dim: int = 2, size_factor: float = 1.0,
-              sensitivity: bool = True, buckling: bool = True, params=None) -> dict:
+              sensitivity: bool = True, buckling: bool = True, params=None,
+              sweep: bool = False) -> dict:
     """The dynamics study (see the module), SI units; ``damping`` default the data's 2 %.
     Keys: dim, dofs, damping, actuator_stiffness (N/m), working_frequency_hz (actuator rod in
     place), working_frequency_pads_held_hz (pads held along x: a rigid actuator, the bound),
     modal_frequencies_hz (first six), output {k_out, k_lateral, parasitic_lateral,
     parasitic_rotation, matrix, point_m}, static_output_m_per_n, the FRF's bandwidths
     (:func:`bandwidths`) and samples (frf_frequencies_hz, amplitude_m_per_n, phase_rad), paper {fn_fem_hz, fn_measured_hz, bandwidth_hz},
-    sensitivity (bandwidths and samples per damping ratio) and buckling (:func:`hinge_buckling`)."""
+    sensitivity (bandwidths and samples per damping ratio), buckling (:func:`hinge_buckling`)
+    and, with ``sweep``, actuator_sweep (:func:`actuator_sweep`)."""
     data, a = published(), assumed()
     zeta = a["damping"] if damping is None else float(damping)
     if not (math.isfinite(zeta) and 0 < zeta < 1):
@@ -172,4 +182,6 @@ def frf_study(damping: float | None = None, dim: int = 2, size_factor: float = 1
                               for z in a["sensitivity"]]
     if buckling:
         out["buckling"] = hinge_buckling(bare, float(data["loading"]["force_max_N"]))
+    if sweep:
+        out["actuator_sweep"] = actuator_sweep(bare)
     return out
