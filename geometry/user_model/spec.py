@@ -135,6 +135,16 @@ def _check_groups(spec_parts: dict, groups: dict, geometry: Path, dim: int, loc:
             raise loc.error(f"[[loads]] group {group!r} is a {dim}-D subdomain of "
                             f"{geometry.name}; a force or traction needs a boundary group "
                             f"(dimension {dim - 1})", table, "group", i)
+    analysis = spec_parts["analysis"]
+    named = [("compliance", analysis.compliance, dim - 1)]
+    if analysis.harmonic:
+        named.append(("harmonic", analysis.harmonic.group, None))
+    for key, group, needed in named:
+        if group is not None and (groups.get(group) not in (dim - 1, dim)
+                                  or needed not in (None, groups[group])):
+            raise loc.error(f"[analysis] {key} group {group!r} is not a "
+                            f"{'boundary ' if needed is not None else ''}group of "
+                            f"{geometry.name}; groups: {listed or 'none'}", "analysis", key)
     for r in spec_parts["mesh"].refine:
         if r.group not in groups:
             raise loc.error(f"[mesh] refine group {r.group!r} is not a group of "

@@ -91,13 +91,33 @@ class SelectRule:
 
 
 @dataclass(frozen=True)
+class Harmonic:
+    """A frequency response of the model file's loads: ``group``'s mean displacement along
+    ``component`` ('x', 'y', 'z') at ``points`` frequencies from 0 to ``f_max`` (Hz), modal
+    damping ratio ``damping`` (-), ``n_modes`` modes (plus the static correction)."""
+
+    group: str
+    component: str
+    f_max: float
+    points: int = 201
+    damping: float = 0.02
+    n_modes: int = 20
+
+
+@dataclass(frozen=True)
 class Analysis:
     """modes: number of natural frequencies (None: none); steps: load steps of a nonlinear
-    (large-deflection) solve (None: linear only); solver: 'auto', 'direct' or 'amg'."""
+    (large-deflection) solve (None: linear only); solver: 'auto', 'direct' or 'amg';
+    compliance: a boundary group whose rigid-face compliance matrix is reported (None: none);
+    buckling: number of linear buckling factors of the loads (None: none); harmonic: a
+    Harmonic (None: none)."""
 
     modes: int | None = None
     steps: int | None = None
     solver: str = "auto"
+    compliance: str | None = None
+    buckling: int | None = None
+    harmonic: Harmonic | None = None
 
 
 def is_number(value) -> bool:
@@ -269,10 +289,44 @@ def parse_selects(raw, loc: Locator) -> tuple:
     return tuple(out)
 
 
+def parse_harmonic(raw, loc: Locator) -> Harmonic:
+    """[analysis] harmonic = { group, component, f_max, points, damping, n_modes }."""
+    what = "[analysis] harmonic"
+    raw = check_keys(raw, ("group", "component", "f_max", "points", "damping", "n_modes"),
+                     loc, "analysis", what=what)
+    for key in ("group", "component", "f_max"):
+        if key not in raw:
+            raise loc.error(f"{what}: '{key}' is required", "analysis", "harmonic")
+    if not isinstance(raw["group"], str):
+        raise loc.error(f"{what} group = {raw['group']!r} must be a group name", "analysis",
+                        "harmonic")
+    if raw["component"] not in ("x", "y", "z"):
+        raise loc.error(f"{what} component = {raw['component']!r}; choose x, y or z",
+                        "analysis", "harmonic")
+    checks = {"f_max": lambda v: is_number(v) and v > 0,
+              "points": lambda v: isinstance(v, int) and not isinstance(v, bool) and v >= 3,
+              "damping": lambda v: is_number(v) and 0 < v < 1,
+              "n_modes": lambda v: isinstance(v, int) and not isinstance(v, bool) and v >= 1}
+    for key, ok in checks.items():
+        if key in raw and not ok(raw[key]):
+            raise loc.error(f"{what} {key} = {raw[key]!r} is not valid (f_max > 0 Hz, points "
+                            ">= 3, 0 < damping < 1, n_modes >= 1)", "analysis", "harmonic")
+    return Harmonic(**{k: (float(v) if k in ("f_max", "damping") else v)
+                       for k, v in raw.items()})
+
+
 def parse_analysis(raw, loc: Locator) -> Analysis:
-    raw = check_keys(raw, ("modes", "steps", "solver"), loc, "analysis")
+    raw = check_keys(raw, ("modes", "steps", "solver", "compliance", "buckling", "harmonic"),
+                     loc, "analysis")
     values = {}
-    for key in ("modes", "steps"):
+    if "compliance" in raw:
+        if not isinstance(raw["compliance"], str):
+            raise loc.error(f"[analysis] compliance = {raw['compliance']!r} must be the name "
+                            "of a boundary group (the face made rigid)", "analysis", "compliance")
+        values["compliance"] = raw["compliance"]
+    if "harmonic" in raw:
+        values["harmonic"] = parse_harmonic(raw["harmonic"], loc)
+    for key in ("modes", "steps", "buckling"):
         if key in raw:
             v = raw[key]
             if not (isinstance(v, int) and not isinstance(v, bool) and v >= 1):
@@ -283,4 +337,5 @@ def parse_analysis(raw, loc: Locator) -> Analysis:
     if solver not in SOLVERS:
         raise loc.error(f"[analysis] solver = {solver!r}; choose one of {', '.join(SOLVERS)}",
                         "analysis", "solver")
-    return Analysis(values.get("modes"), values.get("steps"), solver)
+    return Analysis(values.get("modes"), values.get("steps"), solver,
+                    values.get("compliance"), values.get("buckling"), values.get("harmonic"))

@@ -9,6 +9,7 @@ from ...geometry.dbma.params import paper_design
 from ..options import positive
 from .analysis import (actuator_loads, analyze_dbma, build_model, modal_supports,
                        static_supports)
+from .dynamics import frf_study
 
 MESH_SUFFIXES = (".msh", ".vtu", ".xdmf", ".inp")
 DECK_FORCE = 800.0  # N, the actuator force of the paper's tests (Sec. 5) and of analyze
@@ -43,6 +44,39 @@ def summarize_analyze(r: dict) -> str:
         f"({r['fn_working']:.1f} Hz; Eq. 20: {r['fn_eq20']:.1f} Hz)",
         *(f"note: {note}" for note in r.get("validity_notes", [])),
     ])
+
+
+def run_frf(args) -> dict:
+    return frf_study(damping=args.damping, dim=args.dim, size_factor=args.size_factor)
+
+
+def summarize_frf(r: dict) -> str:
+    o, p, b = r["output"], r["paper"], r["buckling"]
+    lines = [
+        f"DBMA dynamics, {r['dim']}-D FEM, {r['dofs']} DOFs, actuator rod "
+        f"{r['actuator_stiffness']:.3g} N/m, modal damping {100 * r['damping']:.3g} %",
+        f"output stiffness {o['k_out']:.4g} N/m, lateral {o['k_lateral']:.4g} N/m; parasitic "
+        f"lateral {o['parasitic_lateral']:.3g} m/m, rotation {o['parasitic_rotation']:.3g} rad/m",
+        f"static output / force {r['static_output_m_per_n']:.4g} m/N; resonance "
+        f"{r['resonance_hz']:.1f} Hz (pads held: {r['working_frequency_pads_held_hz']:.1f} Hz; "
+        f"paper {p['fn_measured_hz']:.4g} measured, {p['fn_fem_hz']:.4g} FEM)",
+        f"-3 dB bandwidth {r['bandwidth_minus3db_hz']:.1f} Hz (paper: up to "
+        f"{p['bandwidth_hz']:.0f} Hz), flat (+-3 dB) to {r['flat_bandwidth_hz']:.1f} Hz, "
+        f"half-power width {r['half_power_bandwidth_hz']:.2f} Hz",
+    ]
+    lines += [f"  zeta {100 * s['damping']:.3g} %: resonance {s['resonance_hz']:.1f} Hz, peak x"
+              f"{s['amplification_at_resonance']:.3g}, -3 dB bandwidth "
+              f"{s['bandwidth_minus3db_hz']:.1f} Hz" for s in r.get("sensitivity", [])]
+    lines.append(f"hinge buckling at {b['force_n']:.0f} N: factor {b['factor']:.3g} "
+                 f"(critical actuator force {b['critical_force_n']:.4g} N)")
+    return "\n".join(lines)
+
+
+def _ratio(text: str) -> float:
+    value = float(text)
+    if not 0 < value < 1:
+        raise ValueError(f"{text!r} must be a damping ratio in (0, 1)")
+    return value
 
 
 def run_mesh(args) -> dict:
@@ -105,6 +139,15 @@ def register(subparsers):
                               "available memory affords)")
     analyze.add_argument("--json", action="store_true", help="print one JSON object")
     analyze.set_defaults(run=run_analyze, summarize=summarize_analyze)
+    frf = commands.add_parser("frf", help="output compliance, FRF from actuator force to "
+                              "output, bandwidth, hinge buckling at 800 N")
+    frf.add_argument("--damping", type=_ratio, default=None,
+                     help="modal damping ratio (default 0.02, steel; data/dbma_paper.toml)")
+    frf.add_argument("--dim", type=int, choices=(2, 3), default=2)
+    frf.add_argument("--size-factor", type=_positive, default=1.0,
+                     help="mesh size multiplier (default 1)")
+    frf.add_argument("--json", action="store_true", help="print one JSON object")
+    frf.set_defaults(run=run_frf, summarize=summarize_frf)
     mesh = commands.add_parser("mesh", help="write the default mesh that analyze solves")
     mesh.add_argument("out", help="output file: .msh, .vtu, .xdmf or .inp")
     mesh.add_argument("--h", type=float, help="hinge offset h (m), default the paper's 2.6e-3")

@@ -8,6 +8,7 @@ from ...geometry.eightbar.flexure import THESIS_TRAVEL
 from ...geometry.eightbar.rigid import EightBarParams
 from ..options import positive
 from .path import eightbar_path_summary, trace_classic
+from .stage import stage_study
 
 LINKAGE_CHOICES = ["watt", "roberts", "chebyshev", "peaucellier", "modified_peaucellier"]
 
@@ -57,6 +58,24 @@ def _summarize_eightbar_analyze(r: dict) -> str:
             f"force {r['end_force_n']:.3g} N, first mode {r['modes'][0]['f_hz']:.3g} Hz")
 
 
+def _run_eightbar_stage(args) -> dict:
+    return stage_study(quick=args.quick)
+
+
+def _summarize_eightbar_stage(r: dict) -> str:
+    s, b = r["summary"], r["buckling"]
+    return (f"eight-bar stage ({r['dofs']} DOFs) over {r['travel_m'] * 1e3:.4g} mm: k_x "
+            f"{s['k_x_min']:.4g}-{s['k_x_max']:.4g} N/m, support k_y >= {s['k_y_min']:.4g} N/m "
+            f"(k_y/k_x >= {s['support_ratio_min']:.4g}), k_theta >= {s['k_theta_min']:.4g} N m/rad, "
+            f"parasitic y <= {s['parasitic_y_max']:.3g} m/m, rotation <= "
+            f"{s['parasitic_rotation_max']:.3g} rad/m\nmodes f1 {s['f1_hz_min']:.4g}-"
+            f"{s['f1_hz_max']:.4g} Hz, f2 {s['f2_hz_min']:.4g}-{s['f2_hz_max']:.4g} Hz, f3 "
+            f"{s['f3_hz_min']:.4g}-{s['f3_hz_max']:.4g} Hz; buckling: drive force "
+            f"{b['drive_critical_n']:.4g} N = {b['drive_factor']:.3g} x the end-of-stroke drive"
+            + (f", off-axis (y) {b['off_axis_critical_n']:.4g} N" if "off_axis_critical_n" in b
+               else ""))
+
+
 def _run_eightbar_mesh(args) -> dict:
     mesh, sizes = mesh_eightbar_flexure(EightBarFlexureParams(), size_factor=args.size_factor)
     path = write_mesh(mesh, args.out, order=args.order)
@@ -71,7 +90,8 @@ def _summarize_eightbar_mesh(r: dict) -> str:
 
 
 def add_eightbar_commands(eb_sub) -> None:
-    """Add ``trace``, ``analyze`` and ``mesh`` to the ``eightbar`` sub-command parsers."""
+    """Add ``trace``, ``analyze``, ``stage`` and ``mesh`` to the ``eightbar`` sub-command
+    parsers."""
     p = eb_sub.add_parser("trace", help="trace the rigid-body eight-bar's end-effector path")
     p.add_argument("--travel", type=positive, default=THESIS_TRAVEL,
                    help="end-effector stroke traced, m (default the thesis' 33.1 mm, Ch. 5)")
@@ -85,6 +105,11 @@ def add_eightbar_commands(eb_sub) -> None:
     p.add_argument("--quick", action="store_true", help="coarse mesh, half stroke mirrored")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(run=_run_eightbar_analyze, summarize=_summarize_eightbar_analyze)
+    p = eb_sub.add_parser("stage", help="the suspension as a stage: compliance, support "
+                          "stiffness, modes and buckling along the stroke")
+    p.add_argument("--quick", action="store_true", help="coarse mesh, half stroke mirrored")
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.set_defaults(run=_run_eightbar_stage, summarize=_summarize_eightbar_stage)
     p = eb_sub.add_parser("mesh", help="write the flexure suspension's mesh (.msh .vtu .xdmf .inp)")
     p.add_argument("out", help="output file; the format follows the extension")
     p.add_argument("--size-factor", type=float, default=1.0, help="element size factor")

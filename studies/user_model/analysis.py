@@ -5,7 +5,8 @@ import re
 import numpy as np
 
 from ...fem import (Fixed, Force, Model, PlaneStrain, PlaneStress, Prescribed, Solid3D,
-                    Traction, solve_modes, solve_nonlinear, solve_static)
+                    Traction, compliance_matrix, solve_buckling, solve_harmonic, solve_modes,
+                    solve_nonlinear, solve_static)
 from ...geometry.user_model import ModelSpec, load_spec, mesh_geometry
 
 _AXES = ("x", "y", "z")
@@ -76,7 +77,7 @@ def analyze_model(spec: ModelSpec, size_factor: float = 1.0) -> dict:
     max_von_mises_location (m), mean_displacement {group: vector (m)} of every support and
     load group, reactions {group: vector (N)} of every support, stiffness {group: {axis:
     N/m}} (single force load), frequencies_hz (when [analysis] modes), nonlinear (when
-    [analysis] steps)."""
+    [analysis] steps), compliance / buckling / harmonic (when asked; see :func:`_precision`)."""
     supports, loads = supports_and_loads(spec)
     try:
         model = build_model(spec, size_factor)
@@ -103,6 +104,38 @@ def analyze_model(spec: ModelSpec, size_factor: float = 1.0) -> dict:
         out["frequencies_hz"] = modes.frequencies_hz.tolist()
     if spec.analysis.steps:
         out["nonlinear"] = _nonlinear(spec, model, supports, loads, groups)
+    try:
+        out.update(_precision(spec, model, supports, loads))
+    except ValueError as error:
+        raise _in_context(spec, error) from None
+    return out
+
+
+def _precision(spec, model, supports, loads) -> dict:
+    """[analysis] compliance, buckling and harmonic: {"compliance": {group, matrix, point_m,
+    stiffness, principal_compliances, centre_of_compliance_m}, "buckling": {load_factors},
+    "harmonic": {group, component, damping, resonances_hz, static, frequencies_hz,
+    amplitude, phase_rad}} (SI; those asked for)."""
+    a, out = spec.analysis, {}
+    if a.compliance:
+        c = compliance_matrix(model, supports, a.compliance)
+        out["compliance"] = {"group": a.compliance, "matrix": c.matrix.tolist(),
+                             "point_m": c.point.tolist(), "stiffness": c.stiffness.tolist(),
+                             "principal_compliances": c.principal()[0].tolist(),
+                             "centre_of_compliance_m": c.centre_of_compliance.tolist()}
+    if a.buckling:
+        b = solve_buckling(model, supports, loads, n=a.buckling)
+        out["buckling"] = {"load_factors": b.load_factors.tolist()}
+    if a.harmonic:
+        h = a.harmonic
+        freqs = np.linspace(0.0, h.f_max, h.points)
+        frf = solve_harmonic(model, supports, loads, freqs, damping=h.damping,
+                             n_modes=h.n_modes).frf(h.group, h.component)
+        out["harmonic"] = {"group": h.group, "component": h.component, "damping": h.damping,
+                           "resonances_hz": frf.peaks().tolist(),
+                           "static": float(frf.response[0].real),
+                           "frequencies_hz": freqs.tolist(), "amplitude": frf.amplitude.tolist(),
+                           "phase_rad": frf.phase.tolist()}
     return out
 
 
@@ -137,6 +170,13 @@ def flat_metrics(result: dict) -> dict[str, float]:
             out[f"stiffness_{_key(group)}_{axis}"] = value
     for k, f in enumerate(result.get("frequencies_hz", []), start=1):
         out[f"f{k}_hz"] = float(f)
+    for k, f in enumerate(result.get("buckling", {}).get("load_factors", []), start=1):
+        out[f"buckling_factor_{k}"] = float(f)
+    if "compliance" in result:
+        for i, row in enumerate(result["compliance"]["matrix"]):
+            out[f"compliance_{i}{i}"] = float(row[i])
+    if result.get("harmonic", {}).get("resonances_hz"):
+        out["harmonic_resonance_hz"] = float(result["harmonic"]["resonances_hz"][0])
     return out
 
 

@@ -50,6 +50,20 @@ def summarize(result: dict) -> str:
     if "frequencies_hz" in result:
         lines.append("natural frequencies: " + ", ".join(f"{f:.4g}" for f in
                                                           result["frequencies_hz"]) + " Hz")
+    if "compliance" in result:
+        c = result["compliance"]
+        lines.append(f"compliance of {c['group']!r} (rigid face at {_vector(c['point_m'], 'm')}"
+                     "): diagonal " + _vector([r[i] for i, r in enumerate(c["matrix"])],
+                                              "(m/N, rad/(N m))"))
+    if "buckling" in result:
+        lines.append("buckling load factors: " + ", ".join(
+            f"{f:.4g}" for f in result["buckling"]["load_factors"]))
+    if "harmonic" in result:
+        h = result["harmonic"]
+        lines.append(f"harmonic response of {h['group']!r} along {h['component']} "
+                     f"({100 * h['damping']:.3g} % damping): static {h['static']:.4g} m, "
+                     "resonances " + (", ".join(f"{f:.4g}" for f in h["resonances_hz"])
+                                      or "none in range") + " Hz")
     if "nonlinear" in result:
         nl = result["nonlinear"]
         for group, u in nl["mean_displacement"].items():

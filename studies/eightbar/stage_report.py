@@ -1,0 +1,113 @@
+"""``reproduce()`` of the eight-bar stage section: compliance, support stiffness, modes and
+buckling along the stroke (:mod:`.stage`), with figures, CSV tables and comparison rows."""
+from pathlib import Path
+
+from ..engine.tables import write_rows
+from ..report.comparison import Comparison, rows as comparison_rows
+from ..report.figures import axis_label, legend_outside, pyplot, save
+from .stage import stage_study
+
+STROKE_COLUMNS = ["x_m", "y_m", "rotation_rad", "force_x_n", "k_x", "k_y", "support_ratio",
+                  "k_theta", "parasitic_y", "parasitic_rotation", "f1_hz", "f2_hz", "f3_hz",
+                  "mirrored"]
+
+
+def plot_stiffness(out: dict, path: Path) -> dict:
+    """k_x, k_y, k_y / k_x and k_theta against the stroke."""
+    plt = pyplot()
+    rows = out["stroke"]
+    x = [r["x_m"] * 1e3 for r in rows]
+    fig, (ax, ax2) = plt.subplots(1, 2, figsize=(10, 3.8))
+    ax.semilogy(x, [r["k_x"] for r in rows], "o-", label="k_x (drive), N/m")
+    ax.semilogy(x, [r["k_y"] for r in rows], "s-", label="k_y (support, motion held), N/m")
+    ax.semilogy(x, [r["k_theta"] for r in rows], "^-", label="k_theta (rotation), N m/rad")
+    ax.set_xlabel(axis_label("stroke x", "mm"))
+    ax.set_ylabel("stiffness")
+    legend_outside(ax)
+    ax2.plot(x, [r["support_ratio"] for r in rows], "o-")
+    ax2.set_xlabel(axis_label("stroke x", "mm"))
+    ax2.set_ylabel(axis_label("support-stiffness ratio k_y / k_x", "-"))
+    fig.tight_layout()
+    s = out["summary"]
+    return save(fig, path, (
+        "The end-effector face's stiffness from its 3 x 3 tangent compliance about the "
+        "large-deflection state at each stroke position: drive stiffness k_x, support stiffness "
+        "across the motion k_y (motion held, rotation free) and rotational stiffness k_theta "
+        f"(forces free); right, k_y / k_x, at least {s['support_ratio_min']:.3g} over the stroke."))
+
+
+def plot_frequencies(out: dict, path: Path) -> dict:
+    """The first three prestressed natural frequencies against the stroke."""
+    plt = pyplot()
+    rows = out["stroke"]
+    x = [r["x_m"] * 1e3 for r in rows]
+    fig, ax = plt.subplots(figsize=(6.5, 3.8))
+    for i, marker in zip((1, 2, 3), "os^"):
+        ax.plot(x, [r[f"f{i}_hz"] for r in rows], marker + "-", label=f"mode {i}")
+    ax.set_xlabel(axis_label("stroke x", "mm"))
+    ax.set_ylabel(axis_label("natural frequency", "Hz"))
+    legend_outside(ax)
+    return save(fig, path, (
+        "First three natural frequencies of the suspension, prestressed about the "
+        "large-deflection state at each stroke position (end-effector free: the drive "
+        "disconnected)."))
+
+
+def comparisons(out: dict, k_x_linear: float) -> list[Comparison]:
+    """The stage's numbers as report rows: the linear k_x check, and the stroke extremes."""
+    s, b, lin = out["summary"], out["buckling"], out["linear"]
+    C = Comparison
+    return [
+        C("stage: drive stiffness k_x from the compliance matrix (drawn pose)", lin["k_x"],
+          k_x_linear, "N/m", "the face driven along x (analysis.linear_analysis)", "derived",
+          tolerance=1e-3, note="two routes to the same linear stiffness"),
+        C("stage: least support-stiffness ratio k_y / k_x over the stroke",
+          s["support_ratio_min"], lin["support_ratio"], "-",
+          "the drawn pose (linear compliance)", "derived", tolerance=0.2, headline=True,
+          note=f"k_y >= {s['k_y_min']:.4g} N/m at every position: the suspension stays stiff "
+               "across the motion over the whole stroke (within 20 % of the drawn pose's ratio)"),
+        C("stage: least rotational stiffness over the stroke", s["k_theta_min"],
+          lin["k_theta"], "N m/rad", "the drawn pose (linear)", "derived",
+          note="how far the stiffness against a payload's moment falls along the stroke"),
+        C("stage: buckling factor of the flexures under the drive force", b["drive_factor"],
+          1.0, "-", "the end-of-stroke drive force", "derived", limit="lower",
+          note=f"critical drive force {b['drive_critical_n']:.4g} N (linear buckling, force on "
+               f"the free end-effector face) over {b['drive_force_n']:.3g} N", headline=True),
+    ] + ([C("stage: critical off-axis load (across the stroke)", b["off_axis_critical_n"],
+             b["drive_force_n"], "N", "the end-of-stroke drive force", "derived",
+             limit="lower", note=b["off_axis_load"])] if "off_axis_critical_n" in b else [])
+
+
+def paragraph(out: dict) -> str:
+    s, b = out["summary"], out["buckling"]
+    return (
+        "The suspension judged as a precision stage: the end-effector face's 3 x 3 compliance "
+        "at the drawn pose and, tangent about the large-deflection state, at "
+        f"{len(out['stroke'])} positions over the {out['travel_m'] * 1e3:.3g} mm stroke. It "
+        f"stays stiff across the motion everywhere: k_y >= {s['k_y_min']:.4g} N/m against a "
+        f"drive stiffness of {s['k_x_min']:.3g}-{s['k_x_max']:.3g} N/m, k_y / k_x >= "
+        f"{s['support_ratio_min']:.3g}; its rotational stiffness falls to "
+        f"{s['k_theta_min']:.3g} N m/rad at the ends, and a push along x turns the face by up "
+        f"to {s['parasitic_rotation_max']:.3g} rad/m. The first mode (the drive mode) stays at "
+        f"{s['f1_hz_min']:.3g}-{s['f1_hz_max']:.3g} Hz along the stroke. The flexures buckle "
+        f"under a drive force {b['drive_factor']:.3g} times the end-of-stroke drive"
+        + (f", and under {b['off_axis_critical_n']:.3g} N across the stroke."
+           if "off_axis_critical_n" in b else " (quick: no off-axis load case)."))
+
+
+def reproduce(out_dir, quick: bool = False) -> dict:
+    """Run :func:`.stage.stage_study` and write its figures and tables; the section summary."""
+    out_dir = Path(out_dir)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    out = stage_study(quick=quick)
+    k_x_linear = out["linear_analysis"]["k_x"]
+    figures = [plot_stiffness(out, out_dir / "eightbar_stage_stiffness.png"),
+               plot_frequencies(out, out_dir / "eightbar_stage_modes.png")]
+    write_rows(out_dir / "eightbar_stage_stroke.csv", out["stroke"], STROKE_COLUMNS)
+    write_rows(out_dir / "eightbar_stage_buckling.csv",
+               [{k: v for k, v in out["buckling"].items() if k != "drive_factors"}])
+    return {"paragraph": paragraph(out), "figures": figures,
+            "comparisons": comparison_rows(comparisons(out, k_x_linear)),
+            "tables": ["eightbar_stage_stroke.csv", "eightbar_stage_buckling.csv"],
+            "summary": out["summary"], "linear": out["linear"], "buckling": out["buckling"],
+            "dofs": out["dofs"]}

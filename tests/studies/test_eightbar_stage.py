@@ -1,0 +1,76 @@
+"""The eight-bar as a stage (studies/eightbar/stage.py), quick mode: the compliance matrix's
+drive stiffness against the prescribed-motion solve, mirror symmetry, the stroke trends, the
+buckling factors, and the CLI."""
+import json
+
+import numpy as np
+import pytest
+from flexfem.geometry.eightbar.flexure import EightBarFlexureParams
+from flexfem.studies.cli import main
+from flexfem.studies.eightbar import cli as eightbar_cli
+from flexfem.studies.eightbar.stage import stage_study
+
+pytestmark = pytest.mark.slow  # one quick study, ~30-70 s on a shared machine
+
+
+@pytest.fixture(scope="module")
+def stage():
+    return stage_study(quick=True)
+
+
+def test_k_x_from_the_compliance_matrix_is_the_linear_k_x(stage):
+    # 1 / C_xx (y and rotation free) against analysis.linear_analysis (x prescribed, y free):
+    # the same linear stiffness by two routes
+    k_c, k_lin = stage["linear"]["k_x"], stage["linear_analysis"]["k_x"]
+    assert k_c == pytest.approx(k_lin, rel=1e-3)
+    # and the middle of the stroke (the unloaded reference state) is the linear pose
+    middle = min(stage["stroke"], key=lambda r: abs(r["x_m"]))
+    assert middle["k_x"] == pytest.approx(k_c, rel=1e-4)  # tangent vs linear assembly
+
+
+def test_support_stiffness_across_the_whole_stroke(stage):
+    rows = stage["stroke"]
+    assert len(rows) == 5 and rows[0]["x_m"] == pytest.approx(-rows[-1]["x_m"])
+    assert stage["summary"]["support_ratio_min"] > 50
+    # the suspension softens across the motion away from the middle (flexures turned)
+    ratios = [r["support_ratio"] for r in rows]
+    assert ratios[2] == max(ratios)
+    # mirror symmetry: even quantities equal at +-x
+    for key in ("k_x", "k_y", "k_theta", "f1_hz"):
+        assert rows[0][key] == pytest.approx(rows[-1][key], rel=1e-9)
+    C = np.array(rows[-1]["compliance"])
+    assert np.allclose(C, C.T, rtol=1e-6, atol=1e-12 * np.abs(C).max())
+
+
+def test_modes_and_buckling(stage):
+    rows = stage["stroke"]
+    assert all(0 < r["f1_hz"] < r["f2_hz"] <= r["f3_hz"] for r in rows)
+    # the drive mode's frequency follows sqrt(k_x): within 1 % along the stroke
+    assert stage["summary"]["f1_hz_max"] / stage["summary"]["f1_hz_min"] < 1.01
+    b = stage["buckling"]
+    assert b["drive_factor"] > 10 and b["drive_critical_n"] > b["drive_force_n"]
+    assert "off_axis_critical_n" not in b  # full mode only
+
+
+def test_off_axis_buckling_both_senses():
+    # the stage_study's full-mode load case on the coarse mesh: a force across the stroke
+    from flexfem.studies.eightbar.analysis import build_model
+    from flexfem.studies.eightbar.stage import buckling
+    model, _ = build_model(EightBarFlexureParams(), 2.0)
+    b = buckling(model, 0.757, (1.0, -1.0))
+    assert b["off_axis_critical_plus_y_n"] > 0 and b["off_axis_critical_minus_y_n"] > 0
+    assert b["off_axis_critical_n"] == min(b["off_axis_critical_plus_y_n"],
+                                           b["off_axis_critical_minus_y_n"])
+    assert b["drive_factor"] == pytest.approx(b["drive_critical_n"] / 0.757)
+
+
+def test_cli_stage_json(stage, capsys, monkeypatch):
+    monkeypatch.setattr(eightbar_cli, "stage_study", lambda quick: stage)
+    assert main(["eightbar", "stage", "--quick", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    for key in ("linear", "stroke", "buckling", "summary", "linear_analysis", "travel_m", "dofs"):
+        assert key in out
+    assert {"k_x", "k_y", "support_ratio", "k_theta", "parasitic_y", "parasitic_rotation",
+            "f1_hz", "f2_hz", "f3_hz", "compliance"} <= set(out["stroke"][0])
+    assert main(["eightbar", "stage", "--quick"]) == 0
+    assert "k_y/k_x" in capsys.readouterr().out
