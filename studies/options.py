@@ -18,6 +18,18 @@ def positive(text: str) -> float:
     return value
 
 
+def damping_ratio(text: str) -> float:
+    """A damping ratio in (0, 1)."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number; expected a damping ratio "
+                                         "in (0, 1), e.g. 0.02") from None
+    if not 0 < value < 1:
+        raise argparse.ArgumentTypeError(f"{text!r} must be a damping ratio in (0, 1), e.g. 0.02")
+    return value
+
+
 def tolerance(text: str) -> float:
     """A relative tolerance, '0.5%' or 0.005."""
     try:

@@ -6,7 +6,7 @@ from ...fem.calculix import deck_lines
 from ...fem.export import write_mesh
 from ...geometry.dbma.drawing import mesh_dbma
 from ...geometry.dbma.params import paper_design
-from ..options import positive
+from ..options import damping_ratio, positive
 from .analysis import (actuator_loads, analyze_dbma, build_model, modal_supports,
                        static_supports)
 from .dynamics import frf_study
@@ -72,13 +72,6 @@ def summarize_frf(r: dict) -> str:
     return "\n".join(lines)
 
 
-def _ratio(text: str) -> float:
-    value = float(text)
-    if not 0 < value < 1:
-        raise ValueError(f"{text!r} must be a damping ratio in (0, 1)")
-    return value
-
-
 def run_mesh(args) -> dict:
 
     path = Path(args.out)
@@ -141,10 +134,10 @@ def register(subparsers):
     analyze.set_defaults(run=run_analyze, summarize=summarize_analyze)
     frf = commands.add_parser("frf", help="output compliance, FRF from actuator force to "
                               "output, bandwidth, hinge buckling at 800 N")
-    frf.add_argument("--damping", type=_ratio, default=None,
+    frf.add_argument("--damping", type=damping_ratio, default=None,
                      help="modal damping ratio (default 0.02, steel; data/dbma_paper.toml)")
-    frf.add_argument("--dim", type=int, choices=(2, 3), default=2)
-    frf.add_argument("--size-factor", type=_positive, default=1.0,
+    frf.add_argument("--dim", type=int, choices=(2, 3), default=2, help="model dimension")
+    frf.add_argument("--size-factor", type=positive, default=1.0,
                      help="mesh size multiplier (default 1)")
     frf.add_argument("--json", action="store_true", help="print one JSON object")
     frf.set_defaults(run=run_frf, summarize=summarize_frf)
