@@ -29,6 +29,7 @@ from .static import StaticResult, UnderConstrainedError, solve_static
 from .buckling import Buckling, solve_buckling
 from .compliance import Compliance, compliance_matrix
 from .harmonic import FRF, HarmonicResult, Rayleigh, solve_harmonic
+from .springs import group_spring
 from .stress import nonlinear_stress, nonlinear_stress_at
 
 __all__ = [
@@ -39,5 +40,5 @@ __all__ = [
     "mesh_from_gmsh", "nonlinear_stress", "nonlinear_stress_at", "read_mesh", "solve_modes", "solve_nonlinear", "solve_static",
     "von_mises", "write_mesh", "write_result",
     "Buckling", "Compliance", "FRF", "HarmonicResult", "Rayleigh", "compliance_matrix",
-    "solve_buckling", "solve_harmonic",
+    "solve_buckling", "solve_harmonic", "group_spring",
 ]

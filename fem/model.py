@@ -6,7 +6,7 @@ the same model share them.
 """
 import math
 import numbers
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import cached_property
 
 import numpy as np
@@ -142,6 +142,18 @@ class Model:
         scalar = self._scalar_basis((self.basis.X, self.basis.W))
         return consistent_mass(scalar, self.basis.element_dofs, self.dim,
                                self.material.rho * self.thickness, self.n_dofs)
+
+    def with_stiffness(self, extra) -> "Model":
+        """A copy of this model whose stiffness is K + ``extra`` (N/m; a symmetric sparse
+        n_dofs x n_dofs matrix, e.g. :func:`~flexfem.fem.springs.group_spring`), for the linear
+        analyses (static, modal, harmonic, compliance, buckling); the nonlinear solver
+        assembles its own tangent and does not see it."""
+        if getattr(extra, "shape", None) != (self.n_dofs, self.n_dofs):
+            raise ValueError(f"extra stiffness of shape {getattr(extra, 'shape', None)} must be "
+                             f"({self.n_dofs}, {self.n_dofs})")
+        copy = replace(self)
+        copy.__dict__["stiffness"] = (self.stiffness + extra).tocsr()  # the named cache
+        return copy
 
     @property
     def stiffness_quadrature(self):

@@ -24,14 +24,12 @@ above the resonance where |H| falls below |H(0)| / sqrt 2: the usual low-pass ba
 ``flat_bandwidth_hz`` (the highest frequency below the resonance with |H| within 3 dB of
 |H(0)|: the response is flat, i.e. a servo loop's usable band).
 """
-import dataclasses
 import math
 
 import numpy as np
-import scipy.sparse as sp
 
 from ...fem import compliance_matrix, solve_buckling, solve_harmonic, solve_modes, solve_static
-from ...fem.harmonic import mean_weights
+from ...fem.springs import group_spring
 from ...geometry.dbma.params import paper_design
 from .analysis import (OUTPUT_AXIS, actuator_loads, build_model, modal_supports, published,
                        static_supports)
@@ -49,16 +47,8 @@ def assumed() -> dict:
 
 def with_actuator(model, stiffness: float):
     """A copy of ``model`` whose stiffness has the actuator rod (``stiffness``, N/m) between
-    the pads: K + k_a w w^T, w . u the elongation (mean x of input_b minus input_a)."""
-    w = mean_weights(model, "input_b")[0] - mean_weights(model, "input_a")[0]
-    idx = np.flatnonzero(w)
-    rod = sp.coo_matrix((stiffness * np.outer(w[idx], w[idx]).ravel(),
-                         (np.repeat(idx, len(idx)), np.tile(idx, len(idx)))),
-                        shape=(model.n_dofs, model.n_dofs))
-    loaded = dataclasses.replace(model)
-    # the model's named stiffness cache (fem.model.Model.stiffness), filled with K + K_rod
-    loaded.__dict__["stiffness"] = (model.stiffness + rod).tocsr()
-    return loaded
+    the pads, acting on their mean x motion."""
+    return model.with_stiffness(group_spring(model, "input_a", "input_b", stiffness, "x"))
 
 
 def output_compliance(model) -> dict:
