@@ -82,7 +82,8 @@ BUILTIN = (
                     "report:reproduce"),
             Section("dbma_optimize", "DBMA: FEM-decided hinge design search (beyond the sources)",
                     "optimize_output:reproduce"),
-            Section("dbma_dynamics", "DBMA: output compliance, FRF, bandwidth, buckling", "dynamics_report:reproduce"),
+            Section("dbma_dynamics", "DBMA: output compliance, FRF, bandwidth, buckling",
+                    "dynamics_report:reproduce"),
         )),
     Mechanism(
         "eightbar", "Symmetric rectilinear eight-bar flexure suspension", "eightbar",
@@ -94,7 +95,8 @@ BUILTIN = (
             Section("eightbar_fem",
                     "Eight-bar flexure suspension: FEM, stress and large-deflection path",
                     "report:reproduce"),
-            Section("eightbar_stage", "Eight-bar as a stage: compliance, modes, buckling", "stage_report:reproduce"),
+            Section("eightbar_stage", "Eight-bar as a stage: compliance, modes, buckling",
+                    "stage_report:reproduce"),
         )),
     Mechanism(
         "balancing", "Five-bar parallel robot: optimum static balancing and flexure pivots",
@@ -102,7 +104,9 @@ BUILTIN = (
         sections=(
             Section("balancing", "Five-bar robot: optimum static balancing and flexure pivots",
                     "report:reproduce"),
-            Section("balancing_pivot_stability", "Flexure pivots: limit point, stability margin, centre shift", "pivot_stability_report:reproduce"),
+            Section("balancing_pivot_stability",
+                    "Flexure pivots: limit point, stability margin, centre shift",
+                    "pivot_stability_report:reproduce"),
         )),
     Mechanism(
         "model", "Your own flexure from a model file (TOML + .geo, .step or .msh)", "user_model",
