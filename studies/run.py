@@ -80,7 +80,6 @@ def sweep(study, out_dir=None, workers: int | None = None, scheduler: str | None
             "results": [c.to_row() for c in result.cases]}
 
 
-
 def run_convergence(mechanism: str, metric: str, tol="0.5%", n_levels: int = 4, ratio: float = 2.0,
                     params: dict | None = None, out_dir=None, dim: int = 2,
                     start: float | None = None) -> dict:
