@@ -1,0 +1,148 @@
+"""Reduced beam models of flexure layouts: every flexure a (tapered) beam, every link rigid.
+
+    model, nodes = layout_beam_model(layout, material, thickness, fillet_radius=r)
+
+A flexure of length L and in-plane width w from its host end a to its other end b (a
+:class:`~flexfem.geometry.flexure_linkage.FlexureJoint`) becomes a chain of co-rotational beam
+elements whose section follows the drawn profile t(s) (root fillets included, via
+:func:`flexfem.fem.beam.beam_from_profile`); every link is a rigid body (an exact
+:class:`~flexfem.fem.beam.RigidLink`) whose master node is the link's centroid carrying the
+link's mass and rotary inertia; a flexure ending on the ground is clamped.
+
+Root extension (``root_extension``, default ROOT_EXTENSION = 0.38): a beam ends where it meets
+a block, but the stress field spreads into the block over about the root thickness, which beam
+theory does not have; the beam model is then too stiff by about b / l. Extending each flexure
+by 0.38 times its root thickness into the block at both roots (at the root's thickness)
+reproduces a 2-D plane-stress model of a sharp-cornered leaf within 0.15 % for l/b = 5-20
+(docs/beam.md, "Joints and slenderness"). Every generated model here applies the same factor
+to every root, so the beam models of all mechanisms share one calibration; 0 turns it off.
+All lengths in m.
+"""
+import math
+
+import numpy as np
+
+from ..fem.beam import BeamMesh, BeamModel, RigidLink, beam_from_profile
+
+ROOT_EXTENSION = 0.38  # x root thickness, per root (docs/beam.md: l/b 5-20 within 0.15 %)
+
+
+def check_root_extension(value) -> float:
+    if not (isinstance(value, (int, float)) and not isinstance(value, bool)
+            and math.isfinite(value) and 0 <= value <= 2):
+        raise ValueError(f"root_extension = {value!r} must be a number in [0, 2] (x root "
+                         "thickness)")
+    return float(value)
+
+
+def filleted_thickness(length: float, width: float, radius: float):
+    """t(s) (m) of a flexure of ``length`` and ``width`` with quarter-circle root fillets of
+    ``radius`` (m, 0: sharp) inside its length, s from its first end (m)."""
+    def t(s):
+        if radius <= 0:
+            return width
+        u = max(radius - s, s - (length - radius), 0.0)
+        return width + 2 * (radius - math.sqrt(max(radius ** 2 - u ** 2, 0.0)))
+    return t
+
+
+def profile_beam(a, b, thickness_fn, out_of_plane: float, breaks=(), n_total: int = 24,
+                 root_extension: float = ROOT_EXTENSION) -> BeamMesh:
+    """A flexure from ``a`` to ``b`` (m) of in-plane thickness ``thickness_fn(s)`` (s from
+    a, m) and out-of-plane width ``out_of_plane`` (m), as beam elements: pieces between the
+    arc lengths ``breaks`` (e.g. the fillets' tangent points) meshed separately, about
+    ``n_total`` elements in all (at least 4 per piece); extended by ``root_extension`` x the
+    root thickness at both ends (those elements at the root's thickness). point_nodes:
+    [first node, last node] (the ends of the extended beam)."""
+    a, b = np.asarray(a, float), np.asarray(b, float)
+    length = float(np.linalg.norm(b - a))
+    d = (b - a) / length
+    cuts = [0.0] + sorted(float(s) for s in breaks if 0 < s < length) + [length]
+    pieces = []
+    t0, t1 = float(thickness_fn(0.0)), float(thickness_fn(length))
+    e0, e1 = root_extension * t0, root_extension * t1
+    if e0 > 0:
+        pieces.append((a - e0 * d, a, lambda s: t0, 2))
+    for s0, s1 in zip(cuts[:-1], cuts[1:]):
+        n = max(4, int(round(n_total * (s1 - s0) / length)))
+        pieces.append((a + s0 * d, a + s1 * d, (lambda s, s0=s0: thickness_fn(s0 + s)), n))
+    if e1 > 0:
+        pieces.append((b, b + e1 * d, lambda s: t1, 2))
+    mesh = None
+    for p0, p1, fn, n in pieces:
+        part = beam_from_profile(p0, p1, fn, out_of_plane, n)
+        mesh = part if mesh is None else mesh.join(part, tol=1e-9 * length)
+    first = mesh.node_at(pieces[0][0], tol=1e-9 * length)
+    last = mesh.node_at(pieces[-1][1], tol=1e-9 * length)
+    return BeamMesh(mesh.nodes, mesh.elements, mesh.sections, [first, last])
+
+
+def link_inertia(parts, link: str, out_of_plane: float, rho: float) -> tuple:
+    """(mass kg, centroid (2,) m, rotary inertia about it kg m^2) of the rectangles of
+    ``link`` (bars, hubs; overlaps at bar corners counted twice: a small excess)."""
+    m_tot, first, second = 0.0, np.zeros(2), 0.0
+    rects = [p for p in parts if p.link == link and p.kind != "flexure"]
+    for p in rects:
+        L, W = p.length, p.width
+        m = rho * out_of_plane * L * W
+        c = (np.asarray(p.p0) + np.asarray(p.p1)) / 2
+        m_tot += m
+        first += m * c
+        second += m * (L ** 2 + W ** 2) / 12 + m * float(c @ c)
+    if m_tot == 0:
+        return 0.0, None, 0.0
+    centroid = first / m_tot
+    return m_tot, centroid, second - m_tot * float(centroid @ centroid)
+
+
+def layout_beam_model(layout, material, out_of_plane: float, fillet_radius: float = 0.0,
+                      n_per_flexure: int = 24, root_extension: float = ROOT_EXTENSION,
+                      anchors: dict | None = None, shear: bool = True) -> tuple:
+    """(BeamModel, info) of a :class:`~flexfem.geometry.flexure_linkage.FlexureLayout`:
+    flexures as beams (fillets of ``fillet_radius`` m in their profile), links rigid with
+    their masses (``material.rho``, thickness ``out_of_plane``) at master nodes on their
+    centroids, or at ``anchors`` {link: point (m)} where given (the node a load or support
+    is applied to). info: {"masters": {link: node}, "ground": [clamped nodes],
+    "flexures": {joint: (first element, last element)}}."""
+    root_extension = check_root_extension(root_extension)
+    mesh, ends, spans = None, {}, {}
+    for fj in layout.joints:
+        a, b = fj.ends()
+        r = min(fillet_radius, 0.49 * fj.length)
+        fn = filleted_thickness(fj.length, fj.width, r)
+        breaks = (r, fj.length - r) if r > 0 else ()
+        part = profile_beam(a, b, fn, out_of_plane, breaks, n_per_flexure, root_extension)
+        offset_e = 0 if mesh is None else len(mesh.elements)
+        if mesh is None:
+            mesh, index = part, np.arange(len(part.nodes))
+        else:
+            n0 = len(mesh.nodes)
+            mesh = BeamMesh(np.vstack([mesh.nodes, part.nodes]),
+                            np.vstack([mesh.elements, part.elements + n0]),
+                            list(mesh.sections) + list(part.sections), [])
+            index = np.arange(len(part.nodes)) + n0
+        ends[fj.name] = (int(index[part.point_nodes[0]]), int(index[part.point_nodes[1]]))
+        spans[fj.name] = (offset_e, offset_e + len(part.elements))
+    nodes = [mesh.nodes]
+    masters, masses, slaves, n = {}, {}, {}, len(mesh.nodes)
+    for link in layout.links:
+        m, centroid, J = link_inertia(layout.parts, link, out_of_plane, material.rho)
+        anchored = link in (anchors or {}) and centroid is not None
+        point = np.asarray(anchors[link] if anchored else centroid, float)
+        masters[link], slaves[link] = n, []
+        nodes.append(point[None, :])
+        n += 1
+        if anchored:  # a slave node on the centroid carries the mass
+            nodes.append(centroid[None, :])
+            slaves[link].append(n)
+            n += 1
+        masses[n - 1] = (m, J)
+    ground = []
+    for fj in layout.joints:
+        first, last = ends[fj.name]
+        slaves[fj.host].append(first)
+        (ground if fj.other == layout.ground else slaves[fj.other]).append(last)
+    links = [RigidLink(masters[k], tuple(v)) for k, v in slaves.items() if v]
+    model = BeamModel(np.vstack(nodes), mesh.elements, mesh.sections, material, shear=shear,
+                      rigid_links=links, point_masses=masses)
+    return model, {"masters": masters, "ground": ground, "flexures": spans, "ends": ends}
