@@ -77,22 +77,34 @@ def profile_beam(a, b, thickness_fn, out_of_plane: float, breaks=(), n_total: in
     return BeamMesh(mesh.nodes, mesh.elements, mesh.sections, [first, last])
 
 
-def link_inertia(parts, link: str, out_of_plane: float, rho: float) -> tuple:
-    """(mass kg, centroid (2,) m, rotary inertia about it kg m^2) of the rectangles of
-    ``link`` (bars, hubs; overlaps at bar corners counted twice: a small excess)."""
-    m_tot, first, second = 0.0, np.zeros(2), 0.0
+def link_inertia(parts, link: str, out_of_plane: float, rho: float,
+                 resolution: int = 24) -> tuple:
+    """(mass kg, centroid (2,) m, rotary inertia about it kg m^2) of the union of the
+    rectangles of ``link`` (bars, hubs; overlapping at the bars' corners and ends), by
+    midpoint sampling on a grid of ``resolution`` cells across the narrowest rectangle."""
     rects = [p for p in parts if p.link == link and p.kind != "flexure"]
-    for p in rects:
-        L, W = p.length, p.width
-        m = rho * out_of_plane * L * W
-        c = (np.asarray(p.p0) + np.asarray(p.p1)) / 2
-        m_tot += m
-        first += m * c
-        second += m * (L ** 2 + W ** 2) / 12 + m * float(c @ c)
-    if m_tot == 0:
+    if not rects:
         return 0.0, None, 0.0
-    centroid = first / m_tot
-    return m_tot, centroid, second - m_tot * float(centroid @ centroid)
+    corners = np.vstack([p.corners() for p in rects])
+    lo, hi = corners.min(axis=0), corners.max(axis=0)
+    h = min(p.width for p in rects) / resolution
+    xs = np.arange(lo[0] + h / 2, hi[0], h)
+    ys = np.arange(lo[1] + h / 2, hi[1], h)
+    X, Y = np.meshgrid(xs, ys)
+    pts = np.column_stack([X.ravel(), Y.ravel()])
+    inside = np.zeros(len(pts), dtype=bool)
+    for p in rects:
+        a, b = np.asarray(p.p0, float), np.asarray(p.p1, float)
+        d = (b - a) / max(np.linalg.norm(b - a), 1e-300)
+        rel = pts - a
+        along, across = rel @ d, rel @ np.array([-d[1], d[0]])
+        inside |= (along >= 0) & (along <= p.length) & (np.abs(across) <= p.width / 2)
+    q = pts[inside]
+    dm = rho * out_of_plane * h * h
+    m = dm * len(q)
+    centroid = q.mean(axis=0)
+    J = dm * float(((q - centroid) ** 2).sum()) + m * h * h / 6
+    return float(m), centroid, J
 
 
 def layout_beam_model(layout, material, out_of_plane: float, fillet_radius: float = 0.0,

@@ -11,6 +11,7 @@ continuum's von Mises peak includes the fillet's stress concentration, which bea
 not). SI units.
 """
 from dataclasses import replace
+import functools
 import math
 
 import numpy as np
@@ -66,7 +67,7 @@ def beam_stroke(model, info, params: EightBarFlexureParams, travel: float,
     half = np.column_stack([e0[0] + path[:, 0], e0[1] + path[:, 1]])
     mirror = np.column_stack([2 * e0[0] - half[:0:-1, 0], half[:0:-1, 1]])
     dev = straight_line_deviation(np.vstack([mirror, half]))
-    rigid = trace_eightbar(replace(params.rigid, travel=travel), n=101).deviation
+    rigid = _rigid_deviation(params.rigid, travel)
     peak = float(stress.max())
     strength = material(params.material).yield_strength
     return {"fem_deviation_pct": dev.deviation_pct, "fem_deviation_m": dev.max_deviation_m,
@@ -76,6 +77,13 @@ def beam_stroke(model, info, params: EightBarFlexureParams, travel: float,
             "max_rotation_rad": float(np.abs(path[:, 2]).max()),
             "end_force_n": float(force[-1]), "first_step_k_x": float(force[1] / path[1, 0]),
             "newton_iterations": int(sum(res.iterations)), "result": res}
+
+
+@functools.lru_cache(maxsize=64)
+def _rigid_deviation(rigid, travel: float):
+    """The rigid-body linkage's straightness over ``travel`` (m), cached: a sweep of the
+    flexure dimensions keeps the linkage."""
+    return trace_eightbar(replace(rigid, travel=travel), n=101).deviation
 
 
 def analyze_eightbar_beam(params: EightBarFlexureParams | None = None,

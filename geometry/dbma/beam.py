@@ -1,0 +1,132 @@
+"""Reduced beam model of the DBMA, generated from its parameters (and layout).
+
+    model, info = dbma_beam_model(paper_design())
+    info["input_a"], info["input_b"], info["output"]   # master nodes (pad faces, output face)
+
+Same reconstruction as the continuum mesh (:func:`flexfem.geometry.dbma.drawing.quarter_rects`,
+mirrored into four quarters): each of the 16 hinges is a beam following its profile t(s)
+(leaf, filleted or circular notch: :func:`flexfem.geometry.hinge_profiles.profile_thickness`
+through :func:`flexfem.fem.beam.beam_from_profile`), each inclined arm an elastic Timoshenko
+beam of width c along its centre line, joined to its two hinges (offset +-h/2 across it) by
+rigid offsets; the input members (width a) and output members 4 and 11 (width ls) are elastic beams along
+their centre lines (the pads rigid), member 11 clamped at its bottom (the mounting face). Root extension: see
+:mod:`flexfem.geometry.beam_layout` (0.38 x root thickness per root by default). Lengths in m.
+"""
+import numpy as np
+
+from ...fem.beam import BeamMesh, BeamModel, RigidLink, Section, beam_chain
+from ...fem.materials import Material
+from ..beam_layout import ROOT_EXTENSION, check_root_extension, profile_beam
+from ..hinge_profiles import profile_thickness
+from .drawing import DBMALayout, check_layout, quarter_rects
+from .params import DBMAParams
+
+QUARTERS = ((1, 1), (-1, 1), (1, -1), (-1, -1))
+
+
+def _hinge_fn(p: DBMAParams, layout: DBMALayout):
+    prof, rf = layout.hinge_profile, layout.hinge_fillet_radius
+    fn = lambda s: float(profile_thickness(prof, p.l, p.b, rf, s))
+    breaks = (rf, p.l - rf) if prof == "filleted" else ()
+    return fn, breaks, (24 if prof == "leaf" else 40)
+
+
+class _Builder:
+    """Accumulates nodes, elements and sections; nodes are appended, never merged."""
+
+    def __init__(self):
+        self.nodes, self.elements, self.sections = [], [], []
+
+    def add(self, mesh: BeamMesh) -> list:
+        n0 = sum(len(x) for x in self.nodes)
+        self.nodes.append(mesh.nodes)
+        self.elements.append(mesh.elements + n0)
+        self.sections += list(mesh.sections)
+        return [n0 + k for k in mesh.point_nodes]
+
+    def point(self, xy) -> int:
+        n0 = sum(len(x) for x in self.nodes)
+        self.nodes.append(np.asarray(xy, float)[None, :])
+        return n0
+
+
+def _rigid_mass(rects, d, rho) -> tuple:
+    """(mass, centroid, J about it) of axis-aligned rectangles."""
+    m = np.array([(r.x1 - r.x0) * (r.y1 - r.y0) * d * rho for r in rects])
+    c = np.array([((r.x0 + r.x1) / 2, (r.y0 + r.y1) / 2) for r in rects])
+    cg = (m[:, None] * c).sum(axis=0) / m.sum()
+    J = sum(mi * ((r.x1 - r.x0) ** 2 + (r.y1 - r.y0) ** 2) / 12 + mi * float((ci - cg) @ (ci - cg))
+            for mi, r, ci in zip(m, rects, c))
+    return float(m.sum()), cg, float(J)
+
+
+def _column(bld, links, xc, ys, width, depth, hinge_ends, per_length) -> dict:
+    """A member as an elastic beam along x = ``xc`` through the heights ``ys`` (m), width
+    ``width``; the hinges' ends [(node, y)] joined to it by rigid offsets. {y: node}."""
+    ys = sorted(set(ys) | {y for _, y in hinge_ends})
+    counts = [max(2, int(round(per_length * (y1 - y0)))) for y0, y1 in zip(ys[:-1], ys[1:])]
+    chain = bld.add(beam_chain([(xc, y) for y in ys], Section.rect(depth, width), counts))
+    at = {y: chain[k] for k, y in enumerate(ys)}
+    for node, y in hinge_ends:
+        links.append(RigidLink(at[y], (node,)))
+    return at
+
+
+def _input_member(bld, links, masses, p, layout, J, pad, sx, hinge_ends) -> int:
+    """An input member (arms 2 + 13 or 6 + 9) as an elastic beam of width a along its centre
+    line, the hinges' ends joined to it by rigid offsets, its pad (rigid, with its mass) on
+    the middle; returns the master node on the pad's face, where the actuator pushes."""
+    half = layout.pad_height / 2
+    at = _column(bld, links, sx * (J.x0 + J.x1) / 2, (-p.ll, p.ll, -half, 0.0, half), p.a, p.d,
+                 hinge_ends, 6 / p.ll)
+    master = bld.point((sx * pad.x0, 0.0))
+    m, cg, Jz = _rigid_mass([pad.mirrored(sx, 1, "")], p.d, p.rho)
+    centre = bld.point(cg)
+    masses[centre] = (m, Jz)
+    links.append(RigidLink(master, (at[-half], at[0.0], at[half], centre)))
+    return master
+
+
+def dbma_beam_model(p: DBMAParams, layout: DBMALayout | None = None,
+                    root_extension: float = ROOT_EXTENSION, arm_elements: int = 8,
+                    shear: bool = True) -> tuple:
+    """(BeamModel, info) of the DBMA. info: "input_a" / "input_b" (masters of the left /
+    right input members, on their pads' faces), "output" (master of member 4, on its top
+    face), "ground" (hinge nodes on member 11), "hinges" {label: (first, last element)}."""
+    layout = layout or DBMALayout()
+    check_layout(p, layout)
+    root_extension = check_root_extension(root_extension)
+    q = quarter_rects(p, layout)
+    J, pad, out4 = q[0], q[1], q[2]
+    fn, breaks, n_hinge = _hinge_fn(p, layout)
+    x_out, x_in, l, h = p.ls / 2, p.ls / 2 + 2 * p.l + p.e, p.l, p.h
+    bld, links = _Builder(), []
+    slaves = {"input_a": [], "input_b": [], "output": []}
+    ground, spans = [], {}
+    for sx, sy in QUARTERS:
+        for row, yc in (("i", layout.arm_gap + p.c / 2), ("o", p.ll - p.c / 2)):
+            ya, yb = sy * (yc - h / 2), sy * (yc + h / 2)
+            e0 = len(bld.sections)
+            ha = bld.add(profile_beam((sx * x_out, ya), (sx * (x_out + l), ya), fn, p.d, breaks,
+                                      n_hinge, root_extension))
+            arm = bld.add(beam_chain([(sx * (x_out + l), sy * yc), (sx * (x_in - l), sy * yc)],
+                                     Section.rect(p.d, p.c), arm_elements))
+            hb = bld.add(profile_beam((sx * (x_in - l), yb), (sx * x_in, yb), fn, p.d, breaks,
+                                      n_hinge, root_extension))
+            spans[f"{sx:+d}{sy:+d}{row}"] = (e0, len(bld.sections))
+            links += [RigidLink(arm[0], (ha[1],)), RigidLink(arm[-1], (hb[0],))]
+            (slaves["output"] if sy > 0 else ground).append((ha[0], ya))
+            slaves["input_b" if sx > 0 else "input_a"].append((hb[1], yb))
+    masses = {}
+    for name, sx in (("input_a", -1), ("input_b", 1)):
+        master = _input_member(bld, links, masses, p, layout, J, pad, sx, slaves[name])
+        slaves[name] = master
+    top = _column(bld, links, 0.0, (out4.y0, out4.y1), p.ls, p.d, slaves["output"],
+                  6 / p.ll)
+    base = _column(bld, links, 0.0, (-out4.y1, -out4.y0), p.ls, p.d, ground, 6 / p.ll)
+    master, ground = top[out4.y1], [base[-out4.y1]]
+    model = BeamModel(np.vstack(bld.nodes), np.vstack(bld.elements), bld.sections,
+                      Material("dbma_steel", p.E, p.nu, p.rho), shear=shear, rigid_links=links, point_masses=masses)
+    return model, {"input_a": slaves["input_a"], "input_b": slaves["input_b"],
+                   "output": master, "ground": ground, "hinges": spans}
+
