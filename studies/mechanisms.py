@@ -63,7 +63,7 @@ class Mechanism:
 BUILTIN = (
     Mechanism(
         "dbma", "Double-row bow-type micro-displacement amplifier (servo valve)", "dbma",
-        evaluate="analysis:evaluate", commands="cli", optimizer="cli_optimize", document="dbma",
+        evaluate="evaluate:evaluate", commands="cli", optimizer="cli_optimize", document="dbma",
         # coarser start: halving the size three times from 4x stays affordable
         coarsest_size_factor=4.0,
         sections=(
@@ -76,7 +76,7 @@ BUILTIN = (
         )),
     Mechanism(
         "eightbar", "Symmetric rectilinear eight-bar flexure suspension", "eightbar",
-        evaluate="analysis:evaluate", commands="cli", document="eightbar",
+        evaluate="evaluate:evaluate", commands="cli", document="eightbar",
         sections=(
             Section("eightbar_rigid",
                     "Eight-bar and straight-line linkages: rigid-body paths and synthesis",

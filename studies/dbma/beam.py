@@ -30,7 +30,9 @@ def beam_static(model, info, force: float) -> dict:
                           [NodalLoad(a, fx=-force), NodalLoad(b, fx=force)])
     elongation = float(s.q[b, 0] - s.q[a, 0])
     u_out = float(s.q[out, 1])
+    where = s.max_stress_location[2]
     return {"force": force, "elongation": elongation, "output_displacement": u_out,
+            "max_von_mises_location": [float(where[0]), float(where[1])],
             "R_fem": u_out / elongation, "R_fem_per_side": 2 * u_out / elongation,
             "k_in": force / elongation, "max_von_mises": s.max_stress}
 

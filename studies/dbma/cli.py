@@ -5,7 +5,8 @@ from pathlib import Path
 from ...fem.export import write_mesh
 from ...geometry.dbma.drawing import mesh_dbma
 from ...geometry.dbma.params import paper_design
-from .analysis import analyze_dbma
+from .analysis import analyze_dbma, published
+from .beam import analyze_dbma_beam
 
 MESH_SUFFIXES = (".msh", ".vtu", ".xdmf", ".inp")
 
@@ -17,15 +18,18 @@ def _params(args):
 
 
 def run_analyze(args) -> dict:
-
+    if args.model == "beam":
+        force = float(published()["loading"]["force_max_N"])
+        return {**analyze_dbma_beam(_params(args), force=force), "dim": "beam"}
     return analyze_dbma(_params(args), dim=args.dim, size_factor=args.size_factor)
 
 
 def summarize_analyze(r: dict) -> str:
     freqs = ", ".join(f"{f:.1f}" for f in r["frequencies_hz"])
     x, y = (1e3 * v for v in r["max_von_mises_location"][:2])
+    model = "beam model" if r["dim"] == "beam" else f"{r['dim']}-D FEM"
     return "\n".join([
-        f"DBMA, {r['dim']}-D FEM, {r['dofs']} DOFs",
+        f"DBMA, {model}, {r['dofs']} DOFs",
         f"R FEM (output / elongation)         {r['R_fem']:.3f}",
         f"R FEM (output / one pad's motion)   {r['R_fem_per_side']:.3f}",
         f"R Eq. 7 / enhanced model            {r['R_eq7']:.3f} / {r['R_enhanced']:.3f}",
@@ -71,6 +75,8 @@ def register(subparsers):
     analyze.add_argument("--dim", type=int, choices=(2, 3), default=3)
     analyze.add_argument("--size-factor", type=_positive, default=1.0,
                          help="mesh size multiplier (default 1)")
+    analyze.add_argument("--model", choices=("continuum", "beam"), default="continuum",
+                         help="continuum: FEM (default); beam: the reduced beam model")
     analyze.add_argument("--json", action="store_true", help="print one JSON object")
     analyze.set_defaults(run=run_analyze, summarize=summarize_analyze)
     mesh = commands.add_parser("mesh", help="write the default mesh that analyze solves")

@@ -69,6 +69,7 @@ def beam_stroke(model, info, params: EightBarFlexureParams, travel: float,
     dev = straight_line_deviation(np.vstack([mirror, half]))
     rigid = _rigid_deviation(params.rigid, travel)
     peak = float(stress.max())
+    where = res.states[int(stress.argmax())].max_stress_location[0]
     strength = material(params.material).yield_strength
     return {"fem_deviation_pct": dev.deviation_pct, "fem_deviation_m": dev.max_deviation_m,
             "fem_band_m": dev.band_m, "rigid_deviation_pct": rigid.deviation_pct,
@@ -76,7 +77,8 @@ def beam_stroke(model, info, params: EightBarFlexureParams, travel: float,
             "peak_von_mises_travel": peak, "safety_factor": strength / peak,
             "max_rotation_rad": float(np.abs(path[:, 2]).max()),
             "end_force_n": float(force[-1]), "first_step_k_x": float(force[1] / path[1, 0]),
-            "newton_iterations": int(sum(res.iterations)), "result": res}
+            "newton_iterations": int(sum(res.iterations)), "result": res,
+            "peak_von_mises_flexure": _flexure_of(info, where)}
 
 
 @functools.lru_cache(maxsize=64)
@@ -110,7 +112,6 @@ def analyze_eightbar_beam(params: EightBarFlexureParams | None = None,
     if nonlinear:
         nl = beam_stroke(model, info, params, travel, steps)
         out.update({k: v for k, v in nl.items() if k != "result"})
-        out["peak_von_mises_flexure"] = "beam"
     return out
 
 
