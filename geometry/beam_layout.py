@@ -14,17 +14,47 @@ a block, but the stress field spreads into the block over about the root thickne
 theory does not have; the beam model is then too stiff by about b / l. Extending each flexure
 by 0.38 times its root thickness into the block at both roots (at the root's thickness)
 reproduces a 2-D plane-stress model of a sharp-cornered leaf within 0.15 % for l/b = 5-20
-(docs/beam.md, "Joints and slenderness"). Every generated model here applies the same factor
-to every root, so the beam models of all mechanisms share one calibration; 0 turns it off.
+(docs/beam.md, "Joints and slenderness"). That is the bending side; the same spreading makes
+a root axially compliant too, by about 0.61 ln(H / t) - 0.24 over E w per root (H the height of
+the block the root enters: 1.6 / (E w) for H = 20 t, as much as 1.6 t of extra neck), which
+matters where flexures carry axial load (the DBMA with its input blocked, k_y of a guide): the
+extension elements carry that axial compliance too (:func:`root_section`). Every generated
+model here applies the same rule to every root, so the beam models of all mechanisms share one
+calibration; ``root_extension=0`` turns both off.
 All lengths in m.
 """
 import math
 
 import numpy as np
 
-from ..fem.beam import BeamMesh, BeamModel, RigidLink, beam_from_profile
+from ..fem.beam import BeamMesh, BeamModel, RigidLink, Section, beam_chain, beam_from_profile
 
 ROOT_EXTENSION = 0.38  # x root thickness, per root (docs/beam.md: l/b 5-20 within 0.15 %)
+# axial compliance of a root, per root, in units of 1 / (E w): the load in a neck of thickness
+# t spreads into a block of height H; a 2-D plane-stress fit (nu = 0.3, sharp corners, l/t 2-20,
+# H/t 5-40, within 0.02): 0.61 ln(H / t) - 0.24 (about 2/pi ln(H/t), a strip's spreading)
+AXIAL_ROOT = (0.61, -0.24)
+
+
+def axial_root_compliance(block_height: float, thickness: float) -> float:
+    """Extra axial compliance of one root x E w (-): 0.61 ln(H / t) - 0.24, at least 0."""
+    a, c = AXIAL_ROOT
+    return max(0.0, a * math.log(block_height / thickness) + c)
+
+
+def root_section(out_of_plane: float, thickness: float, length: float,
+                 block_height: float | None) -> Section:
+    """Section of a root-extension element of ``length`` (m): the root's bending stiffness;
+    its area such that the element's axial compliance is the root's (axial_root_compliance)
+    when ``block_height`` (m) is given (else the root's area); no stress reported there (c =
+    None: the root stress is the flexure's own end)."""
+    I = out_of_plane * thickness ** 3 / 12
+    area = out_of_plane * thickness
+    if block_height is not None:
+        alpha = axial_root_compliance(block_height, thickness)
+        if alpha > 0:
+            area = length * out_of_plane / alpha
+    return Section(A=area, I=I, c=None)
 
 
 def check_root_extension(value) -> float:
@@ -47,33 +77,38 @@ def filleted_thickness(length: float, width: float, radius: float):
 
 
 def profile_beam(a, b, thickness_fn, out_of_plane: float, breaks=(), n_total: int = 24,
-                 root_extension: float = ROOT_EXTENSION) -> BeamMesh:
+                 root_extension: float = ROOT_EXTENSION, blocks=(None, None)) -> BeamMesh:
     """A flexure from ``a`` to ``b`` (m) of in-plane thickness ``thickness_fn(s)`` (s from
     a, m) and out-of-plane width ``out_of_plane`` (m), as beam elements: pieces between the
     arc lengths ``breaks`` (e.g. the fillets' tangent points) meshed separately, about
     ``n_total`` elements in all (at least 4 per piece); extended by ``root_extension`` x the
-    root thickness at both ends (those elements at the root's thickness). point_nodes:
-    [first node, last node] (the ends of the extended beam)."""
+    root thickness at both ends (those elements at the root's bending stiffness, and its
+    axial compliance where the height of the block it enters, ``blocks`` = (H at a, H at b)
+    m, is given: :func:`root_section`). point_nodes: [first node, last node] (the ends of the
+    extended beam)."""
     a, b = np.asarray(a, float), np.asarray(b, float)
     length = float(np.linalg.norm(b - a))
     d = (b - a) / length
     cuts = [0.0] + sorted(float(s) for s in breaks if 0 < s < length) + [length]
-    pieces = []
     t0, t1 = float(thickness_fn(0.0)), float(thickness_fn(length))
     e0, e1 = root_extension * t0, root_extension * t1
-    if e0 > 0:
-        pieces.append((a - e0 * d, a, lambda s: t0, 2))
+    mesh = None
     for s0, s1 in zip(cuts[:-1], cuts[1:]):
         n = max(4, int(round(n_total * (s1 - s0) / length)))
-        pieces.append((a + s0 * d, a + s1 * d, (lambda s, s0=s0: thickness_fn(s0 + s)), n))
-    if e1 > 0:
-        pieces.append((b, b + e1 * d, lambda s: t1, 2))
-    mesh = None
-    for p0, p1, fn, n in pieces:
-        part = beam_from_profile(p0, p1, fn, out_of_plane, n)
+        part = beam_from_profile(a + s0 * d, a + s1 * d, (lambda s, s0=s0: thickness_fn(s0 + s)),
+                                 out_of_plane, n)
         mesh = part if mesh is None else mesh.join(part, tol=1e-9 * length)
-    first = mesh.node_at(pieces[0][0], tol=1e-9 * length)
-    last = mesh.node_at(pieces[-1][1], tol=1e-9 * length)
+    start, end = a, b
+    if e0 > 0:
+        start = a - e0 * d
+        root = beam_chain([start, a], root_section(out_of_plane, t0, e0, blocks[0]), 1)
+        mesh = root.join(mesh, tol=1e-9 * length)
+    if e1 > 0:
+        end = b + e1 * d
+        mesh = mesh.join(beam_chain([b, end], root_section(out_of_plane, t1, e1, blocks[1]), 1),
+                         tol=1e-9 * length)
+    first = mesh.node_at(start, tol=1e-9 * length)
+    last = mesh.node_at(end, tol=1e-9 * length)
     return BeamMesh(mesh.nodes, mesh.elements, mesh.sections, [first, last])
 
 
@@ -123,7 +158,8 @@ def layout_beam_model(layout, material, out_of_plane: float, fillet_radius: floa
         r = min(fillet_radius, 0.49 * fj.length)
         fn = filleted_thickness(fj.length, fj.width, r)
         breaks = (r, fj.length - r) if r > 0 else ()
-        part = profile_beam(a, b, fn, out_of_plane, breaks, n_per_flexure, root_extension)
+        part = profile_beam(a, b, fn, out_of_plane, breaks, n_per_flexure, root_extension,
+                            blocks=(layout.link_width, layout.link_width))
         offset_e = 0 if mesh is None else len(mesh.elements)
         if mesh is None:
             mesh, index = part, np.arange(len(part.nodes))

@@ -10,13 +10,15 @@ through :func:`flexfem.fem.beam.beam_from_profile`), each inclined arm an elasti
 beam of width c along its centre line, joined to its two hinges (offset +-h/2 across it) by
 rigid offsets; the input members (width a) and output members 4 and 11 (width ls) are elastic beams along
 their centre lines (the pads rigid), member 11 clamped at its bottom (the mounting face). Root extension: see
-:mod:`flexfem.geometry.beam_layout` (0.38 x root thickness per root by default). Lengths in m.
+:mod:`flexfem.geometry.beam_layout` (0.38 x root thickness per root by default, with the root's
+axial compliance for a block of height c at both ends: the arm's width; the members' faces
+around a hinge are about as tall). Lengths in m.
 """
 import numpy as np
 
 from ...fem.beam import BeamMesh, BeamModel, RigidLink, Section, beam_chain
 from ...fem.materials import Material
-from ..beam_layout import ROOT_EXTENSION, check_root_extension, profile_beam
+from ..beam_layout import ROOT_EXTENSION, check_root_extension, profile_beam, root_section
 from ..hinge_profiles import profile_thickness
 from .drawing import DBMALayout, check_layout, quarter_rects
 from .params import DBMAParams
@@ -72,19 +74,22 @@ def _column(bld, links, xc, ys, width, depth, hinge_ends, per_length) -> dict:
     return at
 
 
-def _input_member(bld, links, masses, p, layout, J, pad, sx, hinge_ends) -> int:
+def _input_member(bld, links, p, layout, J, pad, sx, hinge_ends, root_extension) -> int:
     """An input member (arms 2 + 13 or 6 + 9) as an elastic beam of width a along its centre
-    line, the hinges' ends joined to it by rigid offsets, its pad (rigid, with its mass) on
-    the middle; returns the master node on the pad's face, where the actuator pushes."""
-    half = layout.pad_height / 2
-    at = _column(bld, links, sx * (J.x0 + J.x1) / 2, (-p.ll, p.ll, -half, 0.0, half), p.a, p.d,
+    line, the hinges' ends joined to it by rigid offsets, and its pad a short beam (pad_height
+    thick) from its face into the member, with the common root extension where it enters the
+    member (the pad's root is as compliant as a flexure's, relative to its size); returns the
+    node on the pad's face, where the actuator pushes."""
+    at = _column(bld, links, sx * (J.x0 + J.x1) / 2, (-p.ll, p.ll, 0.0), p.a, p.d,
                  hinge_ends, 6 / p.ll)
-    master = bld.point((sx * pad.x0, 0.0))
-    m, cg, Jz = _rigid_mass([pad.mirrored(sx, 1, "")], p.d, p.rho)
-    centre = bld.point(cg)
-    masses[centre] = (m, Jz)
-    links.append(RigidLink(master, (at[-half], at[0.0], at[half], centre)))
-    return master
+    t = layout.pad_height
+    face, root = (sx * min(abs(pad.x0), abs(pad.x1)), 0.0), (sx * J.x0, 0.0)
+    ext = root_extension * t
+    pts = [face, root] + ([(sx * (J.x0 + ext), 0.0)] if ext > 0 else [])
+    sections = [Section.rect(p.d, t)] + ([root_section(p.d, t, ext, 2 * p.ll)] if ext > 0 else [])
+    chain = bld.add(beam_chain(pts, sections, [2] + [1] * (len(pts) - 2)))
+    links.append(RigidLink(at[0.0], (chain[-1],)))
+    return chain[0]
 
 
 def dbma_beam_model(p: DBMAParams, layout: DBMALayout | None = None,
@@ -99,6 +104,7 @@ def dbma_beam_model(p: DBMAParams, layout: DBMALayout | None = None,
     q = quarter_rects(p, layout)
     J, pad, out4 = q[0], q[1], q[2]
     fn, breaks, n_hinge = _hinge_fn(p, layout)
+    blocks = (p.c, p.c)  # the height of the faces the hinges enter (arm ends; members, ~)
     x_out, x_in, l, h = p.ls / 2, p.ls / 2 + 2 * p.l + p.e, p.l, p.h
     bld, links = _Builder(), []
     slaves = {"input_a": [], "input_b": [], "output": []}
@@ -108,18 +114,18 @@ def dbma_beam_model(p: DBMAParams, layout: DBMALayout | None = None,
             ya, yb = sy * (yc - h / 2), sy * (yc + h / 2)
             e0 = len(bld.sections)
             ha = bld.add(profile_beam((sx * x_out, ya), (sx * (x_out + l), ya), fn, p.d, breaks,
-                                      n_hinge, root_extension))
+                                      n_hinge, root_extension, blocks))
             arm = bld.add(beam_chain([(sx * (x_out + l), sy * yc), (sx * (x_in - l), sy * yc)],
                                      Section.rect(p.d, p.c), arm_elements))
             hb = bld.add(profile_beam((sx * (x_in - l), yb), (sx * x_in, yb), fn, p.d, breaks,
-                                      n_hinge, root_extension))
+                                      n_hinge, root_extension, blocks))
             spans[f"{sx:+d}{sy:+d}{row}"] = (e0, len(bld.sections))
             links += [RigidLink(arm[0], (ha[1],)), RigidLink(arm[-1], (hb[0],))]
             (slaves["output"] if sy > 0 else ground).append((ha[0], ya))
             slaves["input_b" if sx > 0 else "input_a"].append((hb[1], yb))
     masses = {}
     for name, sx in (("input_a", -1), ("input_b", 1)):
-        master = _input_member(bld, links, masses, p, layout, J, pad, sx, slaves[name])
+        master = _input_member(bld, links, p, layout, J, pad, sx, slaves[name], 0.0)
         slaves[name] = master
     top = _column(bld, links, 0.0, (out4.y0, out4.y1), p.ls, p.d, slaves["output"],
                   6 / p.ll)
