@@ -73,6 +73,8 @@ BUILTIN = (
                     "report:reproduce"),
             Section("dbma_optimize", "DBMA: FEM-decided hinge design search (beyond the sources)",
                     "optimize_output:reproduce"),
+            Section("dbma_beam", "DBMA: beam model beside the closed forms and the FEM",
+                    "beam_report:reproduce"),
         )),
     Mechanism(
         "eightbar", "Symmetric rectilinear eight-bar flexure suspension", "eightbar",
@@ -84,6 +86,9 @@ BUILTIN = (
             Section("eightbar_fem",
                     "Eight-bar flexure suspension: FEM, stress and large-deflection path",
                     "report:reproduce"),
+            Section("eightbar_beam",
+                    "Eight-bar flexure suspension: beam model beside the PRBM and the FEM",
+                    "beam_report:reproduce"),
         )),
     Mechanism(
         "balancing", "Five-bar parallel robot: optimum static balancing and flexure pivots",
@@ -91,6 +96,9 @@ BUILTIN = (
         sections=(
             Section("balancing", "Five-bar robot: optimum static balancing and flexure pivots",
                     "report:reproduce"),
+            Section("balancing_beam",
+                    "Balancing pivots: beam model beside beam theory and the FEM",
+                    "beam_report:reproduce"),
         )),
     Mechanism(
         "model", "Your own flexure from a model file (TOML + .geo, .step or .msh)", "user_model",

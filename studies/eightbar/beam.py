@@ -69,6 +69,11 @@ def beam_stroke(model, info, params: EightBarFlexureParams, travel: float,
     dev = straight_line_deviation(np.vstack([mirror, half]))
     rigid = _rigid_deviation(params.rigid, travel)
     peak = float(stress.max())
+    rows = [{"x_m": float(u), "y_m": float(v), "rotation_rad": float(r), "force_x_n": float(f),
+             "peak_von_mises_pa": float(sg)}
+            for (u, v, r), f, sg in zip(path, force, stress)]
+    rows = [{**r, "x_m": -r["x_m"], "rotation_rad": -r["rotation_rad"],
+             "force_x_n": -r["force_x_n"]} for r in rows[:0:-1]] + rows
     where = res.states[int(stress.argmax())].max_stress_location[0]
     strength = material(params.material).yield_strength
     return {"fem_deviation_pct": dev.deviation_pct, "fem_deviation_m": dev.max_deviation_m,
@@ -77,7 +82,7 @@ def beam_stroke(model, info, params: EightBarFlexureParams, travel: float,
             "peak_von_mises_travel": peak, "safety_factor": strength / peak,
             "max_rotation_rad": float(np.abs(path[:, 2]).max()),
             "end_force_n": float(force[-1]), "first_step_k_x": float(force[1] / path[1, 0]),
-            "newton_iterations": int(sum(res.iterations)), "result": res,
+            "newton_iterations": int(sum(res.iterations)), "result": res, "path": rows,
             "peak_von_mises_flexure": _flexure_of(info, where)}
 
 
