@@ -148,3 +148,42 @@ def test_dbma_beam_matches_the_continuum_on_a_slender_design():
     for key in ("R_fem_per_side", "k_in", "fn_working"):
         assert beam[key] == pytest.approx(cont[key], rel=0.03), key
     assert beam["k_out"] == pytest.approx(cont["k_out"], rel=0.07)
+
+
+def _beam_as_fem(params: dict, size_factor: float) -> dict:
+    """Raw metrics in fem_metrics' form from the beam model (a fast stand-in for the FEM)."""
+    from flexfem.geometry.dbma.beam import dbma_beam_model
+    from flexfem.studies.dbma import beam as b
+    from flexfem.studies.dbma.analysis import dbma_material
+
+    p = dataclasses.replace(paper_design(), **params)
+    model, info = dbma_beam_model(p)
+    s = b.beam_static(model, info, 100.0)
+    modal = b.beam_modal(model, info, 4)
+    return {"force": 100.0, "elongation": s["elongation"], "R_fem": s["R_fem"],
+            "k_in": s["k_in"], "max_von_mises": s["max_von_mises"],
+            "max_von_mises_element": s["max_von_mises"],
+            "k_out": b.beam_output_stiffness(model, info), "fn_working": modal["fn_working"],
+            "working_mode": modal["working_mode"],
+            "yield_strength": dbma_material(p).yield_strength, "dofs": int(model.n_dofs)}
+
+
+@pytest.mark.slow
+def test_dbma_optimizer_screens_with_the_beam_model():
+    from flexfem.studies.dbma import optimize as opt
+    from flexfem.studies.dbma.beam import beam_estimates
+    from flexfem.studies.dbma.optimize_spec import OptimizeSpec
+
+    spec = OptimizeSpec(n_seed=16, max_evaluations=8)
+    r = opt.optimize(spec, evaluator=_beam_as_fem, estimator=beam_estimates)
+    assert r["feasible"] and r["n_screened"] == 16
+    # the screening model is the deciding model here: the seed's estimate is exact
+    assert all(abs(v) < 1e-9 for k, v in r["seed"]["analytical_vs_fem"].items()
+               if k in ("R_fem", "k_out", "fn_working")), r["seed"]["analytical_vs_fem"]
+
+
+def test_optimize_cli_has_the_screen_option():
+    from flexfem.studies.dbma.optimize_output import run
+
+    with pytest.raises(ValueError, match="screen"):
+        run(None, screen="nope")
