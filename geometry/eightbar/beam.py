@@ -10,11 +10,30 @@ out-of-plane width ``thickness``; the links (cranks, rockers, couplers, end-effe
 rigid bodies with their masses; flexures O, C are clamped at their anchors. Root extension:
 see :mod:`flexfem.geometry.beam_layout` (0.38 x root thickness per root by default).
 """
+from dataclasses import fields
+
+import numpy as np
+
 from ...fem.materials import material as material_named
 from ..beam_layout import ROOT_EXTENSION, layout_beam_model
-from .flexure import EightBarFlexureParams, eightbar_layout, end_effector_point
+from .flexure import EightBarFlexureParams, eightbar_layout
 
 EE_LINK = "end_effector"
+
+
+def unchecked_params(base: EightBarFlexureParams, **changes) -> EightBarFlexureParams:
+    """``base`` with ``changes`` (its own fields) *without* the validity checks of
+    EightBarFlexureParams (the clearance check over the travel costs ~0.4 s, four times the
+    beam model's linear design point): for large sweeps of the beam model only. A design a
+    sweep keeps must be rebuilt with ``dataclasses.replace`` (which checks it) before it is
+    trusted; an infeasible layout still raises ValueError when the model is built."""
+    params = object.__new__(EightBarFlexureParams)
+    for f in fields(EightBarFlexureParams):
+        value = changes.pop(f.name, getattr(base, f.name))
+        object.__setattr__(params, f.name, float(value) if isinstance(value, int) else value)
+    if changes:
+        raise ValueError(f"unknown eight-bar parameter(s) {sorted(changes)}")
+    return params
 
 
 def eightbar_beam_model(params: EightBarFlexureParams, n_per_flexure: int = 24,
@@ -23,10 +42,10 @@ def eightbar_beam_model(params: EightBarFlexureParams, n_per_flexure: int = 24,
     node of the end-effector link, on its bottom face's centroid), "ground" (clamped nodes),
     "masters" {link: node}, "flexures" {joint: (first, last element)}."""
     layout = eightbar_layout(params)
+    face = np.asarray(layout.edges["end_effector"], float).mean(axis=0)  # end_effector_point
     model, info = layout_beam_model(
         layout, material_named(params.material), params.thickness,
         fillet_radius=params.root_fillet_radius, n_per_flexure=n_per_flexure,
-        root_extension=root_extension, anchors={EE_LINK: end_effector_point(params)},
-        shear=shear)
+        root_extension=root_extension, anchors={EE_LINK: face}, shear=shear)
     info["end_effector"] = info["masters"][EE_LINK]
     return model, info
