@@ -85,7 +85,7 @@ def strokes(rows, steps=8):
     from flexfem.geometry.eightbar.beam import eightbar_beam_model
     from flexfem.geometry.eightbar.flexure import EightBarFlexureParams
     from flexfem.studies.eightbar.analysis import build_model, large_deflection
-    from flexfem.studies.eightbar.beam import beam_stroke
+    from flexfem.studies.eightbar.beam import NEWTON_TOL, beam_stroke
 
     params = EightBarFlexureParams()
     travel = params.rigid.travel
@@ -95,7 +95,7 @@ def strokes(rows, steps=8):
         plus = beam_stroke(model, info, params, travel, steps)
         minus = solve_beam_nonlinear(model, [Fixed(tuple(info["ground"])),
                                              Prescribed(info["end_effector"], "x", -travel / 2)],
-                                     steps=steps)
+                                     steps=steps, tol=NEWTON_TOL)
         return {"deviation_um": plus["fem_deviation_m"] * 1e6, "peak_MPa":
                 max(plus["peak_von_mises_travel"], max(s.max_stress for s in minus.states))
                 / 1e6, "end_force_N": plus["end_force_n"],

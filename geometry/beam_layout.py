@@ -112,34 +112,69 @@ def profile_beam(a, b, thickness_fn, out_of_plane: float, breaks=(), n_total: in
     return BeamMesh(mesh.nodes, mesh.elements, mesh.sections, [first, last])
 
 
-def link_inertia(parts, link: str, out_of_plane: float, rho: float,
-                 resolution: int = 24) -> tuple:
+def _clip(poly, clipper) -> list:
+    """Sutherland-Hodgman: the part of convex polygon ``poly`` inside convex counter-
+    clockwise ``clipper`` (lists of (x, y))."""
+    out = list(poly)
+    for (ax, ay), (bx, by) in zip(clipper, clipper[1:] + clipper[:1]):
+        inside = lambda p: (bx - ax) * (p[1] - ay) - (by - ay) * (p[0] - ax) >= 0
+        points, out = out, []
+        for p, q in zip(points, points[1:] + points[:1]):
+            if inside(q):
+                if not inside(p):
+                    out.append(_cross(p, q, (ax, ay), (bx, by)))
+                out.append(q)
+            elif inside(p):
+                out.append(_cross(p, q, (ax, ay), (bx, by)))
+        if not out:
+            return []
+    return out
+
+
+def _cross(p, q, a, b) -> tuple:
+    """Intersection of segment p-q with the line a-b."""
+    d1 = (q[0] - p[0], q[1] - p[1])
+    d2 = (b[0] - a[0], b[1] - a[1])
+    t = ((a[0] - p[0]) * d2[1] - (a[1] - p[1]) * d2[0]) / (d1[0] * d2[1] - d1[1] * d2[0])
+    return (p[0] + t * d1[0], p[1] + t * d1[1])
+
+
+def _moments(poly) -> np.ndarray:
+    """(area, first moments Sx, Sy, polar second moment about the origin) of a polygon."""
+    A = Sx = Sy = J = 0.0
+    for (x0, y0), (x1, y1) in zip(poly, poly[1:] + poly[:1]):
+        c = x0 * y1 - x1 * y0
+        A += c / 2
+        Sx += (x0 + x1) * c / 6
+        Sy += (y0 + y1) * c / 6
+        J += (x0 * x0 + x0 * x1 + x1 * x1 + y0 * y0 + y0 * y1 + y1 * y1) * c / 12
+    return np.array([A, Sx, Sy, J])
+
+
+def link_inertia(parts, link: str, out_of_plane: float, rho: float) -> tuple:
     """(mass kg, centroid (2,) m, rotary inertia about it kg m^2) of the union of the
-    rectangles of ``link`` (bars, hubs; overlapping at the bars' corners and ends), by
-    midpoint sampling on a grid of ``resolution`` cells across the narrowest rectangle."""
-    rects = [p for p in parts if p.link == link and p.kind != "flexure"]
+    rectangles of ``link`` (bars and hubs, which overlap at the bars' corners and ends):
+    inclusion-exclusion over the rectangles' overlaps up to three at a time (bars meeting at
+    a point with a hub; exact unless four overlap)."""
+    rects = [[tuple(c) for c in p.corners()] for p in parts
+             if p.link == link and p.kind != "flexure"]
     if not rects:
         return 0.0, None, 0.0
-    corners = np.vstack([p.corners() for p in rects])
-    lo, hi = corners.min(axis=0), corners.max(axis=0)
-    h = min(p.width for p in rects) / resolution
-    xs = np.arange(lo[0] + h / 2, hi[0], h)
-    ys = np.arange(lo[1] + h / 2, hi[1], h)
-    X, Y = np.meshgrid(xs, ys)
-    pts = np.column_stack([X.ravel(), Y.ravel()])
-    inside = np.zeros(len(pts), dtype=bool)
-    for p in rects:
-        a, b = np.asarray(p.p0, float), np.asarray(p.p1, float)
-        d = (b - a) / max(np.linalg.norm(b - a), 1e-300)
-        rel = pts - a
-        along, across = rel @ d, rel @ np.array([-d[1], d[0]])
-        inside |= (along >= 0) & (along <= p.length) & (np.abs(across) <= p.width / 2)
-    q = pts[inside]
-    dm = rho * out_of_plane * h * h
-    m = dm * len(q)
-    centroid = q.mean(axis=0)
-    J = dm * float(((q - centroid) ** 2).sum()) + m * h * h / 6
-    return float(m), centroid, J
+    total, n = sum(_moments(r) for r in rects), len(rects)
+    for i in range(n):
+        for j in range(i + 1, n):
+            pair = _clip(rects[i], rects[j])
+            if len(pair) < 3:
+                continue
+            total = total - _moments(pair)
+            for k in range(j + 1, n):
+                triple = _clip(pair, rects[k])
+                if len(triple) >= 3:
+                    total = total + _moments(triple)
+    A, Sx, Sy, J = total
+    centroid = np.array([Sx / A, Sy / A])
+    m = rho * out_of_plane * A
+    return float(m), centroid, float(rho * out_of_plane * (J - A * float(centroid @ centroid)))
 
 
 def layout_beam_model(layout, material, out_of_plane: float, fillet_radius: float = 0.0,
