@@ -187,3 +187,32 @@ def test_optimize_cli_has_the_screen_option():
 
     with pytest.raises(ValueError, match="screen"):
         run(None, screen="nope")
+
+
+def test_link_inertia_is_the_union_of_overlapping_rectangles():
+    from flexfem.geometry.beam_layout import link_inertia
+    from flexfem.geometry.flexure_linkage import Part
+
+    # an L of two 1 x 0.2 bars overlapping in a 0.2 x 0.2 corner square, and a third bar
+    # through the same corner (triple overlap)
+    parts = [Part("a", "k", "bar", (0.0, 0.0), (1.0, 0.0), 0.2),
+             Part("b", "k", "bar", (0.0, -0.1), (0.0, 1.0), 0.2),
+             Part("c", "k", "bar", (-0.1, 0.0), (0.1, 0.0), 0.2)]
+    m, c, J = link_inertia(parts, "k", 1.0, 1.0)
+    # union: [-0.1, 1] x [-0.1, 0.1] plus [-0.1, 0.1] x [0.1, 1]
+    assert m == pytest.approx(1.1 * 0.2 + 0.2 * 0.9)
+    cx = (1.1 * 0.2 * 0.45 + 0.18 * 0.0) / m
+    cy = (0.22 * 0.0 + 0.18 * 0.55) / m
+    assert c == pytest.approx([cx, cy])
+    assert J > 0
+
+
+def test_unchecked_params_skips_only_the_checks():
+    from flexfem.geometry.eightbar.beam import unchecked_params
+    from flexfem.geometry.eightbar.flexure import EightBarFlexureParams
+
+    base = EightBarFlexureParams()
+    fast = unchecked_params(base, flexure_width=0.35e-3)
+    assert fast == dataclasses.replace(base, flexure_width=0.35e-3)
+    with pytest.raises(ValueError, match="unknown"):
+        unchecked_params(base, nonsense=1.0)
