@@ -74,11 +74,12 @@ def analyze_dbma_beam(p: DBMAParams, layout: DBMALayout | None = None, force: fl
 
 def evaluate_beam(params_dict: dict | None = None, modes: bool = False, force: float = 100.0,
                   root_extension: float = ROOT_EXTENSION, hinge_profile: str = "leaf",
-                  **ignored) -> dict:
+                  dim: int | None = None, size_factor: float | None = None) -> dict:
     """Study metrics of the beam model, named as the continuum evaluate's: R_fem,
     R_fem_per_side, k_in, max_von_mises, dofs, the analytical metrics, k_out, and with
-    ``modes`` fn_working and working_mode. Continuum-only options (dim, size_factor) are
-    accepted and ignored."""
+    ``modes`` fn_working and working_mode. The continuum-only options dim and size_factor
+    are accepted and ignored (a study can switch ``model`` without editing its options); any
+    other option raises TypeError."""
     p = params_from_dict(params_dict or {})
     layout = DBMALayout(hinge_profile=hinge_profile)
     out = analyze_dbma_beam(p, layout, force, 6 if modes else 0, root_extension)

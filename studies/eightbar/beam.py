@@ -138,11 +138,12 @@ def _flexure_of(info, element: int) -> str:
 
 def evaluate_beam(params: dict | None = None, nonlinear: bool = False, steps: int = 6,
                   n_per_flexure: int = 24, root_extension: float = ROOT_EXTENSION,
-                  **ignored) -> dict:
+                  size_factor: float | None = None) -> dict:
     """Study metrics of the beam model, named as the continuum evaluate's: k_x, k_y,
     k_x_prbm, max_von_mises, f1_hz, dofs (and with ``nonlinear`` fem_deviation_pct,
     rigid_deviation_pct, peak_von_mises_travel, safety_factor, max_rotation_rad).
-    Continuum-only options (size_factor) are accepted and ignored."""
+    The continuum-only option size_factor is accepted and ignored (a study can switch
+    ``model`` without editing its options); any other option raises TypeError."""
     out = analyze_eightbar_beam(params_from_dict(params or {}), steps=steps, n_modes=1,
                                 nonlinear=nonlinear, n_per_flexure=n_per_flexure,
                                 root_extension=root_extension)

@@ -40,6 +40,9 @@ def test_the_registry_evaluate_dispatches_on_model():
         assert out["dofs"] < 3000  # the beam model, not a mesh
         with pytest.raises(ValueError, match="model"):
             evaluate({}, model="shell")
+        with pytest.raises(TypeError):
+            evaluate({}, model="beam", bogus=1.0)
+        evaluate({}, model="beam", size_factor=2.0)  # continuum-only: accepted, ignored
 
 
 def test_a_study_with_model_beam_runs_the_beam_model(tmp_path):
