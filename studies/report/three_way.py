@@ -10,6 +10,7 @@ from dataclasses import dataclass
 import math
 
 from .comparison import Comparison, rel_diff
+from .format import number
 
 STIFFNESS_TOL = 0.03  # stiffnesses and frequencies: beam within 3 % of the continuum
 STRESS_TOL = 0.10     # peak stresses: within 10 %
@@ -45,10 +46,12 @@ def beam_comparisons(metrics, source: str = "continuum FEM (2-D, same design)") 
 
 
 def key_table(metrics, title: str) -> dict:
-    """The report's printed table: quantity, unit, PRBM, beam, continuum, beam error (%)."""
+    """The report's printed table: quantity, PRBM, beam, continuum (with their units, scaled
+    for reading), beam and PRBM errors against the continuum (%)."""
     pct = lambda v, ref: 100 * rel_diff(v, ref)
     return {"title": title,
-            "columns": ["quantity", "unit", "PRBM / closed form", "beam model", "continuum FEM",
+            "columns": ["quantity", "PRBM / closed form", "beam model", "continuum FEM",
                         "beam error (%)", "PRBM error (%)"],
-            "rows": [[m.quantity, m.unit, m.prbm, m.beam, m.continuum,
-                      pct(m.beam, m.continuum), pct(m.prbm, m.continuum)] for m in metrics]}
+            "rows": [[m.quantity, number(m.prbm, m.unit), number(m.beam, m.unit),
+                      number(m.continuum, m.unit), pct(m.beam, m.continuum),
+                      pct(m.prbm, m.continuum)] for m in metrics]}
