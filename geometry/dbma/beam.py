@@ -52,16 +52,6 @@ class _Builder:
         return n0
 
 
-def _rigid_mass(rects, d, rho) -> tuple:
-    """(mass, centroid, J about it) of axis-aligned rectangles."""
-    m = np.array([(r.x1 - r.x0) * (r.y1 - r.y0) * d * rho for r in rects])
-    c = np.array([((r.x0 + r.x1) / 2, (r.y0 + r.y1) / 2) for r in rects])
-    cg = (m[:, None] * c).sum(axis=0) / m.sum()
-    J = sum(mi * ((r.x1 - r.x0) ** 2 + (r.y1 - r.y0) ** 2) / 12 + mi * float((ci - cg) @ (ci - cg))
-            for mi, r, ci in zip(m, rects, c))
-    return float(m.sum()), cg, float(J)
-
-
 def _column(bld, links, xc, ys, width, depth, hinge_ends, per_length) -> dict:
     """A member as an elastic beam along x = ``xc`` through the heights ``ys`` (m), width
     ``width``; the hinges' ends [(node, y)] joined to it by rigid offsets. {y: node}."""
@@ -97,7 +87,8 @@ def dbma_beam_model(p: DBMAParams, layout: DBMALayout | None = None,
                     shear: bool = True) -> tuple:
     """(BeamModel, info) of the DBMA. info: "input_a" / "input_b" (masters of the left /
     right input members, on their pads' faces), "output" (master of member 4, on its top
-    face), "ground" (hinge nodes on member 11), "hinges" {label: (first, last element)}."""
+    face), "ground" (the bottom of member 11, its mounting face), "hinges" {label: (first,
+    last element) of the hinge-arm-hinge chain}."""
     layout = layout or DBMALayout()
     check_layout(p, layout)
     root_extension = check_root_extension(root_extension)
@@ -123,7 +114,6 @@ def dbma_beam_model(p: DBMAParams, layout: DBMALayout | None = None,
             links += [RigidLink(arm[0], (ha[1],)), RigidLink(arm[-1], (hb[0],))]
             (slaves["output"] if sy > 0 else ground).append((ha[0], ya))
             slaves["input_b" if sx > 0 else "input_a"].append((hb[1], yb))
-    masses = {}
     for name, sx in (("input_a", -1), ("input_b", 1)):
         master = _input_member(bld, links, p, layout, J, pad, sx, slaves[name], 0.0)
         slaves[name] = master
@@ -132,7 +122,7 @@ def dbma_beam_model(p: DBMAParams, layout: DBMALayout | None = None,
     base = _column(bld, links, 0.0, (-out4.y1, -out4.y0), p.ls, p.d, ground, 6 / p.ll)
     master, ground = top[out4.y1], [base[-out4.y1]]
     model = BeamModel(np.vstack(bld.nodes), np.vstack(bld.elements), bld.sections,
-                      Material("dbma_steel", p.E, p.nu, p.rho), shear=shear, rigid_links=links, point_masses=masses)
+                      Material("dbma_steel", p.E, p.nu, p.rho), shear=shear, rigid_links=links)
     return model, {"input_a": slaves["input_a"], "input_b": slaves["input_b"],
                    "output": master, "ground": ground, "hinges": spans}
 

@@ -11,8 +11,6 @@ compliance for the block height) and without it. SI units.
 """
 import math
 
-import numpy as np
-
 from ...fem import Fixed as FEFixed, Force, Material, Model, PlaneStress, solve_static
 from ...fem.beam import BeamModel, Fixed, NodalLoad, Section, beam_chain, solve_beam_static
 from ...geometry.beam_layout import ROOT_EXTENSION, profile_beam

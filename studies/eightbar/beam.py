@@ -17,12 +17,11 @@ import math
 import numpy as np
 
 from ...fem import material
-from ...fem.beam import (Fixed, Prescribed, compliance, solve_beam_modes, solve_beam_nonlinear,
+from ...fem.beam import (Fixed, Prescribed, solve_beam_modes, solve_beam_nonlinear,
                          solve_beam_static)
 from ...geometry.beam_layout import ROOT_EXTENSION
 from ...geometry.eightbar.beam import eightbar_beam_model
-from ...geometry.eightbar.flexure import (EightBarFlexureParams, end_effector_point,
-                                          prbm_stiffness)
+from ...geometry.eightbar.flexure import EightBarFlexureParams, prbm_stiffness
 from ...geometry.eightbar.rigid import trace_eightbar
 from ...geometry.straight_line import straight_line_deviation
 from .analysis import params_from_dict
@@ -71,7 +70,7 @@ def beam_stroke(model, info, params: EightBarFlexureParams, travel: float,
     path = res.path(ee)
     force = np.array([s.reactions[ee][0] for s in res.states])
     stress = np.array([s.max_stress for s in res.states])
-    e0 = end_effector_point(params)
+    e0 = model.nodes[ee]  # the end_effector face's centroid (end_effector_point)
     half = np.column_stack([e0[0] + path[:, 0], e0[1] + path[:, 1]])
     mirror = np.column_stack([2 * e0[0] - half[:0:-1, 0], half[:0:-1, 1]])
     dev = straight_line_deviation(np.vstack([mirror, half]))

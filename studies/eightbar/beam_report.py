@@ -4,8 +4,6 @@ FEM": the three-way table of the default design and the path over the stroke by 
 import time
 from pathlib import Path
 
-import numpy as np
-
 from ...geometry.eightbar.flexure import (EightBarFlexureParams, prbm_peak_stress,
                                           prbm_stiffness)
 from ..engine.tables import write_rows
