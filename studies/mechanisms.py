@@ -72,7 +72,7 @@ class Mechanism:
 BUILTIN = (
     Mechanism(
         "dbma", "Double-row bow-type micro-displacement amplifier (servo valve)", "dbma",
-        evaluate="analysis:evaluate", commands="cli", optimizer="cli_optimize", document="dbma",
+        evaluate="evaluate:evaluate", commands="cli", optimizer="cli_optimize", document="dbma",
         # coarser start: halving the size three times from 4x stays affordable
         coarsest_size_factor=4.0,
         sections=(
@@ -84,10 +84,12 @@ BUILTIN = (
                     "optimize_output:reproduce"),
             Section("dbma_dynamics", "DBMA: output compliance, FRF, bandwidth, buckling",
                     "dynamics_report:reproduce"),
+            Section("dbma_beam", "DBMA: beam model beside the closed forms and the FEM",
+                    "beam_report:reproduce"),
         )),
     Mechanism(
         "eightbar", "Symmetric rectilinear eight-bar flexure suspension", "eightbar",
-        evaluate="analysis:evaluate", commands="cli", document="eightbar",
+        evaluate="evaluate:evaluate", commands="cli", document="eightbar",
         sections=(
             Section("eightbar_rigid",
                     "Eight-bar and straight-line linkages: rigid-body paths and synthesis",
@@ -97,6 +99,9 @@ BUILTIN = (
                     "report:reproduce"),
             Section("eightbar_stage", "Eight-bar as a stage: compliance, modes, buckling",
                     "stage_report:reproduce"),
+            Section("eightbar_beam",
+                    "Eight-bar flexure suspension: beam model beside the PRBM and the FEM",
+                    "beam_report:reproduce"),
         )),
     Mechanism(
         "balancing", "Five-bar parallel robot: optimum static balancing and flexure pivots",
@@ -107,6 +112,9 @@ BUILTIN = (
             Section("balancing_pivot_stability",
                     "Flexure pivots: limit point, stability margin, centre shift",
                     "pivot_stability_report:reproduce"),
+            Section("balancing_beam",
+                    "Balancing pivots: beam model beside beam theory and the FEM",
+                    "beam_report:reproduce"),
         )),
     Mechanism(
         "model", "Your own flexure from a model file (TOML + .geo, .step or .msh)", "user_model",

@@ -8,8 +8,9 @@ from ...geometry.dbma.drawing import mesh_dbma
 from ...geometry.dbma.params import paper_design
 from ..options import damping_ratio, positive
 from .analysis import (actuator_loads, analyze_dbma, build_model, modal_supports,
-                       static_supports)
+                       published, static_supports)
 from .dynamics import frf_study
+from .beam import analyze_dbma_beam
 
 MESH_SUFFIXES = (".msh", ".vtu", ".xdmf", ".inp")
 DECK_FORCE = 800.0  # N, the actuator force of the paper's tests (Sec. 5) and of analyze
@@ -22,7 +23,9 @@ def _params(args):
 
 
 def run_analyze(args) -> dict:
-
+    if args.model == "beam":
+        force = float(published()["loading"]["force_max_N"])
+        return {**analyze_dbma_beam(_params(args), force=force), "dim": "beam"}
     return analyze_dbma(_params(args), dim=args.dim, size_factor=args.size_factor,
                         max_dofs=args.max_dofs)
 
@@ -30,8 +33,9 @@ def run_analyze(args) -> dict:
 def summarize_analyze(r: dict) -> str:
     freqs = ", ".join(f"{f:.1f}" for f in r["frequencies_hz"])
     x, y = (1e3 * v for v in r["max_von_mises_location"][:2])
+    model = "beam model" if r["dim"] == "beam" else f"{r['dim']}-D FEM"
     return "\n".join([
-        f"DBMA, {r['dim']}-D FEM, {r['dofs']} DOFs",
+        f"DBMA, {model}, {r['dofs']} DOFs",
         f"R FEM (output / elongation)         {r['R_fem']:.3f}",
         f"R FEM (output / one pad's motion)   {r['R_fem_per_side']:.3f}",
         f"R Eq. 7 / enhanced model            {r['R_eq7']:.3f} / {r['R_enhanced']:.3f}",
@@ -130,6 +134,8 @@ def register(subparsers):
     analyze.add_argument("--max-dofs", type=_count, default=None,
                          help="refuse a mesh above this many unknowns (default: what half the "
                               "available memory affords)")
+    analyze.add_argument("--model", choices=("continuum", "beam"), default="continuum",
+                         help="continuum: FEM (default); beam: the reduced beam model")
     analyze.add_argument("--json", action="store_true", help="print one JSON object")
     analyze.set_defaults(run=run_analyze, summarize=summarize_analyze)
     frf = commands.add_parser("frf", help="output compliance, FRF from actuator force to "

@@ -29,13 +29,16 @@ def add_arguments(parser) -> None:
                              "(default ./dbma_optimize; a re-run reuses the stored evaluations)")
     parser.add_argument("--quick", action="store_true",
                         help="smoke run: at most 12 FEM evaluations, 256 screened designs")
+    parser.add_argument("--screen", choices=("closed-form", "beam"), default="closed-form",
+                        help="screening model of the Sobol sample: the closed forms (default) "
+                             "or the generated beam model (~0.2 s a design); the FEM decides")
     parser.add_argument("--json", action="store_true", help="print the result as one JSON object")
 
 
 def run(args) -> dict:
     values = {name: getattr(args, name) for name in SPEC_OPTIONS.values()}
     spec = OptimizeSpec(**values, max_evaluations=args.max_evaluations)
-    return run_search(spec, args.out, quick=args.quick)
+    return run_search(spec, args.out, quick=args.quick, screen=args.screen)
 
 
 def summarize(result: dict) -> str:

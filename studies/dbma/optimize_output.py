@@ -5,6 +5,7 @@ from pathlib import Path
 from ...geometry.dbma.params import paper_design
 from ..engine.tables import write_rows
 from ..report.figures import entry, legend_outside, pyplot, save
+from .beam import beam_estimates
 from .optimize import Evaluations, fem_metrics, optimize
 from .optimize_spec import (
     NAMES,
@@ -19,6 +20,10 @@ HISTORY_COLUMNS = ("evaluation", "stage", "size_factor", "b", "h", "l", "R_fem",
                    "fn_working", "k_out", "von_mises_at_stroke", "von_mises_element_at_stroke",
                    "actuator_force", "free_output", "blocked_output_force", "feasible", "cached",
                    "wall_time_s")
+
+# screening models (optimize's estimator): None is optimize's default, the closed forms
+# (analytical_estimates); "beam" the generated beam model
+SCREENS = {"closed-form": None, "beam": beam_estimates}
 
 
 def history_rows(result: dict) -> list[dict]:
@@ -110,14 +115,21 @@ def write_rows_csv(rows: list[dict], path) -> Path:
     return write_rows(path, rows, ["quantity", "value", "bound", "active"])
 
 
-def run(spec: OptimizeSpec, out_dir=None, quick: bool = False) -> dict:
+def run(spec: OptimizeSpec, out_dir=None, quick: bool = False,
+        screen: str = "closed-form") -> dict:
     """``optimize`` with its store, optimize_history.csv and optimize_history.png in
-    ``out_dir`` (when given); quick: ``quick_spec``."""
+    ``out_dir`` (when given); quick: ``quick_spec``; screen: "closed-form" (the elastic-beam
+    formulas, default) or "beam" (the generated beam model, ~0.2 s a design: closer to the
+    FEM, which still decides)."""
+    if screen not in SCREENS:
+        raise ValueError(f"screen = {screen!r} must be one of {tuple(SCREENS)}")
     spec = quick_spec(spec) if quick else spec
     out = None if out_dir is None else Path(out_dir)
     if out is not None:
         out.mkdir(parents=True, exist_ok=True)
-    result = optimize(spec, None if out is None else out / "optimize_cache.sqlite")
+    result = optimize(spec, None if out is None else out / "optimize_cache.sqlite",
+                      estimator=SCREENS[screen])
+    result["screening"] = screen
     if out is not None:
         result["tables"] = [write_history_csv(result, out / "optimize_history.csv").name]
         result["figures"] = [plot_history(result, out / "optimize_history.png").name]

@@ -7,6 +7,7 @@ from .analysis import analyze_eightbar, summary_row
 from ...geometry.eightbar.flexure import THESIS_TRAVEL
 from ...geometry.eightbar.rigid import EightBarParams
 from ..options import positive
+from .beam import analyze_eightbar_beam
 from .path import eightbar_path_summary, trace_classic
 from .stage import stage_study
 
@@ -39,6 +40,9 @@ def _summarize_eightbar_trace(result: dict) -> str:
 
 
 def _run_eightbar_analyze(args) -> dict:
+    if args.model == "beam":
+        out = analyze_eightbar_beam(travel=args.travel, steps=8, n_modes=2)
+        return {**summary_row(out), "model": "beam"}
     out = analyze_eightbar(travel=args.travel, size_factor=2.0 if args.quick else 1.0,
                            steps=4 if args.quick else 8, both_halves=not args.quick,
                            n_modes=2)
@@ -47,7 +51,8 @@ def _run_eightbar_analyze(args) -> dict:
 
 def _summarize_eightbar_analyze(r: dict) -> str:
     loc = r["max_stress_location"]
-    return (f"eight-bar flexure suspension ({r['dofs']} DOFs): k_x = {r['k_x']:.4g} N/m "
+    model = "beam model" if r.get("model") == "beam" else "2-D FEM"
+    return (f"eight-bar flexure suspension, {model} ({r['dofs']} DOFs): k_x = {r['k_x']:.4g} N/m "
             f"(pseudo-rigid-body {r['k_x_prbm']:.4g}), k_y = {r['k_y']:.4g} N/m; linear max von "
             f"Mises {r['max_von_mises'] / 1e6:.4g} MPa at x = {r['travel_m'] / 2 * 1e3:.4g} mm, in "
             f"{loc['flexure']} ({loc['x'] * 1e3:.2f}, {loc['y'] * 1e3:.2f}) mm\n"
@@ -103,6 +108,8 @@ def add_eightbar_commands(eb_sub) -> None:
     p.add_argument("--travel", type=float, default=None,
                    help="end-to-end travel in m (default 0.0331, the thesis')")
     p.add_argument("--quick", action="store_true", help="coarse mesh, half stroke mirrored")
+    p.add_argument("--model", choices=("continuum", "beam"), default="continuum",
+                   help="continuum: 2-D FEM (default); beam: the reduced beam model (~0.1 s)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(run=_run_eightbar_analyze, summarize=_summarize_eightbar_analyze)
     p = eb_sub.add_parser("stage", help="the suspension as a stage: compliance, support "

@@ -1,0 +1,128 @@
+"""Reduced beam model of the DBMA, generated from its parameters (and layout).
+
+    model, info = dbma_beam_model(paper_design())
+    info["input_a"], info["input_b"], info["output"]   # master nodes (pad faces, output face)
+
+Same reconstruction as the continuum mesh (:func:`flexfem.geometry.dbma.drawing.quarter_rects`,
+mirrored into four quarters): each of the 16 hinges is a beam following its profile t(s)
+(leaf, filleted or circular notch: :func:`flexfem.geometry.hinge_profiles.profile_thickness`
+through :func:`flexfem.fem.beam.beam_from_profile`), each inclined arm an elastic Timoshenko
+beam of width c along its centre line, joined to its two hinges (offset +-h/2 across it) by
+rigid offsets; the input members (width a) and output members 4 and 11 (width ls) are elastic beams along
+their centre lines (the pads rigid), member 11 clamped at its bottom (the mounting face). Root extension: see
+:mod:`flexfem.geometry.beam_layout` (0.38 x root thickness per root by default, with the root's
+axial compliance for a block of height c at both ends: the arm's width; the members' faces
+around a hinge are about as tall). Lengths in m.
+"""
+import numpy as np
+
+from ...fem.beam import BeamMesh, BeamModel, RigidLink, Section, beam_chain
+from ...fem.materials import Material
+from ..beam_layout import ROOT_EXTENSION, check_root_extension, profile_beam, root_section
+from ..hinge_profiles import profile_thickness
+from .drawing import DBMALayout, check_layout, quarter_rects
+from .params import DBMAParams
+
+QUARTERS = ((1, 1), (-1, 1), (1, -1), (-1, -1))
+
+
+def _hinge_fn(p: DBMAParams, layout: DBMALayout):
+    prof, rf = layout.hinge_profile, layout.hinge_fillet_radius
+    fn = lambda s: float(profile_thickness(prof, p.l, p.b, rf, s))
+    breaks = (rf, p.l - rf) if prof == "filleted" else ()
+    return fn, breaks, (24 if prof == "leaf" else 40)
+
+
+class _Builder:
+    """Accumulates nodes, elements and sections; nodes are appended, never merged."""
+
+    def __init__(self):
+        self.nodes, self.elements, self.sections = [], [], []
+
+    def add(self, mesh: BeamMesh) -> list:
+        n0 = sum(len(x) for x in self.nodes)
+        self.nodes.append(mesh.nodes)
+        self.elements.append(mesh.elements + n0)
+        self.sections += list(mesh.sections)
+        return [n0 + k for k in mesh.point_nodes]
+
+    def point(self, xy) -> int:
+        n0 = sum(len(x) for x in self.nodes)
+        self.nodes.append(np.asarray(xy, float)[None, :])
+        return n0
+
+
+def _column(bld, links, xc, ys, width, depth, hinge_ends, per_length) -> dict:
+    """A member as an elastic beam along x = ``xc`` through the heights ``ys`` (m), width
+    ``width``; the hinges' ends [(node, y)] joined to it by rigid offsets. {y: node}."""
+    ys = sorted(set(ys) | {y for _, y in hinge_ends})
+    counts = [max(2, int(round(per_length * (y1 - y0)))) for y0, y1 in zip(ys[:-1], ys[1:])]
+    chain = bld.add(beam_chain([(xc, y) for y in ys], Section.rect(depth, width), counts))
+    at = {y: chain[k] for k, y in enumerate(ys)}
+    for node, y in hinge_ends:
+        links.append(RigidLink(at[y], (node,)))
+    return at
+
+
+def _input_member(bld, links, p, layout, J, pad, sx, hinge_ends, root_extension) -> int:
+    """An input member (arms 2 + 13 or 6 + 9) as an elastic beam of width a along its centre
+    line, the hinges' ends joined to it by rigid offsets, and its pad a short beam (pad_height
+    thick) from its face into the member, with the common root extension where it enters the
+    member (the pad's root is as compliant as a flexure's, relative to its size); returns the
+    node on the pad's face, where the actuator pushes."""
+    at = _column(bld, links, sx * (J.x0 + J.x1) / 2, (-p.ll, p.ll, 0.0), p.a, p.d,
+                 hinge_ends, 6 / p.ll)
+    t = layout.pad_height
+    face, root = (sx * min(abs(pad.x0), abs(pad.x1)), 0.0), (sx * J.x0, 0.0)
+    ext = root_extension * t
+    pts = [face, root] + ([(sx * (J.x0 + ext), 0.0)] if ext > 0 else [])
+    sections = [Section.rect(p.d, t)] + ([root_section(p.d, t, ext, 2 * p.ll)] if ext > 0 else [])
+    chain = bld.add(beam_chain(pts, sections, [2] + [1] * (len(pts) - 2)))
+    links.append(RigidLink(at[0.0], (chain[-1],)))
+    return chain[0]
+
+
+def dbma_beam_model(p: DBMAParams, layout: DBMALayout | None = None,
+                    root_extension: float = ROOT_EXTENSION, arm_elements: int = 8,
+                    shear: bool = True) -> tuple:
+    """(BeamModel, info) of the DBMA. info: "input_a" / "input_b" (masters of the left /
+    right input members, on their pads' faces), "output" (master of member 4, on its top
+    face), "ground" (the bottom of member 11, its mounting face), "hinges" {label: (first,
+    last element) of the hinge-arm-hinge chain}."""
+    layout = layout or DBMALayout()
+    check_layout(p, layout)
+    root_extension = check_root_extension(root_extension)
+    q = quarter_rects(p, layout)
+    J, pad, out4 = q[0], q[1], q[2]
+    fn, breaks, n_hinge = _hinge_fn(p, layout)
+    blocks = (p.c, p.c)  # the height of the faces the hinges enter (arm ends; members, ~)
+    x_out, x_in, l, h = p.ls / 2, p.ls / 2 + 2 * p.l + p.e, p.l, p.h
+    bld, links = _Builder(), []
+    slaves = {"input_a": [], "input_b": [], "output": []}
+    ground, spans = [], {}
+    for sx, sy in QUARTERS:
+        for row, yc in (("i", layout.arm_gap + p.c / 2), ("o", p.ll - p.c / 2)):
+            ya, yb = sy * (yc - h / 2), sy * (yc + h / 2)
+            e0 = len(bld.sections)
+            ha = bld.add(profile_beam((sx * x_out, ya), (sx * (x_out + l), ya), fn, p.d, breaks,
+                                      n_hinge, root_extension, blocks))
+            arm = bld.add(beam_chain([(sx * (x_out + l), sy * yc), (sx * (x_in - l), sy * yc)],
+                                     Section.rect(p.d, p.c), arm_elements))
+            hb = bld.add(profile_beam((sx * (x_in - l), yb), (sx * x_in, yb), fn, p.d, breaks,
+                                      n_hinge, root_extension, blocks))
+            spans[f"{sx:+d}{sy:+d}{row}"] = (e0, len(bld.sections))
+            links += [RigidLink(arm[0], (ha[1],)), RigidLink(arm[-1], (hb[0],))]
+            (slaves["output"] if sy > 0 else ground).append((ha[0], ya))
+            slaves["input_b" if sx > 0 else "input_a"].append((hb[1], yb))
+    for name, sx in (("input_a", -1), ("input_b", 1)):
+        master = _input_member(bld, links, p, layout, J, pad, sx, slaves[name], 0.0)
+        slaves[name] = master
+    top = _column(bld, links, 0.0, (out4.y0, out4.y1), p.ls, p.d, slaves["output"],
+                  6 / p.ll)
+    base = _column(bld, links, 0.0, (-out4.y1, -out4.y0), p.ls, p.d, ground, 6 / p.ll)
+    master, ground = top[out4.y1], [base[-out4.y1]]
+    model = BeamModel(np.vstack(bld.nodes), np.vstack(bld.elements), bld.sections,
+                      Material("dbma_steel", p.E, p.nu, p.rho), shear=shear, rigid_links=links)
+    return model, {"input_a": slaves["input_a"], "input_b": slaves["input_b"],
+                   "output": master, "ground": ground, "hinges": spans}
+

@@ -1,0 +1,95 @@
+"""Report section "DBMA: beam model beside the closed forms and the continuum FEM": the
+three-way table (PRBM / elastic-beam closed forms, the generated beam model, 2-D FEM) of the
+paper's design, and where the beam model stops being trustworthy over the hinge slenderness.
+"""
+import math
+import time
+from pathlib import Path
+
+from ...fem import Force, solve_static
+from ...geometry.dbma.params import paper_design
+from ..engine.tables import write_rows
+from ..report.three_way import (STRESS_TOL, Metric, beam_comparisons, key_table,
+                                three_way_rows)
+from . import analysis as fem
+from .beam import analyze_dbma_beam
+from .beam_slenderness import (dbma_slenderness_rows, plot_slenderness, slenderness_rows,
+                               trusted_from)
+
+FORCE = 100.0  # N, the actuator force of the linear solves
+
+
+def continuum_metrics(p, size_factor: float) -> dict:
+    """R_fem_per_side, k_in, k_out (N/m), fn_working (Hz), max_von_mises (Pa at FORCE) of
+    the 2-D FEM, and its wall time (s)."""
+    start = time.perf_counter()
+    model = fem.build_model(p, None, 2, size_factor)
+    static = fem.static_response(model, FORCE)
+    probe = solve_static(model, fem.modal_supports(), [Force("output", (0.0, FORCE))])
+    modal, _ = fem.modal_response(model, 6)
+    return {"R_fem_per_side": static["R_fem_per_side"], "k_in": static["k_in"],
+            "k_out": FORCE / float(probe.mean_displacement("output")[1]),
+            "fn_working": modal["fn_working"], "max_von_mises": static["max_von_mises"],
+            "dofs": int(model.n_dofs), "time_s": time.perf_counter() - start}
+
+
+def three_way(p, size_factor: float) -> tuple:
+    """([Metric], beam output, continuum output) of design ``p``."""
+    start = time.perf_counter()
+    beam = analyze_dbma_beam(p, force=FORCE)
+    beam["time_s"] = time.perf_counter() - start
+    cont = continuum_metrics(p, size_factor)
+    a = beam  # the analytical metrics ride along in the beam output
+    metrics = [
+        Metric("R, output / one pad's motion", "-", a["R_eq7"], beam["R_fem_per_side"],
+               cont["R_fem_per_side"], note="PRBM: Eq. 7"),
+        Metric("input stiffness k_in", "N/m", a["K_in_enhanced"], beam["k_in"], cont["k_in"],
+               note="closed form: the elastic-beam (enhanced) model"),
+        Metric("output stiffness k_out (input blocked)", "N/m", a["K_out_enhanced"],
+               beam["k_out"], cont["k_out"], note="closed form: the enhanced model"),
+        Metric("working-mode frequency", "Hz", a["fn_eq20"], beam["fn_working"],
+               cont["fn_working"], note="PRBM: Eq. 20"),
+        Metric(f"max stress at {FORCE:g} N", "Pa", math.nan, beam["max_von_mises"],
+               cont["max_von_mises"], STRESS_TOL,
+               note="sharp hinge corners: the continuum's peak is singular (mesh-dependent)"),
+    ]
+    return metrics, beam, cont
+
+
+def reproduce(out_dir, quick: bool = False) -> dict:
+    """Three-way table of the paper's design (quick: the continuum on a 2x coarser mesh) and
+    the slenderness figure (quick: the hinge specimen only; full: also the DBMA at l/b = 2,
+    5, 10, 20)."""
+    out_dir = Path(out_dir)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    p = paper_design()
+    metrics, beam, cont = three_way(p, 2.0 if quick else 1.0)
+    tables = [write_rows(out_dir / "dbma_beam_three_way.csv", three_way_rows(metrics)).name]
+    rows = slenderness_rows((2.0, 3.0, 5.0, 10.0, 20.0),
+                            ("leaf",) if quick else ("leaf", "circular"))
+    tables.append(write_rows(out_dir / "dbma_beam_slenderness.csv", rows).name)
+    mech = None if quick else dbma_slenderness_rows()
+    if mech:
+        tables.append(write_rows(out_dir / "dbma_beam_slenderness_mechanism.csv", mech).name)
+    figure = plot_slenderness(rows, out_dir / "dbma_beam_slenderness.png", mech)
+    leaf_from = trusted_from(rows, "leaf")
+    err = {m.quantity.split(",")[0].split(" (")[0]: 100 * (m.beam / m.continuum - 1)
+           for m in metrics}
+    paragraph = (
+        "The beam model of the DBMA is generated from its parameters (geometry/dbma/beam.py): "
+        "16 hinges from their profiles, elastic arms and members, the common root extension "
+        f"(0.38 b per root, with the root's axial compliance). For the paper's design (l/b = "
+        f"{p.l / p.b:.2f}) it solves in {beam['time_s'] * 1e3:.0f} ms against "
+        f"{cont['time_s']:.1f} s for the 2-D FEM ({cont['dofs']} DOFs"
+        f"{', a 2x coarser mesh in this quick run' if quick else ''}). Beam against continuum: "
+        + ", ".join(f"{k} {v:+.1f} %" for k, v in err.items()) + ". k_out, the stiffness of "
+        "the input-blocked bow (hinges in axial load, short stubby members, the pads' "
+        "attachment), is the weakest, and the working frequency follows it. Over the "
+        "slenderness of one hinge, the beam model with the root extension stays within 3 % of "
+        f"the continuum from l/b = {leaf_from:g} for a sharp-cornered leaf, in bending and "
+        "axially; without it, it is too stiff by ~b / l; a circular notch keeps its 2-D "
+        "deficit (7-22 %): screen with the beam model, decide with the continuum.")
+    return {"paragraph": paragraph, "comparisons": beam_comparisons(metrics),
+            "figures": [figure], "tables": tables,
+            "key_tables": [key_table(metrics, "DBMA (paper's design): PRBM, beam, continuum")],
+            "timing_s": {"beam": beam["time_s"], "continuum": cont["time_s"]}}
