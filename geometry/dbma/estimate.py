@@ -7,7 +7,7 @@ size), summed on a sampling grid of every rectangle of the part (4096 points eac
 each triangle becomes three quadrilaterals (gmsh's subdivision), extruded in layers through
 the thickness. Against the meshes gmsh makes, the estimate is low by at most ~2.5x at the
 coarsest sizes (where a minimum number of elements per feature dominates) and by 1.1-1.4x
-at the sizes that matter for a budget (tests/studies/test_dbma_guards.py).
+at the sizes that matter for a budget (tests/studies/dbma/test_dbma_guards.py).
 """
 import math
 

@@ -5,7 +5,7 @@
 coarse size W / 2 * size_factor; counting two triangles per structured cell and the links'
 area over the area of a triangle of the coarse size (bounded by the part's width), times
 GRADING for the graded zones around each flexure, gives the triangle count: within a factor
-~1.5 either way of gmsh's meshes (tests/studies/test_dbma_guards.py).
+~1.5 either way of gmsh's meshes (tests/studies/dbma/test_dbma_guards.py).
 """
 import math
 

@@ -13,7 +13,7 @@ the trapezoid error is exactly L h^2 f''/12 = delta h^2 / (2 L^2): a pure power 
 Richardson extrapolation is exact.
 
 The engine's tests add hooks (sleep, fail, crash) in a mechanism of their own
-(tests/studies/toy_hooks.py), not here.
+(tests/studies/engine/toy_hooks.py), not here.
 """
 import math
 from dataclasses import dataclass, fields

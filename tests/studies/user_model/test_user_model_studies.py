@@ -9,7 +9,7 @@ import pytest
 from flexfem.studies.cli import main
 from flexfem.studies.mechanisms import check_mechanism, model_mechanism
 
-GUIDE = Path(__file__).resolve().parents[2] / "examples" / "parallel_guide"
+GUIDE = Path(__file__).resolve().parents[3] / "examples" / "parallel_guide"
 
 
 @pytest.fixture

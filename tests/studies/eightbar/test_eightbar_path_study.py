@@ -72,7 +72,7 @@ def test_docs_example_runs():
     # the Python example of docs/eightbar.md runs and gives the numbers the page quotes
     import re
     from pathlib import Path
-    page = (Path(__file__).parents[2] / "docs" / "eightbar.md").read_text()
+    page = (Path(__file__).parents[3] / "docs" / "eightbar.md").read_text()
     block = next(b for b in re.findall(r"```python\n(.*?)```", page, re.S) if "trace_eightbar" in b)
     scope = {}
     exec(block, scope)

@@ -9,7 +9,7 @@ from flexfem.geometry.user_model import define_constant_names, load_spec, mesh_g
 from flexfem.geometry.user_model.selection import compile_rule
 from flexfem.geometry.user_model.toml_lines import find_line
 
-EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+EXAMPLES = Path(__file__).resolve().parents[3] / "examples"
 GUIDE = EXAMPLES / "parallel_guide"
 
 MODEL = """\

@@ -10,7 +10,7 @@ from flexfem.geometry.user_model import load_spec
 from flexfem.studies.user_model import analyze_model, cli
 from flexfem.studies.user_model.analysis import flat_metrics
 
-GUIDE = Path(__file__).resolve().parents[2] / "examples" / "parallel_guide"
+GUIDE = Path(__file__).resolve().parents[3] / "examples" / "parallel_guide"
 
 
 def guide_with(tmp_path, analysis: str) -> Path:

@@ -20,7 +20,7 @@ from flexfem.studies.report import reproduce as reproduce_module
 from flexfem.studies.report.comparison import Comparison, rows
 from flexfem.studies.report.figures import entry, pyplot, save
 
-BEFORE = Path(__file__).resolve().parents[1] / "data" / "quick_report_before.json"
+BEFORE = Path(__file__).resolve().parents[2] / "data" / "quick_report_before.json"
 
 
 def _fake_section(out_dir, quick=False):

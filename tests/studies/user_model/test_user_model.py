@@ -16,7 +16,7 @@ from flexfem.studies.engine.serialize import jsonable
 from flexfem.studies.user_model import analyze_model, evaluate
 from flexfem.studies.user_model import cli
 
-EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+EXAMPLES = Path(__file__).resolve().parents[3] / "examples"
 GUIDE = EXAMPLES / "parallel_guide" / "guide.toml"
 PIVOT = EXAMPLES / "cross_pivot" / "pivot.toml"
 PIVOT3D = EXAMPLES / "cross_pivot" / "pivot3d.toml"
