@@ -13,18 +13,11 @@ import math
 
 import numpy as np
 
-from ...fem import Material
 from ...fem.beam import (Fixed, NodalLoad, Prescribed, solve_beam_nonlinear, solve_beam_static)
 from ...geometry.flexure_pivot import PivotGeometry
 from ...geometry.pivot_beam import pivot_beam_model
-from .pivot_fem import pivot_geometry, poisson_ratio
+from .pivot_fem import pivot_geometry
 from .pivots import leaf_bending_stress, pivot_stiffness_beam_theory
-
-
-def _material(pivot) -> Material:
-    nu, _ = poisson_ratio(pivot.material.name)
-    return Material(pivot.material.name, E=pivot.material.E, nu=nu, rho=7850.0,
-                    yield_strength=pivot.material.yield_strength)
 
 
 def pivot_beam_check(pivot, theta_max: float | None = None, steps: int = 8,
@@ -34,7 +27,7 @@ def pivot_beam_check(pivot, theta_max: float | None = None, steps: int = 8,
     as :func:`.pivot_fem.pivot_fem_check`'s."""
     theta_max = pivot.theta_max if theta_max is None else float(theta_max)
     g = pivot_geometry(pivot, crossing_angle)
-    model, info = pivot_beam_model(g, pivot.w, _material(pivot), root_extension=root_extension)
+    model, info = pivot_beam_model(g, pivot.w, pivot.material, root_extension=root_extension)
     base, hub = [Fixed(tuple(info["base"]))], info["hub"]
     lin = solve_beam_static(model, base, [NodalLoad(hub, m=1.0)])
     k_linear = 1.0 / float(lin.q[hub, 2])
@@ -62,7 +55,7 @@ def compressed_leaf_beam_check(pivot, fractions=(0.5, 1.0), steps: int = 8, P=No
     of a CompressedLeafPivot under its preload P (N); keys as
     :func:`.negative_pivot_study.negative_pivot_fem_check`'s (the FEM ones)."""
     g = PivotGeometry("single", pivot.L, pivot.t)
-    model, info = pivot_beam_model(g, pivot.w, _material(pivot))
+    model, info = pivot_beam_model(g, pivot.w, pivot.material)
     base, hub = [Fixed(tuple(info["base"]))], info["hub"]
     P = pivot.P if P is None else float(P)
 
