@@ -197,13 +197,15 @@ body{font-family:sans-serif;max-width:62em;margin:auto;padding:0 1em;line-height
 .table{max-width:100%;overflow-x:auto}
 table{border-collapse:collapse;margin:.6em 0;width:100%}
 td,th{border:1px solid #ccc;padding:2px 5px;font-size:85%;vertical-align:top;
-      overflow-wrap:anywhere}
+      overflow-wrap:break-word}
+td:first-child{width:34%}
 th{background:#f2f2f2;text-align:left}
 td.agrees{color:#060}td.differs{color:#a00;font-weight:bold}td.calibrated{color:#555}
 figure{margin:.8em 0}figure img{max-width:100%;max-height:28em}
 figcaption{font-size:85%;color:#333}
 .error{color:#b00}.citation{font-style:italic}.run,.tables{font-size:85%;color:#444}
-@media print{body{max-width:none;font-size:9pt}figure{page-break-inside:avoid}
+@media print{body{max-width:none;font-size:9pt}td,th{font-size:7pt;padding:1px 3px}
+  figure{page-break-inside:avoid}
   figure img{max-height:8cm}h2,h3{page-break-after:avoid}nav{page-break-after:always}}
 """
 
