@@ -12,7 +12,7 @@ from functools import cached_property
 import numpy as np
 import scipy.sparse as sp
 import skfem
-from skfem.helpers import eye, sym_grad, trace
+from skfem.helpers import eye, grad, trace
 
 from .materials import Material
 from .mesh import FEMesh
@@ -171,16 +171,7 @@ class Model:
         as a (3, 3, n_elements, n_points) array (plane stress: zz = 0; plane strain:
         zz = lambda (xx + yy))."""
         basis = basis or self.basis
-        lam, mu = self.lame
-        eps = sym_grad(basis.interpolate(u))
-        sig = 2.0 * mu * eps + lam * trace(eps) * eye(np.ones_like(eps[0, 0]), eps.shape[0])
-        if self.dim == 3:
-            return sig
-        full = np.zeros((3, 3) + sig.shape[2:])
-        full[:2, :2] = sig
-        if isinstance(self.formulation, PlaneStrain):
-            full[2, 2] = lam * trace(eps)
-        return full
+        return linear_stress(self, grad(basis.interpolate(u)))
 
 
 # elements per block of the vectorised assembly: bounds its temporaries to ~0.1 GB in 3-D P2
@@ -271,3 +262,18 @@ def rigid_body_modes(points: np.ndarray) -> np.ndarray:
         m[:, i], m[:, j] = -x[j], x[i]
         modes.append(m)
     return np.array(modes)
+
+
+def linear_stress(model, gu: np.ndarray) -> np.ndarray:
+    """(3, 3, ...) Cauchy stress (Pa) of the displacement gradient ``gu`` ((dim, dim, ...));
+    plane stress: zz = 0, plane strain: zz = lambda (xx + yy)."""
+    lam, mu = model.lame
+    eps = 0.5 * (gu + np.swapaxes(gu, 0, 1))
+    sig = 2.0 * mu * eps + lam * trace(eps) * eye(np.ones_like(eps[0, 0]), eps.shape[0])
+    if model.dim == 3:
+        return sig
+    full = np.zeros((3, 3) + sig.shape[2:])
+    full[:2, :2] = sig
+    if isinstance(model.formulation, PlaneStrain):
+        full[2, 2] = lam * trace(eps)
+    return full

@@ -15,7 +15,7 @@ import skfem
 from skfem.helpers import eye, trace
 
 from .hyperelastic import cauchy_stress, deformation, green_lagrange, svk_stress
-from .model import PlaneStrain
+from .model import PlaneStrain, linear_stress
 from .projection import nodal_average
 
 # a point counts as inside an element when its reference coordinates lie within the
@@ -100,22 +100,6 @@ def gradient_at(basis: skfem.CellBasis, u: np.ndarray, cells: np.ndarray,
         phi = basis.elem.gbasis(mapping, Xe, k, tind=cells)[0]
         grad = grad + u[basis.element_dofs[k, cells]][None, None, :, None] * phi.grad
     return grad
-
-
-def linear_stress(model, gu: np.ndarray) -> np.ndarray:
-    """(3, 3, ...) Cauchy stress (Pa) of the displacement gradient ``gu`` ((dim, dim, ...));
-    plane stress: zz = 0, plane strain: zz = lambda (xx + yy)."""
-
-    lam, mu = model.lame
-    eps = 0.5 * (gu + np.swapaxes(gu, 0, 1))
-    sig = 2.0 * mu * eps + lam * trace(eps) * eye(np.ones_like(eps[0, 0]), eps.shape[0])
-    if model.dim == 3:
-        return sig
-    full = np.zeros((3, 3) + sig.shape[2:])
-    full[:2, :2] = sig
-    if isinstance(model.formulation, PlaneStrain):
-        full[2, 2] = lam * trace(eps)
-    return full
 
 
 def stress_at(result, points, full: bool = False) -> np.ndarray:
