@@ -42,21 +42,6 @@ def declared_options(evaluate) -> tuple[dict, bool]:
     return options, accepts_any
 
 
-def dispatch_signature(selector: inspect.Parameter, *functions) -> inspect.Signature:
-    """The signature of an evaluate that dispatches on ``selector`` (e.g. ``model``) to
-    ``functions``: their first parameter, the selector, then every keyword option any of
-    them declares (the first declaration of a name wins), so that a study's options are
-    checked and typed against the whole set."""
-    first, *rest = inspect.signature(functions[0]).parameters.values()
-    options = {selector.name: selector}
-    for function in functions:
-        for p in list(inspect.signature(function).parameters.values())[1:]:
-            if p.kind in (p.POSITIONAL_OR_KEYWORD, p.KEYWORD_ONLY):
-                options.setdefault(p.name, p.replace(kind=p.KEYWORD_ONLY))
-    keyword = [q.replace(kind=q.KEYWORD_ONLY) for q in options.values()]
-    return inspect.Signature([first, *keyword])
-
-
 def _number_string(value) -> bool:
     if not isinstance(value, str):
         return False
