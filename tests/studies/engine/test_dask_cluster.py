@@ -141,9 +141,11 @@ def test_unreachable_scheduler_is_a_clear_error(tmp_path, monkeypatch):
 
 def test_a_lost_worker_is_an_error_not_a_failed_design(tmp_path):
     # the scheduler gives up on a task at the first worker it kills (allowed-failures 0);
-    # the nanny restarts the worker, which computes the other cases
+    # the nanny restarts the worker, which computes the other cases. One task on the worker
+    # at a time (saturation 1), so that no other case is on it when it dies
     with local_cluster(tmp_path, workers=1, nanny=True, scheduler_env={
-            "DASK_DISTRIBUTED__SCHEDULER__ALLOWED_FAILURES": "0"}) as address:
+            "DASK_DISTRIBUTED__SCHEDULER__ALLOWED_FAILURES": "0",
+            "DASK_DISTRIBUTED__SCHEDULER__WORKER_SATURATION": "1.0"}) as address:
         study = Study(HOOKED, grid={"length_m": [0.05, 0.1]}, cases=({"crash_if": 1},))
         first = run_study(study, tmp_path / "r.sqlite", scheduler=address, progress=False,
                           allow_code=True)
