@@ -18,6 +18,18 @@ def positive(text: str) -> float:
     return value
 
 
+def count(text: str) -> int:
+    """A whole number >= 1 (1e6 is accepted as 1000000)."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number; expected a whole number "
+                                         ">= 1") from None
+    if not (math.isfinite(value) and value >= 1 and value == int(value)):
+        raise argparse.ArgumentTypeError(f"{text!r} must be a whole number >= 1")
+    return int(value)
+
+
 def damping_ratio(text: str) -> float:
     """A damping ratio in (0, 1)."""
     try:

@@ -1,6 +1,6 @@
 """``flexfem sweep`` and ``flexfem converge``: parameter and mesh-convergence studies."""
 from .engine.sweep import MAX_CASES
-from .options import json_object, tolerance
+from .options import count, json_object, tolerance
 from .run import run_convergence, sweep
 
 
@@ -14,7 +14,7 @@ def register(subparsers):
     p.add_argument("--allow-code", action="store_true",
                    help="let the study name a Python 'module:function' as its mechanism: "
                         "that code runs with the study's values; only for study files you trust")
-    p.add_argument("--max-cases", type=int, default=MAX_CASES,
+    p.add_argument("--max-cases", type=count, default=MAX_CASES,
                    help=f"refuse a study of more cases than this (default {MAX_CASES:,})")
     p.add_argument("--json", action="store_true", help="print the summary as one JSON object")
     p.set_defaults(run=_run_sweep, summarize=summarize_sweep)

@@ -6,7 +6,7 @@ from ...fem.calculix import deck_lines
 from ...fem.export import write_mesh
 from ...geometry.dbma.drawing import mesh_dbma
 from ...geometry.dbma.params import paper_design
-from ..options import damping_ratio, positive
+from ..options import count, damping_ratio, positive
 from .analysis import (actuator_loads, analyze_dbma, build_model, modal_supports,
                        published, static_supports)
 from .dynamics import frf_study
@@ -113,13 +113,6 @@ def summarize_mesh(r: dict) -> str:
 
 
 
-def _count(text: str) -> int:
-    value = float(text)
-    if not (value >= 1 and value == int(value)):
-        raise ValueError(f"{text!r} must be an integer >= 1")
-    return int(value)
-
-
 def register(subparsers):
     parser = subparsers.add_parser("dbma", help="double-row bow-type amplifier: FEM and mesh")
     commands = parser.add_subparsers(dest="dbma_command", required=True, metavar="ACTION")
@@ -131,7 +124,7 @@ def register(subparsers):
                               "the report's statics (R differs by the out-of-plane stiffness)")
     analyze.add_argument("--size-factor", type=positive, default=1.0,
                          help="mesh size multiplier (default 1)")
-    analyze.add_argument("--max-dofs", type=_count, default=None,
+    analyze.add_argument("--max-dofs", type=count, default=None,
                          help="refuse a mesh above this many unknowns (default: what half the "
                               "available memory affords)")
     analyze.add_argument("--model", choices=("continuum", "beam"), default="continuum",
