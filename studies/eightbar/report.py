@@ -22,7 +22,6 @@ from ...geometry.eightbar.rigid import trace_eightbar
 from ..engine.tables import write_rows
 from ..report.comparison import Comparison, rows as comparison_rows
 from ..report.figures import axis_label, entry, legend_outside, pyplot, save
-from ..report.format import figure_entries
 
 from .analysis import analyze_eightbar, stress_convergence, summary_row
 from .driving import driving_study
@@ -266,5 +265,5 @@ def reproduce(out_dir, quick: bool = False, full: bool = False) -> dict:
     summary["stress_convergence"] = convergence
     summary["tables"] += [f"driving/{t}" for t in driving["tables"]]
     summary["figures"] += [{**f, "file": f"driving/{f['file']}"}
-                           for f in figure_entries(driving["figures"])]
+                           for f in driving["figures"]]
     return summary

@@ -34,18 +34,13 @@ def number(value, unit: str = "") -> str:
     return f"{text} {unit}" if unit and unit != "-" else text
 
 
-def reference_of(row: dict):
-    """The reference value of a comparison row (older rows call it 'published')."""
-    return row.get("reference", row.get("published"))
-
-
 def _absolute(row: dict) -> bool:
     return row.get("difference_kind") == "absolute"
 
 
 def difference_text(row: dict) -> str:
     """'+1.2 %' (relative) or '+0.3 deg' / '+1.5 pp' (absolute) or '-'."""
-    d = row.get("difference", row.get("rel_diff"))
+    d = row.get("difference")
     if not isinstance(d, (int, float)) or not math.isfinite(d):
         return "-"
     if _absolute(row):
@@ -72,8 +67,3 @@ def tolerance_text(row: dict) -> str:
 def is_image(name: str) -> bool:
     return Path(name).suffix.lower() in (".png", ".jpg", ".jpeg", ".svg")
 
-
-def figure_entries(figures) -> list[dict]:
-    """{"file", "caption"} entries from a section's figures (a bare name gets no caption but
-    its name)."""
-    return [f if isinstance(f, dict) else {"file": f, "caption": f} for f in figures]

@@ -5,7 +5,7 @@ headline comparisons with their verdicts and what they mean), then the audit (ev
 what was done, its figures with captions, its comparisons and links to its full tables).
 
 A section summary is a dict with "comparisons" (rows of :class:`~.comparison.Comparison`),
-"figures" ({"file", "caption"} entries, or bare file names), "tables" (CSV files inside the
+"figures" ({"file", "caption"} entries), "tables" (CSV files inside the
 section folder: linked, not printed), optional "paragraph" (what was done and what it means),
 "key_tables" ({"title", "columns", "rows"}: small tables printed rounded), "notes" (list of
 str) and, for a failed section, "error".
@@ -16,8 +16,7 @@ from pathlib import Path
 
 from ...data import load_toml
 from ..engine.serialize import jsonable
-from .format import (difference_text, figure_entries, is_image, number, reference_of,
-                     tolerance_text)
+from .format import difference_text, is_image, number, tolerance_text
 
 VERDICT_CLASSES = {"agrees": "agrees", "within limit": "agrees", "differs": "differs",
                    "beyond limit": "differs", "calibrated": "calibrated"}
@@ -40,7 +39,7 @@ def comparison_cells(row: dict) -> list[str]:
     """The headline columns of one comparison row, formatted."""
     unit = row.get("unit", "")
     return [row.get("quantity", ""), number(row.get("flexfem"), unit),
-            number(reference_of(row), unit), row.get("source", row.get("note", "")),
+            number(row.get("reference"), unit), row.get("source", ""),
             difference_text(row), tolerance_text(row), row.get("verdict", "not judged")]
 
 
@@ -76,7 +75,7 @@ def _md_section(s: dict) -> list[str]:
     if s.get("paragraph"):
         out += [s["paragraph"], ""]
     out += [f"- {note}" for note in s.get("notes", [])] + [""]
-    for fig in figure_entries(s.get("figures", [])):
+    for fig in s.get("figures", []):
         link = f"{s['section']}/{fig['file']}"
         out += ([f"![{fig['caption']}]({link})", "", f"*{fig['caption']}*", ""] if is_image(fig["file"])
                 else [f"Field file [{fig['file']}]({link}): {fig['caption']}", ""])
@@ -132,7 +131,7 @@ def _html_section(s: dict) -> list[str]:
         parts.append(f"<p>{html.escape(s['paragraph'])}</p>")
     if s.get("notes"):
         parts.append("<ul>" + "".join(f"<li>{html.escape(n)}</li>" for n in s["notes"]) + "</ul>")
-    for fig in figure_entries(s.get("figures", [])):
+    for fig in s.get("figures", []):
         src, caption = f"{s['section']}/{html.escape(fig['file'])}", html.escape(fig["caption"])
         if is_image(fig["file"]):
             parts.append(f"<figure><img src='{src}' alt='{caption}'><figcaption>{caption}"
@@ -160,7 +159,7 @@ def _contents(groups, sections) -> str:
             f"</li><li><a href='#audit'>Audit</a><ol>{audit}</ol></li></ol></nav>")
 
 
-def render_html(report: dict, out: Path | None = None) -> str:
+def render_html(report: dict) -> str:
     env, groups = report["environment"], headline_groups(report)
     parts = ["<!DOCTYPE html><html><head><meta charset='utf-8'>",
              "<title>flexfem reproduction report</title>", f"<style>{STYLE}</style>",
@@ -189,7 +188,7 @@ def write_report(out: Path, report: dict) -> None:
     report = jsonable(report)
     (out / "summary.json").write_text(json.dumps(report, indent=1))
     (out / "report.md").write_text(render_markdown(report))
-    (out / "index.html").write_text(render_html(report, out))
+    (out / "index.html").write_text(render_html(report))
 
 
 STYLE = """
