@@ -8,6 +8,18 @@ from . import linsolve
 from .hyperelastic import _StepFailed
 
 
+def check_step_arguments(steps, max_iterations, tol, min_step) -> None:
+    """ValueError naming the first bad argument of a stepped Newton solve: steps and
+    max_iterations integers >= 1, tol in (0, 1), min_step (a load-factor increment) in (0, 1]."""
+    for name, value in (("steps", steps), ("max_iterations", max_iterations)):
+        if not (isinstance(value, (int, np.integer)) and not isinstance(value, bool) and value >= 1):
+            raise ValueError(f"{name} = {value!r} must be an integer >= 1")
+    if not (0 < tol < 1):
+        raise ValueError(f"tol = {tol!r} must lie in (0, 1)")
+    if not (0 < min_step <= 1):
+        raise ValueError(f"min_step = {min_step!r} must lie in (0, 1]")
+
+
 class NonConvergenceError(ValueError):
     """Newton's method failed at the smallest allowed load step. Attributes: load_factor
     (last converged), attempted (the load factor it failed to reach), iterations,

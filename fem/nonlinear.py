@@ -25,21 +25,11 @@ from .pressure import FollowerPressure
 from .rigid_face import ReducedSpace
 from .rigid_static import check_held
 from .arclength import limit_points, trace
-from .newton import NonConvergenceError, _newton, _solve_direct  # noqa: F401
+from .newton import (NonConvergenceError, _newton, _solve_direct,  # noqa: F401
+                     check_step_arguments)
 from .nonlinear_result import NonlinearResult
 from .stability import count_negative_eigenvalues
 from .static import rigid_body_dof_modes
-
-
-def _check_arguments(steps, max_iterations, tol, min_step):
-    if not (isinstance(steps, int) and steps >= 1):
-        raise ValueError(f"steps = {steps!r} must be an integer >= 1")
-    if not (isinstance(max_iterations, int) and max_iterations >= 1):
-        raise ValueError(f"max_iterations = {max_iterations!r} must be an integer >= 1")
-    if not (0 < tol < 1):
-        raise ValueError(f"tol = {tol!r} must lie in (0, 1)")
-    if not (0 < min_step <= 1):
-        raise ValueError(f"min_step = {min_step!r} must lie in (0, 1]")
 
 
 class _Problem:
@@ -177,7 +167,7 @@ def solve_nonlinear(model: Model, supports, loads, steps: int = 10, max_iteratio
     followed through limit points, which result.info['limit_points'] lists; the first arc
     length is that of a load step 1 / ``steps`` along the initial tangent; at most
     ``max_steps`` steps, default 20 ``steps``)."""
-    _check_arguments(steps, max_iterations, tol, min_step)
+    check_step_arguments(steps, max_iterations, tol, min_step)
     if control not in ("load", "arc-length"):
         raise ValueError(f"control = {control!r}; choose 'load' or 'arc-length'")
     if not (isinstance(strain_limit, (int, float)) and 0 < strain_limit < math.inf):

@@ -14,7 +14,7 @@ import math
 
 import numpy as np
 
-from ..nonlinear import NonConvergenceError
+from ..newton import NonConvergenceError, check_step_arguments
 from .assembly import Assembler, Factor, SingularBeamError
 from .model import BeamModel, dof_index
 from .static import BeamState, make_state
@@ -48,17 +48,6 @@ class _StepFailed(Exception):
     def __init__(self, reason, history):
         super().__init__(reason)
         self.reason, self.history = reason, history
-
-
-def _check(steps, max_iterations, tol, min_step):
-    if not (isinstance(steps, (int, np.integer)) and steps >= 1):
-        raise ValueError(f"steps = {steps!r} must be an integer >= 1")
-    if not (isinstance(max_iterations, (int, np.integer)) and max_iterations >= 1):
-        raise ValueError(f"max_iterations = {max_iterations!r} must be an integer >= 1")
-    if not (0 < tol < 1):
-        raise ValueError(f"tol = {tol!r} must be in (0, 1)")
-    if not (0 < min_step <= 1):
-        raise ValueError(f"min_step = {min_step!r} must be in (0, 1]")
 
 
 class _Stepper:
@@ -141,7 +130,7 @@ def solve_beam_nonlinear(model: BeamModel, supports, loads=(), steps: int = 10,
     then follows). Converged when |r| <= tol * (|applied| + |reactions|) (N) and the last
     increment |dz| <= sqrt(tol) |z|. Raises NonConvergenceError when a step cannot be cut
     below ``min_step`` (a fraction of the total)."""
-    _check(steps, max_iterations, tol, min_step)
+    check_step_arguments(steps, max_iterations, tol, min_step)
     asm = Assembler(model, supports, loads)
     stepper = _Stepper(asm, control, tol, max_iterations)
     z, lam, t = np.zeros(asm.space.n), 0.0, 0.0
