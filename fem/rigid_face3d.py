@@ -2,18 +2,16 @@
 area centroid Xc, node a moving to ``x_a = R(psi) (X_a - Xc) + Xc + c`` with R(psi) =
 exp([psi]x) the rotation of the rotation vector psi (rad; Rodrigues' formula).
 
-The first and second derivatives of R(psi) come from the exponential of block-triangular
-matrices (exact to rounding at every psi, psi = 0 included): the upper-right block of
-exp([[X, E], [0, X]]) is the derivative of exp at X in the direction E, the corner block of
-exp([[X, E_j, 0], [0, X, E_k], [0, 0, X]]) the part of the mixed second derivative with E_j
-before E_k. Moments are spatial (global axes, about the current centroid); a moment applied
+The first and second derivatives of R(psi) are those of Rodrigues' R = I + a X + b X^2
+(X = [psi]x), with the coefficients' Taylor series near psi = 0. Moments are spatial (global axes, about the current centroid); a moment applied
 on the face is dead (fixed direction), its generalised load on psi is T(psi)^T M with the
 tangent operator T_j = axial(dR/dpsi_j R^T).
 """
 from dataclasses import dataclass
 
+import math
+
 import numpy as np
-import scipy.linalg
 
 from .compliance3d import face_geometry
 
@@ -32,24 +30,46 @@ def axial(W: np.ndarray) -> np.ndarray:
                            W[..., 1, 0] - W[..., 0, 1]], axis=-1)
 
 
+def _coefficients(theta: float) -> tuple:
+    """(a, a1, a2, b, b1, b2) of R = I + a X + b X^2, X = [psi]x, theta = |psi|:
+    a = sin(theta) / theta, b = (1 - cos(theta)) / theta^2, f1 = f' / theta and
+    f2 = f1' / theta; their Taylor series below theta = 1 (no cancellation at 0)."""
+    if theta < 1.0:
+        n = np.arange(12)
+        t2n = theta ** (2 * n)
+        sign = (-1.0) ** n
+        fa = np.array([math.factorial(2 * k + 1) for k in n], dtype=float)
+        fb = np.array([math.factorial(2 * k + 2) for k in n], dtype=float)
+        up1 = np.concatenate([t2n[:-1], [0.0]])  # theta^(2n - 2) at index n
+        up2 = np.concatenate([t2n[:-2], [0.0, 0.0]])
+        a, b = np.sum(sign * t2n / fa), np.sum(sign * t2n / fb)
+        a1 = np.sum((sign * 2 * n / fa)[1:] * up1[:-1])
+        b1 = np.sum((sign * 2 * n / fb)[1:] * up1[:-1])
+        a2 = np.sum((sign * 2 * n * (2 * n - 2) / fa)[2:] * up2[:-2])
+        b2 = np.sum((sign * 2 * n * (2 * n - 2) / fb)[2:] * up2[:-2])
+        return a, a1, a2, b, b1, b2
+    s, c, t = math.sin(theta), math.cos(theta), theta
+    return (s / t, (t * c - s) / t ** 3, (3 * s - 3 * t * c - t * t * s) / t ** 5,
+            (1 - c) / t ** 2, (t * s - 2 * (1 - c)) / t ** 4,
+            (t * t * c - 5 * t * s + 8 * (1 - c)) / t ** 6)
+
+
 def rotation_derivatives(psi) -> tuple:
     """(R (3, 3), dR (3, 3, 3): dR/dpsi_j, d2R (3, 3, 3, 3): d2R/dpsi_j dpsi_k) at the
-    rotation vector ``psi`` (rad)."""
+    rotation vector ``psi`` (rad), differentiating R = I + a X + b X^2 (Rodrigues)."""
+    psi = np.asarray(psi, dtype=float)
     X = skew(psi)
-    dR = np.empty((3, 3, 3))
-    corner = np.empty((3, 3, 3, 3))
-    block = np.zeros((9, 9))
-    for i in range(3):
-        block[3 * i:3 * i + 3, 3 * i:3 * i + 3] = X
-    for j in range(3):
-        block[0:3, 3:6] = _E[j]
-        for k in range(3):
-            block[3:6, 6:9] = _E[k]
-            expm = scipy.linalg.expm(block)
-            corner[j, k] = expm[0:3, 6:9]
-        dR[j] = expm[0:3, 3:6]
-    R = expm[0:3, 0:3]
-    return R, dR, corner + np.swapaxes(corner, 0, 1)
+    X2 = X @ X
+    a, a1, a2, b, b1, b2 = _coefficients(float(np.linalg.norm(psi)))
+    R = np.eye(3) + a * X + b * X2
+    EX = _E @ X + X @ _E  # d(X^2)/dpsi_j
+    dR = (a1 * X + b1 * X2)[None] * psi[:, None, None] + a * _E + b * EX
+    pp, eye = np.outer(psi, psi)[:, :, None, None], np.eye(3)[:, :, None, None]
+    d2R = ((a2 * pp + a1 * eye) * X + (b2 * pp + b1 * eye) * X2
+           + a1 * (psi[:, None, None, None] * _E[None] + psi[None, :, None, None] * _E[:, None])
+           + b1 * (psi[:, None, None, None] * EX[None] + psi[None, :, None, None] * EX[:, None])
+           + b * (np.einsum("jpm,kmq->jkpq", _E, _E) + np.einsum("kpm,jmq->jkpq", _E, _E)))
+    return R, dR, d2R
 
 
 @dataclass(frozen=True, eq=False)
