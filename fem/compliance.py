@@ -51,9 +51,11 @@ class Compliance:
     def principal(self) -> tuple[np.ndarray, np.ndarray]:
         """(compliances (dim,) m/N ascending, directions (dim, dim) as columns, frame
         components) of the translational block: forces that translate the point along
-        themselves."""
+        themselves; of its symmetric part where a dead moment's load stiffness (3-D, about a
+        nonlinear state) makes it non-symmetric."""
         n = self.dim
-        return np.linalg.eigh(self.matrix[:n, :n])
+        block = self.matrix[:n, :n]
+        return np.linalg.eigh(0.5 * (block + block.T))
 
     @property
     def centre_of_compliance(self) -> np.ndarray:
