@@ -140,8 +140,8 @@ def _nonlinear_tangent(model, space: ReducedSpace, state, u):
     K = T.T @ assembler.tangent(F, S) @ T + space.geometric_matrix(z, 1.0, r)
     load = -fk.applied_derivative(q, fk.generalised_force(r, q)) / np.outer(fk.scale, fk.scale)
     slots = space.slots[0]
-    K = K + sp.csr_matrix((load.ravel(), (np.repeat(slots, len(slots)), np.tile(slots, len(slots)))),
-                          shape=K.shape)
+    pairs = (np.repeat(slots, len(slots)), np.tile(slots, len(slots)))
+    K = K + sp.csr_matrix((load.ravel(), pairs), shape=K.shape)
     return K.tocsr(), q, not np.any(load)
 
 
@@ -208,9 +208,9 @@ def compliance_matrix(model, supports, face, point=None, state=None, angle: floa
     state : None (the unloaded reference), a StaticResult (prestressed: K + K_sigma), or a
     converged nonlinear state (NonlinearResult, (NonlinearResult, step) or DOF vector, m):
     the tangent compliance there, the face's force and moment at the state held as dead
-    loads (in 3-D a dead moment's load stiffness makes it non-symmetric in general). angle : 2-D frame rotation (rad, counter-clockwise) of
-    the returned matrix's axes; frame : instead, an orthonormal (dim, dim) matrix whose
-    columns are the axes. Raises UnderConstrainedError if the supports alone do not hold the
+    loads (in 3-D a dead moment's load stiffness makes it non-symmetric in general).
+    angle : 2-D frame rotation (rad, counter-clockwise) of the returned matrix's axes;
+    frame : instead, an orthonormal (dim, dim) matrix whose columns are the axes. Raises UnderConstrainedError if the supports alone do not hold the
     body with the face free.
     """
     group = face.group if isinstance(face, RigidFace) else face

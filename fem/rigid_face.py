@@ -17,6 +17,7 @@ import math
 
 import numpy as np
 import scipy.sparse as sp
+import skfem
 
 from .boundary import group_dofs
 from .model import rigid_body_modes
@@ -97,8 +98,6 @@ def face_kinematics(model, face: RigidFace):
     if model.dim == 3:
         from .rigid_face3d import face_kinematics_3d
         return face_kinematics_3d(model, face)
-    import skfem
-
     dofs = group_dofs(model, face.group)
     if face.group not in model.mesh.boundaries:
         raise ValueError(f"RigidFace({face.group!r}) needs a boundary group, not a subdomain")
@@ -217,7 +216,7 @@ class ReducedSpace:
         for fk in self.faces:
             # each mode's motion of the face centroid and rotation (scaled by ell to match a
             # length): the modes are rigid, so they move the face as one body
-            q_of_mode = np.array([_mode_coordinates(fk, mode, centre) for mode in range(len(modes))]).T
+            q_of_mode = np.array([_mode_coordinates(fk, k, centre) for k in range(len(modes))]).T
             rows.append(q_of_mode[fk.face.prescribed(self.dim)])
         return np.vstack(rows)
 

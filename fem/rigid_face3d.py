@@ -3,13 +3,13 @@ area centroid Xc, node a moving to ``x_a = R(psi) (X_a - Xc) + Xc + c`` with R(p
 exp([psi]x) the rotation of the rotation vector psi (rad; Rodrigues' formula).
 
 The first and second derivatives of R(psi) are those of Rodrigues' R = I + a X + b X^2
-(X = [psi]x), with the coefficients' Taylor series near psi = 0. Moments are spatial (global axes, about the current centroid); a moment applied
-on the face is dead (fixed direction), its generalised load on psi is T(psi)^T M with the
-tangent operator T_j = axial(dR/dpsi_j R^T).
+(X = [psi]x), with the coefficients' Taylor series near psi = 0. Moments are spatial
+(global axes, about the current centroid); a moment applied on the face is dead (fixed
+direction), its generalised load on psi is T(psi)^T M with the tangent operator
+T_j = axial(dR/dpsi_j R^T).
 """
-from dataclasses import dataclass
-
 import math
+from dataclasses import dataclass
 
 import numpy as np
 

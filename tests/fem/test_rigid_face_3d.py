@@ -1,8 +1,9 @@
 """Rigid faces in 3-D (flexfem.fem.rigid_face, rigid_face3d): a square prism b x b x L
 (L / b = 20) clamped at x = 0 with a rigid tip face, against Euler-Bernoulli / Timoshenko
 beam theory and Saint-Venant torsion (J = 0.1406 b^4 for a square: Timoshenko & Goodier,
-Theory of Elasticity, the torsion of rectangular bars), the circular arc of pure bending, and finite differences. Linear: Q2 hexahedra; nonlinear: P2
-tetrahedra (six to a brick), whose tangent assembles 20 times faster."""
+Theory of Elasticity, the torsion of rectangular bars), the circular arc of pure bending,
+and finite differences. Linear: Q2 hexahedra; nonlinear: P2 tetrahedra (six to a brick),
+whose tangent assembles 20 times faster."""
 import numpy as np
 import pytest
 import skfem
@@ -145,6 +146,9 @@ def test_nonlinear_end_moment_bends_the_prism_into_an_arc(tets):
         assert force == pytest.approx(np.concatenate([np.zeros(3), lam * EI * theta / L * n]),
                                       abs=1e-6 * EI * theta / L)
     assert result.stable.all()
+    displacement, force = result.force_displacement("tip")  # the face's (3,) force per step
+    assert displacement.shape == force.shape == (7, 3)
+    assert np.abs(force).max() < 1e-6 * EI / L ** 2
 
 
 @pytest.mark.slow
