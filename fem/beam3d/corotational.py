@@ -66,19 +66,16 @@ def local_deformations(model, x, R):
     return pl, (ln, r1, Rr, q1, q2)
 
 
-def internal_forces(model, Kl, x, R, tangent=True):
-    """Global element forces f (n_e, 12) conjugate to (du_1, dw_1, du_2, dw_2) (spins
-    dw), the consistent tangent K (n_e, 12, 12) (None if not ``tangent``) and the local
-    forces f_l (n_e, 7): N (N, tension > 0) and the end moments (N m, local axes) acting
-    on the element."""
+def kinematics(model, x, R):
+    """Natural deformations p_l (n_e, 7), B_a (n_e, 7, 7) with d p_l = B_a d p_a, and
+    B_g (n_e, 7, 12) with d p_a = B_g (du_1, dw_1, du_2, dw_2) (global components,
+    spins dw); the frame quantities for the tangent in ``extra``."""
     pl, (ln, r1, Rr, q1, q2) = local_deformations(model, x, R)
-    fl = np.einsum("eij,ej->ei", Kl, pl)
     n = len(ln)
     Ba = np.zeros((n, 7, 7))
     Ba[:, 0, 0] = 1.0
     Ba[:, 1:4, 1:4] = ts_inv(pl[:, 1:4])
     Ba[:, 4:7, 4:7] = ts_inv(pl[:, 4:7])
-    fa = np.einsum("eji,ej->ei", Ba, fl)
     Gt, eta, qloc = _g_transpose(Rr, q1, q2, ln)
     P = -np.concatenate([Gt, Gt], axis=1)
     P[:, 0:3, 3:6] += np.eye(3)
@@ -89,6 +86,17 @@ def internal_forces(model, Kl, x, R, tangent=True):
     r = np.zeros((n, 12))
     r[:, 0:3], r[:, 6:9] = -r1, r1
     Bg = np.concatenate([r[:, None, :], np.einsum("eij,ekj->eik", P, E)], axis=1)
+    return pl, Ba, Bg, (ln, r1, r, P, E, Gt, eta, qloc)
+
+
+def internal_forces(model, Kl, x, R, tangent=True):
+    """Global element forces f (n_e, 12) conjugate to (du_1, dw_1, du_2, dw_2) (spins
+    dw), the consistent tangent K (n_e, 12, 12) (None if not ``tangent``) and the local
+    forces f_l (n_e, 7): N (N, tension > 0) and the end moments (N m, local axes) acting
+    on the element. Kl: (n_e, 7, 7) basic stiffness."""
+    pl, Ba, Bg, (ln, r1, r, P, E, Gt, eta, qloc) = kinematics(model, x, R)
+    fl = np.einsum("eij,ej->ei", Kl, pl)
+    fa = np.einsum("eji,ej->ei", Ba, fl)
     f = np.einsum("eji,ej->ei", Bg, fa)
     if not tangent:
         return f, None, fl
