@@ -49,11 +49,11 @@ def local_matrices(model):
     n = model.n_elements
     K, M = np.zeros((n, 12, 12)), np.zeros((n, 12, 12))
     bar = np.array([[1.0, -1.0], [-1.0, 1.0]])
-    lumped = np.array([[2.0, 1.0], [1.0, 2.0]]) / 6.0
+    consistent = np.array([[2.0, 1.0], [1.0, 2.0]]) / 6.0
     _put(K, AXIAL, (E * s["A"] / L)[:, None, None] * bar)
-    _put(M, AXIAL, (rho * s["A"] * L)[:, None, None] * lumped)
+    _put(M, AXIAL, (rho * s["A"] * L)[:, None, None] * consistent)
     _put(K, TORSION, (G * s["J"] / L)[:, None, None] * bar)
-    _put(M, TORSION, (rho * s["Ip"] * L)[:, None, None] * lumped)
+    _put(M, TORSION, (rho * s["Ip"] * L)[:, None, None] * consistent)
     Kz, Mz = _bending(E, s["Iz"], G, s["Ay"], rho, s["A"], L)
     _put(K, XY, Kz)
     _put(M, XY, Mz)

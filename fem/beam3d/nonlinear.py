@@ -86,7 +86,9 @@ class _Stepper:
                     raise _StepFailed("the residual diverged", history)
                 size = np.linalg.norm(np.hstack([u, logm(R)]).ravel()[space.free])
                 step = np.linalg.norm(dz)
-                floor = step <= 1e-12 * size and norm <= 1e-6 * ref  # at round-off
+                # at round-off: a correction of 1e-10 of the configuration (K dz is then
+                # as small: a load-free rigid motion has no force scale to compare with)
+                floor = step <= 1e-10 * size
                 if (norm <= self.tol * ref and step <= math.sqrt(self.tol) * max(size, 1e-14)) \
                         or floor:
                     return u, R, lam, r, it - 1, T, Tp, fl
