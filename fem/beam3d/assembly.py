@@ -8,7 +8,7 @@ x_s = x_m + R_m (X_s - X_m), R_s = R_m.
 import numpy as np
 import scipy.sparse as sp
 
-from .corotational import internal_forces
+from .corotational import internal_forces, local_deformations
 from .element import basic_stiffness, local_matrices, to_global
 from .model import Beam3DModel, Fixed, NodalLoad, Prescribed
 from .rotations import expm, skew
@@ -29,15 +29,29 @@ def gather(model: Beam3DModel, fe: np.ndarray) -> np.ndarray:
     return np.bincount(dofs, weights=fe.ravel(), minlength=model.n_dofs)
 
 
-def mass_matrix(model: Beam3DModel) -> sp.csr_matrix:
-    """Consistent global mass matrix (kg, kg m, kg m^2), point masses included."""
-    E = to_global(model.frames)
+def mass_matrix(model: Beam3DModel, u=None, R=None) -> sp.csr_matrix:
+    """Consistent global mass matrix (kg, kg m, kg m^2), point masses included; at a
+    configuration (u, R) the element masses turn with their co-rotated frames and the point
+    masses' inertia with their nodes (default: undeformed)."""
+    frames = model.frames
+    if R is not None:
+        frames = local_deformations(model, model.nodes + u, R)[1][2]
+    E = to_global(frames)
     _, M = local_matrices(model)
     Mg = scatter(model, np.einsum("eij,ejk,elk->eil", E, M, E))
-    diag = np.zeros(model.n_dofs)
+    rows, cols, vals = [], [], []
     for node, (m, jx, jy, jz) in model.point_masses.items():
-        diag[6 * int(node):6 * int(node) + 6] += (m, m, m, jx, jy, jz)
-    return (Mg + sp.diags(diag)).tocsr()
+        k = 6 * int(node)
+        J = np.diag([jx, jy, jz]) if R is None else R[node] @ np.diag([jx, jy, jz]) @ R[node].T
+        block = np.zeros((6, 6))
+        block[:3, :3], block[3:, 3:] = m * np.eye(3), J
+        r, c = np.meshgrid(np.arange(k, k + 6), np.arange(k, k + 6), indexing="ij")
+        rows.append(r.ravel()), cols.append(c.ravel()), vals.append(block.ravel())
+    n = model.n_dofs
+    if rows:
+        Mg = Mg + sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows),
+                                                       np.concatenate(cols))), shape=(n, n))
+    return Mg.tocsr()
 
 
 def load_vector(model: Beam3DModel, loads) -> np.ndarray:
@@ -170,3 +184,25 @@ class Assembler:
         K = scatter(self.model, ke) + self.space.constraint_tangent(R, r)
         Kz = (T.T @ K @ T).tocsc()
         return r, rz, Kz, T, Tp, K, fl
+
+
+def symmetric_tangent(asm: Assembler, about=None):
+    """(K_z, T, u, R): the reduced tangent about a converged state ``about`` (a Beam3DState
+    of the same model, supports and loads; default undeformed), symmetric. ValueError if
+    it is not symmetric (to 1e-6, Jacobi-scaled): at equilibrium it is only under
+    dead forces; dead moments about fixed axes are not conservative for finite rotations,
+    and then modes and compliance about the state are not defined by a symmetric K."""
+    if about is None:
+        (u, R), lam = asm.space.reference(), 0.0
+    else:
+        if getattr(about, "model", None) is not asm.model:
+            raise ValueError("about: a Beam3DState of this model is needed")
+        u, R, lam = about.u, about.R, about.load_factor
+    _, _, K, T, _, _, _ = asm.evaluate(u, R, lam)
+    d = sp.diags(1.0 / np.sqrt(np.abs(K.diagonal())))
+    skew_part = abs(d @ (K - K.T) @ d).max()  # Jacobi-scaled: DOFs of any stiffness compare
+    if skew_part > 1e-6:
+        raise ValueError(f"about: the tangent is not symmetric ({skew_part:.1e}, Jacobi-"
+                         "scaled): applied moments at a rotated state, or a state that is "
+                         "not converged for these supports and loads")
+    return (0.5 * (K + K.T)).tocsc(), T, u, R

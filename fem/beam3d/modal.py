@@ -1,7 +1,8 @@
 """Modal analysis of a spatial beam model: ``solve_beam3d_modes(model, supports, n)``.
 
 Consistent mass (translational, rotary and torsional inertia, element.py), supports and
-rigid links eliminated, about the undeformed state.
+rigid links eliminated; about the undeformed state, or about a converged nonlinear state
+(``about=``: its tangent, stress stiffening included, and the masses turned with it).
 """
 from dataclasses import dataclass
 
@@ -10,7 +11,7 @@ import scipy.linalg as sla
 import scipy.sparse.linalg as spla
 
 from ..beam.assembly import DENSE_EIGEN_LIMIT
-from .assembly import Assembler, mass_matrix
+from .assembly import Assembler, mass_matrix, symmetric_tangent
 from .model import Beam3DModel
 
 
@@ -32,18 +33,18 @@ class Beam3DModes:
         return self.effective_mass / self.total_mass
 
 
-def solve_beam3d_modes(model: Beam3DModel, supports, n: int = 6) -> Beam3DModes:
-    """The ``n`` lowest natural frequencies (Hz) and mode shapes about the undeformed state;
-    supports: Fixed/Prescribed (held)."""
+def solve_beam3d_modes(model: Beam3DModel, supports, n: int = 6, about=None,
+                       loads=()) -> Beam3DModes:
+    """The ``n`` lowest natural frequencies (Hz) and mode shapes; supports: Fixed/Prescribed
+    (held); about: a Beam3DState from solve_beam3d_nonlinear with the same supports and
+    ``loads`` (default: undeformed; see assembly.symmetric_tangent)."""
     if not (isinstance(n, (int, np.integer)) and not isinstance(n, bool) and n >= 1):
         raise ValueError(f"n = {n!r} must be an integer >= 1")
-    asm = Assembler(model, supports, ())
-    u0, R0 = asm.space.reference()
-    _, _, K, T, _, _, _ = asm.evaluate(u0, R0, 0.0)
+    asm = Assembler(model, supports, loads)
     if n > asm.space.n:
         raise ValueError(f"n = {n} modes asked for but the model has {asm.space.n} free DOFs")
-    K = 0.5 * (K + K.T)  # symmetric to round-off in the undeformed state
-    M_full = mass_matrix(model)
+    K, T, u, R = symmetric_tangent(asm, about)
+    M_full = mass_matrix(model) if about is None else mass_matrix(model, u, R)
     M = (T.T @ M_full @ T).tocsr()
     if asm.space.n <= DENSE_EIGEN_LIMIT:
         w2, phi = sla.eigh(K.toarray(), M.toarray(), subset_by_index=[0, n - 1])

@@ -8,7 +8,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..beam.assembly import Factor
-from .assembly import Assembler
+from .assembly import Assembler, symmetric_tangent
 from .corotational import kinematics
 from .model import Beam3DModel
 from .rotations import expm, logm
@@ -77,15 +77,16 @@ def solve_beam3d_static(model: Beam3DModel, supports, loads=()) -> Beam3DState:
                       {"n_unknowns": space.n})
 
 
-def compliance3d(model: Beam3DModel, supports, node: int) -> np.ndarray:
+def compliance3d(model: Beam3DModel, supports, node: int, about=None, loads=()) -> np.ndarray:
     """6x6 compliance of ``node``'s (x, y, z, r_x, r_y, r_z) under (F_x, F_y, F_z, M_x,
-    M_y, M_z) with the supports held, undeformed (m/N, 1/N, rad/(N m)). The node may be a
+    M_y, M_z) with the supports held (m/N, 1/N, rad/(N m)); about: a converged Beam3DState
+    of the same supports and ``loads`` (tangent compliance, stress stiffening included;
+    rotations as spins about the global axes), default undeformed. The node may be a
     rigid-link slave; none of its DOFs may be held."""
     if not (isinstance(node, (int, np.integer)) and 0 <= node < model.n_nodes):
         raise ValueError(f"node = {node!r} must be a node index in 0..{model.n_nodes - 1}")
-    asm = Assembler(model, supports, ())
-    u0, R0 = asm.space.reference()
-    _, _, K, T, _, _, _ = asm.evaluate(u0, R0, 0.0)
+    asm = Assembler(model, supports, loads)
+    K, T, _, _ = symmetric_tangent(asm, about)
     rows = T[6 * int(node):6 * int(node) + 6]
     if np.any(abs(rows).sum(axis=1) == 0):
         raise ValueError(f"node = {node}: a DOF of it is held by a support; its compliance "
