@@ -6,6 +6,7 @@
     modes = solve_beam3d_modes(model, [Fixed(0)], n=6)
     C = compliance3d(model, [Fixed(0)], node=tip)      # 6x6 at the tip
 """
+from ..beam.assembly import SingularBeamError
 from .modal import Beam3DModes, solve_beam3d_modes
 from .model import (Beam3DModel, Fixed, NodalLoad, Prescribed, RigidLink, Section,
                     element_frames, rect_torsion_constant)
@@ -15,6 +16,6 @@ from .static import Beam3DState, compliance3d, solve_beam3d_static
 __all__ = [
     "Beam3DModel", "Beam3DModes", "Beam3DNonlinearResult", "Beam3DState", "Fixed",
     "NodalLoad", "NonConvergenceError", "Prescribed", "RigidLink", "Section",
-    "compliance3d", "element_frames", "rect_torsion_constant", "solve_beam3d_modes",
+    "SingularBeamError", "compliance3d", "element_frames", "rect_torsion_constant", "solve_beam3d_modes",
     "solve_beam3d_nonlinear", "solve_beam3d_static",
 ]

@@ -6,8 +6,8 @@ import pytest
 from beam3d_models import closed_form_tip_compliance, straight
 from flexfem.fem import beam as planar
 from flexfem.fem.beam3d import (Beam3DModel, Fixed, NodalLoad, RigidLink, Section,
-                                compliance3d, rect_torsion_constant, solve_beam3d_nonlinear,
-                                solve_beam3d_static)
+                                SingularBeamError, compliance3d, rect_torsion_constant,
+                                solve_beam3d_nonlinear, solve_beam3d_static)
 
 
 @pytest.mark.parametrize("shear", [False, True])
@@ -93,3 +93,19 @@ def test_planar_model_agrees_on_an_in_plane_frame(steel):
     assert np.abs(q3[:, [2, 3, 4]]).max() < 1e-12
     assert nl3.final.reactions[base[0]][[0, 1, 5]] == pytest.approx(
         nl2.final.reactions[base[0]], rel=1e-7, abs=1e-9)
+
+
+def test_a_mechanism_and_a_vertical_column_are_handled(steel):
+    """Supports that leave a motion free are named; an element along global z gets local z
+    = global x by default, so its bending planes are still defined."""
+    model, tip = straight(steel, Section.rect(1e-3, 2e-3), length=0.1, n=4)
+    with pytest.raises(SingularBeamError, match="mechanism"):
+        compliance3d(model, [Fixed(0, ("x", "y", "z"))], node=tip)
+    column, top = straight(steel, Section.rect(1e-3, 2e-3), length=0.1, n=4,
+                           direction=(0.0, 0.0, 1.0))
+    assert column.frames[0][:, 2] == pytest.approx([1.0, 0.0, 0.0])
+    C = compliance3d(column, [Fixed(0)], node=top)
+    section = Section.rect(1e-3, 2e-3)
+    # local y = z x x = global y: a force along global y bends about I_z
+    assert C[1, 1] == pytest.approx(0.1**3 / (3 * steel.E * section.Iz), rel=1e-10)
+    assert C[0, 0] == pytest.approx(0.1**3 / (3 * steel.E * section.Iy), rel=1e-10)
