@@ -6,7 +6,8 @@ Ay) and x-z (w, r_y; Iy, Az, with r_y = -dw/dx). Each bending plane uses the pla
 element's interdependent-interpolation shape functions (Friedman & Kosmatka 1993, fem/beam/
 element.py), exact for a prismatic Timoshenko beam; no shear area: Euler-Bernoulli. The
 consistent mass holds translational (rho A), rotary (rho Iy, rho Iz) and torsional
-(rho Ip, Ip = Iy + Iz) inertia, integrated with the same shape functions.
+(rho Ip, Ip = Iy + Iz) inertia, integrated with the same shape functions. Sections may be
+rectangles tapered along local y (model.Section.rect), as the planar model's.
 """
 import numpy as np
 
@@ -19,17 +20,18 @@ AXIAL, TORSION = [0, 6], [3, 9]
 BASIC = [6, 3, 4, 5, 9, 10, 11]  # (u2, r1, r2): natural deformations about the chord
 
 
-def _bending(E, I, G, As, rho, A, L):
-    """(n_e, 4, 4) stiffness and mass of one bending plane (planar DOF order v, theta)."""
-    phi = np.where(np.isfinite(As), 12.0 * E * I / (G * As * L**2), 0.0)
+def _bending(E, I, G, As, I_mid, rho, A, L):
+    """(n_e, 4, 4) stiffness and mass of one bending plane (planar DOF order v, theta); I,
+    A (n_e, k) at the Gauss points; phi from the mid-length I_mid and the shear area As."""
+    phi = np.where(np.isfinite(As), 12.0 * E * I_mid / (G * As * L**2), 0.0)
     Nw, dNw, Np, dNp = _shape(XI, L, phi)
     wdx = WXI[None, :] * L[:, None]
-    K = np.einsum("e,eg,egi,egj->eij", E * I, wdx, dNp, dNp)
+    K = np.einsum("eg,egi,egj->eij", E * I * wdx, dNp, dNp)
     gamma = dNw - Np
     kGA = np.where(np.isfinite(As), G * As, 0.0)
     K += np.einsum("e,eg,egi,egj->eij", kGA, wdx, gamma, gamma)
-    M = (np.einsum("e,eg,egi,egj->eij", rho * A, wdx, Nw, Nw)
-         + np.einsum("e,eg,egi,egj->eij", rho * I, wdx, Np, Np))
+    M = (np.einsum("eg,egi,egj->eij", rho * A * wdx, Nw, Nw)
+         + np.einsum("eg,egi,egj->eij", rho * I * wdx, Np, Np))
     return K, M
 
 
@@ -41,23 +43,27 @@ def _put(target, idx, block, sign=None):
 
 def local_matrices(model):
     """(K, M): (n_e, 12, 12) linear stiffness (N/m, N, N m) and consistent mass (kg,
-    kg m, kg m^2) of every element in its local frame."""
-    s, L = model.section_table(), model.lengths
+    kg m, kg m^2) of every element in its local frame, integrated by 6-point Gauss
+    quadrature along it (exact for the planar model's tapers in bending; the axial and
+    torsional stiffnesses E / mean(1 / A), G / mean(1 / J))."""
+    s, mid, L = model.section_at(XI), model.section_at([0.5]), model.lengths
+    shear = model.section_table()
     mat = model.material
     E, rho = mat.E, mat.rho
     G = E / (2.0 * (1.0 + mat.nu))
     n = model.n_elements
     K, M = np.zeros((n, 12, 12)), np.zeros((n, 12, 12))
     bar = np.array([[1.0, -1.0], [-1.0, 1.0]])
-    consistent = np.array([[2.0, 1.0], [1.0, 2.0]]) / 6.0
-    _put(K, AXIAL, (E * s["A"] / L)[:, None, None] * bar)
-    _put(M, AXIAL, (rho * s["A"] * L)[:, None, None] * consistent)
-    _put(K, TORSION, (G * s["J"] / L)[:, None, None] * bar)
-    _put(M, TORSION, (rho * s["Ip"] * L)[:, None, None] * consistent)
-    Kz, Mz = _bending(E, s["Iz"], G, s["Ay"], rho, s["A"], L)
+    Nu = np.stack([1.0 - XI, XI], axis=-1)
+    wdx = WXI[None, :] * L[:, None]
+    _put(K, AXIAL, (E / ((WXI / s["A"]).sum(axis=1) * L))[:, None, None] * bar)
+    _put(M, AXIAL, np.einsum("eg,gi,gj->eij", rho * s["A"] * wdx, Nu, Nu))
+    _put(K, TORSION, (G / ((WXI / s["J"]).sum(axis=1) * L))[:, None, None] * bar)
+    _put(M, TORSION, np.einsum("eg,gi,gj->eij", rho * s["Ip"] * wdx, Nu, Nu))
+    Kz, Mz = _bending(E, s["Iz"], G, shear["Ay"], mid["Iz"][:, 0], rho, s["A"], L)
     _put(K, XY, Kz)
     _put(M, XY, Mz)
-    Ky, My = _bending(E, s["Iy"], G, s["Az"], rho, s["A"], L)
+    Ky, My = _bending(E, s["Iy"], G, shear["Az"], mid["Iy"][:, 0], rho, s["A"], L)
     _put(K, XZ, Ky, XZ_SIGN)
     _put(M, XZ, My, XZ_SIGN)
     return K, M

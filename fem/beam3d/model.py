@@ -39,21 +39,33 @@ def dof_index(dof) -> int:
     raise ValueError(f"dof = {dof!r} must be 0..5 or one of {', '.join(ALL_DOFS)}")
 
 
-def rect_torsion_constant(a: float, b: float) -> float:
-    """Saint-Venant torsion constant J (m^4) of an a x b rectangle (series solution,
-    Timoshenko & Goodier, Theory of Elasticity, 1970, sec. 109; 20 odd terms)."""
-    a, b = max(a, b), min(a, b)
-    n = np.arange(1, 40, 2)
-    series = np.sum(np.tanh(n * np.pi * a / (2 * b)) / n**5)
-    return a * b**3 / 3.0 * (1.0 - 192.0 / np.pi**5 * (b / a) * series)
+def rect_torsion_constant(a, b):
+    """Saint-Venant torsion constant J (m^4) of a x b rectangles (arrays broadcast; series
+    solution, Timoshenko & Goodier, Theory of Elasticity, 1970, sec. 109; 20 odd terms)."""
+    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    a, b = np.maximum(a, b), np.minimum(a, b)
+    n = np.arange(1, 40, 2).reshape((-1,) + (1,) * a.ndim)
+    series = np.sum(np.tanh(n * np.pi * a / (2 * b)) / n**5, axis=0)
+    J = a * b**3 / 3.0 * (1.0 - 192.0 / np.pi**5 * (b / a) * series)
+    return float(J) if J.ndim == 0 else J
+
+
+def rect_depth(t0, t1, tm, xi):
+    """Depth (m) at fractions xi (k,) of elements with end depths t0, t1 (n_e,) and mid
+    depth tm (n_e,; NaN: linear taper): (n_e, k), the planar model's tapers."""
+    x = np.asarray(xi, dtype=float)[None, :]
+    t0, t1, tm = t0[:, None], t1[:, None], tm[:, None]
+    quadratic = t0 * (1 - x) * (1 - 2 * x) + 4 * tm * x * (1 - x) + t1 * x * (2 * x - 1)
+    return np.where(np.isfinite(tm), quadratic, t0 + (t1 - t0) * x)
 
 
 @dataclass(frozen=True)
 class Section:
-    """Prismatic cross-section of one element: area ``A`` (m^2), second moments ``Iy`` =
-    int z^2 dA and ``Iz`` = int y^2 dA (m^4, about the local y and z axes), torsion
-    constant ``J`` (m^4), optional shear areas ``Ay``, ``Az`` (m^2; None: no shear
-    deformation in that direction, Euler-Bernoulli)."""
+    """Cross-section of one element: area ``A`` (m^2), second moments ``Iy`` = int z^2 dA
+    and ``Iz`` = int y^2 dA (m^4, about the local y and z axes), torsion constant ``J``
+    (m^4), optional shear areas ``Ay``, ``Az`` (m^2; None: no shear deformation in that
+    direction, Euler-Bernoulli). Prismatic, or a rectangle tapered along local y
+    (``Section.rect``; A, Iy, Iz, J are then those at the element's first node)."""
 
     A: float
     Iy: float
@@ -61,6 +73,7 @@ class Section:
     J: float
     Ay: float | None = None
     Az: float | None = None
+    taper: tuple | None = None  # (depth_y at node 1, at node 2, at mid or NaN, depth_z)
 
     def __post_init__(self):
         for name in ("A", "Iy", "Iz", "J"):
@@ -69,14 +82,24 @@ class Section:
         _positive("Az", self.Az, allow_none=True)
 
     @classmethod
-    def rect(cls, depth_y: float, depth_z: float, shear: bool = False):
-        """Rectangle of ``depth_y`` along local y by ``depth_z`` along local z (m); shear
-        areas 5/6 A if ``shear``."""
+    def rect(cls, depth_y: float, depth_z: float, shear: bool = False,
+             depth_y_end: float | None = None, depth_y_mid: float | None = None):
+        """Rectangle of ``depth_y`` along local y by ``depth_z`` along local z (m); depth_y
+        tapered linearly to ``depth_y_end`` at the second node, or quadratically through
+        ``depth_y_mid`` too (the planar model's tapers); shear areas 5/6 A (of the mid-length
+        section) if ``shear``."""
         b, h = _positive("depth_y", depth_y), _positive("depth_z", depth_z)
-        A = b * h
-        k = 5.0 / 6.0 * A if shear else None
-        return cls(A=A, Iy=b * h**3 / 12.0, Iz=h * b**3 / 12.0,
-                   J=float(rect_torsion_constant(b, h)), Ay=k, Az=k)
+        end = _positive("depth_y_end", depth_y_end, allow_none=True)
+        mid = _positive("depth_y_mid", depth_y_mid, allow_none=True)
+        taper = None
+        if end is not None or mid is not None:
+            end = b if end is None else end
+            taper = (b, end, math.nan if mid is None else mid, h)
+        t_mid = b if taper is None else float(rect_depth(*(np.array([v]) for v in taper[:3]),
+                                                          [0.5])[0, 0])
+        k = 5.0 / 6.0 * t_mid * h if shear else None
+        return cls(A=b * h, Iy=b * h**3 / 12.0, Iz=h * b**3 / 12.0,
+                   J=float(rect_torsion_constant(b, h)), Ay=k, Az=k, taper=taper)
 
     @property
     def Ip(self) -> float:
@@ -227,10 +250,23 @@ class Beam3DModel:
         return len(self.elements)
 
     def section_table(self) -> dict:
-        """Section properties as (n_e,) arrays: A, Iy, Iz, J, Ip (m^2, m^4) and the shear
-        areas Ay, Az (m^2, inf where shear is off)."""
-        get = lambda name: np.array([getattr(s, name) for s in self.sections], dtype=float)
+        """Shear areas Ay, Az (m^2, inf where shear is off) as (n_e,) arrays."""
         shear = lambda name: np.array([math.inf if getattr(s, name) is None else getattr(s, name)
                                        for s in self.sections], dtype=float)
-        return {"A": get("A"), "Iy": get("Iy"), "Iz": get("Iz"), "J": get("J"),
-                "Ip": get("Ip"), "Ay": shear("Ay"), "Az": shear("Az")}
+        return {"Ay": shear("Ay"), "Az": shear("Az")}
+
+    def section_at(self, xi) -> dict:
+        """A, Iy, Iz, J, Ip (m^2, m^4) of every element at fractions ``xi`` (k,) along it,
+        each (n_e, k)."""
+        xi = np.atleast_1d(np.asarray(xi, dtype=float))
+        get = lambda name: np.array([getattr(s, name) for s in self.sections], dtype=float)
+        out = {k: np.repeat(get(k)[:, None], len(xi), axis=1) for k in ("A", "Iy", "Iz", "J")}
+        tapered = [e for e, s in enumerate(self.sections) if s.taper is not None]
+        if tapered:
+            t0, t1, tm, w = np.array([self.sections[e].taper for e in tapered]).T
+            t = rect_depth(t0, t1, tm, xi)
+            w = w[:, None]
+            out["A"][tapered], out["Iy"][tapered] = t * w, t * w**3 / 12.0
+            out["Iz"][tapered], out["J"][tapered] = w * t**3 / 12.0, rect_torsion_constant(t, w)
+        out["Ip"] = out["Iy"] + out["Iz"]
+        return out

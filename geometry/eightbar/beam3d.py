@@ -5,16 +5,13 @@
 Built from the planar beam model of the same parameters
 (:func:`flexfem.geometry.eightbar.beam.eightbar_beam_model`): the same nodes (in the plane
 z = 0), elements, rigid links, clamps and link masses, with the out-of-plane properties
-added. Each element becomes prismatic (the spatial element has no taper): its in-plane
-second moment and area are the flexibility means of the planar element's, 1 / I_eq = mean
-of 1 / I(s) (6 Gauss points; exact for uniform bending); its in-plane thickness t = (12 I /
-w)^(1/3) with w = ``thickness`` out of plane gives I_y = t w^3 / 12 and the Saint-Venant J of
-the t x w rectangle. Links: the planar model's mass and polar inertia J_z, and J_x, J_y of the
+added: every section becomes the t x w rectangle of its in-plane depth t (tapered as the
+planar element's through the root fillets) and the out-of-plane width w = ``thickness``, with
+I_y = t w^3 / 12 and the Saint-Venant J. Links: the planar model's mass and polar inertia J_z, and J_x, J_y of the
 link's plate (union of its bars and hubs, thickness w) about its centroid.
 """
 import numpy as np
 
-from ...fem.beam.element import WXI, XI
 from ...fem.beam3d import Beam3DModel, RigidLink, Section, rect_torsion_constant
 from ..beam_layout import ROOT_EXTENSION, _clip
 from .beam import eightbar_beam_model
@@ -59,20 +56,23 @@ def link_plate_inertia(parts, link: str, out_of_plane: float, rho: float) -> tup
 
 
 def spatial_sections(planar_model, out_of_plane: float) -> list:
-    """One prismatic spatial Section per planar element (see the module's docstring);
-    shear areas kappa A (in plane, the planar model's) and kappa w t (out of plane) if
-    the planar model has shear."""
-    A, I, _ = planar_model.section_at(XI)
-    A_eq = 1.0 / (WXI / A).sum(axis=1)
-    I_eq = 1.0 / (WXI / I).sum(axis=1)
-    t = (12.0 * I_eq / out_of_plane) ** (1.0 / 3.0)
-    kappa = planar_model.section_table[:, 7]
-    shear = planar_model.shear
-    return [Section(A=float(A_eq[e]), Iy=float(t[e] * out_of_plane**3 / 12.0),
-                    Iz=float(I_eq[e]), J=float(rect_torsion_constant(t[e], out_of_plane)),
-                    Ay=float(kappa[e] * A_eq[e]) if shear else None,
-                    Az=float(kappa[e] * t[e] * out_of_plane) if shear else None)
-            for e in range(planar_model.n_elements)]
+    """One spatial Section per planar element: a rectangular one keeps its taper (depth t
+    along local y, ``out_of_plane`` along z); a general one (a root extension: A, I) keeps
+    A and I_z = I, with t = (12 I / w)^(1/3) for I_y = t w^3 / 12 and the Saint-Venant J.
+    Shear areas kappa A (the planar model's, mid-length) in y and kappa w t in z if the
+    planar model has shear."""
+    shear, w = planar_model.shear, out_of_plane
+    out = []
+    for (rect, _, t0, t1, A, I, _, kappa, tm) in planar_model.section_table:
+        if rect:
+            out.append(Section.rect(t0, w, shear=shear, depth_y_end=t1,
+                                    depth_y_mid=None if np.isnan(tm) else tm))
+            continue
+        t = (12.0 * I / w) ** (1.0 / 3.0)
+        out.append(Section(A=A, Iy=t * w**3 / 12.0, Iz=I, J=rect_torsion_constant(t, w),
+                           Ay=kappa * A if shear else None,
+                           Az=kappa * t * w if shear else None))
+    return out
 
 
 def eightbar_beam3d_model(params: EightBarFlexureParams, n_per_flexure: int = 24,
