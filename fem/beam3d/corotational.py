@@ -30,7 +30,7 @@ def _frame(x1, x2, R1, R2, R0):
 
 def _g_transpose(Rr, q1, q2, ln):
     """(n_e, 3, 12) G^T: the local spin of R_r per global nodal variation (local
-    components), Battini & Pacoste eq. (35); eta = q_x / q_y and the local components of
+    components), as Battini & Pacoste derive it; eta = q_x / q_y and the local components of
     q_1, q_2."""
     ql1 = np.einsum("eji,ej->ei", Rr, q1)
     ql2 = np.einsum("eji,ej->ei", Rr, q2)

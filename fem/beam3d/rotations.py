@@ -4,7 +4,7 @@ rotation vector (all vectorised over leading axes).
 A rotation vector theta (rad) is the axis times the angle; exp(theta) its rotation matrix
 (Rodrigues). Rotations are composed multiplicatively, R <- exp(dw) R with dw a spatial spin
 (rad), never added as vectors. T_s^-1(theta) maps a spin dw of the rotated frame to the
-change of its rotation vector, d theta = T_s^-1(theta) dw (Battini & Pacoste 2002, eq. 14).
+change of its rotation vector, d theta = T_s^-1(theta) dw (Battini & Pacoste 2002).
 """
 import numpy as np
 
