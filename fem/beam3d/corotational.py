@@ -2,7 +2,7 @@
 
 Battini J.-M., Pacoste C., "Co-rotational beam elements with warping effects in
 instability problems", Computer Methods in Applied Mechanics and Engineering 191 (2002)
-1755-1789, sec. 3 (without warping): the element's rigid frame R_r follows its chord and
+1755-1789 (their element without warping): the element's rigid frame R_r follows its chord and
 the mean of the two nodal triads; the local deformations are the extension and the rotation
 vectors of the nodal triads relative to R_r, fed to the linear element (element.py). Nodal
 rotations are rotation matrices updated multiplicatively with spatial spins, and the

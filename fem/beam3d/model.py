@@ -40,8 +40,9 @@ def dof_index(dof) -> int:
 
 
 def rect_torsion_constant(a, b):
-    """Saint-Venant torsion constant J (m^4) of a x b rectangles (arrays broadcast; series
-    solution, Timoshenko & Goodier, Theory of Elasticity, 1970, sec. 109; 20 odd terms)."""
+    """Saint-Venant torsion constant J (m^4) of a x b rectangles (arrays broadcast): the
+    series solution for rectangular bars (Timoshenko & Goodier, Theory of Elasticity, 3rd
+    ed., 1970), 20 odd terms."""
     a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
     a, b = np.maximum(a, b), np.minimum(a, b)
     n = np.arange(1, 40, 2).reshape((-1,) + (1,) * a.ndim)
