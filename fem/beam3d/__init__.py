@@ -16,6 +16,6 @@ from .static import Beam3DState, compliance3d, solve_beam3d_static
 __all__ = [
     "Beam3DModel", "Beam3DModes", "Beam3DNonlinearResult", "Beam3DState", "Fixed",
     "NodalLoad", "NonConvergenceError", "Prescribed", "RigidLink", "Section",
-    "SingularBeamError", "compliance3d", "element_frames", "rect_torsion_constant", "solve_beam3d_modes",
-    "solve_beam3d_nonlinear", "solve_beam3d_static",
+    "SingularBeamError", "compliance3d", "element_frames", "rect_torsion_constant",
+    "solve_beam3d_modes", "solve_beam3d_nonlinear", "solve_beam3d_static",
 ]

@@ -212,7 +212,8 @@ class Beam3DModel:
         d = self.nodes[self.elements[:, 1]] - self.nodes[self.elements[:, 0]]
         self.lengths = np.linalg.norm(d, axis=1)
         if np.any(self.lengths <= 0):
-            raise ValueError(f"elements {np.flatnonzero(self.lengths <= 0).tolist()} have zero length")
+            bad = np.flatnonzero(self.lengths <= 0).tolist()
+            raise ValueError(f"elements {bad} have zero length")
         self.frames = element_frames(self.nodes, self.elements, orientation)
         self.rigid_links = tuple(rigid_links)
         self.point_masses = dict(point_masses or {})

@@ -6,9 +6,10 @@ Built from the planar beam model of the same parameters
 (:func:`flexfem.geometry.eightbar.beam.eightbar_beam_model`): the same nodes (in the plane
 z = 0), elements, rigid links, clamps and link masses, with the out-of-plane properties
 added: every section becomes the t x w rectangle of its in-plane depth t (tapered as the
-planar element's through the root fillets) and the out-of-plane width w = ``thickness``, with
-I_y = t w^3 / 12 and the Saint-Venant J. Links: the planar model's mass and polar inertia J_z, and J_x, J_y of the
-link's plate (union of its bars and hubs, thickness w) about its centroid.
+planar element's through the root fillets) and the out-of-plane width w = ``thickness``,
+with I_y = t w^3 / 12 and the Saint-Venant J. Links: the planar model's mass and polar
+inertia J_z, and J_x, J_y of the link's plate (union of its bars and hubs, thickness w)
+about its centroid.
 """
 import numpy as np
 
