@@ -7,7 +7,9 @@ the mean of the two nodal triads; the local deformations are the extension and t
 vectors of the nodal triads relative to R_r, fed to the linear element (element.py). Nodal
 rotations are rotation matrices updated multiplicatively with spatial spins, and the
 internal force and consistent tangent below are with respect to those spins (the tangent
-is not symmetric away from equilibrium).
+is not symmetric away from equilibrium). The frame is undefined where the mean nodal y
+axis turns onto the chord: a 90-degree rotation within one element, never reached by a
+mesh that resolves the deformation.
 """
 import numpy as np
 
