@@ -82,7 +82,8 @@ def limit_points(load_factors) -> list:
 def trace(problem, steps, max_iterations, tol, min_step, max_steps, on_step, z0=None):
     """Follow the path from the converged state ``z0`` at lambda = 0 (default unloaded; a
     preloaded state otherwise) to lambda = 1; ``on_step(z, lam, u, r, iterations)`` records
-    each converged point. Returns the number of step cuts."""
+    each converged point and ends the trace when it returns true. Returns the number of step
+    cuts."""
     z, lam = (np.zeros(problem.space.n) if z0 is None else z0), 0.0
     _, _, rz, K, _, _, _ = problem.evaluate(z, lam)
     _, dz_t = _solve2(K, np.zeros_like(rz), _load_direction(problem, z, lam, rz),
@@ -111,7 +112,8 @@ def trace(problem, steps, max_iterations, tol, min_step, max_steps, on_step, z0=
             ds, cuts = ds / 2, cuts + 1
             continue
         previous, z, lam, taken = z_new - z, z_new, lam_new, taken + 1
-        on_step(z, lam, u, r, its)
+        if on_step(z, lam, u, r, its):
+            break
         if its <= 4:
             ds = min(1.5 * ds, ds0)
     return cuts

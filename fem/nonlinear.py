@@ -146,7 +146,8 @@ def _load_control(problem, steps, max_iterations, tol, min_step, on_step, z0) ->
             continue
         lam_previous, lam, cuts_here = lam, lam + dlam, 0
         z_previous, z = z, z_new
-        on_step(z, lam, u, r, n_it)
+        if on_step(z, lam, u, r, n_it):
+            break
         good += 1
         if good >= 2 and dlam < nominal:
             dlam, good = min(2 * dlam, nominal), 0
@@ -175,8 +176,10 @@ def _check_arguments(steps, max_iterations, tol, min_step, control, strain_limit
         raise ValueError(f"control = {control!r}; choose 'load' or 'arc-length'")
     if not (isinstance(strain_limit, (int, float)) and 0 < strain_limit < math.inf):
         raise ValueError(f"strain_limit = {strain_limit!r} must be a finite number > 0")
-    if preload_steps is not None:
-        check_step_arguments(preload_steps, max_iterations, tol, min_step)
+    if preload_steps is not None and not (isinstance(preload_steps, (int, np.integer))
+                                          and not isinstance(preload_steps, bool)
+                                          and preload_steps >= 1):
+        raise ValueError(f"preload_steps = {preload_steps!r} must be an integer >= 1 or None")
 
 
 def solve_nonlinear(model: Model, supports, loads, steps: int = 10, max_iterations: int = 25,
@@ -184,7 +187,7 @@ def solve_nonlinear(model: Model, supports, loads, steps: int = 10, max_iteratio
                     solver: str = "direct", check_stability: bool | None = None,
                     strain_limit: float = STRAIN_LIMIT, control: str = "load",
                     max_steps: int | None = None, preloads=(),
-                    preload_steps: int | None = None) -> NonlinearResult:
+                    preload_steps: int | None = None, stop_when=None) -> NonlinearResult:
     """Large-deflection static solve of ``model`` under ``supports`` (Fixed, Prescribed),
     ``loads`` (Force, Traction, PointForce, BodyForce, Gravity: dead; Pressure: follower) and
     ``rigid_faces`` (RigidFace, 2-D), all scaled by a load factor stepped 0 -> 1 in
@@ -204,12 +207,18 @@ def solve_nonlinear(model: Model, supports, loads, steps: int = 10, max_iteratio
     ``max_steps`` steps, default 20 ``steps``). ``preloads`` (:mod:`.preload`): loads applied
     first, by load control in ``preload_steps`` increments (default ``steps``), then held
     at full value while the scaled loads follow ``control``; result.preload_end is the step
-    that ends the preload stage."""
+    that ends the preload stage. ``stop_when(load_factor, u, face_motion) -> bool`` (u the
+    DOF vector (m), face_motion {group: (c_x, c_y, theta)}), called at each converged step of
+    the scaled loads, ends the solve there when true (result.info['stopped']): the end of a
+    path that does not come back to load factor 1, e.g. past a limit point."""
     _check_arguments(steps, max_iterations, tol, min_step, control, strain_limit, preload_steps)
     pre, problem = _problems(model, supports, loads, rigid_faces, preloads, solver)
     if check_stability is None:
         check_stability = problem.solver == "direct"
-    steps_out = _Steps(model, check_stability, strain_limit)
+    if stop_when is not None and not callable(stop_when):
+        raise ValueError(f"stop_when = {stop_when!r} must be a function (load_factor, u, "
+                         "face_motion) -> bool or None")
+    steps_out = _Steps(model, check_stability, strain_limit, stop_when)
     z, cuts_pre = np.zeros(problem.space.n), 0
     if pre is not None:
         cuts_pre = _load_control(pre, preload_steps or steps, max_iterations, tol, min_step,
@@ -222,22 +231,23 @@ def solve_nonlinear(model: Model, supports, loads, steps: int = 10, max_iteratio
     else:
         cuts = _load_control(problem, steps, max_iterations, tol, min_step, on_step, z)
     return steps_out.result(problem, {"step_cuts": cuts, "preload_step_cuts": cuts_pre,
-                                      "control": control})
+                                      "control": control, "stopped": steps_out.stopped})
 
 
 class _Steps:
     """The converged steps of both stages, and the result they make."""
 
-    def __init__(self, model, check_stability, strain_limit):
+    def __init__(self, model, check_stability, strain_limit, stop_when=None):
         self.model, self.check, self.strain_limit = model, check_stability, strain_limit
+        self.stop_when, self.stopped = stop_when, False
         self.lams, self.pre, self.us, self.its = [0.0], [0.0], [np.zeros(model.n_dofs)], [0]
         self.records = [({}, {}, {})]
         self.negative, self.strains = [0 if check_stability else None], [0.0]
         self.preload_end, self.z = 0, None
 
     def recorder(self, problem, preload=False):
-        """on_step(z, lam, u, r, iterations) of a stage: in the preload stage lam is the
-        preloads' factor and the scaled loads' factor is 0."""
+        """on_step(z, lam, u, r, iterations) -> stop of a stage: in the preload stage lam is
+        the preloads' factor and the scaled loads' factor is 0."""
         def on_step(z, lam, u, r, n_it):
             self.lams.append(0.0 if preload else lam)
             self.pre.append(lam if preload else (1.0 if self.preload_end else 0.0))
@@ -249,6 +259,9 @@ class _Steps:
             self.z = z
             if preload:
                 self.preload_end = len(self.lams) - 1
+            elif self.stop_when is not None:
+                self.stopped = bool(self.stop_when(lam, u, self.records[-1][2]))
+            return self.stopped
         return on_step
 
     def result(self, problem, info) -> NonlinearResult:
