@@ -7,9 +7,10 @@ snap-through", Comput. Struct. 13:55): the tangent predictor dz = dlambda K^-1 q
 -dR/dlambda, in the direction of the previous increment (so the path is followed through
 limit points, where lambda turns back), then corrections constrained to the plane normal to
 the current increment (Riks-Wempner, updated normal plane). The last step lands on
-lambda = 1 by load control. Preloads (:mod:`.preload`) stay constant: the path starts from
-the preloaded state and only the scaled loads follow lambda. Limit points (local extremes of lambda along the path) are
-reported in ``result.info["limit_points"]``.
+lambda = 1 by load control (or ends earlier where the caller says). Preloads
+(:mod:`.preload`) stay constant: the path starts from the preloaded state and only the scaled
+loads follow lambda. Limit points (local extremes of lambda along the path) are reported in
+``result.info["limit_points"]``.
 """
 import math
 

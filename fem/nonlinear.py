@@ -41,7 +41,8 @@ class _Problem:
     def __init__(self, model, space, owned, loads, solver, assembler, preloads=()):
         self.model, self.space, self.owned, self.assembler = model, space, owned, assembler
         self.f_ext, self.follower = load_vector(model, loads), FollowerPressure(model, loads)
-        self.f_pre, self.pre_follower = load_vector(model, preloads), FollowerPressure(model, preloads)
+        self.f_pre = load_vector(model, preloads)
+        self.pre_follower = FollowerPressure(model, preloads)
         self.solver = linsolve.choose_solver(space.n, model.dim, solver)
         follower = self.follower.active or self.pre_follower.active
         if self.solver == "amg" and (space.faces or follower):
@@ -272,7 +273,8 @@ class _Steps:
         vm_nodal, vm_element = final_stress(self.model, self.us[-1])
         return NonlinearResult(
             model=self.model, load_factors=lams, u=self.us,
-            reactions=[rec[0] for rec in self.records], face_reactions=[rec[1] for rec in self.records],
+            reactions=[rec[0] for rec in self.records],
+            face_reactions=[rec[1] for rec in self.records],
             face_motion=[rec[2] for rec in self.records], iterations=self.its,
             von_mises_nodal=vm_nodal, von_mises_element_max=vm_element, applied=problem.f_ext,
             info={"n_dofs": self.model.n_dofs, "n_unknowns": problem.space.n,

@@ -44,8 +44,11 @@ def elastica_tip_load(P, alpha, guess=None):
     s = np.linspace(0, L, 101)
     y, p = ((np.vstack([alpha * s / L, np.full_like(s, alpha / L)]), [0.0]) if guess is None
             else (guess.sol(s), guess.p))
-    sol = solve_bvp(lambda _, y, p: np.vstack([y[1], -(p[0] * np.cos(y[0]) + P * np.sin(y[0])) / EI]),
-                    lambda a, b, p: np.array([a[0], b[0] - alpha, b[1]]), s, y, p=p, tol=1e-10)
+    def rhs(_, y, p):
+        return np.vstack([y[1], -(p[0] * np.cos(y[0]) + P * np.sin(y[0])) / EI])
+
+    sol = solve_bvp(rhs, lambda a, b, p: np.array([a[0], b[0] - alpha, b[1]]), s, y, p=p,
+                    tol=1e-10)
     assert sol.success
     fine = np.linspace(0, L, 2001)
     return float(sol.p[0]), float(np.trapezoid(np.sin(sol.sol(fine)[0]), fine)), sol
@@ -76,9 +79,11 @@ def test_axial_preload_softens_the_lateral_stiffness_as_the_beam_column(column, 
     F = 1e-4 * L * k
     result = solve_nonlinear(column, [Fixed("base")], [Force("tip", (0.0, F))], steps=2,
                              preloads=[Force("tip", (-P, 0.0))] if P else [])
-    shortening = -result.mean_displacement("tip", result.preload_end)[0]
-    lateral = result.mean_displacement("tip")[1] - result.mean_displacement("tip", result.preload_end)[1]
+    preloaded = result.mean_displacement("tip", result.preload_end)
+    shortening, lateral = -preloaded[0], result.mean_displacement("tip")[1] - preloaded[1]
     assert F / lateral == pytest.approx(k, rel=0.01)
+    # the tip carries the held preload and the scaled load (applied loads of a free group)
+    assert result.force_displacement("tip")[1][-1] == pytest.approx([-P, F], abs=1e-9 * F)
     assert shortening == pytest.approx(P * L / (E_MOD * H * T), rel=0.01, abs=1e-12)
     assert result.preload_end == (2 if P else 0) and all(result.stable)
 
