@@ -54,8 +54,8 @@ class _Problem:
         return lam * self.follower.stiffness(u) + self.pre_follower.stiffness(u)
 
     def evaluate(self, z, lam, tangent=True):
-        """(u, r = f_int - lam f_ext (full), r_z, K_zz or None, reference force (N), T = du/dz,
-        full tangent or None)."""
+        """(u, r = f_int - lam f_ext - preloads (full), r_z, K_zz or None, reference force (N),
+        T = du/dz, full tangent or None)."""
         space = self.space
         u = space.displacement(z, lam)
         F, S = self.assembler.state(u)
