@@ -167,7 +167,7 @@ def _problems(model, supports, loads, rigid_faces, preloads, solver) -> tuple:
     nodal, face_loads = split_preloads(preloads, rigid_faces)
     pre_space = ReducedSpace(model, D, np.zeros_like(xD), preload_faces(rigid_faces, face_loads))
     pre = _Problem(model, pre_space, owned, nodal, solver, assembler)
-    held = PreloadedSpace(space, pre_space.applied(1.0))
+    held = PreloadedSpace(space, pre_space)
     return pre, _Problem(model, held, owned, loads, solver, assembler, preloads=nodal)
 
 

@@ -46,30 +46,36 @@ def split_preloads(preloads, rigid_faces) -> tuple[list, dict]:
     return nodal, face_loads
 
 
+def _zero(value):
+    """0.0, or a tuple of zeros as long as ``value``."""
+    return tuple(0.0 for _ in value) if isinstance(value, (tuple, list, np.ndarray)) else 0.0
+
+
 def preload_faces(rigid_faces, face_loads: dict) -> list:
     """The rigid faces of the preload stage: each prescribed coordinate held at 0 (the scaled
     motions have not started), each free one carrying the face preload (or nothing)."""
     out = []
     for face in rigid_faces:
         load = face_loads.get(face.group)
-        held = {f.name: 0.0 for f in dataclasses.fields(face)
+        held = {f.name: _zero(getattr(face, f.name)) for f in dataclasses.fields(face)
                 if f.name not in _LOAD_FIELDS and getattr(face, f.name) is not None}
         out.append(dataclasses.replace(
-            face, **held, force=load.force if load else (0.0,) * len(face.force),
-            moment=load.moment if load else 0.0))
+            face, **held, force=load.force if load else _zero(face.force),
+            moment=load.moment if load else _zero(face.moment)))
     return out
 
 
 class PreloadedSpace:
     """A reduced space (:class:`.rigid_face.ReducedSpace`) whose applied face loads carry the
-    constant face preloads ``held`` ((n,) N) beside the scaled ones."""
+    face preloads, those of ``preload`` (the preload stage's space) at full value, beside the
+    scaled ones."""
 
-    def __init__(self, space, held: np.ndarray):
-        self._space, self.held = space, held
+    def __init__(self, space, preload):
+        self._space, self._preload = space, preload
 
     def __getattr__(self, name):
         return getattr(self._space, name)
 
-    def applied(self, load_factor: float) -> np.ndarray:
+    def applied(self, load_factor: float, *where) -> np.ndarray:
         """Generalised loads on the free face coordinates (N): scaled plus preloads."""
-        return self._space.applied(load_factor) + self.held
+        return self._space.applied(load_factor, *where) + self._preload.applied(1.0, *where)
