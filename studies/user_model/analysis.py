@@ -10,6 +10,10 @@ from ...fem import (Fixed, Force, Model, PlaneStrain, PlaneStress, Prescribed, S
 from ...geometry.user_model import ModelSpec, load_spec, mesh_geometry
 
 _AXES = ("x", "y", "z")
+#: Units of the flat metrics of :func:`evaluate` (a model file's parameters are in its own
+#: units, so they have none here).
+UNITS = {"dofs": "-", "h": "m", "max_von_mises": "Pa", "mean_displacement_*": "m",
+         "reaction_*": "N", "stiffness_*": "N/m"}
 
 
 def formulation(spec: ModelSpec):
