@@ -47,7 +47,13 @@ class _Problem:
         if self.solver == "amg" and (space.faces or follower):
             raise ValueError(f"solver = {solver!r} with rigid faces or follower pressure: AMG is "
                              "not set up for them; use solver='direct'")
-        self.matrix_kind = "general" if follower else "symmetric"
+        self._follower_kind = "general" if follower else "symmetric"
+
+    @property
+    def matrix_kind(self) -> str:
+        """The tangent's factorization: 'general' with follower pressure or a 3-D face's dead
+        moment (a non-symmetric load stiffness), else 'symmetric'."""
+        return self._follower_kind if self.space.symmetric else "general"
 
     def _load_stiffness(self, u, lam):
         return lam * self.follower.stiffness(u) + self.pre_follower.stiffness(u)
@@ -83,7 +89,7 @@ class _Problem:
             if self.solver == "amg":
                 x = linsolve.solve_amg(K, b, self._near_null_space())
             else:
-                x = _solve_direct(K, b, self.matrix_kind if self.space.symmetric else "general")
+                x = _solve_direct(K, b, self.matrix_kind)
             linsolve.check_solution(K, x, b, "Newton step", rtol=1e-6)
         except (RuntimeError, linsolve.SingularSystemError) as error:
             raise _StepFailed(f"the tangent is singular ({error})", []) from None
