@@ -71,19 +71,20 @@ def _input_member(bld, links, p, layout, J, pad, sx, hinge_ends, root_extension)
     line, the hinges' ends joined to it by rigid offsets; returns the master node on its pad's
     face, where the actuator pushes.
 
-    Over the pad's height the member and its pad are one block (pad_height tall, a +
-    pad_depth deep: as tall as the member is deep, not a beam), held along x by the actuator
-    over its whole face: a rigid body (master on the face). The member's halves enter it as
-    every flexure enters a body here, with the common root extension: root_extension x a
-    into the block, at most to its middle (a pad lower than 2 x 0.38 a: a point support)."""
+    Over the pad's height the member is a block (pad_height tall, a deep: as tall as it is
+    deep, not a beam) on which the pad, held along x by the actuator over its whole face,
+    bears: a rigid body, carried by the pad, a short beam (pad_height thick) from its face to
+    the member's face. The member's halves enter the block as every flexure enters a body
+    here, with the common root extension: root_extension x a into it, at most to its middle
+    (a pad lower than 2 x 0.38 a: a point support)."""
     half = layout.pad_height / 2
     y0 = max(half - root_extension * p.a, 0.0)  # the member is rigid for |y| <= y0
     at = _column(bld, links, sx * (J.x0 + J.x1) / 2, (-p.ll, p.ll, -y0, y0), p.a, p.d,
                  hinge_ends, 6 / p.ll)
     face, root = (sx * min(abs(pad.x0), abs(pad.x1)), 0.0), (sx * J.x0, 0.0)
-    chain = bld.add(beam_chain([face, root], Section.rect(p.d, layout.pad_height), 1))
+    chain = bld.add(beam_chain([face, root], Section.rect(p.d, layout.pad_height), 2))
     block = [n for y, n in at.items() if abs(y) <= y0 * (1 + 1e-9)]
-    links.append(RigidLink(chain[0], (chain[1],) + tuple(block)))
+    links.append(RigidLink(chain[1], tuple(block)))
     return chain[0]
 
 
