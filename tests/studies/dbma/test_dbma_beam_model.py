@@ -106,3 +106,14 @@ def test_dbma_beam_model_against_the_continuum(params, layout):
     for key in ("R_fem_per_side", "k_in", "fn_working"):
         assert beam[key] == pytest.approx(cont[key], rel=0.03), key
     assert beam["k_out"] == pytest.approx(cont["k_out"], rel=0.05)
+
+
+def test_the_notch_deficit_grows_with_t_over_r():
+    """A circular notch between two blocks: the beam model (Paros-Weisbord's plane-section
+    integral along the profile) is stiffer than the 2-D continuum, outside the 3 % band, and
+    more so for the thicker notch (t/R = 0.67 against 0.2): docs/beam.md."""
+    from flexfem.studies.dbma.beam_slenderness import TRUST_LIMIT, slenderness_rows
+
+    rows = {r["l_over_b"]: r for r in slenderness_rows((3.0, 10.0), ("circular",))}
+    thick, thin = rows[3.0]["bending_error"], rows[10.0]["bending_error"]
+    assert thick < thin < -TRUST_LIMIT
