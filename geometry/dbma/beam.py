@@ -20,7 +20,7 @@ import numpy as np
 
 from ...fem.beam import BeamMesh, BeamModel, RigidLink, Section, beam_chain
 from ...fem.materials import Material
-from ..beam_layout import ROOT_EXTENSION, check_root_extension, profile_beam, root_section
+from ..beam_layout import ROOT_EXTENSION, check_root_extension, profile_beam
 from ..hinge_profiles import profile_thickness
 from .drawing import DBMALayout, check_layout, quarter_rects
 from .params import DBMAParams
