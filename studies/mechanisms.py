@@ -213,7 +213,7 @@ def get_evaluator(name: str, allow_code: bool = False):
     check_mechanism(name, allow_code=allow_code)
     if _model_path(name):
         model = MECHANISMS["model"]
-        return functools.partial(model.load(model.evaluate), model=_model_path(name))
+        return functools.partial(model.load(model.evaluate), file=_model_path(name))
     if name in MECHANISMS:
         return MECHANISMS[name].load(MECHANISMS[name].evaluate)
     target = plugin_mechanisms()[name].value if name in plugin_mechanisms() else name
