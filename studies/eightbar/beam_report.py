@@ -46,7 +46,7 @@ def driving_metrics(beam: dict, cont: dict) -> list:
     transmission (PRBM column: the rigid linkage's), stress per input, modes."""
     rows = [Metric("driving linkage: input stiffness (shuttle, y)", "N/m", beam["k_in_prbm"],
                    beam["stiffness_n_per_m"], cont["stiffness_n_per_m"],
-                   note="PRBM: sum of E I / L (d phi / d s)^2 over the 26 flexures"),
+                   note="PRBM: sum of E I / L (d phi / d s)^2 over the 34 flexures"),
             Metric("driving linkage: transmission d x_R / d s", "-",
                    beam["rigid_transmission"], beam["transmission"], cont["transmission"],
                    note="PRBM column: the rigid linkage"),
@@ -114,7 +114,7 @@ def reproduce(out_dir, quick: bool = False) -> dict:
         f"over the table is {100 * worst:.1f} %. The PRBM misses k_x by "
         f"{100 * (metrics[0].prbm / metrics[0].continuum - 1):+.1f} % (it neglects the "
         "flexures' shear and axial compliance and the links' shape) and has no k_y or modes. "
-        "The driving linkage (two lambdas and the two suspensions, 26 flexures; "
+        "The driving linkage (two lambdas and the two suspensions, 34 flexures; "
         "geometry/eightbar/driving_beam.py, from the same flexure layout as its mesh) by the "
         f"beam model in {t_d_beam:.2f} s against {t_d_cont:.0f} s for its 2-D FEM "
         f"({d_cont['dofs']} DOFs): input stiffness "

@@ -1,0 +1,95 @@
+"""The driving linkage's beam model (geometry/eightbar/driving_beam.py), generated from the same
+flexure layout as its continuum mesh: against the pseudo-rigid-body model and the rigid
+linkage where hinges are short (closed forms), against the 2-D FEM of the same design (slow),
+and through the CLI and the study entry with model = "beam"."""
+import argparse
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from flexfem.geometry.eightbar.driving import DrivingParams, driving_layout
+from flexfem.geometry.eightbar.driving_beam import (driving_beam_model, driving_joint_rates,
+                                                    driving_prbm_stiffness)
+from flexfem.geometry.eightbar.flexure import EightBarFlexureParams
+from flexfem.studies.eightbar import cli
+from flexfem.studies.eightbar.driving_models import (analyze_driving, analyze_driving_beam,
+                                                     evaluate)
+from flexfem.studies.engine.validate import normalise_options
+
+
+def short_hinges(length):
+    """Flexures of ``length`` (m; base ones 0.6 x), sharp roots."""
+    return replace(EightBarFlexureParams(), flexure_length=length,
+                   base_flexure_length=0.6 * length, root_fillet_radius=0.0)
+
+
+def test_generated_from_the_flexure_layout():
+    params, flexure = DrivingParams(), EightBarFlexureParams()
+    layout = driving_layout(params, flexure)
+    model, info = driving_beam_model(params, flexure, n_per_flexure=8)
+    assert len(info["flexures"]) == len(layout.joints) == 34
+    assert len(info["ground"]) == sum(fj.other == "ground" for fj in layout.joints) == 12
+    for face in ("input", "ee_L", "ee_R"):  # master nodes on the continuum's faces
+        centre = np.mean(layout.edges[face], axis=0)
+        assert model.nodes[info[face]] == pytest.approx(centre, abs=1e-12)
+    # the flexures' elements span their drawn length plus 0.38 x the root thickness (width
+    # and both fillets) into both roots
+    root = 2 * flexure.root_fillet_radius
+    for fj in layout.joints:
+        first, last = info["flexures"][fj.name]
+        assert model.lengths[first:last].sum() == pytest.approx(
+            fj.length + 2 * 0.38 * (fj.width + root), rel=1e-8)
+
+
+def test_input_stiffness_tends_to_the_prbm_as_hinges_shorten():
+    """k_in = sum (E I / L) (d phi / d s)^2 holds for hinges short against the links: the
+    beam model (bare beams) approaches it with the error falling as ~L^2, and its
+    transmission approaches the rigid linkage's."""
+    errors = []
+    for length in (10e-3, 5e-3, 2.5e-3):
+        out = analyze_driving_beam(flexure=short_hinges(length), n_modes=0, root_extension=0.0)
+        errors.append(1 - out["stiffness_n_per_m"] / out["k_in_prbm"])
+        assert abs(out["transmission"] / out["rigid_transmission"] - 1) < 0.004
+    assert 0 < errors[-1] < 0.003, errors  # measured 0.021, 0.0057, 0.0018
+    assert errors[0] / errors[1] > 3 and errors[1] / errors[2] > 2.5, errors
+
+
+def test_prbm_rates_are_mirror_symmetric():
+    rates = driving_joint_rates(DrivingParams())
+    for name, rate in rates.items():
+        if name.startswith(("lamR", "susR")):
+            mirror = name.replace("lamR", "lamL").replace("susR", "susL")
+            assert rates[mirror] == pytest.approx(-rate, rel=1e-6, abs=1e-9)
+    share = driving_prbm_stiffness(DrivingParams(), EightBarFlexureParams())["joints"]
+    assert len(share) == 34 and min(share.values()) >= 0
+
+
+def test_cli_and_study_entry():
+    args = argparse.Namespace(model="beam", quick=False, modes=2, json=True)
+    out = cli._run_eightbar_driving(args)
+    assert out["model"] == "beam" and len(out["modes"]) == 2
+    assert out["ratio_left_right"] == pytest.approx(-1.0, abs=1e-6)  # mirror symmetry
+    assert "input stiffness" in cli._summarize_eightbar_driving(out)
+    options = normalise_options(evaluate, {"model": "beam", "size_factor": 2.0}, "driving")
+    metrics = evaluate({"flexure_width": 0.25e-3}, **options)
+    assert metrics["stiffness_n_per_m"] < out["stiffness_n_per_m"]  # thinner: softer
+    assert {"transmission", "f1_hz", "k_in_prbm", "dofs"} <= set(metrics)
+    with pytest.raises(ValueError, match="unknown driving-linkage parameter"):
+        evaluate({"flexure_widht": 1e-4}, model="beam")
+    with pytest.raises(ValueError, match="model = 'shell'"):
+        analyze_driving(model="shell")
+
+
+@pytest.mark.slow
+def test_beam_against_the_continuum_of_the_same_design():
+    """Default design (hinges l/w = 67 and 30): input stiffness, transmission and the first
+    modes within 5 % of the 2-D FEM (size_factor 1.5)."""
+    beam = analyze_driving(model="beam", n_modes=2)
+    cont = analyze_driving(model="continuum", n_modes=2, size_factor=1.5)
+    assert set(beam) - {"root_extension"} == set(cont) - {"size_factor"}
+    assert beam["stiffness_n_per_m"] == pytest.approx(cont["stiffness_n_per_m"], rel=0.05)
+    assert beam["transmission"] == pytest.approx(cont["transmission"], rel=0.005)
+    for mb, mc in zip(beam["modes"], cont["modes"]):
+        assert mb["f_hz"] == pytest.approx(mc["f_hz"], rel=0.05)
+    assert beam["max_von_mises_pa"] == pytest.approx(cont["max_von_mises_pa"], rel=0.15)
