@@ -104,6 +104,9 @@ BUILTIN = (
                     "beam_report:reproduce"),
         )),
     Mechanism(
+        "eightbar_driving", "Eight-bar thesis' driving linkage: two lambdas, two suspensions",
+        "eightbar", evaluate="driving_models:evaluate", document="eightbar"),
+    Mechanism(
         "balancing", "Five-bar parallel robot: optimum static balancing and flexure pivots",
         "balancing", commands="cli", document="balancing",
         sections=(
