@@ -28,7 +28,7 @@ def driving_beam_model(params: DrivingParams, flexure, n_per_flexure: int = 24,
     pose; ``flexure`` an EightBarFlexureParams (flexure sizes, link width, out-of-plane
     thickness, material, fillet radius; its ``rigid`` ignored, as in driving_layout). info:
     that of layout_beam_model plus "input", "ee_L", "ee_R" (master nodes on those faces'
-    centres)."""
+    centres) and "layout" (the FlexureLayout)."""
     layout = driving_layout(params, flexure, shuttle=True)
     anchors = {link: np.asarray(layout.edges[face], float).mean(axis=0)
                for face, link in FACES.items()}
@@ -38,6 +38,7 @@ def driving_beam_model(params: DrivingParams, flexure, n_per_flexure: int = 24,
         root_extension=root_extension, anchors=anchors, shear=shear)
     for face, link in FACES.items():
         info[face] = info["masters"][link]
+    info["layout"] = layout
     return model, info
 
 
@@ -45,7 +46,8 @@ def driving_joint_rates(params: DrivingParams, n: int = 5, span: float = 1e-3) -
     """d(phi_j)/ds (rad/m) at the drawn pose: each joint's relative rotation per unit shuttle
     displacement s, by a central difference on the rigid trace (both halves driven by their
     coupler points; the shuttle does not turn, so the flexures at P_L, P_R turn with the
-    couplers). ``span``: the fraction of input_travel differenced over."""
+    couplers); and under "transmission" the right end-effector's d x / d s (-). ``span``:
+    the fraction of input_travel differenced over."""
     small = replace(params, input_travel=span * params.input_travel)
     tr = trace_driving(small, n=n)
     linkage = tr.linkage
@@ -54,20 +56,26 @@ def driving_joint_rates(params: DrivingParams, n: int = 5, span: float = 1e-3) -
     k, h = len(tr.s) // 2, tr.s[len(tr.s) // 2 + 1] - tr.s[len(tr.s) // 2 - 1]
     pairs = {j.point: j.links for j in linkage.joints}
     pairs.update({f"lam{side}_P": (f"lam{side}_coupler", "shuttle") for side in "LR"})
-    return {name: float((theta[a][k + 1] - theta[b][k + 1] - theta[a][k - 1] + theta[b][k - 1])
-                        / h) for name, (a, b) in pairs.items()}
+    rates = {name: float((theta[a][k + 1] - theta[b][k + 1] - theta[a][k - 1] + theta[b][k - 1])
+                         / h) for name, (a, b) in pairs.items()}
+    rates["transmission"] = float((tr.dx_right[k + 1] - tr.dx_right[k - 1]) / h)
+    return rates
 
 
-def driving_prbm_stiffness(params: DrivingParams, flexure) -> dict:
+def driving_prbm_stiffness(params: DrivingParams, flexure, layout=None) -> dict:
     """Pseudo-rigid-body stiffness at the shuttle along y, k_in = sum_j (E I / L)_j
     (dphi_j/ds)^2 (N/m), I = t w^3 / 12 with each flexure's drawn (L, w) (base joints O, C:
-    the base flexure's), and each joint's share. Neglects the links' compliance and the
-    flexures' axial and transverse compliance."""
+    the base flexure's), each joint's share, and the rigid linkage's transmission d x_R / d s
+    (-). Neglects the links' compliance and the flexures' axial and transverse compliance.
+    ``layout``: driving_layout(params, flexure) if already built."""
     E = material_named(flexure.material).E
-    layout = driving_layout(params, flexure, shuttle=True)
+    layout = layout or driving_layout(params, flexure, shuttle=True)
     sizes = {fj.name: (fj.length, fj.width) for fj in layout.joints}
+    rates = driving_joint_rates(params)
+    transmission = rates.pop("transmission")
     share = {}
-    for joint, rate in driving_joint_rates(params).items():
+    for joint, rate in rates.items():
         L, w = sizes[joint]
         share[joint] = E * flexure.thickness * w ** 3 / 12 / L * rate ** 2
-    return {"k_in": float(sum(share.values())), "joints": share}
+    return {"k_in": float(sum(share.values())), "joints": share,
+            "transmission": transmission}

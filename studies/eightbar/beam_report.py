@@ -16,6 +16,7 @@ from .beam import analyze_eightbar_beam
 from .driving_models import analyze_driving_beam, analyze_driving_continuum
 
 NAN = float("nan")
+MM = 1e-3  # m
 
 
 def metrics_of(params, beam: dict, cont: dict) -> list:
@@ -50,9 +51,9 @@ def driving_metrics(beam: dict, cont: dict) -> list:
             Metric("driving linkage: transmission d x_R / d s", "-",
                    beam["rigid_transmission"], beam["transmission"], cont["transmission"],
                    note="PRBM column: the rigid linkage"),
-            Metric("driving linkage: peak stress per input", "Pa/m", NAN,
-                   beam["max_von_mises_pa"] / beam["input_m"],
-                   cont["max_von_mises_pa"] / cont["input_m"], STRESS_TOL,
+            Metric("driving linkage: peak stress, linear, 1 mm of input", "Pa", NAN,
+                   beam["max_von_mises_pa"] * MM / beam["input_m"],
+                   cont["max_von_mises_pa"] * MM / cont["input_m"], STRESS_TOL,
                    note="continuum: von Mises at the filleted roots")]
     for k, (mb, mc) in enumerate(zip(beam.get("modes", []), cont.get("modes", []))):
         rows.append(Metric(f"driving linkage: mode {k + 1} frequency", "Hz", NAN, mb["f_hz"],

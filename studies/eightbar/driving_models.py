@@ -13,13 +13,14 @@ von Mises includes the fillets' stress concentration, the beam's |N|/A + |M|c/I 
 Modes with the anchors clamped. SI units.
 """
 from dataclasses import fields, replace
+import functools
 import math
 
 from ...fem import Fixed as FixedFace
 from ...fem import solve_modes
 from ...fem.beam import Fixed, Prescribed, solve_beam_modes, solve_beam_static
 from ...geometry.beam_layout import ROOT_EXTENSION
-from ...geometry.eightbar.driving import DrivingParams, trace_driving, transmission_ratio
+from ...geometry.eightbar.driving import DrivingParams
 from ...geometry.eightbar.driving_beam import driving_beam_model, driving_prbm_stiffness
 from ...geometry.eightbar.flexure import EightBarFlexureParams
 from ..engine.choice import ModelChoice
@@ -31,6 +32,12 @@ _DRIVING = tuple(f.name for f in fields(DrivingParams) if f.name != "suspension"
 _FLEXURE = tuple(f.name for f in fields(EightBarFlexureParams) if f.name != "rigid")
 
 
+@functools.lru_cache(maxsize=1)
+def default_flexure() -> EightBarFlexureParams:
+    """The default flexure sizes, built once (their checks take ~1 s: the contact check)."""
+    return EightBarFlexureParams()
+
+
 def designs_from_dict(values: dict | None) -> tuple:
     """(DrivingParams, EightBarFlexureParams) of the defaults with ``values`` ({field: value}
     of either dataclass, m) changed; ValueError naming an unknown field."""
@@ -40,8 +47,8 @@ def designs_from_dict(values: dict | None) -> tuple:
         raise ValueError(f"unknown driving-linkage parameter(s) {unknown}; known: "
                          f"{sorted(_DRIVING + _FLEXURE)}")
     params = replace(DrivingParams(), **{k: v for k, v in values.items() if k in _DRIVING})
-    flexure = replace(EightBarFlexureParams(), **{k: v for k, v in values.items()
-                                                  if k in _FLEXURE})
+    changed = {k: v for k, v in values.items() if k in _FLEXURE}
+    flexure = replace(default_flexure(), **changed) if changed else default_flexure()
     return params, flexure
 
 
@@ -54,10 +61,10 @@ def _drive_keys(u_l, u_r, force, stress) -> dict:
             "stiffness_n_per_m": float(force / PROBE), "max_von_mises_pa": float(stress)}
 
 
-def _references(params: DrivingParams, flexure) -> dict:
+def _references(params: DrivingParams, flexure, layout=None) -> dict:
     """The closed forms beside both models: PRBM input stiffness (N/m), rigid transmission."""
-    return {"k_in_prbm": driving_prbm_stiffness(params, flexure)["k_in"],
-            "rigid_transmission": transmission_ratio(trace_driving(params, n=31))}
+    prbm = driving_prbm_stiffness(params, flexure, layout)
+    return {"k_in_prbm": prbm["k_in"], "rigid_transmission": prbm["transmission"]}
 
 
 def analyze_driving_beam(params: DrivingParams | None = None, flexure=None, n_modes: int = 3,
@@ -65,7 +72,7 @@ def analyze_driving_beam(params: DrivingParams | None = None, flexure=None, n_mo
                          root_extension: float = ROOT_EXTENSION) -> dict:
     """Linear drive and ``n_modes`` modes of the beam model: the keys of
     :func:`analyze_driving_continuum` (model "beam")."""
-    params, flexure = params or DrivingParams(), flexure or EightBarFlexureParams()
+    params, flexure = params or DrivingParams(), flexure or default_flexure()
     model, info = driving_beam_model(params, flexure, n_per_flexure, root_extension)
     ground, inp = [Fixed(tuple(info["ground"]))], info["input"]
     state = solve_beam_static(model, ground + [Prescribed(inp, "y", PROBE),
@@ -75,8 +82,8 @@ def analyze_driving_beam(params: DrivingParams | None = None, flexure=None, n_mo
     if n_modes:
         modes = solve_beam_modes(model, ground, n=n_modes)
         out["modes"] = [{"f_hz": float(f)} for f in modes.frequencies_hz]
-    return {**out, **_references(params, flexure), "dofs": int(model.n_dofs), "model": "beam",
-            "root_extension": root_extension}
+    return {**out, **_references(params, flexure, info["layout"]), "dofs": int(model.n_dofs),
+            "model": "beam", "root_extension": root_extension}
 
 
 def analyze_driving_continuum(params: DrivingParams | None = None, flexure=None,
@@ -85,7 +92,7 @@ def analyze_driving_continuum(params: DrivingParams | None = None, flexure=None,
     modes of the 2-D FEM (P2, mesh ``size_factor``): input stiffness (N/m), transmission
     d x_R / d s and left/right ratio (-), end-effector motions per PROBE (m), peak von Mises
     (Pa), modes [{"f_hz"}], closed forms (k_in_prbm N/m, rigid_transmission), dofs."""
-    params, flexure = params or DrivingParams(), flexure or EightBarFlexureParams()
+    params, flexure = params or DrivingParams(), flexure or default_flexure()
     model, _ = build_model(params, flexure, size_factor=size_factor)
     lin = linear_drive(model, PROBE)
     u_l = (lin["ux_left_m"], lin["uy_left_m"])
