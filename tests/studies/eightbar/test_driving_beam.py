@@ -15,6 +15,7 @@ from flexfem.geometry.eightbar.flexure import EightBarFlexureParams
 from flexfem.studies.eightbar import cli
 from flexfem.studies.eightbar.driving_models import (analyze_driving, analyze_driving_beam,
                                                      evaluate)
+from flexfem.studies.eightbar.driving_path import driving_path
 from flexfem.studies.engine.validate import normalise_options
 
 
@@ -79,6 +80,26 @@ def test_cli_and_study_entry():
         evaluate({"flexure_widht": 1e-4}, model="beam")
     with pytest.raises(ValueError, match="model = 'shell'"):
         analyze_driving(model="shell")
+
+
+def test_large_deflection_path_of_the_beam_model():
+    """Over +-3 mm of input: the two end-effectors mirror each other, the first step's slope
+    is the linear transmission, the input force the linear stiffness (to the path's small
+    curvature), and the compensated suspensions keep the flexure path straighter than the
+    rigid linkage's (which bows the other way by design)."""
+    out = driving_path(model="beam")
+    rows = out["rows"]
+    lin = analyze_driving_beam(n_modes=0)
+    for r in rows:
+        assert r["x_left_m"] == pytest.approx(-r["x_right_m"], rel=1e-9, abs=1e-15)
+    mid = len(rows) // 2
+    step = rows[mid + 1]
+    # x free at the input here (rotation too): within 0.5 % of the linear drive
+    assert step["x_right_m"] / step["input_m"] == pytest.approx(lin["transmission"], rel=5e-3)
+    assert step["input_force_n"] / step["input_m"] == pytest.approx(
+        lin["stiffness_n_per_m"], rel=0.02)
+    assert out["stroke_m"] == pytest.approx(2 * 3e-3 * abs(lin["transmission"]), rel=0.01)
+    assert out["deviation_m"] < 0.1 * out["rigid_deviation_m"]
 
 
 @pytest.mark.slow
