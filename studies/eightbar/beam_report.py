@@ -68,8 +68,9 @@ def driving_path_metrics(beam: dict, cont: dict) -> list:
     stroke = beam["stroke_m"] * 1e3
     return [Metric(f"driving linkage: path deviation over {stroke:.3g} mm (right)", "m",
                    beam["rigid_deviation_m"], beam["deviation_m"], cont["deviation_m"],
-                   STRESS_TOL, note="PRBM column: the rigid linkage (the suspensions' "
-                   "coupler is lengthened so that the flexure path runs straight)"),
+                   None, note="not judged: the suspensions' coupler is lengthened so that "
+                   "the continuum's path runs straight; what is left is under 1 um in both "
+                   "(PRBM column: the rigid linkage, bowed the other way by design)"),
             Metric("driving linkage: input force at the end of the stroke", "N", NAN,
                    beam["end_force_n"], cont["end_force_n"])]
 
