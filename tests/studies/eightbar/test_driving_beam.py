@@ -17,6 +17,7 @@ from flexfem.studies.eightbar.driving_models import (analyze_driving, analyze_dr
                                                      evaluate)
 from flexfem.studies.eightbar.driving_path import driving_path
 from flexfem.studies.engine.validate import normalise_options
+from flexfem.studies.mechanisms import get_evaluator
 
 
 def short_hinges(length):
@@ -76,6 +77,7 @@ def test_cli_and_study_entry():
     metrics = evaluate({"flexure_width": 0.25e-3}, **options)
     assert metrics["stiffness_n_per_m"] < out["stiffness_n_per_m"]  # thinner: softer
     assert {"transmission", "f1_hz", "k_in_prbm", "dofs"} <= set(metrics)
+    assert get_evaluator("eightbar_driving") is evaluate  # the registry's study entry
     with pytest.raises(ValueError, match="unknown driving-linkage parameter"):
         evaluate({"flexure_widht": 1e-4}, model="beam")
     with pytest.raises(ValueError, match="model = 'shell'"):
