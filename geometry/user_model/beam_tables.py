@@ -190,10 +190,11 @@ def _options(raw, loc: Locator) -> dict:
         except ValueError as error:
             raise loc.error(str(error), "beam_model", "elements") from None
     if "shear" in raw:
-        if not isinstance(raw["shear"], bool):
+        shear = {"true": True, "false": False}.get(raw["shear"], raw["shear"])  # from --set
+        if not isinstance(shear, bool):
             raise loc.error(f"[beam_model] shear = {raw['shear']!r} must be true or false",
                             "beam_model", "shear")
-        out["shear"] = raw["shear"]
+        out["shear"] = shear
     if "root_extension" in raw:
         v = raw["root_extension"]
         if not (is_number(v) and 0 <= v <= 2):
