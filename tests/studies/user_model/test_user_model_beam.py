@@ -4,14 +4,12 @@ against the continuum FEM of the same file; the same keys from analyze, evaluate
 study; errors that name the file and line."""
 import argparse
 import json
-import math
 from pathlib import Path
 
 import numpy as np
 import pytest
 
 from flexfem.geometry.user_model import load_spec
-from flexfem.geometry.user_model.beam_tables import evaluate_expression
 from flexfem.studies.engine.validate import normalise_options
 from flexfem.studies.mechanisms import get_evaluator, model_mechanism
 from flexfem.studies.user_model import analyze_model, cli, evaluate
@@ -114,17 +112,6 @@ def test_cli_model_beam_json_keys(capsys):
     out = json.loads(json.dumps(cli.run(args)))
     assert out["solver"] == "beam" and out["parameters"]["L"] == 0.05
     assert "stiffness of 'stage' along x" in cli.summarize(out)
-
-
-def test_expressions():
-    names = {"L": 0.03, "t": 1e-3}
-    assert evaluate_expression("L / (2 * sqrt(2))", names, "w") == pytest.approx(
-        0.03 / (2 * math.sqrt(2)))
-    assert evaluate_expression("-t**2 + pi", names, "w") == pytest.approx(math.pi - 1e-6)
-    with pytest.raises(ValueError, match="'q' in 'q \\+ 1' is not a parameter"):
-        evaluate_expression("q + 1", names, "w")
-    with pytest.raises(ValueError, match="only numbers"):
-        evaluate_expression("__import__('os')", names, "w")
 
 
 def _guide_copy(tmp_path, old, new):
