@@ -13,7 +13,6 @@ load factor, stepped from 0 to 1 by Newton's method, halving a step that fails.
 import math
 
 import numpy as np
-import scipy.sparse as sp
 
 from . import linsolve
 from .boundary import component_indices, constrained_dofs, load_vector
@@ -55,7 +54,7 @@ class _Problem:
         F, S = self.assembler.state(u)
         r = self.assembler.internal_force(F, S) - lam * (self.f_ext + self.follower.force(u))
         T = space.jacobian(z, lam)
-        g = space.applied(lam)
+        g = space.applied(lam, z)
         rz = T.T @ r - g
         held = np.ones(space.n_dofs, dtype=bool)
         held[space.I] = False
@@ -63,20 +62,21 @@ class _Problem:
         K = K_zz = None
         if tangent:
             K = self.assembler.tangent(F, S) + lam * self.follower.stiffness(u)
-            K_zz = (T.T @ K @ T + sp.diags(space.geometric_term(z, lam, r))).tocsr()
+            K_zz = (T.T @ K @ T + space.geometric_matrix(z, lam, r)).tocsr()
         return u, r, rz, K_zz, reference, T, K
 
     def reduced_tangent(self, z, lam, u, r, T):
         """K_zz = T^T K T + the rotation's geometric term (N/m)."""
         K = self.assembler.tangent(*self.assembler.state(u)) + lam * self.follower.stiffness(u)
-        return (T.T @ K @ T + sp.diags(self.space.geometric_term(z, lam, r))).tocsr()
+        return (T.T @ K @ T + self.space.geometric_matrix(z, lam, r)).tocsr()
 
     def solve(self, K, b):
         try:
             if self.solver == "amg":
                 x = linsolve.solve_amg(K, b, self._near_null_space())
             else:
-                x = _solve_direct(K, b, self.follower.matrix_kind)
+                x = _solve_direct(K, b, self.follower.matrix_kind if self.space.symmetric
+                                  else "general")
             linsolve.check_solution(K, x, b, "Newton step", rtol=1e-6)
         except (RuntimeError, linsolve.SingularSystemError) as error:
             raise _StepFailed(f"the tangent is singular ({error})", []) from None
@@ -103,7 +103,7 @@ def _record(problem, z, u, r, lam):
     reactions = {g: np.array([r[np.intersect1d(dofs, idx)].sum() for idx in comps])
                  for g, dofs in problem.owned.items()}
     qs = space.coordinates(z, lam)
-    faces = {fk.face.group: fk.generalised_force(r, q[2]) for fk, q in zip(space.faces, qs)}
+    faces = {fk.face.group: fk.generalised_force(r, q) for fk, q in zip(space.faces, qs)}
     motion = {fk.face.group: q for fk, q in zip(space.faces, qs)}
     return reactions, faces, motion
 
@@ -152,7 +152,7 @@ def solve_nonlinear(model: Model, supports, loads, steps: int = 10, max_iteratio
                     max_steps: int | None = None) -> NonlinearResult:
     """Large-deflection static solve of ``model`` under ``supports`` (Fixed, Prescribed),
     ``loads`` (Force, Traction, PointForce, BodyForce, Gravity: dead; Pressure: follower) and
-    ``rigid_faces`` (RigidFace, 2-D), all scaled by a load factor stepped 0 -> 1 in
+    ``rigid_faces`` (RigidFace, 2-D or 3-D), all scaled by a load factor stepped 0 -> 1 in
     ``steps`` equal increments. A step whose Newton iterations fail (``max_iterations``
     reached, residual diverging, an element inverted, a singular tangent) is halved, down
     to ``min_step`` (a load-factor increment); below that NonConvergenceError is raised.

@@ -17,7 +17,7 @@ class NonlinearResult:
     (N)} of every supported group ; face_reactions : per step {group: (F_x, F_y, M)} (N, N,
     N m about the current centroid) of every rigid face, equal to the applied load on a free
     coordinate ; face_motion : per step {group:
-    (c_x, c_y, theta)} (m, m, rad) ; iterations : Newton iterations per step ;
+    (c_x, c_y, theta)} (m, m, rad) ; in 3-D (F, M) and (c, rotation vector), 6 each ; iterations : Newton iterations per step ;
     von_mises_nodal / von_mises_element_max : final Cauchy von Mises stress (Pa), nodal from
     the L2 projection of the stress components onto linear fields, and the maximum over each
     element's quadrature points ; applied : full-load vector f_ext (N) ; negative_eigenvalues :
@@ -74,7 +74,7 @@ class NonlinearResult:
         if group in self.reactions[0]:
             force = np.array([r[group] for r in self.reactions])
         elif group in self.face_reactions[0]:
-            force = np.array([r[group][:2] for r in self.face_reactions])
+            force = np.array([r[group][:self.model.dim] for r in self.face_reactions])
         else:
             total = np.array([self.applied[d].sum() for d in group_dofs(self.model, group).values()])
             force = np.outer(self.load_factors, total)

@@ -14,6 +14,10 @@ from .outputs import groups_of as _groups, stiffness
 MODELS = ("continuum", "beam")
 
 _AXES = ("x", "y", "z")
+#: Units of the flat metrics of :func:`evaluate` (a model file's parameters are in its own
+#: units, so they have none here).
+UNITS = {"dofs": "-", "h": "m", "max_von_mises": "Pa", "mean_displacement_*": "m",
+         "reaction_*": "N", "stiffness_*": "N/m"}
 
 
 def formulation(spec: ModelSpec):
