@@ -108,7 +108,8 @@ BUILTIN = (
         )),
     Mechanism(
         "eightbar_driving", "Eight-bar thesis' driving linkage: two lambdas, two suspensions",
-        "eightbar", evaluate="driving_models:evaluate", document="eightbar"),
+        "eightbar", evaluate="driving_models:evaluate", document="eightbar",
+        units="driving_models:UNITS"),
     Mechanism(
         "balancing", "Five-bar parallel robot: optimum static balancing and flexure pivots",
         "balancing", commands="cli", document="balancing",

@@ -146,3 +146,10 @@ def evaluate_beam(params: dict | None = None, n_per_flexure: int = 24,
 
 
 evaluate = ModelChoice("continuum", continuum=evaluate_continuum, beam=evaluate_beam)
+
+#: Units of the study's parameters (DrivingParams and the flexure sizes: lengths) and metrics,
+#: for plot axes.
+UNITS = {**dict.fromkeys(_DRIVING + tuple(n for n in _FLEXURE if n != "material"), "m"),
+         "stiffness_n_per_m": "N/m", "k_in_prbm": "N/m", "transmission": "-",
+         "rigid_transmission": "-", "ratio_left_right": "-", "cross_motion_right": "-",
+         "max_von_mises_pa": "Pa", "dofs": "-"}

@@ -13,7 +13,8 @@ from flexfem.studies.eightbar.driving_models import (analyze_driving, analyze_dr
                                                      evaluate)
 from flexfem.studies.eightbar.driving_path import driving_path
 from flexfem.studies.engine.validate import normalise_options
-from flexfem.studies.mechanisms import get_evaluator
+from flexfem.studies.engine.units import unit_of
+from flexfem.studies.mechanisms import get_evaluator, quantity_units
 
 
 def short_hinges(length):
@@ -46,6 +47,9 @@ def test_cli_and_study_entry():
     assert metrics["stiffness_n_per_m"] < out["stiffness_n_per_m"]  # thinner: softer
     assert {"transmission", "f1_hz", "k_in_prbm", "dofs"} <= set(metrics)
     assert get_evaluator("eightbar_driving") is evaluate  # the registry's study entry
+    units = quantity_units("eightbar_driving")
+    assert [m for m in metrics if unit_of(m, units) is None] == []
+    assert unit_of("stiffness_n_per_m", units) == "N/m" and unit_of("flexure_width", units) == "m"
     with pytest.raises(ValueError, match="unknown driving-linkage parameter"):
         evaluate({"flexure_widht": 1e-4}, model="beam")
     with pytest.raises(ValueError, match="model = 'shell'"):
