@@ -2,7 +2,7 @@
 ``[[rigid]]``): ``beam_model(spec) -> (BeamModel, info)``.
 
 Each [[beam]] is a chain of straight segments through its points, each segment n tapered
-elements (:func:`flexfem.fem.beam.beam_from_profile`, thickness linear between the points);
+elements (:func:`flexfem.fem.beam.beam_from_profile` through the thickness profile t(s));
 beams that share a point are joined there (welded). Each [[rigid]] is a rigid body
 (:class:`flexfem.fem.beam.RigidLink`) carrying the beam points it joins, one node per group it
 names (where the continuum's supports and loads act) and the mass of its blocks (on a node at
@@ -22,16 +22,13 @@ def _error(where: str, message: str) -> ValueError:
     return ValueError(f"{where}: {message}")
 
 
-def _segment(a, b, t0, t1, depth, n) -> BeamMesh:
-    length = math.dist(a, b)
-    return beam_from_profile(a, b, lambda s: t0 + (t1 - t0) * s / length, depth, n)
-
-
 def _line_mesh(line, tol) -> BeamMesh:
-    mesh = None
+    """Each segment ``line.elements`` quadratically tapered elements through t(s)."""
+    mesh, profile = None, line.thickness
     for k in range(len(line.points) - 1):
-        part = _segment(line.points[k], line.points[k + 1], line.thickness[k],
-                        line.thickness[k + 1], line.depth, line.elements)
+        part = beam_from_profile(line.points[k], line.points[k + 1],
+                                 lambda s, s0=profile.arc[k]: profile(s0 + s), line.depth,
+                                 line.elements)
         mesh = part if mesh is None else mesh.join(part, tol)
     return mesh
 
@@ -39,7 +36,7 @@ def _line_mesh(line, tol) -> BeamMesh:
 def _extension(line, end: int, factor: float) -> BeamMesh | None:
     """The root-extension element beyond the beam's first (end 0) or last (end -1) point."""
     a, b = (line.points[0], line.points[1]) if end == 0 else (line.points[-1], line.points[-2])
-    t = line.thickness[0] if end == 0 else line.thickness[-1]
+    t = line.thickness(0.0 if end == 0 else line.thickness.length)
     length = factor * t
     if length <= 0:
         return None

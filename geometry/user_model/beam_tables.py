@@ -11,6 +11,8 @@ from dataclasses import dataclass, field
 import math
 import operator
 
+import numpy as np
+
 from .tables import Locator, check_keys, is_number
 
 BEAM_KEYS = ("points", "thickness", "depth", "elements")
@@ -23,12 +25,34 @@ _BINARY = {ast.Add: operator.add, ast.Sub: operator.sub, ast.Mult: operator.mul,
 
 
 @dataclass(frozen=True)
+class Profile:
+    """In-plane thickness t(s) (m) along a beam, s its arc length from the first point (m):
+    linear between the values at the points' arc lengths ``arc``, or an ``expression`` of s
+    and the parameters ``names``."""
+
+    arc: tuple
+    values: tuple = ()
+    expression: str | None = None
+    names: dict = field(default_factory=dict)
+
+    def __call__(self, s: float) -> float:
+        if self.expression is None:
+            return float(np.interp(s, self.arc, self.values))
+        return evaluate_expression(self.expression, {**self.names, "s": s},
+                                   "[[beam]] thickness")
+
+    @property
+    def length(self) -> float:
+        return self.arc[-1]
+
+
+@dataclass(frozen=True)
 class BeamLine:
-    """One flexure: centre-line ``points`` ((k, 2) tuple, m), in-plane ``thickness`` at each
-    point (m, linear between), out-of-plane ``depth`` (m), ``elements`` per segment."""
+    """One flexure: centre-line ``points`` ((k, 2) tuple, m), in-plane ``thickness`` (a
+    Profile: t(s), m), out-of-plane ``depth`` (m), ``elements`` per segment."""
 
     points: tuple
-    thickness: tuple
+    thickness: Profile
     depth: float
     elements: int
     source: str = ""
@@ -136,13 +160,7 @@ def _beam(entry, i, names, depth, elements, loc: Locator) -> BeamLine:
             raise loc.error(f"[[beam]] needs {key}", "beam", None, i)
     try:
         points = _points(entry["points"], names, "[[beam]] points", 2)
-        raw_t = entry["thickness"]
-        listed = isinstance(raw_t, list)
-        if listed and len(raw_t) != len(points):
-            raise ValueError(f"[[beam]] thickness: {len(raw_t)} values for {len(points)} "
-                             "points (give one, or one per point)")
-        ts = tuple(_positive(t, names, "[[beam]] thickness")
-                   for t in (raw_t if listed else [raw_t] * len(points)))
+        ts = _profile(entry["thickness"], points, names)
         d = _positive(entry["depth"], names, "[[beam]] depth") if "depth" in entry else depth
         n = _count(entry["elements"], "[[beam]] elements") if "elements" in entry else elements
     except ValueError as error:
@@ -156,6 +174,39 @@ def _beam(entry, i, names, depth, elements, loc: Locator) -> BeamLine:
             raise loc.error(f"[[beam]] points: {list(a)} is repeated (a zero-length segment)",
                             "beam", "points", i)
     return BeamLine(points, ts, d, n, loc.at("beam", "points", i))
+
+
+def _uses_s(value) -> bool:
+    """True for an expression string that names s (the arc length)."""
+    try:
+        tree = ast.parse(value, mode="eval") if isinstance(value, str) else None
+    except SyntaxError:
+        return False
+    return tree is not None and any(isinstance(n, ast.Name) and n.id == "s"
+                                    for n in ast.walk(tree))
+
+
+def _profile(raw, points, names) -> Profile:
+    """The Profile of a [[beam]] thickness: one value, one per point, or an expression of s;
+    checked > 0 at the points and (an expression) at 64 stations along the beam."""
+    where = "[[beam]] thickness"
+    arc = tuple(np.concatenate([[0.0], np.cumsum([math.dist(a, b) for a, b in
+                                                  zip(points, points[1:])])]).tolist())
+    if _uses_s(raw):
+        if "s" in names:
+            raise ValueError(f"{where}: 's' is the arc length here, but also a parameter")
+        profile = Profile(arc, expression=raw, names=dict(names))
+        for s in np.linspace(0.0, arc[-1], 64):
+            if not profile(s) > 0:
+                raise ValueError(f"{where} = {raw!r} is {profile(s)} at s = {s:.4g} m; it "
+                                 "must be > 0 along the beam")
+        return profile
+    listed = isinstance(raw, list)
+    if listed and len(raw) != len(points):
+        raise ValueError(f"{where}: {len(raw)} values for {len(points)} points (give one, "
+                         "one per point, or an expression of s, the arc length)")
+    values = tuple(_positive(t, names, where) for t in (raw if listed else [raw] * len(points)))
+    return Profile(arc, values)
 
 
 def _rigid(entry, i, names, loc: Locator) -> RigidBody:

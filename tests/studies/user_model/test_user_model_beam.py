@@ -176,3 +176,25 @@ def test_compliance_and_large_deflection_keys_and_values():
     ub, uc = (r["nonlinear"]["mean_displacement"]["stage"] for r in (beam, cont))
     assert ub[0] == pytest.approx(uc[0], rel=0.01)
     assert ub[1] == pytest.approx(uc[1], rel=0.05)  # parasitic shortening, measured +2 %
+
+
+def test_thickness_profile_against_the_unit_load_integral(tmp_path):
+    """Leaves thickening as t(s) = t (1 + 4 (s/L - 1/2)^2), an expression of the arc length s:
+    pushed through the guide's centre of compliance (mid-height: no tilt), each leaf bends
+    antisymmetrically, M = (F/2)(L/2 - s), so k = 2 / int (L/2 - s)^2 / (E I(s)) ds
+    (Euler-Bernoulli, bare beams)."""
+    from scipy.integrate import quad
+
+    path, _ = _guide_copy(tmp_path, 'groups = { stage = [0, "L + hs"] }',
+                          'groups = { stage = [0, "L / 2"] }')
+    path.write_text(path.read_text().replace('thickness = "t"',
+                                             'thickness = "t * (1 + 4 * (s / L - 0.5)**2)"'))
+    spec = load_spec(path, {**BARE, "beam_model.shear": False})
+    L, t = spec.constants["L"], spec.constants["t"]
+    flex = quad(lambda s: (L / 2 - s) ** 2 / (E * W * (t * (1 + 4 * (s / L - 0.5) ** 2)) ** 3
+                                             / 12), 0, L, epsabs=0, epsrel=1e-12)[0]
+    k = analyze_model(spec, model="beam")["stiffness"]["stage"]["x"]
+    # measured 5.9e-6 with 20 elements (5, 10, 40: 1.4e-3, 9.4e-5, 3.7e-7: order 4)
+    assert k == pytest.approx(2 / flex, rel=2e-5), k * flex / 2
+    with pytest.raises(ValueError, match="must be > 0 along the beam"):
+        load_spec(path, {"t": -1e-3})
