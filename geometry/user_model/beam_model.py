@@ -107,7 +107,7 @@ def _master_group(body, supported: set) -> str | None:
 
 def beam_model(spec) -> tuple:
     """(BeamModel, info) of ``spec`` (a ModelSpec with beams). info: "groups" {group: node},
-    "masters" [node per rigid body]. ValueError naming the model file where a rigid body
+    "masters" [node per rigid body], "bodies" {group: index of its rigid body}. ValueError naming the model file where a rigid body
     joins no beam point, a point is joined twice, or a support or load group has no point."""
     beams = spec.beams
     if beams is None:
@@ -149,7 +149,7 @@ def beam_model(spec) -> tuple:
     _check_groups(spec, groups)
     model = BeamModel(np.asarray(nodes.xy), mesh.elements, mesh.sections, spec.material,
                       shear=beams.shear, rigid_links=links, point_masses=masses)
-    return model, {"groups": groups, "masters": masters}
+    return model, {"groups": groups, "masters": masters, "bodies": dict(beams.groups)}
 
 
 def _check_groups(spec, groups: dict) -> None:

@@ -23,8 +23,13 @@ _AXES = ("x", "y")
 def beam_supports_and_loads(spec, info) -> tuple[list, list]:
     """The beam model's supports (Fixed, Prescribed) and loads (NodalLoad) of the model
     file; ValueError naming the file for a traction load (give the face's total force)."""
-    groups, supports, loads = info["groups"], [], []
+    groups, supports, loads, held = info["groups"], [], [], {}
     for s in spec.supports:
+        body = info["bodies"][s.group]
+        if held.setdefault(body, s.group) != s.group:
+            raise ValueError(f"{s.source or spec.source}: [[supports]] {s.group!r} and "
+                             f"{held[body]!r} are on the same [[rigid]] block (number "
+                             f"{body + 1}); the beam model holds a block once")
         node = groups[s.group]
         if s.components is None:
             supports.append(Fixed((node,)))

@@ -198,3 +198,14 @@ def test_thickness_profile_against_the_unit_load_integral(tmp_path):
     assert k == pytest.approx(2 / flex, rel=2e-5), k * flex / 2
     with pytest.raises(ValueError, match="must be > 0 along the beam"):
         load_spec(path, {"t": -1e-3})
+
+
+def test_a_block_is_held_once(tmp_path):
+    (tmp_path / "pivot.geo").write_text((PIVOT.parent / "pivot.geo").read_text())
+    path = tmp_path / "pivot.toml"
+    path.write_text(PIVOT.read_text().replace(
+        '[[loads]]\ngroup = "right"', '[[supports]]\ngroup = "right"\n\n[[supports]]\n'
+        'group = "left"\n\n[[loads]]\ngroup = "right"', 1))
+    with pytest.raises(ValueError, match=r"pivot.toml line \d+: \[\[supports\]\] 'left' and "
+                                         "'right' are on the same"):
+        analyze_model(load_spec(path), model="beam")
