@@ -107,8 +107,9 @@ def _master_group(body, supported: set) -> str | None:
 
 def beam_model(spec) -> tuple:
     """(BeamModel, info) of ``spec`` (a ModelSpec with beams). info: "groups" {group: node},
-    "masters" [node per rigid body], "bodies" {group: index of its rigid body}. ValueError naming the model file where a rigid body
-    joins no beam point, a point is joined twice, or a support or load group has no point."""
+    "masters" [node per rigid body], "bodies" {group: index of its rigid body}. ValueError
+    naming the model file where a rigid body joins no beam point, a point is joined twice, or
+    a support or load group has no point."""
     beams = spec.beams
     if beams is None:
         raise ValueError(f"{spec.source}: the model file declares no beams ([[beam]], "

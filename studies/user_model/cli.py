@@ -1,5 +1,6 @@
-"""``flexfem analyze MODEL.toml [--set NAME=VALUE ...] [--model beam] [--json]``: a user's flexure from its
-model file (see docs/model_files.md)."""
+"""``flexfem analyze MODEL.toml [--set NAME=VALUE ...] [--model beam] [--json]``: a user's
+flexure from its model file (see docs/model_files.md); ``--model beam``: the beam model the file
+declares."""
 from ...geometry.user_model import load_spec
 from .analysis import analyze_model
 
