@@ -90,8 +90,12 @@ class _Nodes:
     def __init__(self, nodes, tol):
         self.xy, self.tol = [tuple(p) for p in nodes], tol
 
-    def at(self, point, add: bool = True):
+    def at(self, point, add: bool = True, among=None):
+        """The node at ``point`` (m) (one of ``among`` only, if given), else a new one (or
+        None if not ``add``)."""
         d = np.linalg.norm(np.asarray(self.xy) - np.asarray(point), axis=1)
+        if among is not None:
+            d[[k for k in range(len(d)) if k not in among]] = np.inf
         if d.min() <= self.tol:
             return int(d.argmin())
         if not add:
@@ -129,12 +133,14 @@ def beam_model(spec) -> tuple:
                 raise _error(body.source, f"[[rigid]] joins {list(p)}, which is no point of "
                              "a [[beam]]")
             slaves += ends.get(node, [node])
-        named = {g: nodes.at(p) for g, p in body.groups.items()}
+        # a group's point or the mass centre reuses only this body's nodes: never welds
+        # another beam's node to the block
+        named = {g: nodes.at(p, among=set(slaves)) for g, p in body.groups.items()}
         first = _master_group(body, supported)
         master = named[first] if first is not None else slaves[0]
         if body.blocks:
             m, c, J = _body_mass(body, spec.material.rho * spec.thickness)
-            centre = nodes.at(c)
+            centre = nodes.at(c, among=set(slaves) | set(named.values()))
             masses[centre] = (masses.get(centre, (0, 0))[0] + m,
                               masses.get(centre, (0, 0))[1] + J)
             slaves.append(centre)
