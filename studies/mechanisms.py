@@ -107,6 +107,10 @@ BUILTIN = (
                     "beam_report:reproduce"),
         )),
     Mechanism(
+        "eightbar_driving", "Eight-bar thesis' driving linkage: two lambdas, two suspensions",
+        "eightbar", evaluate="driving_models:evaluate", document="eightbar",
+        units="driving_models:UNITS"),
+    Mechanism(
         "balancing", "Five-bar parallel robot: optimum static balancing and flexure pivots",
         "balancing", commands="cli", document="balancing",
         sections=(
@@ -216,7 +220,7 @@ def get_evaluator(name: str, allow_code: bool = False):
     check_mechanism(name, allow_code=allow_code)
     if _model_path(name):
         model = MECHANISMS["model"]
-        return functools.partial(model.load(model.evaluate), model=_model_path(name))
+        return functools.partial(model.load(model.evaluate), file=_model_path(name))
     if name in MECHANISMS:
         return MECHANISMS[name].load(MECHANISMS[name].evaluate)
     target = plugin_mechanisms()[name].value if name in plugin_mechanisms() else name
