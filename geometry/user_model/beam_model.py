@@ -16,20 +16,28 @@ import numpy as np
 
 from ...fem.beam import BeamMesh, BeamModel, RigidLink, beam_chain, beam_from_profile
 from ..beam_layout import root_section
+from .crossings import crossings
 
 
 def _error(where: str, message: str) -> ValueError:
     return ValueError(f"{where}: {message}")
 
 
-def _line_mesh(line, tol) -> BeamMesh:
-    """Each segment ``line.elements`` quadratically tapered elements through t(s)."""
-    mesh, profile = None, line.thickness
+def _line_mesh(line, tol, cuts=None) -> BeamMesh:
+    """Each segment ``line.elements`` quadratically tapered elements through t(s); a segment
+    split at ``cuts`` {segment: [arc lengths from its first point, m]} (a crossing's rigid
+    stubs) shares them among its pieces by length, at least one each."""
+    mesh, profile, cuts = None, line.thickness, cuts or {}
     for k in range(len(line.points) - 1):
-        part = beam_from_profile(line.points[k], line.points[k + 1],
-                                 lambda s, s0=profile.arc[k]: profile(s0 + s), line.depth,
-                                 line.elements)
-        mesh = part if mesh is None else mesh.join(part, tol)
+        a, b = np.asarray(line.points[k], float), np.asarray(line.points[k + 1], float)
+        length = float(np.linalg.norm(b - a))
+        marks = [0.0] + sorted(cuts.get(k, [])) + [length]
+        for s0, s1 in zip(marks[:-1], marks[1:]):
+            n = max(1, round(line.elements * (s1 - s0) / length))
+            part = beam_from_profile(a + s0 / length * (b - a), a + s1 / length * (b - a),
+                                     lambda s, s0=profile.arc[k] + s0: profile(s0 + s),
+                                     line.depth, n)
+            mesh = part if mesh is None else mesh.join(part, tol)
     return mesh
 
 
@@ -47,11 +55,16 @@ def _extension(line, end: int, factor: float) -> BeamMesh | None:
 
 def _mesh(beams, tol) -> tuple:
     """(BeamMesh of all beams, {node of a joined beam end: [the ends of its root
-    extensions]})."""
+    extensions]}, [(crossing node, its rigid stubs' nodes)])."""
+    found = crossings(beams.beams, tol, beams.root_extension) if beams.crossings == "rigid" else []
+    cuts = [{} for _ in beams.beams]
+    for crossing in found:
+        for i, seg, s in crossing.cuts:
+            cuts[i].setdefault(seg, []).append(s)
     mesh, extensions = None, []
     joined = [p for body in beams.rigid for p in body.joins]
-    for line in beams.beams:
-        part = _line_mesh(line, tol)
+    for line, line_cuts in zip(beams.beams, cuts):
+        part = _line_mesh(line, tol, line_cuts)
         mesh = part if mesh is None else mesh.join(part, tol)
         for end in (0, -1):
             p = line.points[end]
@@ -64,7 +77,14 @@ def _mesh(beams, tol) -> tuple:
         mesh = mesh.join(ext, tol)
         ends.setdefault(mesh.node_at(ext.nodes[0], tol), []).append(
             mesh.node_at(ext.nodes[1], tol))
-    return mesh, ends
+    joints = []
+    for crossing in found:
+        stubs = []
+        for i, seg, s in crossing.cuts:
+            a, b = np.asarray(beams.beams[i].points[seg], float), beams.beams[i].points[seg + 1]
+            stubs.append(mesh.node_at(a + s * (np.asarray(b) - a) / math.dist(a, b), tol))
+        joints.append((mesh.node_at(crossing.point, tol), tuple(stubs)))
+    return mesh, ends, joints
 
 
 def _rect_inertia(block, rho_t) -> tuple:
@@ -121,7 +141,7 @@ def beam_model(spec) -> tuple:
     scale = max(math.dist(a, b) for line in beams.beams for a, b in zip(line.points,
                                                                       line.points[1:]))
     tol = 1e-9 * scale
-    mesh, ends = _mesh(beams, tol)
+    mesh, ends, joints = _mesh(beams, tol)
     nodes = _Nodes(mesh.nodes, tol)
     supported = {s.group for s in spec.supports}
     groups, links, masses, owner, masters = {}, [], {}, {}, []
@@ -153,6 +173,12 @@ def beam_model(spec) -> tuple:
         masters.append(master)
         if slaves:
             links.append(RigidLink(master, tuple(slaves)))
+    for master, stubs in joints:
+        for n in (master,) + stubs:
+            if n in owner:
+                raise _error(beams.beams[0].source, f"a [[rigid]] body joins the crossing at "
+                             f"{list(nodes.xy[master])}; join the crossing or its beams' ends")
+        links.append(RigidLink(master, stubs))
     _check_groups(spec, groups)
     model = BeamModel(np.asarray(nodes.xy), mesh.elements, mesh.sections, spec.material,
                       shear=beams.shear, rigid_links=links, point_masses=masses)

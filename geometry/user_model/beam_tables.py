@@ -17,7 +17,7 @@ from .tables import Locator, check_keys, is_number
 
 BEAM_KEYS = ("points", "thickness", "depth", "elements")
 RIGID_KEYS = ("joins", "groups", "blocks")
-OPTION_KEYS = ("elements", "shear", "root_extension")
+OPTION_KEYS = ("elements", "shear", "root_extension", "crossings")
 _FUNCTIONS = {"sqrt": math.sqrt, "sin": math.sin, "cos": math.cos, "tan": math.tan,
               "atan": math.atan, "atan2": math.atan2}
 _BINARY = {ast.Add: operator.add, ast.Sub: operator.sub, ast.Mult: operator.mul,
@@ -73,13 +73,15 @@ class RigidBody:
 @dataclass(frozen=True)
 class BeamSpec:
     """The beam model of a model file: beams, rigid bodies and options (elements per segment
-    by default, Timoshenko shear, root extension x root thickness at joined ends)."""
+    by default, Timoshenko shear, root extension x root thickness at joined ends, crossings
+    "rigid" (the leaves' solid joint, geometry/user_model/crossings.py) or "weld")."""
 
     beams: tuple
     rigid: tuple
     elements: int = 20
     shear: bool = True
     root_extension: float = 0.38
+    crossings: str = "rigid"
     source: str = ""
     groups: dict = field(default_factory=dict)
 
@@ -252,6 +254,12 @@ def _options(raw, loc: Locator) -> dict:
             raise loc.error(f"[beam_model] root_extension = {v!r} must be a number in [0, 2] "
                             "(x root thickness)", "beam_model", "root_extension")
         out["root_extension"] = float(v)
+    if "crossings" in raw:
+        if raw["crossings"] not in ("rigid", "weld"):
+            raise loc.error(f"[beam_model] crossings = {raw['crossings']!r} must be \"rigid\" "
+                            "(the leaves' solid joint) or \"weld\" (a point)", "beam_model",
+                            "crossings")
+        out["crossings"] = raw["crossings"]
     return out
 
 
