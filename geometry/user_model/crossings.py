@@ -1,17 +1,19 @@
 """Crossings of a model file's beams: the solid joint where two declared beams cross.
 
 Two leaves of in-plane thicknesses t_i, t_j whose centre lines cross at an angle alpha overlap
-in a solid rhombus (a parallelogram): along leaf i it is t_j / sin(alpha) long, centred on the
-crossing point. Neither leaf bends inside it, so the beam model makes each beam rigid (joined
-to the crossing node by an exact rigid link) over
+in a solid parallelogram (a rhombus for equal thicknesses): leaf j's band is t_j / sin(alpha)
+long along leaf i's centre line, and leaf i's edges (t_i / 2 off its centre line) leave it
+(t_i / 2) cot(alpha) further on. Leaf i is a free beam only where its whole section has left
+the joint, so the beam model makes each beam rigid (joined to the crossing node by an exact
+rigid link) over
 
-    a_i = t_j / (2 sin alpha) - root x t_i      on either side of the crossing point,
+    a_i = t_j / (2 sin alpha) + (t_i / 2) cot(alpha) - root x t_i
 
-the rhombus less the root extension by which every beam enters the block it meets
-(ROOT_EXTENSION x its thickness, docs/beam.md, "Joints and slenderness"): the stress field
-spreads into the joint as into any block. A beam that a crossing point splits is a beam with
-that point inside its points (not at an end); beams that only meet at an end stay welded
-there. Lengths in m.
+on either side of the crossing point: the joint less the root extension by which every beam
+enters the block it meets (``root`` x its thickness, 0.38 by default, docs/beam.md, "Joints
+and slenderness"): the stress field spreads into the joint as into any block. A crossing is a
+point inside the points of two or more beams (not an end); beams that only meet at an end
+stay welded there. Lengths in m.
 """
 import math
 from dataclasses import dataclass
@@ -41,7 +43,8 @@ def _passing(beams, point, tol) -> list:
 
 def _half_length(line, k, others, root: float) -> tuple:
     """(before, after): the rigid length (m) of beam ``line`` on each side of its point k:
-    the widest other beam's overlap t_j / (2 sin alpha) less root x t_i, at least 0."""
+    the widest other beam's joint t_j / (2 sin alpha) + (t_i / 2) cot(alpha) less root x
+    t_i, at least 0."""
     p = line.points[k]
     t_i = line.thickness(line.thickness.arc[k])
     sides = []
@@ -50,20 +53,22 @@ def _half_length(line, k, others, root: float) -> tuple:
         for other, m in others:
             t_j = other.thickness(other.thickness.arc[m])
             for r in (other.points[m - 1], other.points[m + 1]):
-                sin = abs(float(np.cross(d_i, _unit(other.points[m], r))))
+                d_j = _unit(other.points[m], r)
+                sin = abs(float(d_i[0] * d_j[1] - d_i[1] * d_j[0]))
                 if sin < math.sin(math.radians(10)):
                     raise ValueError(f"{line.source}: [[beam]] crosses another beam at "
                                      f"{list(p)} at less than 10 degrees; a crossing "
                                      "needs a clear angle (or join them with a [[rigid]])")
-                half = max(half, t_j / (2 * sin))
+                cot = abs(float(d_i @ d_j)) / sin
+                half = max(half, t_j / (2 * sin) + t_i / 2 * cot)
         sides.append(max(0.0, half - root * t_i))
     return tuple(sides)
 
 
 def crossings(beams, tol: float, root: float) -> list:
     """The crossings of ``beams`` (BeamLine tuple): every inner point shared by two or more
-    beams, with the cuts of each beam's rigid stubs (``root`` x thickness less than the
-    rhombus, see the module docstring). ValueError naming the beam when a stub would reach
+    beams, with the cuts of each beam's rigid stubs (the joint less ``root`` x thickness,
+    see the module docstring). ValueError naming the beam when a stub would reach
     past the beam's next point."""
     found, seen = [], []
     for line in beams:

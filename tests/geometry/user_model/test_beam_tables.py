@@ -9,6 +9,7 @@ import pytest
 from flexfem.geometry.user_model import load_spec
 from flexfem.geometry.user_model.beam_model import beam_model
 from flexfem.geometry.user_model.beam_tables import evaluate_expression
+from flexfem.geometry.user_model.crossings import crossings
 
 EXAMPLES = Path(__file__).resolve().parents[3] / "examples"
 
@@ -37,7 +38,7 @@ def test_pivot_leaves_are_joined_where_they_cross():
     (mass, inertia), = model.point_masses.values()
     assert mass == pytest.approx(7850 * 0.01 * 2 * arm * hs)
     assert inertia == pytest.approx(mass * ((2 * arm) ** 2 + hs ** 2) / 12)
-    assert len(model.rigid_links) == 2
+    assert len(model.rigid_links) == 3  # base, stage and the leaves' crossing joint
 
 
 def test_root_extension_lengthens_the_joined_ends_only():
@@ -46,3 +47,41 @@ def test_root_extension_lengthens_the_joined_ends_only():
     t = spec.constants["t"]
     extra = beam_model(spec)[0].lengths.sum() - beam_model(bare)[0].lengths.sum()
     assert extra == pytest.approx(2 * 2 * 0.38 * t)  # two leaves, both ends joined
+
+
+def _stubs(spec):
+    """{beam index: [distance (m) of its rigid stubs' ends from the crossing point]}."""
+    found, = crossings(spec.beams.beams, 1e-12, spec.beams.root_extension)
+    out = {}
+    for i, seg, s in found.cuts:
+        a, b = (np.asarray(p) for p in spec.beams.beams[i].points[seg:seg + 2])
+        end = a + s * (b - a) / np.linalg.norm(b - a)
+        out.setdefault(i, []).append(float(np.linalg.norm(end - np.asarray(found.point))))
+    return out
+
+
+@pytest.mark.parametrize("beta, t", [(math.pi / 4, 0.5e-3), (math.pi / 6, 0.5e-3),
+                                     (math.pi / 6, 1e-3)])
+def test_crossing_joint_is_the_leaves_overlap_less_the_root(beta, t):
+    """Leaves at +-beta from the horizontal cross at alpha = 2 beta (or pi - 2 beta): each is
+    rigid over t / (2 sin alpha) + t / 2 cot alpha - 0.38 t either side (90 degrees: 0.12 t)."""
+    spec = load_spec(EXAMPLES / "cross_pivot" / "pivot.toml", {"beta": beta, "t": t})
+    alpha = 2 * beta
+    a = t / (2 * math.sin(alpha)) + t / 2 * abs(math.cos(alpha)) / math.sin(alpha) - 0.38 * t
+    stubs = _stubs(spec)
+    assert sorted(stubs) == [0, 1]
+    assert np.concatenate(list(stubs.values())) == pytest.approx(a, rel=1e-9)
+    model, _ = beam_model(spec)
+    joint = model.rigid_links[-1]
+    assert np.linalg.norm(model.nodes[joint.master]) < 1e-12 and len(joint.slaves) == 4
+    assert np.linalg.norm(model.nodes[list(joint.slaves)], axis=1) == pytest.approx(a)
+
+
+def test_weld_option_and_shallow_crossing_refused():
+    weld = load_spec(EXAMPLES / "cross_pivot" / "pivot.toml", {"beam_model.crossings": "weld"})
+    assert len(beam_model(weld)[0].rigid_links) == 2
+    with pytest.raises(ValueError, match="crossings = 'glue' must be"):
+        load_spec(EXAMPLES / "cross_pivot" / "pivot.toml", {"beam_model.crossings": "glue"})
+    shallow = load_spec(EXAMPLES / "cross_pivot" / "pivot.toml", {"beta": math.radians(4)})
+    with pytest.raises(ValueError, match="less than 10 degrees"):
+        beam_model(shallow)
