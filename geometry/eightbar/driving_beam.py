@@ -5,10 +5,14 @@
 
 Built from the same flexure layout as the continuum mesh
 (:func:`flexfem.geometry.eightbar.driving.driving_layout`): every flexure (the lambdas', the
-bars', the two suspensions') a beam through its root fillets, every link rigid with its mass
+bars', the two suspensions') a beam, every link rigid with its mass
 (:func:`flexfem.geometry.beam_layout.layout_beam_model`); the shuttle's master node on its
 "input" face, the end-effectors' on their "ee_L", "ee_R" faces, so that loads and supports
-act where the continuum's faces are. Also the pseudo-rigid-body input stiffness
+act where the continuum's faces are. Sharp roots: the continuum's mesh
+(:func:`~flexfem.geometry.eightbar.driving.mesh_driving_flexure`) draws none of the
+flexure's root fillets, so neither does this model (DRAWN_FILLET_RADIUS; with the fillets of
+``flexure.root_fillet_radius`` = 0.3 mm it was 4.1 % stiffer than that continuum, without
+them 0.03 %: docs/beam.md). Also the pseudo-rigid-body input stiffness
 k_in = sum_j (E I / L)_j (dphi_j / ds)^2 of the same layout (N/m). All lengths in m.
 """
 from dataclasses import replace
@@ -20,13 +24,18 @@ from ..beam_layout import ROOT_EXTENSION, layout_beam_model
 from .driving import DrivingParams, driving_layout, trace_driving
 
 FACES = {"input": "shuttle", "ee_L": "susL_end_effector", "ee_R": "susR_end_effector"}
+# root fillet radius (m) of the driving linkage as drawn: mesh_driving_flexure calls
+# flexure_drawing.mesh_layout without fillets (docs/eightbar.md, "Root fillets")
+DRAWN_FILLET_RADIUS = 0.0
 
 
 def driving_beam_model(params: DrivingParams, flexure, n_per_flexure: int = 24,
-                       root_extension: float = ROOT_EXTENSION, shear: bool = True) -> tuple:
+                       root_extension: float = ROOT_EXTENSION, shear: bool = True,
+                       fillet_radius: float = DRAWN_FILLET_RADIUS) -> tuple:
     """(BeamModel, info) of the driving linkage's flexure part (with its shuttle) in the drawn
     pose; ``flexure`` an EightBarFlexureParams (flexure sizes, link width, out-of-plane
-    thickness, material, fillet radius; its ``rigid`` ignored, as in driving_layout). info:
+    thickness, material; its ``rigid`` and ``root_fillet_radius`` ignored, as the continuum's
+    mesh ignores them); ``fillet_radius`` (m): the roots' fillets (default: as drawn). info:
     that of layout_beam_model plus "input", "ee_L", "ee_R" (master nodes on those faces'
     centres) and "layout" (the FlexureLayout)."""
     layout = driving_layout(params, flexure, shuttle=True)
@@ -34,7 +43,7 @@ def driving_beam_model(params: DrivingParams, flexure, n_per_flexure: int = 24,
                for face, link in FACES.items()}
     model, info = layout_beam_model(
         layout, material_named(flexure.material), flexure.thickness,
-        fillet_radius=flexure.root_fillet_radius, n_per_flexure=n_per_flexure,
+        fillet_radius=fillet_radius, n_per_flexure=n_per_flexure,
         root_extension=root_extension, anchors=anchors, shear=shear)
     for face, link in FACES.items():
         info[face] = info["masters"][link]

@@ -78,27 +78,29 @@ def test_large_deflection_path_of_the_beam_model():
 
 @pytest.mark.slow
 def test_beam_against_the_continuum_of_the_same_design():
-    """Default design (hinges l/w = 67 and 30): input stiffness, transmission and the first
-    modes within 5 % of the 2-D FEM (size_factor 1.5)."""
-    beam = analyze_driving(model="beam", n_modes=2)
-    cont = analyze_driving(model="continuum", n_modes=2, size_factor=1.5)
+    """Default design (hinges l/w = 67 and 30): input stiffness and the first three modes
+    within the issue's 3 % of the 2-D FEM (size_factor 1.5; measured +0.03 % and -0.07,
+    -0.03, +0.9 %, both with sharp roots as the continuum draws them), the transmission within
+    0.5 % (+0.07 %)."""
+    beam = analyze_driving(model="beam", n_modes=3)
+    cont = analyze_driving(model="continuum", n_modes=3, size_factor=1.5)
     assert set(beam) - {"root_extension"} == set(cont) - {"size_factor"}
-    assert beam["stiffness_n_per_m"] == pytest.approx(cont["stiffness_n_per_m"], rel=0.05)
+    assert beam["stiffness_n_per_m"] == pytest.approx(cont["stiffness_n_per_m"], rel=0.03)
     assert beam["transmission"] == pytest.approx(cont["transmission"], rel=0.005)
     for mb, mc in zip(beam["modes"], cont["modes"]):
-        assert mb["f_hz"] == pytest.approx(mc["f_hz"], rel=0.05)
+        assert mb["f_hz"] == pytest.approx(mc["f_hz"], rel=0.03)
     assert beam["max_von_mises_pa"] == pytest.approx(cont["max_von_mises_pa"], rel=0.15)
 
 
 @pytest.mark.slow
 def test_large_deflection_path_against_the_continuum():
-    """+-3 mm of input (4 steps each way): stroke within 0.5 %, end force within 5 % (as the
-    linear stiffness), and both paths straight to under 1 um where the rigid linkage's bows
-    by 16 um (measured: beam 0.80 um, continuum 0.08 um)."""
+    """+-3 mm of input (4 steps each way): stroke within 0.5 %, end force within the issue's 3
+    % (measured +0.07 %, +0.02 %), and both paths straight to under 1 um where the rigid
+    linkage's bows by 16 um (measured: beam 0.35 um, continuum 0.08 um)."""
     beam = driving_path(model="beam")
     cont = driving_path(model="continuum", size_factor=1.5)
     assert beam["stroke_m"] == pytest.approx(cont["stroke_m"], rel=5e-3)
-    assert beam["end_force_n"] == pytest.approx(cont["end_force_n"], rel=0.05)
+    assert beam["end_force_n"] == pytest.approx(cont["end_force_n"], rel=0.03)
     for out in (beam, cont):
         assert out["deviation_m"] < min(1e-6, 0.1 * out["rigid_deviation_m"])
 
