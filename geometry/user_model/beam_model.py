@@ -8,7 +8,9 @@ beams that share a point are joined there (welded). Each [[rigid]] is a rigid bo
 names (where the continuum's supports and loads act) and the mass of its blocks (on a node at
 their centroid). A beam end joined to a rigid body is extended into it by root_extension x its
 thickness (:func:`flexfem.geometry.beam_layout.root_section`: the root's compliance, which
-beam theory has not; docs/beam.md, "Joints and slenderness"). Lengths in m.
+beam theory has not; docs/beam.md, "Joints and slenderness"), axially too where the body
+declares the block it enters (its chord across the beam is the block height H). Where two
+beams cross they are joined by a rigid joint (:mod:`.crossings`). Lengths in m.
 """
 import math
 
@@ -41,16 +43,40 @@ def _line_mesh(line, tol, cuts=None) -> BeamMesh:
     return mesh
 
 
-def _extension(line, end: int, factor: float) -> BeamMesh | None:
-    """The root-extension element beyond the beam's first (end 0) or last (end -1) point."""
+def _extension(line, end: int, factor: float, bodies=()) -> BeamMesh | None:
+    """The root-extension element beyond the beam's first (end 0) or last (end -1) point,
+    with the root's axial compliance where a block of ``bodies`` (the [[rigid]] bodies joining
+    that point) declares the height it enters (:func:`_block_height`)."""
     a, b = (line.points[0], line.points[1]) if end == 0 else (line.points[-1], line.points[-2])
     t = line.thickness(0.0 if end == 0 else line.thickness.length)
     length = factor * t
     if length <= 0:
         return None
     d = np.subtract(a, b) / math.dist(a, b)
+    height = _block_height(a, d, [r for body in bodies for r in body.blocks])
     return beam_chain([a, tuple(np.add(a, length * d))],
-                      root_section(line.depth, t, length, None), 1)
+                      root_section(line.depth, t, length, height), 1)
+
+
+def _block_height(point, direction, blocks) -> float | None:
+    """The height H (m) of the block a beam end at ``point`` (m) enters along ``direction``:
+    the longest chord, across the beam through the point, of the rectangles ``blocks`` ((2, 2)
+    opposite corners, m); None where none reaches the point."""
+    n = np.array([-direction[1], direction[0]])
+    best = None
+    for (x0, y0), (x1, y1) in blocks:
+        lo, hi = -np.inf, np.inf
+        for k, (low, high) in enumerate(((min(x0, x1), max(x0, x1)),
+                                         (min(y0, y1), max(y0, y1)))):
+            if abs(n[k]) < 1e-12:
+                if not low - 1e-12 <= point[k] <= high + 1e-12:
+                    lo, hi = 0.0, -1.0
+                continue
+            s0, s1 = sorted(((low - point[k]) / n[k], (high - point[k]) / n[k]))
+            lo, hi = max(lo, s0), min(hi, s1)
+        if hi > lo and lo <= 1e-12 and hi >= -1e-12:
+            best = max(best or 0.0, hi - lo)
+    return best
 
 
 def _mesh(beams, tol) -> tuple:
@@ -62,14 +88,15 @@ def _mesh(beams, tol) -> tuple:
         for i, seg, s in crossing.cuts:
             cuts[i].setdefault(seg, []).append(s)
     mesh, extensions = None, []
-    joined = [p for body in beams.rigid for p in body.joins]
     for line, line_cuts in zip(beams.beams, cuts):
         part = _line_mesh(line, tol, line_cuts)
         mesh = part if mesh is None else mesh.join(part, tol)
         for end in (0, -1):
             p = line.points[end]
-            if any(math.dist(p, q) <= tol for q in joined):
-                ext = _extension(line, end, beams.root_extension)
+            bodies = [body for body in beams.rigid
+                      if any(math.dist(p, q) <= tol for q in body.joins)]
+            if bodies:
+                ext = _extension(line, end, beams.root_extension, bodies)
                 if ext is not None:
                     extensions.append(ext)
     ends = {}

@@ -12,6 +12,7 @@ from flexfem.geometry.user_model.beam_tables import evaluate_expression
 from flexfem.geometry.user_model.crossings import crossings
 
 EXAMPLES = Path(__file__).resolve().parents[3] / "examples"
+W_GUIDE = 0.01  # the guide's out-of-plane width ([section] thickness), m
 
 
 def test_expressions():
@@ -85,3 +86,29 @@ def test_weld_option_and_shallow_crossing_refused():
     shallow = load_spec(EXAMPLES / "cross_pivot" / "pivot.toml", {"beta": math.radians(4)})
     with pytest.raises(ValueError, match="less than 10 degrees"):
         beam_model(shallow)
+
+
+def test_block_height_is_the_blocks_chord_across_the_beam():
+    from flexfem.geometry.user_model.beam_model import _block_height
+    block = ((-0.01, 0.0), (0.02, 0.005))
+    up = np.array([0.0, 1.0])
+    assert _block_height((0.0, 0.0), up, [block]) == pytest.approx(0.03)  # on its face
+    assert _block_height((0.0, 0.002), up, [block]) == pytest.approx(0.03)  # inside
+    assert _block_height((0.0, -0.001), up, [block]) is None  # short of it
+    diagonal = np.array([1.0, 1.0]) / math.sqrt(2)  # across: along (-1, 1) from the point
+    assert _block_height((0.0, 0.0), diagonal, [block]) == pytest.approx(0.005 * math.sqrt(2))
+
+
+def test_axial_root_compliance_where_the_block_is_declared():
+    """The guide's leaves enter base and stage (31 mm across) end-on: each root extension
+    element carries the root's axial compliance (0.61 ln(H / t) - 0.24) / (E w)."""
+    from flexfem.geometry.beam_layout import axial_root_compliance
+    spec = load_spec(EXAMPLES / "parallel_guide" / "guide.toml")
+    p = spec.constants
+    model, _ = beam_model(spec)
+    H = p["d"] + p["t"] + 2 * p["m"]
+    roots = [e for e, sec in enumerate(model.sections) if not sec.is_rect]
+    assert len(roots) == 4
+    for e in roots:
+        compliance = model.lengths[e] / model.sections[e].A  # x E w
+        assert compliance * W_GUIDE == pytest.approx(axial_root_compliance(H, p["t"]))

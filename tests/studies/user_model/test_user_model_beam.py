@@ -173,8 +173,8 @@ def test_traction_and_missing_beams_refused(tmp_path):
 def test_compliance_and_large_deflection_keys_and_values():
     """[analysis] compliance and steps: the continuum's keys; the lateral compliance and the
     centre of compliance (on the axis, 20 mm up: the leaves' mid-height) as the continuum's;
-    the axial and rotational compliances within 7 % (the roots' axial spreading, which the
-    extension carries only for the bending side here: no block height is declared)."""
+    the axial and rotational compliances within the issue's 3 % (the roots' axial spreading,
+    which the extension carries where the blocks are declared: -6.0 % without it)."""
     spec = load_spec(GUIDE, {"analysis.compliance": "stage", "analysis.steps": 3})
     beam, cont = analyze_model(spec, model="beam"), analyze_model(spec)
     assert set(beam) == set(cont)
@@ -182,7 +182,7 @@ def test_compliance_and_large_deflection_keys_and_values():
         assert set(beam[key]) == set(cont[key])
     Cb, Cc = np.array(beam["compliance"]["matrix"]), np.array(cont["compliance"]["matrix"])
     assert Cb[0, 0] == pytest.approx(Cc[0, 0], rel=0.01)  # measured +0.5 %
-    assert np.diag(Cb)[1:] == pytest.approx(np.diag(Cc)[1:], rel=0.07)  # -6.0 %, -6.0 %
+    assert np.diag(Cb)[1:] == pytest.approx(np.diag(Cc)[1:], rel=0.03)  # +0.75 %, +0.74 %
     assert beam["compliance"]["centre_of_compliance_m"] == pytest.approx(
         cont["compliance"]["centre_of_compliance_m"], abs=2e-4)
     ub, uc = (r["nonlinear"]["mean_displacement"]["stage"] for r in (beam, cont))
