@@ -86,6 +86,10 @@ def test_weld_option_and_shallow_crossing_refused():
     shallow = load_spec(EXAMPLES / "cross_pivot" / "pivot.toml", {"beta": math.radians(4)})
     with pytest.raises(ValueError, match="less than 10 degrees"):
         beam_model(shallow)
+    thick = load_spec(EXAMPLES / "cross_pivot" / "pivot.toml",
+                      {"beta": math.radians(6), "t": 4e-3})  # joint 4.4 t = 17.5 mm
+    with pytest.raises(ValueError, match="reaches past its next point"):
+        beam_model(thick)
 
 
 def test_block_height_is_the_blocks_chord_across_the_beam():
