@@ -10,7 +10,8 @@ import numpy as np
 import scipy.linalg as sla
 import scipy.sparse.linalg as spla
 
-from .assembly import DENSE_EIGEN_LIMIT, Assembler, mass_matrix
+from .assembly import (DENSE_EIGEN_LIMIT, ORDERING, Assembler, element_mass, mass_matrix,
+                       point_mass_blocks)
 from .model import BeamModel
 
 
@@ -39,6 +40,16 @@ def _state_z(asm, about):
     return about.q.ravel()[asm.space.free], about.load_factor
 
 
+def reduced_mass(asm: Assembler, w):
+    """T^T M T (CSC) at link weights ``w``: element and point masses condensed."""
+    space = asm.space
+    M = space.condense(element_mass(asm.model), w)
+    nodes, blocks = point_mass_blocks(asm.model)
+    if len(nodes):
+        M = M + space.condense(blocks, w, dofs=(3 * nodes + np.arange(3)))
+    return M.tocsc()
+
+
 def solve_beam_modes(model: BeamModel, supports, n: int = 6, about=None, loads=()) -> BeamModes:
     """The ``n`` lowest natural frequencies (Hz) and shapes. supports : Fixed/Prescribed
     (held at their values at ``about``); about : a BeamState from solve_beam_nonlinear (with
@@ -47,19 +58,22 @@ def solve_beam_modes(model: BeamModel, supports, n: int = 6, about=None, loads=(
         raise ValueError(f"n = {n!r} must be an integer >= 1")
     asm = Assembler(model, supports, loads)
     z, lam = _state_z(asm, about)
-    q, r, rz, K, T, Tp, _ = asm.evaluate(z, lam)
-    if n > asm.space.n:
-        raise ValueError(f"n = {n} modes asked for but the model has {asm.space.n} free DOFs")
-    M_full = mass_matrix(model)
-    M = (T.T @ M_full @ T).tocsr()
-    if asm.space.n <= DENSE_EIGEN_LIMIT:
+    ev = asm.evaluate(z, lam)
+    space, K = asm.space, ev.K
+    if n > space.n:
+        raise ValueError(f"n = {n} modes asked for but the model has {space.n} free DOFs")
+    M = reduced_mass(asm, ev.w)
+    if space.n <= DENSE_EIGEN_LIMIT:
         w2, phi = sla.eigh(K.toarray(), M.toarray(), subset_by_index=[0, n - 1])
     else:
-        w2, phi = spla.eigsh(K.tocsc(), k=n, M=M.tocsc(), sigma=-1e-6 * abs(K.diagonal()).max()
-                             / max(abs(M.diagonal()).max(), 1e-300), which="LM")
+        sigma = -1e-6 * abs(K.diagonal()).max() / max(abs(M.diagonal()).max(), 1e-300)
+        lu = spla.splu((K - sigma * M).tocsc(), permc_spec=ORDERING)
+        shift_invert = spla.LinearOperator(K.shape, matvec=lu.solve, dtype=float)
+        w2, phi = spla.eigsh(K, k=n, M=M, sigma=sigma, which="LM", OPinv=shift_invert)
         order = np.argsort(w2)
         w2, phi = w2[order], phi[:, order]
-    full = np.asarray(T @ phi).T  # (n, n_dofs)
+    full = space.expand(phi, np.zeros(len(space.held)), ev.w).T  # (n, n_dofs)
+    M_full = mass_matrix(model)
     trans = np.zeros((model.n_dofs, 2))
     trans[0::3, 0] = 1.0
     trans[1::3, 1] = 1.0

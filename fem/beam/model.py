@@ -17,6 +17,8 @@ DOF_NAMES = {"x": 0, "u": 0, "y": 1, "v": 1, "theta": 2, "t": 2, "rz": 2}
 
 
 def _positive(name, value, allow_none=False):
+    if type(value) is float and 0.0 < value < math.inf:  # the common case, fast (sections)
+        return value
     if value is None and allow_none:
         return None
     ok = isinstance(value, numbers.Real) and not isinstance(value, bool)
@@ -266,6 +268,18 @@ class BeamModel:
             if not 0 <= int(node) < n or len(value) != 2 or min(value) < 0:
                 raise ValueError(f"point_masses[{node!r}] = {value!r} must be (m >= 0, J >= 0) "
                                  "on an existing node")
+
+    def cached(self, key, compute):
+        """``compute()`` once per model and ``key``: data derived from the model (its patterns,
+        element matrices), which is not changed once built; arrays are returned read-only."""
+        cache = self.__dict__.setdefault("_derived", {})
+        if key not in cache:
+            value = compute()
+            for a in value if isinstance(value, tuple) else (value,):
+                if isinstance(a, np.ndarray):
+                    a.setflags(write=False)
+            cache[key] = value
+        return cache[key]
 
     @property
     def n_nodes(self) -> int:

@@ -1,0 +1,71 @@
+"""Fixed sparsity patterns: sparse matrices assembled by one ``np.bincount`` into precomputed
+compressed arrays.
+
+A beam model's element connectivity and rigid links never change during a solve, so where
+each element entry lands in the global (or reduced) matrix is worked out once (a sort) and
+every later assembly is a weighted sum into fixed slots, without building COO/CSR matrices
+and sparse products anew (the Newton iterations of a stroke assemble dozens of times).
+"""
+import numpy as np
+import scipy.sparse as sp
+
+
+class Pattern:
+    """Where entries (rows, cols) land in a compressed ``shape`` matrix: ``matrix(values)``
+    sums the values of duplicate positions. ``fmt``: "csr" or "csc"."""
+
+    def __init__(self, rows, cols, shape, fmt: str = "csr"):
+        rows, cols = np.asarray(rows, dtype=np.int64), np.asarray(cols, dtype=np.int64)
+        self.shape, self.fmt = (int(shape[0]), int(shape[1])), fmt
+        major, minor = (rows, cols) if fmt == "csr" else (cols, rows)
+        n_major, n_minor = self.shape if fmt == "csr" else self.shape[::-1]
+        keys, self.slot = np.unique(major * n_minor + minor, return_inverse=True)
+        self.nnz = len(keys)
+        self.indices = (keys % n_minor).astype(np.int32)
+        counts = np.bincount(keys // n_minor, minlength=n_major)
+        self.indptr = np.concatenate([[0], np.cumsum(counts)]).astype(np.int32)
+
+    def data(self, values) -> np.ndarray:
+        """Compressed data array: ``values`` (one per entry) summed into their slots."""
+        return np.bincount(self.slot, weights=values, minlength=self.nnz)
+
+    def matrix(self, values):
+        """The sparse matrix (csr_matrix or csc_matrix) of ``values``."""
+        cls = sp.csr_matrix if self.fmt == "csr" else sp.csc_matrix
+        return cls((self.data(values), self.indices, self.indptr), shape=self.shape)
+
+
+def block_dofs(blocks) -> np.ndarray:
+    """(m, 3 k) DOF indices of blocks of k nodes ((m, k) node indices)."""
+    blocks = np.asarray(blocks, dtype=np.int64)
+    return (3 * blocks[:, :, None] + np.arange(3)).reshape(len(blocks), -1)
+
+
+class Condensed:
+    """T^T (sum of block matrices) T + diag(d) on the free unknowns of a Space, for blocks of
+    DOFs ``dofs`` (m, k) (e.g. the elements' six), in CSC form: each full DOF is a combination
+    of at most two unknowns (its own, or a rigid-link master's translation and rotation), so
+    each block entry contributes to at most four reduced entries, with weights from the
+    Space's link Jacobian at the current state."""
+
+    def __init__(self, col, n: int, dofs):
+        m, k = dofs.shape
+        C = col[dofs]  # (m, k, 2) unknowns of each DOF
+        rows = np.broadcast_to(C[:, :, None, :, None], (m, k, k, 2, 2))
+        cols = np.broadcast_to(C[:, None, :, None, :], (m, k, k, 2, 2))
+        keep = (rows >= 0) & (rows < n) & (cols >= 0) & (cols < n)
+        entry = np.broadcast_to(np.arange(m * k * k).reshape(m, k, k, 1, 1), keep.shape)
+        wflat = 2 * dofs[:, :, None] + np.arange(2)  # (m, k, 2) into weights.ravel()
+        wa = np.broadcast_to(wflat[:, :, None, :, None], keep.shape)
+        wb = np.broadcast_to(wflat[:, None, :, None, :], keep.shape)
+        self.entry, self.wa, self.wb = entry[keep], wa[keep], wb[keep]
+        diag = np.arange(n)  # every diagonal entry present (the links' second-order term)
+        self.pattern = Pattern(np.concatenate([rows[keep], diag]),
+                               np.concatenate([cols[keep], diag]), (n, n), "csc")
+
+    def matrix(self, blocks, weights, diagonal) -> sp.csc_matrix:
+        """Reduced matrix of block matrices ``blocks`` (m, k, k) at link ``weights`` (n_dofs,
+        2) plus ``diagonal`` (n,)."""
+        w = weights.ravel()
+        values = blocks.ravel()[self.entry] * w[self.wa] * w[self.wb]
+        return self.pattern.matrix(np.concatenate([values, diagonal]))
