@@ -88,28 +88,47 @@ def profile_beam(a, b, thickness_fn, out_of_plane: float, breaks=(), n_total: in
     extended beam)."""
     a, b = np.asarray(a, float), np.asarray(b, float)
     length = float(np.linalg.norm(b - a))
-    d = (b - a) / length
+    d, tol = (b - a) / length, 1e-9 * length
     cuts = [0.0] + sorted(float(s) for s in breaks if 0 < s < length) + [length]
     t0, t1 = float(thickness_fn(0.0)), float(thickness_fn(length))
     e0, e1 = root_extension * t0, root_extension * t1
-    mesh = None
-    for s0, s1 in zip(cuts[:-1], cuts[1:]):
-        n = max(4, int(round(n_total * (s1 - s0) / length)))
-        part = beam_from_profile(a + s0 * d, a + s1 * d, (lambda s, s0=s0: thickness_fn(s0 + s)),
-                                 out_of_plane, n)
-        mesh = part if mesh is None else mesh.join(part, tol=1e-9 * length)
-    start, end = a, b
+    pieces = [beam_from_profile(a + s0 * d, a + s1 * d, (lambda s, s0=s0: thickness_fn(s0 + s)),
+                                out_of_plane, max(4, int(round(n_total * (s1 - s0) / length))))
+              for s0, s1 in zip(cuts[:-1], cuts[1:])]
+    start, end, root, tip = a, b, None, None
     if e0 > 0:
         start = a - e0 * d
         root = beam_chain([start, a], root_section(out_of_plane, t0, e0, blocks[0]), 1)
-        mesh = root.join(mesh, tol=1e-9 * length)
     if e1 > 0:
         end = b + e1 * d
-        mesh = mesh.join(beam_chain([b, end], root_section(out_of_plane, t1, e1, blocks[1]), 1),
-                         tol=1e-9 * length)
-    first = mesh.node_at(start, tol=1e-9 * length)
-    last = mesh.node_at(end, tol=1e-9 * length)
+        tip = beam_chain([b, end], root_section(out_of_plane, t1, e1, blocks[1]), 1)
+    mesh = _line_mesh([m for m in [root, *pieces, tip] if m is not None], tol)
+    if mesh is None:  # a piece shorter than tol: BeamMesh.join's general merge decides
+        mesh = pieces[0]
+        for part in pieces[1:]:
+            mesh = mesh.join(part, tol=tol)
+        mesh = mesh if root is None else root.join(mesh, tol=tol)
+        mesh = mesh if tip is None else mesh.join(tip, tol=tol)
+    first, last = mesh.node_at(start, tol=tol), mesh.node_at(end, tol=tol)
     return BeamMesh(mesh.nodes, mesh.elements, mesh.sections, [first, last])
+
+
+def _line_mesh(parts, tol: float) -> BeamMesh | None:
+    """Chains ``parts`` (BeamMesh, each a chain of consecutive nodes) along one straight line,
+    each starting where the previous one ends, joined as successive BeamMesh.join calls
+    would (the shared end node kept from the earlier part), without their all-pairs node
+    search; None where two nodes are within ``tol`` (m) of each other other than at a joint
+    (then the general join decides which merge)."""
+    for prev, part in zip(parts, parts[1:]):
+        if math.dist(prev.nodes[-1], part.nodes[0]) > tol:
+            return None
+    nodes = np.vstack([parts[0].nodes] + [part.nodes[1:] for part in parts[1:]])
+    step = np.diff(nodes, axis=0)
+    if np.hypot(step[:, 0], step[:, 1]).min() <= tol:
+        return None
+    n = len(nodes)
+    return BeamMesh(nodes, np.column_stack([np.arange(n - 1), np.arange(1, n)]),
+                    [sec for part in parts for sec in part.sections], [0, n - 1])
 
 
 def _clip(poly, clipper) -> list:

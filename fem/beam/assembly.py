@@ -14,7 +14,7 @@ import scipy.sparse.linalg as spla
 
 from .element import basic_stiffness, corotational, local_mass, rotation_to_global
 from .model import BeamModel, NodalLoad
-from .pattern import Pattern, block_dofs
+from .pattern import block_dofs, global_matrix
 from .space import Space
 
 DENSE_EIGEN_LIMIT = 800  # unknowns up to which modal analysis uses a dense eigensolver
@@ -32,12 +32,7 @@ def element_dofs(model: BeamModel) -> np.ndarray:
 
 def scatter(model: BeamModel, ke: np.ndarray) -> sp.csr_matrix:
     """Global sparse matrix from element matrices (n_e, 6, 6) in global DOF order."""
-    def pattern():
-        dofs = element_dofs(model)
-        rows = np.broadcast_to(dofs[:, :, None], (len(dofs), 6, 6)).ravel()
-        cols = np.broadcast_to(dofs[:, None, :], (len(dofs), 6, 6)).ravel()
-        return Pattern(rows, cols, (model.n_dofs, model.n_dofs))
-    return model.cached("scatter", pattern).matrix(ke.ravel())
+    return global_matrix(model, ke)
 
 
 def gather(model: BeamModel, fe: np.ndarray) -> np.ndarray:
@@ -53,14 +48,6 @@ def element_mass(model: BeamModel) -> np.ndarray:
     return model.cached("element_mass", compute)
 
 
-def point_mass_blocks(model: BeamModel) -> tuple:
-    """(nodes (m, 1), blocks (m, 3, 3) = diag(mass, mass, J)) of the point masses."""
-    items = list(model.point_masses.items())
-    nodes = np.array([int(k) for k, _ in items], dtype=np.int64).reshape(-1, 1)
-    blocks = np.array([np.diag([m, m, J]) for _, (m, J) in items], dtype=float)
-    return nodes, blocks.reshape(-1, 3, 3)
-
-
 def mass_matrix(model: BeamModel) -> sp.csr_matrix:
     """Consistent global mass matrix (kg, kg m, kg m^2), point masses included (cached)."""
     def compute():
@@ -68,7 +55,7 @@ def mass_matrix(model: BeamModel) -> sp.csr_matrix:
         for node, (m, J) in model.point_masses.items():
             diag[3 * int(node):3 * int(node) + 2] += m
             diag[3 * int(node) + 2] += J
-        return (scatter(model, element_mass(model)) + sp.diags(diag)).tocsr()
+        return global_matrix(model, element_mass(model), diag)
     return model.cached("mass_matrix", compute)
 
 

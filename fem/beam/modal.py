@@ -10,8 +10,7 @@ import numpy as np
 import scipy.linalg as sla
 import scipy.sparse.linalg as spla
 
-from .assembly import (DENSE_EIGEN_LIMIT, ORDERING, Assembler, element_mass, mass_matrix,
-                       point_mass_blocks)
+from .assembly import DENSE_EIGEN_LIMIT, ORDERING, Assembler, mass_matrix
 from .model import BeamModel
 
 
@@ -40,16 +39,6 @@ def _state_z(asm, about):
     return about.q.ravel()[asm.space.free], about.load_factor
 
 
-def reduced_mass(asm: Assembler, w):
-    """T^T M T (CSC) at link weights ``w``: element and point masses condensed."""
-    space = asm.space
-    M = space.condense(element_mass(asm.model), w)
-    nodes, blocks = point_mass_blocks(asm.model)
-    if len(nodes):
-        M = M + space.condense(blocks, w, dofs=(3 * nodes + np.arange(3)))
-    return M.tocsc()
-
-
 def solve_beam_modes(model: BeamModel, supports, n: int = 6, about=None, loads=()) -> BeamModes:
     """The ``n`` lowest natural frequencies (Hz) and shapes. supports : Fixed/Prescribed
     (held at their values at ``about``); about : a BeamState from solve_beam_nonlinear (with
@@ -62,7 +51,7 @@ def solve_beam_modes(model: BeamModel, supports, n: int = 6, about=None, loads=(
     space, K = asm.space, ev.K
     if n > space.n:
         raise ValueError(f"n = {n} modes asked for but the model has {space.n} free DOFs")
-    M = reduced_mass(asm, ev.w)
+    M = space.condense_global(mass_matrix(model), ev.w)
     if space.n <= DENSE_EIGEN_LIMIT:
         w2, phi = sla.eigh(K.toarray(), M.toarray(), subset_by_index=[0, n - 1])
     else:

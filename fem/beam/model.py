@@ -17,7 +17,7 @@ DOF_NAMES = {"x": 0, "u": 0, "y": 1, "v": 1, "theta": 2, "t": 2, "rz": 2}
 
 
 def _positive(name, value, allow_none=False):
-    if type(value) is float and 0.0 < value < math.inf:  # the common case, fast (sections)
+    if type(value) in (float, np.float64) and 0.0 < value < math.inf:  # fast common case
         return value
     if value is None and allow_none:
         return None
@@ -183,8 +183,9 @@ def beam_chain(points, sections, n_per_segment) -> BeamMesh:
     if not all(isinstance(c, (int, np.integer)) and c >= 1 for c in counts.tolist()):
         raise ValueError(f"n_per_segment = {n_per_segment!r} must be integers >= 1")
     nodes, sec_list, point_nodes = [pts[0]], [], [0]
+    same = np.all(np.abs(pts[1:] - pts[:-1]) <= 1e-8 + 1e-5 * np.abs(pts[1:]), axis=1)  # allclose
     for j in range(n_seg):
-        if np.allclose(pts[j], pts[j + 1]):
+        if same[j]:
             raise ValueError(f"points {j} and {j + 1} coincide")
         s = np.linspace(0.0, 1.0, int(counts[j]) + 1)[1:, None]
         nodes.extend(pts[j] + s * (pts[j + 1] - pts[j]))

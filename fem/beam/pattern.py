@@ -41,6 +41,26 @@ def block_dofs(blocks) -> np.ndarray:
     return (3 * blocks[:, :, None] + np.arange(3)).reshape(len(blocks), -1)
 
 
+def global_pattern(model) -> Pattern:
+    """The global matrix pattern of a model (cached): every element entry, then every
+    diagonal entry (nodes without elements, such as rigid-link masters, included)."""
+    def build():
+        dofs = block_dofs(model.elements)
+        m, n = len(dofs), model.n_dofs
+        rows = np.concatenate([np.broadcast_to(dofs[:, :, None], (m, 6, 6)).ravel(),
+                               np.arange(n)])
+        cols = np.concatenate([np.broadcast_to(dofs[:, None, :], (m, 6, 6)).ravel(),
+                               np.arange(n)])
+        return Pattern(rows, cols, (n, n))
+    return model.cached("global_pattern", build)
+
+
+def global_matrix(model, ke, diagonal=None) -> sp.csr_matrix:
+    """Global CSR matrix of element matrices ``ke`` (n_e, 6, 6) plus ``diagonal`` (n_dofs,)."""
+    diagonal = np.zeros(model.n_dofs) if diagonal is None else diagonal
+    return global_pattern(model).matrix(np.concatenate([ke.ravel(), diagonal]))
+
+
 class Condensed:
     """T^T (sum of block matrices) T + diag(d) on the free unknowns of a Space, for blocks of
     DOFs ``dofs`` (m, k) (e.g. the elements' six), in CSC form: each full DOF is a combination

@@ -14,7 +14,9 @@ rotation), ``col`` (n_dofs, 2) their indices (free unknowns z first, then the he
 import numpy as np
 
 from .model import BeamModel, Fixed, Prescribed
-from .pattern import Condensed, block_dofs
+import scipy.sparse as sp
+
+from .pattern import Condensed, block_dofs, global_matrix
 
 
 def _held_values(model: BeamModel, supports) -> np.ndarray:
@@ -67,7 +69,7 @@ class Space:
         self.col[sd, 1] = self.col[sd + 1, 1] = index[md + 2]
         self._base = (self.col >= 0).astype(float)
         self._base[:, 1] = 0.0
-        self._stiffness = None
+        self._stiffness, self._tangents = None, 0
 
     def weights(self, q) -> np.ndarray:
         """(n_dofs, 2) coefficients of the DOFs in their unknowns at state q (n_nodes, 3)."""
@@ -121,8 +123,9 @@ class Space:
         return out
 
     def constraint_diagonal(self, q, r_full) -> np.ndarray:
-        """Second-order term sum_s r_s . d^2 x_s / d theta_m^2 on the free theta_m DOFs
-        (the diagonal of the links' contribution to the tangent, (n,))."""
+        """Second-order term sum_s r_s . d^2 x_s / d theta_m^2 on the masters' theta DOFs
+        (the diagonal of the links' contribution to the tangent, full (n_dofs,): nonzero on
+        free DOFs only, a held one has no row in the reduced tangent)."""
         diag = np.zeros(self.model.n_dofs)
         if len(self.slaves):
             th = q[self.masters, 2]
@@ -131,15 +134,29 @@ class Space:
             rs = r_full.reshape(-1, 3)[self.slaves]
             term = rs[:, 0] * (-c * ax + s * ay) + rs[:, 1] * (-s * ax - c * ay)
             np.add.at(diag, 3 * self.masters + 2, term)
-        return diag[self.free]
+            diag[self.held] = 0.0
+        return diag
 
-    def condense(self, blocks, w, diagonal=None, dofs=None):
-        """Reduced T^T B T (+ diag) of element-block matrices ``blocks`` (n_e, 6, 6) on the
-        model's elements (or on ``dofs`` (m, k), then not cached), CSC."""
-        if dofs is not None:
-            condenser = Condensed(self.col, self.n, dofs)
-        else:
-            if self._stiffness is None:
-                self._stiffness = Condensed(self.col, self.n, block_dofs(self.model.elements))
-            condenser = self._stiffness
-        return condenser.matrix(blocks, w, np.zeros(self.n) if diagonal is None else diagonal)
+    def jacobian(self, w) -> sp.csr_matrix:
+        """T = dq/dz (n_dofs, n) at link weights w."""
+        ok = (self.col >= 0) & (self.col < self.n)
+        indptr = np.concatenate([[0], np.cumsum(ok.sum(axis=1))])
+        return sp.csr_matrix((w[ok], self.col[ok], indptr), shape=(self.model.n_dofs, self.n))
+
+    def condense_global(self, K_full, w) -> sp.csc_matrix:
+        """T^T K T (CSC) of a global matrix (n_dofs, n_dofs) at link weights w."""
+        T = self.jacobian(w)
+        return (T.T @ K_full @ T).tocsc()
+
+    def condense(self, ke, w, diagonal=None) -> sp.csc_matrix:
+        """T^T K T (CSC) of the element matrices ``ke`` (n_e, 6, 6) plus the full diagonal
+        ``diagonal`` (n_dofs,) at link weights w: by sparse products the first time (a
+        linear solve), by the fixed pattern of the elements (Condensed) from the second
+        (Newton iterations, where its one-off sort pays)."""
+        self._tangents += 1
+        if self._tangents == 1:
+            return self.condense_global(global_matrix(self.model, ke, diagonal), w)
+        if self._stiffness is None:
+            self._stiffness = Condensed(self.col, self.n, block_dofs(self.model.elements))
+        d = np.zeros(self.n) if diagonal is None else diagonal[self.free]
+        return self._stiffness.matrix(ke, w, d)
