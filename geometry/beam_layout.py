@@ -77,7 +77,8 @@ def filleted_thickness(length: float, width: float, radius: float):
 
 
 def profile_beam(a, b, thickness_fn, out_of_plane: float, breaks=(), n_total: int = 24,
-                 root_extension: float = ROOT_EXTENSION, blocks=(None, None)) -> BeamMesh:
+                 root_extension: float = ROOT_EXTENSION, blocks=(None, None),
+                 vectorized: bool = False) -> BeamMesh:
     """A flexure from ``a`` to ``b`` (m) of in-plane thickness ``thickness_fn(s)`` (s from
     a, m) and out-of-plane width ``out_of_plane`` (m), as beam elements: pieces between the
     arc lengths ``breaks`` (e.g. the fillets' tangent points) meshed separately, about
@@ -85,7 +86,7 @@ def profile_beam(a, b, thickness_fn, out_of_plane: float, breaks=(), n_total: in
     root thickness at both ends (those elements at the root's bending stiffness, and its
     axial compliance where the height of the block it enters, ``blocks`` = (H at a, H at b)
     m, is given: :func:`root_section`). point_nodes: [first node, last node] (the ends of the
-    extended beam)."""
+    extended beam). ``vectorized``: thickness_fn takes arrays of s (beam_from_profile's)."""
     a, b = np.asarray(a, float), np.asarray(b, float)
     length = float(np.linalg.norm(b - a))
     d, tol = (b - a) / length, 1e-9 * length
@@ -93,8 +94,8 @@ def profile_beam(a, b, thickness_fn, out_of_plane: float, breaks=(), n_total: in
     t0, t1 = float(thickness_fn(0.0)), float(thickness_fn(length))
     e0, e1 = root_extension * t0, root_extension * t1
     pieces = [beam_from_profile(a + s0 * d, a + s1 * d, (lambda s, s0=s0: thickness_fn(s0 + s)),
-                                out_of_plane, max(4, int(round(n_total * (s1 - s0) / length))))
-              for s0, s1 in zip(cuts[:-1], cuts[1:])]
+                                out_of_plane, max(4, int(round(n_total * (s1 - s0) / length))),
+                                vectorized) for s0, s1 in zip(cuts[:-1], cuts[1:])]
     start, end, root, tip = a, b, None, None
     if e0 > 0:
         start = a - e0 * d

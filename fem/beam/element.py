@@ -42,6 +42,11 @@ def _shape(xi, L, phi):
     return Nw, dNw, Np, dNp
 
 
+def _gram(weight, A, B) -> np.ndarray:
+    """sum_g weight[e, g] A[e, g, i] B[e, g, j]: (n_e, i, j) (einsum's, by matmul)."""
+    return np.matmul((A * weight[:, :, None]).transpose(0, 2, 1), B)
+
+
 def sections(model, xi):
     """model.section_at(xi) at the fixed point sets used here (Gauss points, ends), cached."""
     return model.cached(("section_at", tuple(xi)), lambda: model.section_at(xi))
@@ -85,12 +90,12 @@ def local_stiffness(model) -> np.ndarray:
     A, I, _ = sections(model, XI)
     _, dNw, Np, dNp = _shape(XI, L, phi)
     wdx = WXI[None, :] * L[:, None]
-    Kb = np.einsum("eg,egi,egj->eij", mat.E * I * wdx, dNp, dNp)
+    Kb = _gram(mat.E * I * wdx, dNp, dNp)
     if model.shear:
         G = mat.E / (2.0 * (1.0 + mat.nu))
         gamma = dNw - Np
         kGA = model.section_table[:, 7][:, None] * G * A
-        Kb += np.einsum("eg,egi,egj->eij", kGA * wdx, gamma, gamma)
+        Kb += _gram(kGA * wdx, gamma, gamma)
     K = np.zeros((model.n_elements, 6, 6))
     K[:, np.array(BEND)[:, None], np.array(BEND)[None, :]] = Kb
     ea = axial_stiffness(model)
@@ -115,8 +120,7 @@ def local_mass(model) -> np.ndarray:
     A, I, _ = sections(model, XI)
     Nw, _, Np, _ = _shape(XI, L, phi)
     wdx = WXI[None, :] * L[:, None]
-    Mb = (np.einsum("eg,egi,egj->eij", rho * A * wdx, Nw, Nw)
-          + np.einsum("eg,egi,egj->eij", rho * I * wdx, Np, Np))
+    Mb = _gram(rho * A * wdx, Nw, Nw) + _gram(rho * I * wdx, Np, Np)
     Nu = np.stack([1.0 - XI, XI], axis=-1)
     Ma = np.einsum("eg,gi,gj->eij", rho * A * wdx, Nu, Nu)
     M = np.zeros((model.n_elements, 6, 6))
@@ -173,7 +177,7 @@ def corotational(model, Kb, q, tangent=True):
     f = np.einsum("eij,ei->ej", B, fb)
     if not tangent:
         return f, None, fb
-    K = np.einsum("eki,ekl,elj->eij", B, Kb, B)
+    K = np.matmul(B.transpose(0, 2, 1), Kb @ B)
     K += (fb[:, 0] / Ln)[:, None, None] * np.einsum("ei,ej->eij", zv, zv)
     rz = np.einsum("ei,ej->eij", r, zv)
     K += ((fb[:, 1] + fb[:, 2]) / Ln**2)[:, None, None] * (rz + rz.transpose(0, 2, 1))

@@ -57,8 +57,10 @@ def solve_beam_modes(model: BeamModel, supports, n: int = 6, about=None, loads=(
     else:
         sigma = -1e-6 * abs(K.diagonal()).max() / max(abs(M.diagonal()).max(), 1e-300)
         lu = spla.splu((K - sigma * M).tocsc(), permc_spec=ORDERING)
+        # plain operators: ARPACK calls them ~200 times, a sparse matrix's wrapper costs more
         shift_invert = spla.LinearOperator(K.shape, matvec=lu.solve, dtype=float)
-        w2, phi = spla.eigsh(K, k=n, M=M, sigma=sigma, which="LM", OPinv=shift_invert)
+        mass = spla.LinearOperator(K.shape, matvec=M.tocsr().dot, dtype=float)
+        w2, phi = spla.eigsh(K, k=n, M=mass, sigma=sigma, which="LM", OPinv=shift_invert)
         order = np.argsort(w2)
         w2, phi = w2[order], phi[:, order]
     full = space.expand(phi, np.zeros(len(space.held)), ev.w).T  # (n, n_dofs)

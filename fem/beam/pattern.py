@@ -19,11 +19,13 @@ class Pattern:
         self.shape, self.fmt = (int(shape[0]), int(shape[1])), fmt
         major, minor = (rows, cols) if fmt == "csr" else (cols, rows)
         n_major, n_minor = self.shape if fmt == "csr" else self.shape[::-1]
-        keys, self.slot = np.unique(major * n_minor + minor, return_inverse=True)
-        self.nnz = len(keys)
-        self.indices = (keys % n_minor).astype(np.int32)
-        counts = np.bincount(keys // n_minor, minlength=n_major)
-        self.indptr = np.concatenate([[0], np.cumsum(counts)]).astype(np.int32)
+        # the compressed pattern by scipy's O(nnz) conversion, each entry's slot by bisection
+        A = sp.csr_matrix((np.ones(len(major)), (major, minor)), shape=(n_major, n_minor))
+        A.sum_duplicates()  # canonical: sorted, unique column indices in each row
+        keys = np.repeat(np.arange(n_major, dtype=np.int64), np.diff(A.indptr)) * n_minor
+        self.slot = np.searchsorted(keys + A.indices, major * n_minor + minor)
+        self.nnz = A.nnz
+        self.indices, self.indptr = A.indices.astype(np.int32), A.indptr.astype(np.int32)
 
     def data(self, values) -> np.ndarray:
         """Compressed data array: ``values`` (one per entry) summed into their slots."""
@@ -71,13 +73,17 @@ class Condensed:
     def __init__(self, col, n: int, dofs):
         m, k = dofs.shape
         C = col[dofs]  # (m, k, 2) unknowns of each DOF
-        rows = np.broadcast_to(C[:, :, None, :, None], (m, k, k, 2, 2))
-        cols = np.broadcast_to(C[:, None, :, None, :], (m, k, k, 2, 2))
+        W = 2 * dofs[:, :, None] + np.arange(2)  # (m, k, 2) positions in weights.ravel()
+        E = np.arange(m * k * k).reshape(m, k, k)
+        grid = lambda A, i, j: (np.broadcast_to(A[:, :, None, i], (len(A), k, k)),
+                                np.broadcast_to(A[:, None, :, j], (len(A), k, k)))
+        parts = [(*grid(C, 0, 0), E, *grid(W, 0, 0))]  # every DOF's own (first) unknown
+        linked = np.flatnonzero((C[:, :, 1] >= 0).any(axis=1))  # blocks on rigid-link slaves
+        for i, j in ((1, 0), (0, 1), (1, 1)):  # the master rotations' terms there
+            parts.append((*grid(C[linked], i, j), E[linked], *grid(W[linked], i, j)))
+        rows, cols, entry, wa, wb = (np.concatenate([p[q].ravel() for p in parts])
+                                     for q in range(5))
         keep = (rows >= 0) & (rows < n) & (cols >= 0) & (cols < n)
-        entry = np.broadcast_to(np.arange(m * k * k).reshape(m, k, k, 1, 1), keep.shape)
-        wflat = 2 * dofs[:, :, None] + np.arange(2)  # (m, k, 2) into weights.ravel()
-        wa = np.broadcast_to(wflat[:, :, None, :, None], keep.shape)
-        wb = np.broadcast_to(wflat[:, None, :, None, :], keep.shape)
         self.entry, self.wa, self.wb = entry[keep], wa[keep], wb[keep]
         diag = np.arange(n)  # every diagonal entry present (the links' second-order term)
         self.pattern = Pattern(np.concatenate([rows[keep], diag]),
