@@ -67,12 +67,14 @@ def check_root_extension(value) -> float:
 
 def filleted_thickness(length: float, width: float, radius: float):
     """t(s) (m) of a flexure of ``length`` and ``width`` with quarter-circle root fillets of
-    ``radius`` (m, 0: sharp) inside its length, s from its first end (m)."""
+    ``radius`` (m, 0: sharp) inside its length, s from its first end (m; a number or an
+    array)."""
     def t(s):
+        s = np.asarray(s, dtype=float)
         if radius <= 0:
-            return width
-        u = max(radius - s, s - (length - radius), 0.0)
-        return width + 2 * (radius - math.sqrt(max(radius ** 2 - u ** 2, 0.0)))
+            return np.full_like(s, width)
+        u = np.maximum(np.maximum(radius - s, s - (length - radius)), 0.0)
+        return width + 2 * (radius - np.sqrt(np.maximum(radius ** 2 - u ** 2, 0.0)))
     return t
 
 
@@ -214,7 +216,7 @@ def layout_beam_model(layout, material, out_of_plane: float, fillet_radius: floa
         fn = filleted_thickness(fj.length, fj.width, r)
         breaks = (r, fj.length - r) if r > 0 else ()
         part = profile_beam(a, b, fn, out_of_plane, breaks, n_per_flexure, root_extension,
-                            blocks=(layout.link_width, layout.link_width))
+                            blocks=(layout.link_width, layout.link_width), vectorized=True)
         offset_e = 0 if mesh is None else len(mesh.elements)
         if mesh is None:
             mesh, index = part, np.arange(len(part.nodes))

@@ -6,8 +6,13 @@ each element entry lands in the global (or reduced) matrix is worked out once (a
 every later assembly is a weighted sum into fixed slots, without building COO/CSR matrices
 and sparse products anew (the Newton iterations of a stroke assemble dozens of times).
 """
+from collections import OrderedDict
+
 import numpy as np
 import scipy.sparse as sp
+
+_SHARED = OrderedDict()  # patterns by topology, shared between models (a sweep has one)
+SHARED_SIZE = 16
 
 
 class Pattern:
@@ -26,6 +31,8 @@ class Pattern:
         self.slot = np.searchsorted(keys + A.indices, major * n_minor + minor)
         self.nnz = A.nnz
         self.indices, self.indptr = A.indices.astype(np.int32), A.indptr.astype(np.int32)
+        for a in (self.slot, self.indices, self.indptr):  # shared by the matrices built on it
+            a.setflags(write=False)
 
     def data(self, values) -> np.ndarray:
         """Compressed data array: ``values`` (one per entry) summed into their slots."""
@@ -35,6 +42,18 @@ class Pattern:
         """The sparse matrix (csr_matrix or csc_matrix) of ``values``."""
         cls = sp.csr_matrix if self.fmt == "csr" else sp.csc_matrix
         return cls((self.data(values), self.indices, self.indptr), shape=self.shape)
+
+
+def shared(key, build):
+    """``build()`` once per ``key`` (bytes describing a topology) among the last SHARED_SIZE
+    keys: the designs of a sweep differ in dimensions, not in connectivity or supports."""
+    if key in _SHARED:
+        _SHARED.move_to_end(key)
+        return _SHARED[key]
+    value = _SHARED[key] = build()
+    if len(_SHARED) > SHARED_SIZE:
+        _SHARED.popitem(last=False)
+    return value
 
 
 def block_dofs(blocks) -> np.ndarray:
@@ -54,7 +73,8 @@ def global_pattern(model) -> Pattern:
         cols = np.concatenate([np.broadcast_to(dofs[:, None, :], (m, 6, 6)).ravel(),
                                np.arange(n)])
         return Pattern(rows, cols, (n, n))
-    return model.cached("global_pattern", build)
+    key = ("global", model.n_dofs, model.elements.tobytes())
+    return model.cached("global_pattern", lambda: shared(key, build))
 
 
 def global_matrix(model, ke, diagonal=None) -> sp.csr_matrix:

@@ -16,7 +16,7 @@ import numpy as np
 from .model import BeamModel, Fixed, Prescribed
 import scipy.sparse as sp
 
-from .pattern import Condensed, block_dofs, global_matrix
+from .pattern import Condensed, block_dofs, global_matrix, shared
 
 
 def _held_values(model: BeamModel, supports) -> np.ndarray:
@@ -157,6 +157,8 @@ class Space:
         if self._tangents == 1:
             return self.condense_global(global_matrix(self.model, ke, diagonal), w)
         if self._stiffness is None:
-            self._stiffness = Condensed(self.col, self.n, block_dofs(self.model.elements))
+            key = ("condensed", self.n, self.col.tobytes(), self.model.elements.tobytes())
+            self._stiffness = shared(key, lambda: Condensed(self.col, self.n,
+                                                            block_dofs(self.model.elements)))
         d = np.zeros(self.n) if diagonal is None else diagonal[self.free]
         return self._stiffness.matrix(ke, w, d)
