@@ -1,9 +1,10 @@
 """Assembly of a beam model on the reduced space of unknowns (fem/beam/space.py): residual,
 tangent, mass, and the sparse LU of the reduced tangent.
 
-Patterns are computed once: the global scatter per model, the condensed (supports and rigid
-links eliminated) tangent per Space (fem/beam/pattern.py); derived per-model data (the basic
-stiffness, the undeformed tangent, the mass) is cached on the model (BeamModel.cached).
+Sparsity patterns are computed once (fem/beam/pattern.py): the global matrix's per topology,
+the condensed tangent's (supports and rigid links eliminated) per Space and topology; derived
+per-model data (the basic stiffness, the undeformed tangent, the mass) is cached on the model
+(BeamModel.cached).
 """
 from dataclasses import dataclass
 import math
@@ -28,11 +29,6 @@ class SingularBeamError(ValueError):
 def element_dofs(model: BeamModel) -> np.ndarray:
     """(n_e, 6) global DOFs of each element."""
     return model.cached("element_dofs", lambda: block_dofs(model.elements))
-
-
-def scatter(model: BeamModel, ke: np.ndarray) -> sp.csr_matrix:
-    """Global sparse matrix from element matrices (n_e, 6, 6) in global DOF order."""
-    return global_matrix(model, ke)
 
 
 def gather(model: BeamModel, fe: np.ndarray) -> np.ndarray:

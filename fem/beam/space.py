@@ -12,10 +12,9 @@ rotation), ``col`` (n_dofs, 2) their indices (free unknowns z first, then the he
 -1: none) and ``weights(q)`` (n_dofs, 2) the coefficients at a state.
 """
 import numpy as np
-
-from .model import BeamModel, Fixed, Prescribed
 import scipy.sparse as sp
 
+from .model import BeamModel, Fixed, Prescribed
 from .pattern import Condensed, block_dofs, global_matrix, shared
 
 
