@@ -124,6 +124,9 @@ class Factor:
 
     def __init__(self, K):
         K = sp.csc_matrix(K)
+        if not K.has_canonical_format:  # the scaled copy below shares K's index arrays
+            K = K.copy()
+            K.sum_duplicates()
         diag = np.abs(K.diagonal())
         if not np.all(np.isfinite(diag)) or np.any(diag == 0):
             raise SingularBeamError("singular stiffness: a DOF has no stiffness at all (a "

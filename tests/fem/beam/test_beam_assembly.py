@@ -119,3 +119,15 @@ def test_model_cache_is_read_only(steel):
     with pytest.raises(ValueError):
         Kb[0, 0, 0] = 0.0
     assert Assembler(model, [Fixed(0)], []).Kb is Kb  # computed once per model
+
+
+def test_factor_leaves_a_matrix_with_duplicates_alone():
+    """Factor of a CSC matrix with a duplicate entry: the right solution, the matrix intact."""
+    from flexfem.fem.beam.assembly import Factor
+    K = sp.csc_matrix((np.array([4.0, 1.0, 1.0, 5.0, 6.0, 0.5]), np.array([0, 1, 0, 1, 2, 2]),
+                       np.array([0, 2, 4, 6])), shape=(3, 3))  # (2, 2) = 6 + 0.5, stored twice
+    assert not K.has_canonical_format
+    dense, data, indices = K.toarray(), K.data.copy(), K.indices.copy()
+    x = Factor(K).solve(np.array([1.0, 2.0, 3.0]))
+    assert np.allclose(dense @ x, [1.0, 2.0, 3.0], rtol=0, atol=1e-12)
+    assert np.array_equal(K.data, data) and np.array_equal(K.indices, indices)
