@@ -7,8 +7,10 @@ snap-through", Comput. Struct. 13:55): the tangent predictor dz = dlambda K^-1 q
 -dR/dlambda, in the direction of the previous increment (so the path is followed through
 limit points, where lambda turns back), then corrections constrained to the plane normal to
 the current increment (Riks-Wempner, updated normal plane). The last step lands on
-lambda = 1 by load control. Limit points (local extremes of lambda along the path) are
-reported in ``result.info["limit_points"]``.
+lambda = 1 by load control (or ends earlier where the caller says). Preloads
+(:mod:`.preload`) stay constant: the path starts from the preloaded state and only the scaled
+loads follow lambda. Limit points (local extremes of lambda along the path) are reported in
+``result.info["limit_points"]``.
 """
 import math
 
@@ -26,9 +28,9 @@ def _load_direction(problem, z, lam, rz) -> np.ndarray:
     return -(problem.evaluate(z, lam + h, tangent=False)[2] - rz) / h
 
 
-def _solve2(K, a, b):
+def _solve2(K, a, b, kind="symmetric"):
     try:
-        with linsolve.factorize(K, kind="symmetric") as solve:
+        with linsolve.factorize(K, kind=kind) as solve:
             x = solve(np.column_stack([a, b]))
     except (RuntimeError, linsolve.SingularSystemError) as error:
         raise _StepFailed(f"the tangent is singular ({error})", []) from None
@@ -41,7 +43,8 @@ def arc_step(problem, z, lam, ds, previous, max_iterations, tol):
     """One converged arc-length step of length ``ds`` (m) from (z, lam), continuing the
     direction ``previous`` (the last increment of z): (z, lam, u, r, iterations)."""
     _, _, rz, K, _, _, _ = problem.evaluate(z, lam)
-    _, dz_t = _solve2(K, np.zeros_like(rz), _load_direction(problem, z, lam, rz))
+    _, dz_t = _solve2(K, np.zeros_like(rz), _load_direction(problem, z, lam, rz),
+                      problem.matrix_kind)
     sign = 1.0 if float(dz_t @ previous) >= 0 else -1.0
     dlam = sign * ds / max(np.linalg.norm(dz_t), 1e-300)
     Dz, Dlam, d = dlam * dz_t, dlam, None
@@ -56,7 +59,7 @@ def arc_step(problem, z, lam, ds, previous, max_iterations, tol):
         small = d is not None and np.linalg.norm(d) <= math.sqrt(tol) * max(np.linalg.norm(u), 1e-300)
         if norm <= tol * reference and small:
             return zc, lc, u, r, iteration
-        a, b = _solve2(K, -rz, _load_direction(problem, zc, lc, rz))
+        a, b = _solve2(K, -rz, _load_direction(problem, zc, lc, rz), problem.matrix_kind)
         denominator = 2.0 * float(Dz @ b)
         if denominator == 0:
             raise _StepFailed("the arc-length constraint is degenerate", history)
@@ -77,12 +80,15 @@ def limit_points(load_factors) -> list:
     return out
 
 
-def trace(problem, steps, max_iterations, tol, min_step, max_steps, on_step):
-    """Follow the path from the unloaded state to lambda = 1; ``on_step(z, lam, u, r,
-    iterations)`` records each converged point. Returns the number of step cuts."""
-    z, lam = np.zeros(problem.space.n), 0.0
+def trace(problem, steps, max_iterations, tol, min_step, max_steps, on_step, z0=None):
+    """Follow the path from the converged state ``z0`` at lambda = 0 (default unloaded; a
+    preloaded state otherwise) to lambda = 1; ``on_step(z, lam, u, r, iterations)`` records
+    each converged point and ends the trace when it returns true. Returns the number of step
+    cuts."""
+    z, lam = (np.zeros(problem.space.n) if z0 is None else z0), 0.0
     _, _, rz, K, _, _, _ = problem.evaluate(z, lam)
-    _, dz_t = _solve2(K, np.zeros_like(rz), _load_direction(problem, z, lam, rz))
+    _, dz_t = _solve2(K, np.zeros_like(rz), _load_direction(problem, z, lam, rz),
+                      problem.matrix_kind)
     ds0 = float(np.linalg.norm(dz_t)) / steps
     if not ds0 > 0:
         raise ValueError("control='arc-length': the loads and prescribed motions move nothing")
@@ -107,7 +113,8 @@ def trace(problem, steps, max_iterations, tol, min_step, max_steps, on_step):
             ds, cuts = ds / 2, cuts + 1
             continue
         previous, z, lam, taken = z_new - z, z_new, lam_new, taken + 1
-        on_step(z, lam, u, r, its)
+        if on_step(z, lam, u, r, its):
+            break
         if its <= 4:
             ds = min(1.5 * ds, ds0)
     return cuts

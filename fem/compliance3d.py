@@ -1,13 +1,12 @@
-"""The reduced stiffness of a linearised rigid face in 3-D: six master coordinates
-(c_x, c_y, c_z, ell theta_x, ell theta_y, ell theta_z) about the face's area centroid, node a
-moving by c + theta x (X_a - X_c). Used by :func:`.compliance.compliance_matrix` in 3-D.
+"""The geometry of a rigid face in 3-D: its DOFs, its nodes' arms about the face's area
+centroid and its RMS arm, used by :mod:`.rigid_face3d` (six master coordinates
+(c_x, c_y, c_z, theta_x, theta_y, theta_z), node a moving by c + theta x (X_a - X_c) when
+linearised) and so by :func:`.compliance.compliance_matrix` in 3-D.
 """
 import numpy as np
-import scipy.sparse as sp
 import skfem
 
 from .boundary import group_dofs
-from .static import UnderConstrainedError, rigid_body_dof_modes
 
 
 def face_geometry(model, group: str) -> tuple:
@@ -28,41 +27,3 @@ def face_geometry(model, group: str) -> tuple:
     if not ell > 0:
         raise ValueError(f"face {group!r} has a single node; it cannot rotate")
     return pair, arms, centroid, ell
-
-
-def check_held_3d(model, D: np.ndarray) -> None:
-    """Raise UnderConstrainedError unless the supports ``D`` hold all 6 rigid-body modes."""
-    rows = rigid_body_dof_modes(model)[D]
-    s = np.linalg.svd(rows, compute_uv=False) if len(rows) else np.zeros(0)
-    free = 6 - int(np.sum(s > 1e-9 * max(np.abs(rows).max(initial=0.0), 1e-300)))
-    if free:
-        raise UnderConstrainedError(f"the supports leave {free} of 6 rigid-body modes free with "
-                                    "the face free; add supports")
-
-
-def reduced_stiffness_3d(model, D: np.ndarray, group: str, K) -> tuple:
-    """(K_zz (N/m), slots of the 6 face coordinates, centroid (m), ell (m)) with the face's
-    DOFs replaced by its six linearised rigid coordinates."""
-    pair, arms, centroid, ell = face_geometry(model, group)
-    taken = np.zeros(model.n_dofs, dtype=bool)
-    taken[D] = True
-    if np.any(taken[pair.ravel()]):
-        raise ValueError(f"face {group!r} shares DOFs with a support; a node can have one "
-                         "constraint")
-    taken[pair.ravel()] = True
-    I = np.flatnonzero(~taken)
-    n_I = len(I)
-    ax, ay, az = arms / ell
-    zero, one = np.zeros_like(ax), np.ones_like(ax)
-    # columns: translations, then e_j x arm / ell for j = x, y, z
-    columns = [(one, zero, zero), (zero, one, zero), (zero, zero, one),
-               (zero, -az, ay), (az, zero, -ax), (-ay, ax, zero)]
-    rows, cols, vals = [I], [np.arange(n_I)], [np.ones(n_I)]
-    for k, column in enumerate(columns):
-        for comp in range(3):
-            rows.append(pair[comp])
-            cols.append(np.full(pair.shape[1], n_I + k))
-            vals.append(column[comp])
-    T = sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
-                      shape=(model.n_dofs, n_I + 6))
-    return (T.T @ K @ T).tocsr(), np.arange(n_I, n_I + 6), centroid, ell

@@ -50,7 +50,7 @@ def _newton(problem, z, lam_old, lam, max_iterations, tol, guess=None):
         if guess is None:
             u_old, r, _, K, _, T, full_K = problem.evaluate(z, lam_old)
             jump = space.displacement(z, lam) - u_old
-            rz = T.T @ (r - (lam - lam_old) * problem.f_ext + full_K @ jump) - space.applied(lam)
+            rz = T.T @ (r - (lam - lam_old) * problem.f_ext + full_K @ jump) - space.applied(lam, z)
             dz = problem.solve(K, -rz)
             first = 2
         else:

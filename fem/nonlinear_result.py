@@ -17,14 +17,18 @@ class NonlinearResult:
     (N)} of every supported group ; face_reactions : per step {group: (F_x, F_y, M)} (N, N,
     N m about the current centroid) of every rigid face, equal to the applied load on a free
     coordinate ; face_motion : per step {group:
-    (c_x, c_y, theta)} (m, m, rad) ; iterations : Newton iterations per step ;
+    (c_x, c_y, theta)} (m, m, rad) ; in 3-D (F, M) and (c, rotation vector), 6 each ; iterations : Newton iterations per step ;
     von_mises_nodal / von_mises_element_max : final Cauchy von Mises stress (Pa), nodal from
     the L2 projection of the stress components onto linear fields, and the maximum over each
     element's quadrature points ; applied : full-load vector f_ext (N) ; negative_eigenvalues :
     per step, the number of negative eigenvalues of the reduced tangent stiffness (None where
     it is singular, a critical state; None everywhere if not checked) ; max_strain : per step
     the largest absolute principal Green-Lagrange strain (-) ; strain_limit : the validity
-    limit of St. Venant-Kirchhoff (see :data:`.hyperelastic.STRAIN_LIMIT`)."""
+    limit of St. Venant-Kirchhoff (see :data:`.hyperelastic.STRAIN_LIMIT`) ; preload_factors :
+    per step, the factor of the preloads (:mod:`.preload`; 0 -> 1 in the preload stage, where
+    load_factors is 0, then 1; all 0 without preloads) ; preload_end : the step that ends the
+    preload stage (0 without preloads): ``load_factors[preload_end:]`` is the path of the
+    scaled loads from the preloaded state ; preloaded : the nodal preload vector (N)."""
 
     model: Model
     load_factors: np.ndarray
@@ -40,6 +44,21 @@ class NonlinearResult:
     negative_eigenvalues: list = field(default_factory=list)
     max_strain: np.ndarray = field(default_factory=lambda: np.zeros(0))
     strain_limit: float = STRAIN_LIMIT
+    preload_factors: np.ndarray | None = None
+    preload_end: int = 0
+    preloaded: np.ndarray | None = None
+
+    def __post_init__(self):
+        if self.preload_factors is None:
+            object.__setattr__(self, "preload_factors", np.zeros(len(self.load_factors)))
+        if self.preloaded is None:
+            object.__setattr__(self, "preloaded", np.zeros_like(self.applied))
+
+    @property
+    def preloading(self) -> np.ndarray:
+        """(n,) bool per step: a converged step of the preload stage."""
+        steps = np.arange(len(self.load_factors))
+        return (steps > 0) & (steps <= self.preload_end)
 
     @property
     def stable(self) -> np.ndarray:
@@ -70,14 +89,17 @@ class NonlinearResult:
 
     def force_displacement(self, group: str) -> tuple[np.ndarray, np.ndarray]:
         """(displacement (n, dim) m, force (n, dim) N) of ``group``: its reaction if it is
-        supported, its face force if it is a rigid face, else the applied load on its DOFs."""
+        supported, its face force if it is a rigid face, else the applied load (scaled loads and
+        preloads) on its DOFs."""
         if group in self.reactions[0]:
             force = np.array([r[group] for r in self.reactions])
         elif group in self.face_reactions[0]:
-            force = np.array([r[group][:2] for r in self.face_reactions])
+            force = np.array([r[group][:self.model.dim] for r in self.face_reactions])
         else:
-            total = np.array([self.applied[d].sum() for d in group_dofs(self.model, group).values()])
-            force = np.outer(self.load_factors, total)
+            dofs = group_dofs(self.model, group).values()
+            total = np.array([self.applied[d].sum() for d in dofs])
+            held = np.array([self.preloaded[d].sum() for d in dofs])
+            force = np.outer(self.load_factors, total) + np.outer(self.preload_factors, held)
         return self.path(group), force
 
     @property

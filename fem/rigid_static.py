@@ -1,7 +1,7 @@
 """Rigid faces in the linear static solve: ``solve_static(..., rigid_faces=[...])``.
 
-The faces' DOFs are eliminated in favour of their generalised coordinates (c_x, c_y, theta)
-linearised about the reference configuration, u_a = c + theta (-(Y_a - Y_c), X_a - X_c):
+The faces' DOFs are eliminated in favour of their generalised coordinates (c, theta: 3 in
+2-D, 6 in 3-D) linearised about the reference configuration, u_a = c + theta x (X_a - X_c):
 the small-displacement limit of :mod:`.rigid_face`'s kinematics. Prescribed coordinates
 are imposed, free ones carry the face's force and moment.
 """
@@ -22,11 +22,13 @@ def check_held(model, space: ReducedSpace) -> None:
         check_supports(model, space.D)
         return
     rows = space.held_mode_rows(model)
+    n_modes = 3 if model.dim == 2 else 6
     s = np.linalg.svd(rows, compute_uv=False) if len(rows) else np.zeros(0)
-    free = 3 - int(np.sum(s > 1e-9 * max(np.abs(rows).max(initial=0.0), 1e-300)))
+    free = n_modes - int(np.sum(s > 1e-9 * max(np.abs(rows).max(initial=0.0), 1e-300)))
     if free:
-        raise UnderConstrainedError(f"the supports and rigid faces leave {free} of 3 rigid-body "
-                                    "modes free; prescribe more coordinates or add supports")
+        raise UnderConstrainedError(f"the supports and rigid faces leave {free} of {n_modes} "
+                                    "rigid-body modes free; prescribe more coordinates or add "
+                                    "supports")
 
 
 def linear_map(space: ReducedSpace) -> tuple:
@@ -36,27 +38,26 @@ def linear_map(space: ReducedSpace) -> tuple:
     u_p = np.zeros(space.n_dofs)
     u_p[space.D] = space.xD
     for fk in space.faces:
-        q = fk.face.values()  # 0 where free
-        ax, ay = fk.arms
-        u_p[fk.dofs[0]] = q[0] - q[2] * ay
-        u_p[fk.dofs[1]] = q[1] + q[2] * ax
+        u_p[fk.dofs] = fk.linear_displacement(fk.face.values(space.dim))  # 0 where free
     return T.tocsr(), u_p
 
 
-def face_results(space: ReducedSpace, z: np.ndarray, r: np.ndarray, theta_linear=True):
-    """({group: (F_x, F_y, M)} (N, N, N m about the centroid), {group: (c_x, c_y, theta)}
-    (m, m, rad)) of each face for unknowns ``z`` and nodal forces ``r`` = K u - f."""
+def face_results(space: ReducedSpace, z: np.ndarray, r: np.ndarray):
+    """({group: (force, moment)} (N, N m about the centroid), {group: (translation,
+    rotation)} (m, rad)) of each face for unknowns ``z`` and nodal forces ``r`` = K u - f:
+    2-D (F_x, F_y, M) and (c_x, c_y, theta), 3-D (F, M) and (c, theta) (6 each)."""
     qs = space.coordinates(z, 1.0)
-    forces = {fk.face.group: fk.generalised_force(r, 0.0 if theta_linear else q[2])
+    forces = {fk.face.group: fk.generalised_force(r, np.zeros_like(q))
               for fk, q in zip(space.faces, qs)}
     return forces, {fk.face.group: q for fk, q in zip(space.faces, qs)}
 
 
 def solve_static_faces(model, supports, loads, rigid_faces, solver: str = "auto") -> StaticResult:
-    """Linear static solve with rigid faces (2-D); see :func:`.static.solve_static`. The
-    result's ``face_motion`` and ``face_reactions`` hold each face's (c_x, c_y, theta) (m, m,
-    rad) and (F_x, F_y, M) (N, N, N m about the face centroid): on a free coordinate the
-    applied load, on a prescribed one the reaction."""
+    """Linear static solve with rigid faces (2-D or 3-D); see :func:`.static.solve_static`.
+    The result's ``face_motion`` and ``face_reactions`` hold each face's coordinates, 2-D
+    (c_x, c_y, theta), 3-D (c_x, c_y, c_z, theta_x, theta_y, theta_z) (m, rad), and its
+    force and moment about the face centroid, (F_x, F_y, M) or (F_x, F_y, F_z, M_x, M_y,
+    M_z) (N, N m): on a free coordinate the applied load, on a prescribed one the reaction."""
     if solver == "amg":
         raise ValueError(f"solver = {solver!r} with rigid faces: use 'direct' or 'auto'")
     linsolve.choose_solver(1, model.dim, solver)  # validates the name

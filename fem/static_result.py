@@ -29,7 +29,8 @@ class StaticResult:
     vector} on every supported group; strain_energy : 1/2 u.K.u; solver : the linear solver
     used, 'mkl-pardiso', 'cholmod', 'superlu' (direct) or 'amg-cg' ('none': no load);
     face_motion / face_reactions : {group: (c_x, c_y, theta)} (m, m, rad) and {group: (F_x,
-    F_y, M about the centroid)} (N, N, N m) of the rigid faces of a solve with them.
+    F_y, M about the centroid)} (N, N, N m) of the rigid faces of a solve with them; in 3-D
+    (c_x, c_y, c_z, theta_x, theta_y, theta_z) and (F_x, F_y, F_z, M_x, M_y, M_z).
     """
 
     model: Model

@@ -50,6 +50,7 @@ class Mechanism:
     coarsest_size_factor : size_factor of the coarsest level of its convergence studies
         (1 = its default mesh)
     document : key of the source document it reproduces (data/sources.toml), "" for none
+    units : "module:attribute" of its {parameter or metric name: unit} table (axis labels)
     """
 
     name: str
@@ -61,6 +62,7 @@ class Mechanism:
     sections: tuple = ()
     coarsest_size_factor: float = 1.0
     document: str = ""
+    units: str = ""
 
     def load(self, target: str):
         """The object a ``"module:attribute"`` (or ``"module"``) target of this entry names."""
@@ -73,6 +75,7 @@ BUILTIN = (
     Mechanism(
         "dbma", "Double-row bow-type micro-displacement amplifier (servo valve)", "dbma",
         evaluate="evaluate:evaluate", commands="cli", optimizer="cli_optimize", document="dbma",
+        units="evaluate:UNITS",
         # coarser start: halving the size three times from 4x stays affordable
         coarsest_size_factor=4.0,
         sections=(
@@ -89,7 +92,7 @@ BUILTIN = (
         )),
     Mechanism(
         "eightbar", "Symmetric rectilinear eight-bar flexure suspension", "eightbar",
-        evaluate="evaluate:evaluate", commands="cli", document="eightbar",
+        evaluate="evaluate:evaluate", commands="cli", document="eightbar", units="evaluate:UNITS",
         sections=(
             Section("eightbar_rigid",
                     "Eight-bar and straight-line linkages: rigid-body paths and synthesis",
@@ -103,6 +106,10 @@ BUILTIN = (
                     "Eight-bar flexure suspension: beam model beside the PRBM and the FEM",
                     "beam_report:reproduce"),
         )),
+    Mechanism(
+        "eightbar_driving", "Eight-bar thesis' driving linkage: two lambdas, two suspensions",
+        "eightbar", evaluate="driving_models:evaluate", document="eightbar",
+        units="driving_models:UNITS"),
     Mechanism(
         "balancing", "Five-bar parallel robot: optimum static balancing and flexure pivots",
         "balancing", commands="cli", document="balancing",
@@ -118,10 +125,10 @@ BUILTIN = (
         )),
     Mechanism(
         "model", "Your own flexure from a model file (TOML + .geo, .step or .msh)", "user_model",
-        evaluate="analysis:evaluate", commands="cli"),
+        evaluate="analysis:evaluate", commands="cli", units="analysis:UNITS"),
     Mechanism(
         "toy", "Tapered cantilever (closed form): the study engine's own check", "toy",
-        evaluate="model:evaluate",
+        evaluate="model:evaluate", units="model:UNITS",
         sections=(
             Section("studies_engine",
                     "Study engine: sweep and Richardson convergence checked on a closed form",
@@ -213,7 +220,7 @@ def get_evaluator(name: str, allow_code: bool = False):
     check_mechanism(name, allow_code=allow_code)
     if _model_path(name):
         model = MECHANISMS["model"]
-        return functools.partial(model.load(model.evaluate), model=_model_path(name))
+        return functools.partial(model.load(model.evaluate), file=_model_path(name))
     if name in MECHANISMS:
         return MECHANISMS[name].load(MECHANISMS[name].evaluate)
     target = plugin_mechanisms()[name].value if name in plugin_mechanisms() else name
@@ -228,6 +235,12 @@ def get_evaluator(name: str, allow_code: bool = False):
         raise ValueError(f"mechanism {name!r}: {module_name} has no function {function_name!r}; "
                          f"known: {_known()}")
     return evaluate
+
+
+def quantity_units(name: str) -> dict:
+    """{parameter or metric name: unit} of mechanism ``name`` ({} when it declares none)."""
+    entry = MECHANISMS["model"] if _model_path(name) else MECHANISMS.get(name)
+    return dict(entry.load(entry.units)) if entry is not None and entry.units else {}
 
 
 def coarsest_size_factor(name: str) -> float:

@@ -12,7 +12,13 @@ from .engine.convergence import (
 )
 from .engine.store import export_csv, export_parquet, parquet_available
 from .engine.sweep import Study, plot_metric
-from .mechanisms import check_mechanism, coarsest_size_factor, get_evaluator, model_mechanism
+from .mechanisms import (
+    check_mechanism,
+    coarsest_size_factor,
+    get_evaluator,
+    model_mechanism,
+    quantity_units,
+)
 
 
 def study_from_dict(data: dict, base_dir=None, allow_code: bool = False) -> Study:
@@ -65,10 +71,11 @@ def sweep(study, out_dir=None, workers: int | None = None, scheduler: str | None
     tables = [export_csv(result.cases, out / "results.csv").name]
     if parquet_available():
         tables.append(export_parquet(result.cases, out / "results.parquet").name)
-    figures = []
+    figures, units = [], quantity_units(study.mechanism)
     for spec in study.plots:
         path = out / f"{spec.metric}_vs_{spec.parameter}.png"
-        figures.append(plot_metric(result.cases, spec.metric, spec.parameter, path, spec.overlay).name)
+        figures.append(plot_metric(result.cases, spec.metric, spec.parameter, path, spec.overlay,
+                                   units).name)
     return {"name": study.name, "mechanism": study.mechanism, "out": str(out),
             "store": str(result.store_path), "executor": result.executor,
             "cases": len(result.cases), "computed": result.computed, "reused": result.reused,

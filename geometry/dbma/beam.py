@@ -9,7 +9,9 @@ mirrored into four quarters): each of the 16 hinges is a beam following its prof
 through :func:`flexfem.fem.beam.beam_from_profile`), each inclined arm an elastic Timoshenko
 beam of width c along its centre line, joined to its two hinges (offset +-h/2 across it) by
 rigid offsets; the input members (width a) and output members 4 and 11 (width ls) are elastic beams along
-their centre lines (the pads rigid), member 11 clamped at its bottom (the mounting face). Root extension: see
+their centre lines, member 11 clamped at its bottom (the mounting face); each pad with the part of
+its input member it spans is a rigid block, which the member's halves enter with the common root
+extension (:func:`_input_member`; docs/beam.md, "DBMA: the pad block"). Root extension: see
 :mod:`flexfem.geometry.beam_layout` (0.38 x root thickness per root by default, with the root's
 axial compliance for a block of height c at both ends: the arm's width; the members' faces
 around a hinge are about as tall). Lengths in m.
@@ -18,7 +20,7 @@ import numpy as np
 
 from ...fem.beam import BeamMesh, BeamModel, RigidLink, Section, beam_chain
 from ...fem.materials import Material
-from ..beam_layout import ROOT_EXTENSION, check_root_extension, profile_beam, root_section
+from ..beam_layout import ROOT_EXTENSION, check_root_extension, profile_beam
 from ..hinge_profiles import profile_thickness
 from .drawing import DBMALayout, check_layout, quarter_rects
 from .params import DBMAParams
@@ -66,19 +68,23 @@ def _column(bld, links, xc, ys, width, depth, hinge_ends, per_length) -> dict:
 
 def _input_member(bld, links, p, layout, J, pad, sx, hinge_ends, root_extension) -> int:
     """An input member (arms 2 + 13 or 6 + 9) as an elastic beam of width a along its centre
-    line, the hinges' ends joined to it by rigid offsets, and its pad a short beam (pad_height
-    thick) from its face into the member, with the common root extension where it enters the
-    member (the pad's root is as compliant as a flexure's, relative to its size); returns the
-    node on the pad's face, where the actuator pushes."""
-    at = _column(bld, links, sx * (J.x0 + J.x1) / 2, (-p.ll, p.ll, 0.0), p.a, p.d,
+    line, the hinges' ends joined to it by rigid offsets; returns the master node on its pad's
+    face, where the actuator pushes.
+
+    Over the pad's height the member is a block (pad_height tall, a deep: as tall as it is
+    deep, not a beam) on which the pad, held along x by the actuator over its whole face,
+    bears: a rigid body, carried by the pad, a short beam (pad_height thick) from its face to
+    the member's face. The member's halves enter the block as every flexure enters a body
+    here, with the common root extension: root_extension x a into it, at most to its middle
+    (a pad lower than 2 x 0.38 a: a point support)."""
+    half = layout.pad_height / 2
+    y0 = max(half - root_extension * p.a, 0.0)  # the member is rigid for |y| <= y0
+    at = _column(bld, links, sx * (J.x0 + J.x1) / 2, (-p.ll, p.ll, -y0, y0), p.a, p.d,
                  hinge_ends, 6 / p.ll)
-    t = layout.pad_height
     face, root = (sx * min(abs(pad.x0), abs(pad.x1)), 0.0), (sx * J.x0, 0.0)
-    ext = root_extension * t
-    pts = [face, root] + ([(sx * (J.x0 + ext), 0.0)] if ext > 0 else [])
-    sections = [Section.rect(p.d, t)] + ([root_section(p.d, t, ext, 2 * p.ll)] if ext > 0 else [])
-    chain = bld.add(beam_chain(pts, sections, [2] + [1] * (len(pts) - 2)))
-    links.append(RigidLink(at[0.0], (chain[-1],)))
+    chain = bld.add(beam_chain([face, root], Section.rect(p.d, layout.pad_height), 2))
+    block = [n for y, n in at.items() if abs(y) <= y0 * (1 + 1e-9)]
+    links.append(RigidLink(chain[1], tuple(block)))
     return chain[0]
 
 
@@ -115,7 +121,8 @@ def dbma_beam_model(p: DBMAParams, layout: DBMALayout | None = None,
             (slaves["output"] if sy > 0 else ground).append((ha[0], ya))
             slaves["input_b" if sx > 0 else "input_a"].append((hb[1], yb))
     for name, sx in (("input_a", -1), ("input_b", 1)):
-        master = _input_member(bld, links, p, layout, J, pad, sx, slaves[name], 0.0)
+        master = _input_member(bld, links, p, layout, J, pad, sx, slaves[name],
+                               root_extension)
         slaves[name] = master
     top = _column(bld, links, 0.0, (out4.y0, out4.y1), p.ls, p.d, slaves["output"],
                   6 / p.ll)

@@ -6,14 +6,15 @@ from pathlib import Path
 import tomllib
 
 from ...fem.materials import Material
+from .beam_tables import BeamSpec, parse_beams
 from .geometry import CAD_SUFFIXES, GEO_SUFFIXES, SUFFIXES, inspect_geometry
 from .tables import (Analysis, Locator, MeshOptions, Section, is_number, parse_analysis,
                      parse_loads, parse_material, parse_mesh, parse_section, parse_selects,
                      parse_supports)
 
 TOP_KEYS = ("geometry", "dim", "description", "parameters", "material", "section", "mesh",
-            "supports", "loads", "select", "analysis")
-OVERRIDE_TABLES = ("material", "section", "mesh", "analysis")
+            "supports", "loads", "select", "analysis", "beam", "rigid", "beam_model")
+OVERRIDE_TABLES = ("material", "section", "mesh", "analysis", "beam_model")
 
 
 @dataclass(frozen=True)
@@ -21,7 +22,8 @@ class ModelSpec:
     """A validated model file. path: the model file; geometry: the geometry file (absolute,
     resolved from the model file's folder); parameters: {DefineConstant name: value (SI)}
     overriding the .geo; groups: {group name: dimension} offered by the geometry;
-    constants: the .geo's DefineConstant values after the overrides."""
+    constants: the .geo's DefineConstant values after the overrides; beams: the declared
+    beam model (BeamSpec, [[beam]] and [[rigid]]) or None."""
 
     path: Path
     geometry: Path
@@ -37,6 +39,7 @@ class ModelSpec:
     groups: dict = field(default_factory=dict)
     constants: dict = field(default_factory=dict)
     description: str = ""
+    beams: BeamSpec | None = None
 
     @property
     def source(self) -> str:
@@ -198,6 +201,10 @@ def load_spec(path, overrides: dict | None = None) -> ModelSpec:
                         "dim" if "dim" in raw else None)
     _check_groups(parts, info.groups, geometry, dim, loc)
     description = raw.get("description", "")
+    beams = parse_beams(raw, {**info.constants, **parameters},
+                        parts["section"].thickness if dim == 2 else None, loc)
+    if beams is not None and dim != 2:
+        raise loc.error("[[beam]]: the beam model is planar (dim = 2)", "beam")
     return ModelSpec(path=path, geometry=geometry, dim=dim, parameters=parameters,
                      groups=info.groups, constants=info.constants,
-                     description=str(description), **parts)
+                     description=str(description), beams=beams, **parts)

@@ -18,10 +18,8 @@ guided leaf's buckling load pi^2 E I / L^2 over P = (pi / kL)^2.
 
 The curve is traced by rotation control (each rotation its own solve, preload and rotation
 growing together to a state on the stable branch, as negative_pivot_study does), which passes
-the limit point of the moment: fem's arc-length control scales every load with one factor,
-so it cannot hold the preload while the moment varies; and with the preload as the load
-factor (rotation held) its path stops at the leaf's bifurcation (a singular tangent at
-P = pi^2 E I / L^2), which it does not pass without an imperfection.
+the limit point of the moment. The same leaf driven by a moment, the preload held and the
+moment continued by arc-length, is :mod:`.pivot_arclength`.
 
 Cross-spring pivots: the hub turned by theta (translation free, a pure moment), the motion of
 the hub point that sat at the leaves' crossing ("centre shift") against the closed form for

@@ -1,6 +1,7 @@
 """``reproduce()`` of the pivot-stability section: the negative-stiffness pivots' moment-
-rotation curves through their limit point, their margins, and the cross-spring pivot's centre
-shift beside the closed form (:mod:`.pivot_stability`)."""
+rotation curves through their limit point (rotation control, and moment-driven by arc-length:
+:mod:`.pivot_arclength`), their margins, and the cross-spring pivot's centre shift beside the
+closed form (:mod:`.pivot_stability`)."""
 import math
 from pathlib import Path
 
@@ -9,6 +10,9 @@ import numpy as np
 from ..engine.tables import write_rows
 from ..report.comparison import Comparison, rows as comparison_rows
 from ..report.figures import axis_label, legend_outside, pyplot, save
+from .pivot_arclength import arclength_curves
+from .pivot_arclength_report import (arclength_comparisons, arclength_sentence,
+                                     arclength_table_rows, plot_arclength)
 from .pivot_stability import pivot_stability_study
 
 
@@ -105,15 +109,20 @@ def reproduce(out_dir, quick: bool = False) -> dict:
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     out = pivot_stability_study(quick=quick)
+    arcs = arclength_curves(quick=quick)
     curve = [{"motor": n["motor"], **r} for n in out["negative"] for r in n["rows"]]
     write_rows(out_dir / "balancing_pivot_limit.csv", curve)
-    tables = ["balancing_pivot_limit.csv"]
+    write_rows(out_dir / "balancing_pivot_arclength.csv", arclength_table_rows(arcs))
+    tables = ["balancing_pivot_limit.csv", "balancing_pivot_arclength.csv"]
     if "cross" in out:
         write_rows(out_dir / "balancing_cross_pivot_shift.csv", out["cross"]["rows"])
         tables.append("balancing_cross_pivot_shift.csv")
     summary = {"negative": [{k: v for k, v in n.items() if k != "rows"} for n in out["negative"]],
-               "cross": {k: v for k, v in out.get("cross", {}).items() if k != "rows"}}
-    return {"paragraph": paragraph(out),
-            "figures": [plot_curves(out, out_dir / "balancing_pivot_stability.png")],
-            "comparisons": comparison_rows(comparisons(out)), "tables": tables,
-            "pivot_stability": summary}
+               "cross": {k: v for k, v in out.get("cross", {}).items() if k != "rows"},
+               "arclength": [{k: v for k, v in a.items() if k != "rows"} for a in arcs]}
+    return {"paragraph": paragraph(out) + arclength_sentence(arcs),
+            "figures": [plot_curves(out, out_dir / "balancing_pivot_stability.png"),
+                        plot_arclength(arcs, out["negative"],
+                                       out_dir / "balancing_pivot_arclength.png")],
+            "comparisons": comparison_rows(comparisons(out) + arclength_comparisons(
+                arcs, out["negative"])), "tables": tables, "pivot_stability": summary}

@@ -78,17 +78,21 @@ def reproduce(out_dir, quick: bool = False) -> dict:
     paragraph = (
         "The beam model of the DBMA is generated from its parameters (geometry/dbma/beam.py): "
         "16 hinges from their profiles, elastic arms and members, the common root extension "
-        f"(0.38 b per root, with the root's axial compliance). For the paper's design (l/b = "
+        "(0.38 b per root, with the root's axial compliance), each pad bearing on its input "
+        "member as a rigid block that the member's halves enter with the same extension (0.38 "
+        f"a). For the paper's design (l/b = "
         f"{p.l / p.b:.2f}) it solves in {beam['time_s'] * 1e3:.0f} ms against "
         f"{cont['time_s']:.1f} s for the 2-D FEM ({cont['dofs']} DOFs"
         f"{', a 2x coarser mesh in this quick run' if quick else ''}). Beam against continuum: "
         + ", ".join(f"{k} {v:+.1f} %" for k, v in err.items()) + ". k_out, the stiffness of "
-        "the input-blocked bow (hinges in axial load, short stubby members, the pads' "
-        "attachment), is the weakest, and the working frequency follows it. Over the "
+        "the input-blocked bow, is the weakest: two thirds of its compliance is the input "
+        "members' bending next to the pads, where they are as deep as they are long. The "
+        "beam stress is nominal (the continuum's sharp hinge corners are singular). Over the "
         "slenderness of one hinge, the beam model with the root extension stays within 3 % of "
         f"the continuum from l/b = {leaf_from:g} for a sharp-cornered leaf, in bending and "
         "axially; without it, it is too stiff by ~b / l; a circular notch keeps its 2-D "
-        "deficit (7-22 %): screen with the beam model, decide with the continuum.")
+        "deficit, which grows with t / R (the beam follows Paros-Weisbord's plane-section "
+        "integral): screen with the beam model, decide with the continuum.")
     return {"paragraph": paragraph, "comparisons": beam_comparisons(metrics),
             "figures": [figure], "tables": tables,
             "key_tables": [key_table(metrics, "DBMA (paper's design): PRBM, beam, continuum")],

@@ -11,6 +11,8 @@ compliance for the block height) and without it. SI units.
 """
 import math
 
+import numpy as np
+
 from ...fem import Fixed as FEFixed, Force, Material, Model, PlaneStress, solve_static
 from ...fem.beam import BeamModel, Fixed, NodalLoad, Section, beam_chain, solve_beam_static
 from ...geometry.beam_layout import ROOT_EXTENSION, profile_beam
@@ -86,6 +88,11 @@ def trusted_from(rows: list, profile: str, load: str = "bending") -> float:
     return math.nan
 
 
+def _notch_t_over_r(x):
+    """t / R = 2 b / l of a right-circular notch (R = l / 2) at slenderness l / b."""
+    return 2 / np.maximum(np.asarray(x, float), 1e-9)
+
+
 def plot_slenderness(rows: list, path, mechanism_rows: list | None = None) -> dict:
     """Beam / continuum - 1 of the hinge compliance against l/b (leaf and circular notch,
     bending and axial, root extension on and off), the +-3 % band, and (``mechanism_rows``:
@@ -111,6 +118,10 @@ def plot_slenderness(rows: list, path, mechanism_rows: list | None = None) -> di
     ax.set_xticks([2, 3, 5, 10, 20], ["2", "3", "5", "10", "20"])
     ax.set_xticks([], minor=True)
     ax.set_xlabel(axis_label("hinge slenderness l / b", "-"))
+    notch = ax.secondary_xaxis("top", functions=(_notch_t_over_r, _notch_t_over_r))
+    notch.set_xticks([1, 2 / 3, 0.4, 0.2, 0.1], ["1", "0.67", "0.4", "0.2", "0.1"])
+    notch.set_xticks([], minor=True)
+    notch.set_xlabel(axis_label("circular notch: t / R = 2 b / l", "-"))
     ax.set_ylabel(axis_label("beam / continuum - 1", "%"))
     ax.set_ylim(-55, 15)
     ax.grid(True, alpha=0.3)
@@ -119,11 +130,12 @@ def plot_slenderness(rows: list, path, mechanism_rows: list | None = None) -> di
                 "compliance error of one hinge between two blocks (bending and axial, leaf "
                 "and circular notch) with the common root extension (solid) and without "
                 "(dotted), and the DBMA's own R, k_out and working frequency (triangles) "
-                "where computed. Grey: the 3 % band. The bare beam is too stiff by ~b / l "
-                "(bending) and more axially: it leaves the band below l/b ~ 20; with the root "
-                "extension a sharp-cornered leaf stays in it down to l/b ~ 2; a notch keeps "
-                "its 2-D deficit (the beam model follows the profile, not the notch's stress "
-                "field).")
+                "where computed. Grey: the 3 % band. Top axis: the notch's t / R. The bare "
+                "beam is too stiff by ~b / l (bending) and more axially: it leaves the band "
+                "below l/b ~ 20; with the root extension a sharp-cornered leaf stays in it down "
+                "to l/b ~ 2; a circular notch keeps its 2-D deficit, growing with t / R (the "
+                "beam model follows the profile with plane sections, Paros-Weisbord's "
+                "integral, not the notch's 2-D stress field).")
 
 
 def dbma_slenderness_rows(ratios=(2.0, 5.0, 10.0, 20.0), size_factor: float = 1.0) -> list:

@@ -1,5 +1,6 @@
 """``flexfem linkage trace NAME``, ``flexfem eightbar trace`` (rigid-body straight-line paths),
-``flexfem eightbar analyze`` (FEM of the flexure suspension) and ``flexfem eightbar mesh OUT``."""
+``flexfem eightbar analyze`` (FEM of the flexure suspension), ``flexfem eightbar driving`` (the
+driving linkage) and ``flexfem eightbar mesh OUT``; ``--model beam`` on analyze and driving."""
 from ...fem import write_mesh
 from ...geometry.eightbar.flexure import EightBarFlexureParams, mesh_eightbar_flexure
 from ...geometry.straight_line import CLASSIC_LINKAGES
@@ -8,6 +9,7 @@ from ...geometry.eightbar.flexure import THESIS_TRAVEL
 from ...geometry.eightbar.rigid import EightBarParams
 from ..options import positive
 from .beam import analyze_eightbar_beam
+from .driving_models import analyze_driving
 from .path import eightbar_path_summary, trace_classic
 from .stage import stage_study
 
@@ -81,6 +83,22 @@ def _summarize_eightbar_stage(r: dict) -> str:
                else ""))
 
 
+def _run_eightbar_driving(args) -> dict:
+    options = {"size_factor": 3.0 if args.quick else 1.5} if args.model == "continuum" else {}
+    return analyze_driving(model=args.model, n_modes=args.modes, **options)
+
+
+def _summarize_eightbar_driving(r: dict) -> str:
+    model = "beam model" if r["model"] == "beam" else "2-D FEM"
+    modes = ", ".join(f"{m['f_hz']:.4g}" for m in r.get("modes", []))
+    return (f"driving linkage, {model} ({r['dofs']} DOFs): input stiffness "
+            f"{r['stiffness_n_per_m']:.4g} N/m (pseudo-rigid-body {r['k_in_prbm']:.4g}), "
+            f"transmission d x_R / d s = {r['transmission']:.5g} (rigid linkage "
+            f"{r['rigid_transmission']:.5g}), left/right {r['ratio_left_right']:.6f}, peak "
+            f"stress {r['max_von_mises_pa'] / r['input_m'] / 1e9:.4g} MPa per mm of input"
+            + (f"\nmodes {modes} Hz" if modes else ""))
+
+
 def _run_eightbar_mesh(args) -> dict:
     mesh, sizes = mesh_eightbar_flexure(EightBarFlexureParams(), size_factor=args.size_factor)
     path = write_mesh(mesh, args.out, order=args.order)
@@ -112,6 +130,14 @@ def add_eightbar_commands(eb_sub) -> None:
                    help="continuum: 2-D FEM (default); beam: the reduced beam model (~0.1 s)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(run=_run_eightbar_analyze, summarize=_summarize_eightbar_analyze)
+    p = eb_sub.add_parser("driving", help="the Ch. 6 driving linkage (two lambdas, two "
+                          "suspensions): input stiffness, transmission, stress, modes")
+    p.add_argument("--model", choices=("continuum", "beam"), default="continuum",
+                   help="continuum: 2-D FEM (default); beam: the reduced beam model (~0.1 s)")
+    p.add_argument("--quick", action="store_true", help="continuum: 2x coarser mesh")
+    p.add_argument("--modes", type=int, default=3, help="natural frequencies computed")
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.set_defaults(run=_run_eightbar_driving, summarize=_summarize_eightbar_driving)
     p = eb_sub.add_parser("stage", help="the suspension as a stage: compliance, support "
                           "stiffness, modes and buckling along the stroke")
     p.add_argument("--quick", action="store_true", help="coarse mesh, half stroke mirrored")

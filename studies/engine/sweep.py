@@ -22,7 +22,7 @@ from pathlib import Path
 
 import tomllib
 
-from ..report.figures import legend_outside, pyplot
+from ..report.figures import axis_label, legend_outside, pyplot
 from .executors import make_executor
 from .progress import Progress
 from .store import (
@@ -32,6 +32,7 @@ from .store import (
     case_key,
     flexfem_version,
 )
+from .units import unit_of
 from .validate import check_value, normalise_options
 
 SAMPLE_METHODS = ("lhs", "sobol")
@@ -341,11 +342,12 @@ def run_study(study: Study, store_path, evaluate, workers: int | None = None,
                        wall_time_s=time.perf_counter() - start)
 
 
-def plot_metric(cases, metric: str, parameter: str, path, overlay=()) -> Path:
+def plot_metric(cases, metric: str, parameter: str, path, overlay=(), units=None) -> Path:
     """PNG of ``metric`` against ``parameter`` over the successful ``cases`` (CaseResult),
     one line per combination of the other varied parameters, ``overlay`` metrics (e.g. the
     analytical value) dashed or dotted in the same colour; designs that share no line with
-    another (a space-filling sample) as grey points."""
+    another (a space-filling sample) as grey points. Axis labels carry the units of
+    ``units`` ({name: unit}, see :func:`.units.unit_of`)."""
     plt = pyplot()
     ok = [c for c in cases if c.ok and parameter in c.params and metric in c.metrics]
     if not ok:
@@ -376,8 +378,8 @@ def plot_metric(cases, metric: str, parameter: str, path, overlay=()) -> Path:
                 "o", color="0.35", label=f"{metric}, other designs ({len(scattered)})")
     if len(lines) * (1 + len(overlay)) + bool(scattered) <= 12:
         legend_outside(ax)  # beside the axes: no curve hidden
-    ax.set_xlabel(parameter)
-    ax.set_ylabel(metric)
+    ax.set_xlabel(axis_label(parameter, unit_of(parameter, units)))
+    ax.set_ylabel(axis_label(metric, unit_of(metric, units)))
     ax.grid(True, alpha=0.3)
     fig.tight_layout()
     fig.savefig(path, dpi=120, bbox_inches="tight")

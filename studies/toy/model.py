@@ -19,6 +19,9 @@ import math
 from dataclasses import dataclass, fields
 
 BASE_ELEMENTS = 8  # elements at size_factor = 1
+#: Units of the metrics of :func:`evaluate` (the parameters' names end in their unit).
+UNITS = {"tip_deflection*": "m", "stiffness*": "N/m", "root_stress": "Pa", "h": "m",
+         "dofs": "-"}
 
 
 @dataclass(frozen=True)

@@ -8,7 +8,7 @@ from ..engine.tables import write_rows
 from ..engine.sweep import Study, plot_metric, run_study
 from ..report.comparison import Comparison, rows as comparison_rows
 from ..report.figures import entry
-from .model import CantileverParams, evaluate, tip_deflection_exact
+from .model import UNITS, CantileverParams, evaluate, tip_deflection_exact
 
 PARAGRAPH = ("The study engine checks itself on a closed form: a sweep of the toy cantilever "
              "against its exact deflection, and a convergence study whose observed order and "
@@ -28,7 +28,7 @@ def reproduce(out_dir, quick: bool = False) -> dict:
     result = run_study(study, out / "toy_sweep.sqlite", evaluate, workers=1, progress=False)
     export_csv(result.cases, out / "toy_sweep.csv")
     plot_metric(result.cases, "tip_deflection", "length_m", out / "toy_tip_deflection.png",
-                overlay=["tip_deflection_analytical"])
+                overlay=["tip_deflection_analytical"], units=UNITS)
     figures = [entry("toy_tip_deflection.png", "The study engine's sweep of the toy cantilever: "
                      "tip deflection (trapezoid rule, 8 elements) against length beside the "
                      "closed form, for two widths."),

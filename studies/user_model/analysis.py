@@ -8,8 +8,16 @@ from ...fem import (Fixed, Force, Model, PlaneStrain, PlaneStress, Prescribed, S
                     Traction, compliance_matrix, solve_buckling, solve_harmonic, solve_modes,
                     solve_nonlinear, solve_static)
 from ...geometry.user_model import ModelSpec, load_spec, mesh_geometry
+from .beam_analysis import analyze_beam_model
+from .outputs import groups_of as _groups, stiffness
+
+MODELS = ("continuum", "beam")
 
 _AXES = ("x", "y", "z")
+#: Units of the flat metrics of :func:`evaluate` (a model file's parameters are in its own
+#: units, so they have none here).
+UNITS = {"dofs": "-", "h": "m", "max_von_mises": "Pa", "mean_displacement_*": "m",
+         "reaction_*": "N", "stiffness_*": "N/m"}
 
 
 def formulation(spec: ModelSpec):
@@ -44,40 +52,23 @@ def build_model(spec: ModelSpec, size_factor: float = 1.0) -> Model:
     return Model(mesh, spec.material, formulation(spec), order=spec.mesh.order)
 
 
-def _groups(spec: ModelSpec) -> list[str]:
-    names = [s.group for s in spec.supports] + [load.group for load in spec.loads]
-    return list(dict.fromkeys(names))
-
-
-def stiffness(spec: ModelSpec, mean_displacement: dict) -> dict:
-    """{group: {axis: N/m}} where exactly one force load is applied: force / mean displacement
-    of its group along the force (axis 'x'/'y'/'z' for an axis-aligned force, else 'along')."""
-    forces = [load for load in spec.loads if load.kind == "force"]
-    if len(forces) != 1 or len(spec.loads) != 1:
-        return {}
-    load = forces[0]
-    f = np.array(load.vector)
-    nonzero = np.flatnonzero(f)
-    if len(nonzero) == 0:
-        return {}
-    u = np.asarray(mean_displacement[load.group])
-    direction = f / np.linalg.norm(f)
-    along = float(u @ direction)
-    axis = _AXES[nonzero[0]] if len(nonzero) == 1 else "along"
-    return {load.group: {axis: float(np.linalg.norm(f) / along) if along else float("inf")}}
-
-
 def _in_context(spec: ModelSpec, error: ValueError) -> ValueError:
     """fem errors prefixed by the model file (their own type kept)."""
     return type(error)(f"{spec.source}: {error}")
 
 
-def analyze_model(spec: ModelSpec, size_factor: float = 1.0) -> dict:
+def analyze_model(spec: ModelSpec, size_factor: float = 1.0, model: str = "continuum") -> dict:
     """Solve the model file's problem. Returns (SI): dofs, solver, h (m), max_von_mises (Pa),
     max_von_mises_location (m), mean_displacement {group: vector (m)} of every support and
     load group, reactions {group: vector (N)} of every support, stiffness {group: {axis:
     N/m}} (single force load), frequencies_hz (when [analysis] modes), nonlinear (when
-    [analysis] steps), compliance / buckling / harmonic (when asked; see :func:`_precision`)."""
+    [analysis] steps), compliance / buckling / harmonic (when asked; see :func:`_precision`).
+    ``model="beam"``: the same keys from the model file's declared beams
+    (:func:`~flexfem.studies.user_model.beam_analysis.analyze_beam_model`; size_factor unused)."""
+    if model not in MODELS:
+        raise ValueError(f"{spec.source}: model = {model!r} must be one of {MODELS}")
+    if model == "beam":
+        return analyze_beam_model(spec)
     supports, loads = supports_and_loads(spec)
     try:
         model = build_model(spec, size_factor)
@@ -180,16 +171,21 @@ def flat_metrics(result: dict) -> dict[str, float]:
     return out
 
 
-def evaluate(params: dict | None = None, *, model: str, size_factor: float = 1.0,
-             **options) -> dict[str, float]:
-    """Metrics of the model file ``model`` with ``params`` overriding its [parameters]
-    (SI) and ``options`` its other tables ('material.E': 210e9, 'analysis.modes': 3, ...).
-    Keys: dofs, h (m), max_von_mises (Pa), mean_displacement_<group>_<axis> (m),
-    reaction_<group>_<axis> (N), stiffness_<group>_<axis> (N/m, single force load),
-    f1_hz, f2_hz, ... (Hz)."""
+def evaluate(params: dict | None = None, *, model: str = "continuum", file: str | None = None,
+             size_factor: float = 1.0, **options) -> dict[str, float]:
+    """Metrics of the model file ``file`` with ``params`` overriding its [parameters]
+    (SI) and ``options`` its other tables ('material.E': 210e9, 'analysis.modes': 3, ...),
+    by the continuum FEM or (``model="beam"``) its declared beam model. Keys: dofs, h (m),
+    max_von_mises (Pa), mean_displacement_<group>_<axis> (m), reaction_<group>_<axis> (N),
+    stiffness_<group>_<axis> (N/m, single force load), f1_hz, f2_hz, ... (Hz). A path given
+    as ``model`` (``evaluate(model="guide.toml")``) is the file, analysed by the continuum."""
+    if file is None and model not in MODELS:
+        file, model = model, "continuum"
+    if file is None:
+        raise ValueError("evaluate: file = \"MODEL.toml\" (the model file) is required")
     unknown = [k for k in options if "." not in k]
     if unknown:
         raise ValueError(f"evaluate: unknown option(s) {unknown}; give parameters in params and "
                          "other model-file keys as 'table.key' (e.g. 'material.E')")
-    spec = load_spec(model, {**(params or {}), **options})
-    return flat_metrics(analyze_model(spec, size_factor))
+    spec = load_spec(file, {**(params or {}), **options})
+    return flat_metrics(analyze_model(spec, size_factor, model))

@@ -1,5 +1,6 @@
-"""``flexfem analyze MODEL.toml [--set NAME=VALUE ...] [--json]``: a user's flexure from its
-model file (see docs/model_files.md)."""
+"""``flexfem analyze MODEL.toml [--set NAME=VALUE ...] [--model beam] [--json]``: a user's
+flexure from its model file (see docs/model_files.md); ``--model beam``: the beam model the file
+declares."""
 from ...geometry.user_model import load_spec
 from .analysis import analyze_model
 
@@ -25,7 +26,7 @@ def parse_sets(items) -> dict:
 
 def run(args) -> dict:
     """analyze_model of ``args.model`` with the ``--set`` overrides."""
-    return analyze_model(load_spec(args.model, parse_sets(args.set)))
+    return analyze_model(load_spec(args.model, parse_sets(args.set)), model=args.reduced)
 
 
 def _vector(v, unit: str) -> str:
@@ -79,5 +80,9 @@ def register(subparsers):
     parser.add_argument("--set", action="append", metavar="NAME=VALUE", default=[],
                         help="override a [parameters] entry (SI), or TABLE.KEY such as "
                              "material.E; repeatable")
+    parser.add_argument("--model", dest="reduced", choices=("continuum", "beam"),
+                        default="continuum",
+                        help="continuum: the FEM of the geometry (default); beam: the beam "
+                             "model the file declares ([[beam]], [[rigid]])")
     parser.add_argument("--json", action="store_true", help="print one JSON object")
     parser.set_defaults(run=run, summarize=summarize)

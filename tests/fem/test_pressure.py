@@ -209,3 +209,21 @@ def test_follower_pressure_pushes_harder_than_a_dead_one(soft_cylinder):
     assert (u_follow / u_dead - 1) / strain == pytest.approx(1.0, abs=0.15)  # O(strain) terms
     # the load stiffness makes Newton quadratic: two or three iterations a step
     assert max(result.iterations) <= 3
+
+
+def test_follower_pressure_as_a_held_preload(soft_cylinder):
+    """A follower pressure p preloaded and held, then a follower pressure p / 2 scaled: the
+    equilibrium depends on the total pressure only, so the preloaded state is that of p alone
+    and the end state that of 1.5 p alone (the preload's load stiffness keeps Newton
+    quadratic)."""
+    model = soft_cylinder
+    p = 0.02 * model.material.E
+    result = solve_nonlinear(model, SYMMETRY_2D, [Pressure("inner", p / 2, follower=True)],
+                             steps=2, preloads=[Pressure("inner", p, follower=True)],
+                             preload_steps=4)
+    _, alone = bore(model, p, True)
+    _, total = bore(model, 1.5 * p, True)
+    scale = np.abs(total.u[-1]).max()
+    assert np.abs(result.u[result.preload_end] - alone.u[-1]).max() < 1e-6 * scale
+    assert np.abs(result.u[-1] - total.u[-1]).max() < 1e-6 * scale
+    assert max(result.iterations) <= 3

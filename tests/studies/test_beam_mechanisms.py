@@ -140,17 +140,17 @@ def test_eightbar_beam_matches_the_continuum():
 
 @pytest.mark.slow
 def test_dbma_beam_matches_the_continuum_on_a_slender_design():
-    """l/b = 20: R, k_in, the modes within 3 %; k_out within 7 % (the input-blocked load path
-    through the stubby members is the beam model's weakest, see docs/beam.md)."""
+    """l/b = 20: R, k_in, the working mode and k_out within 3 % (the issue's target; k_out,
+    the input-blocked load path through the stubby input members, is the beam model's weakest,
+    see docs/beam.md)."""
     from flexfem.studies.dbma.beam_report import continuum_metrics
     from flexfem.studies.dbma.beam import analyze_dbma_beam
 
     p = dataclasses.replace(paper_design(), b=0.3e-3, l=6e-3)
     cont = continuum_metrics(p, 1.0)
     beam = analyze_dbma_beam(p)
-    for key in ("R_fem_per_side", "k_in", "fn_working"):
+    for key in ("R_fem_per_side", "k_in", "fn_working", "k_out"):
         assert beam[key] == pytest.approx(cont[key], rel=0.03), key
-    assert beam["k_out"] == pytest.approx(cont["k_out"], rel=0.07)
 
 
 def _beam_as_fem(params: dict, size_factor: float) -> dict:

@@ -59,3 +59,20 @@ def test_a_bare_or_missing_model_is_refused_by_name(tmp_path):
         check_mechanism("model")
     with pytest.raises(ValueError, match="no such model file"):
         model_mechanism("nowhere.toml", tmp_path)
+
+
+def test_a_study_sweeps_the_declared_beam_model(guide, capsys):
+    """options = { model = "beam" }: the same metric names from the model file's [[beam]]
+    declarations, which follow L; a case of the beam model is another case than the
+    continuum's."""
+    study = guide / "study.toml"
+    study.write_text(study.read_text().replace('name = "lengths"\n',
+                                               'name = "lengths"\n[options]\nmodel = "beam"\n'))
+    result = _sweep(guide, capsys)
+    assert result["cases"] == 2 and result["failed"] == 0
+    rows = {row["L"]: row for row in result["results"]}
+    assert all(row["dofs"] < 500 for row in rows.values())  # beams, not the mesh
+    k = {L: row["stiffness_stage_x"] for L, row in rows.items()}
+    assert k[0.04] / k[0.05] == pytest.approx((0.05 / 0.04) ** 3, rel=0.03)
+    study.write_text(study.read_text().replace('model = "beam"', 'model = "shell"'))
+    assert _sweep(guide, capsys)["failed"] == 2

@@ -1,0 +1,21 @@
+"""flexfem.fem.beam3d: a spatial (6 DOFs per node) co-rotational beam model.
+
+    model = Beam3DModel(nodes, elements, Section.rect(2e-3, 10e-3), steel)
+    lin = solve_beam3d_static(model, [Fixed(0)], [NodalLoad(tip, fz=-1.0)])
+    big = solve_beam3d_nonlinear(model, [Fixed(0)], [NodalLoad(tip, fz=-50.0)], steps=20)
+    modes = solve_beam3d_modes(model, [Fixed(0)], n=6)
+    C = compliance3d(model, [Fixed(0)], node=tip)      # 6x6 at the tip
+"""
+from ..beam.assembly import SingularBeamError
+from .modal import Beam3DModes, solve_beam3d_modes
+from .model import (Beam3DModel, Fixed, NodalLoad, Prescribed, RigidLink, Section,
+                    element_frames, rect_torsion_constant)
+from .nonlinear import Beam3DNonlinearResult, NonConvergenceError, solve_beam3d_nonlinear
+from .static import Beam3DState, compliance3d, solve_beam3d_static
+
+__all__ = [
+    "Beam3DModel", "Beam3DModes", "Beam3DNonlinearResult", "Beam3DState", "Fixed",
+    "NodalLoad", "NonConvergenceError", "Prescribed", "RigidLink", "Section",
+    "SingularBeamError", "compliance3d", "element_frames", "rect_torsion_constant",
+    "solve_beam3d_modes", "solve_beam3d_nonlinear", "solve_beam3d_static",
+]

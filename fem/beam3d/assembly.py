@@ -1,0 +1,208 @@
+"""Assembly and the reduced space of unknowns: supports and rigid links eliminated.
+
+A configuration is (u, R): nodal displacements u (n, 3) m and rotation matrices R (n, 3, 3).
+Increments are (du, dw) per node, dw a spatial spin (rad): R <- exp(dw) R. Rigid links are
+exact rigid-body constraints (master-slave elimination, as in the planar model):
+x_s = x_m + R_m (X_s - X_m), R_s = R_m.
+"""
+import numpy as np
+import scipy.sparse as sp
+
+from .corotational import internal_forces, local_deformations
+from .element import basic_stiffness, local_matrices, to_global
+from .model import Beam3DModel, Fixed, NodalLoad, Prescribed
+from .rotations import expm, skew
+
+
+def scatter(model: Beam3DModel, ke: np.ndarray) -> sp.csr_matrix:
+    """Global sparse matrix from element matrices (n_e, 12, 12) in global DOF order."""
+    dofs = (6 * model.elements[:, :, None] + np.arange(6)).reshape(-1, 12)
+    rows = np.broadcast_to(dofs[:, :, None], ke.shape).ravel()
+    cols = np.broadcast_to(dofs[:, None, :], ke.shape).ravel()
+    n = model.n_dofs
+    return sp.csr_matrix((ke.ravel(), (rows, cols)), shape=(n, n))
+
+
+def gather(model: Beam3DModel, fe: np.ndarray) -> np.ndarray:
+    """Global vector from element vectors (n_e, 12)."""
+    dofs = (6 * model.elements[:, :, None] + np.arange(6)).reshape(-1)
+    return np.bincount(dofs, weights=fe.ravel(), minlength=model.n_dofs)
+
+
+def mass_matrix(model: Beam3DModel, u=None, R=None) -> sp.csr_matrix:
+    """Consistent global mass matrix (kg, kg m, kg m^2), point masses included; at a
+    configuration (u, R) the element masses turn with their co-rotated frames and the point
+    masses' inertia with their nodes (default: undeformed)."""
+    frames = model.frames
+    if R is not None:
+        frames = local_deformations(model, model.nodes + u, R)[1][2]
+    E = to_global(frames)
+    _, M = local_matrices(model)
+    Mg = scatter(model, np.einsum("eij,ejk,elk->eil", E, M, E))
+    rows, cols, vals = [], [], []
+    for node, (m, jx, jy, jz) in model.point_masses.items():
+        k = 6 * int(node)
+        J = np.diag([jx, jy, jz]) if R is None else R[node] @ np.diag([jx, jy, jz]) @ R[node].T
+        block = np.zeros((6, 6))
+        block[:3, :3], block[3:, 3:] = m * np.eye(3), J
+        r, c = np.meshgrid(np.arange(k, k + 6), np.arange(k, k + 6), indexing="ij")
+        rows.append(r.ravel()), cols.append(c.ravel()), vals.append(block.ravel())
+    n = model.n_dofs
+    if rows:
+        Mg = Mg + sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows),
+                                                       np.concatenate(cols))), shape=(n, n))
+    return Mg.tocsr()
+
+
+def load_vector(model: Beam3DModel, loads) -> np.ndarray:
+    """Full-load vector (N, N m) from NodalLoad objects."""
+    f = np.zeros(model.n_dofs)
+    for load in loads:
+        if not isinstance(load, NodalLoad):
+            raise ValueError(f"loads: {load!r} is not a NodalLoad")
+        if not 0 <= int(load.node) < model.n_nodes:
+            raise ValueError(f"loads: node {load.node} outside 0..{model.n_nodes - 1}")
+        f[6 * int(load.node):6 * int(load.node) + 6] += load.vector
+    return f
+
+
+class Space:
+    """Unknowns: the DOF increments of independent (non-slave) nodes that are not held.
+    Held DOFs move by the load factor's increment times their value (a prescribed
+    rotation: a spin about that global axis); slave nodes follow their master rigidly."""
+
+    def __init__(self, model: Beam3DModel, supports):
+        self.model = model
+        n = model.n_dofs
+        values = np.full(n, np.nan)
+        for sup in supports:
+            if not isinstance(sup, (Fixed, Prescribed)):
+                raise ValueError(f"supports: {sup!r} is not a Fixed or Prescribed")
+            for node, dof, value in sup.prescribed():
+                if not 0 <= node < model.n_nodes:
+                    raise ValueError(f"supports: node {node} outside 0..{model.n_nodes - 1}")
+                if model.master_of[node] >= 0:
+                    raise ValueError(f"supports: node {node} is a rigid-link slave; "
+                                     f"support its master {model.master_of[node]}")
+                values[6 * node + dof] = value
+        self.slaves = np.flatnonzero(model.master_of >= 0)
+        self.masters = model.master_of[self.slaves]
+        self.arm = model.nodes[self.slaves] - model.nodes[self.masters]
+        self.held = np.flatnonzero(~np.isnan(values))
+        self.p_hat = values[self.held]
+        dependent = np.zeros(n, dtype=bool)
+        dependent[(6 * self.slaves[:, None] + np.arange(6)).ravel()] = True
+        dependent[self.held] = True
+        self.free = np.flatnonzero(~dependent)
+        self.n = len(self.free)
+        if self.n == 0:
+            raise ValueError("supports: every DOF is held; nothing to solve")
+        self.independent = np.concatenate([self.free, self.held])
+        self._col_free = -np.ones(n, dtype=int)
+        self._col_free[self.free] = np.arange(self.n)
+        self._col_held = -np.ones(n, dtype=int)
+        self._col_held[self.held] = np.arange(len(self.held))
+
+    def reference(self):
+        """The undeformed configuration (u, R)."""
+        n = self.model.n_nodes
+        return np.zeros((n, 3)), np.tile(np.eye(3), (n, 1, 1))
+
+    def update(self, u, R, dz, dlam):
+        """New (u, R) after free increments dz and a load-factor increment dlam."""
+        inc = np.zeros(self.model.n_dofs)
+        inc[self.free] = dz
+        inc[self.held] = dlam * self.p_hat
+        inc = inc.reshape(-1, 6)
+        u = u + inc[:, :3]
+        R = np.einsum("nij,njk->nik", expm(inc[:, 3:]), R)
+        if len(self.slaves):
+            Rm = R[self.masters]
+            u[self.slaves] = u[self.masters] + np.einsum("sij,sj->si", Rm, self.arm) - self.arm
+            R[self.slaves] = Rm
+        return u, R
+
+    def jacobian(self, R):
+        """Sparse d(full increments)/dz (T) and d/dp (T_p, the held DOFs) at rotations R."""
+        rows, cols = [self.independent], [self.independent]
+        vals = [np.ones(len(self.independent))]
+        if len(self.slaves):
+            b = np.einsum("sij,sj->si", R[self.masters], self.arm)
+            Sb = -skew(b)  # du_s = du_m + dw_m x b = du_m - S(b) dw_m
+            sd, md = 6 * self.slaves, 6 * self.masters
+            for k in range(6):
+                rows.append(sd + k)
+                cols.append(md + k)
+                vals.append(np.ones(len(sd)))
+            for i in range(3):
+                for j in range(3):
+                    rows.append(sd + i)
+                    cols.append(md + 3 + j)
+                    vals.append(Sb[:, i, j])
+        rows, cols, vals = np.concatenate(rows), np.concatenate(cols), np.concatenate(vals)
+        n = self.model.n_dofs
+        out = []
+        for column, width in ((self._col_free, self.n), (self._col_held, len(self.held))):
+            k = column[cols]
+            keep = k >= 0
+            out.append(sp.csr_matrix((vals[keep], (rows[keep], k[keep])), shape=(n, width)))
+        return out[0], out[1]
+
+    def constraint_tangent(self, R, r_full) -> sp.csr_matrix:
+        """Full (n_dofs, n_dofs) second-order term of the links: the slave force r_s turns
+        with the arm b = R_m (X_s - X_m), K = S(r_s) S(b) on the master's spins."""
+        n = self.model.n_dofs
+        if not len(self.slaves):
+            return sp.csr_matrix((n, n))
+        b = np.einsum("sij,sj->si", R[self.masters], self.arm)
+        rs = r_full.reshape(-1, 6)[self.slaves, :3]
+        blocks = skew(rs) @ skew(b)
+        md = 6 * self.masters + 3
+        rows = np.broadcast_to(md[:, None, None] + np.arange(3)[None, :, None], blocks.shape)
+        cols = np.broadcast_to(md[:, None, None] + np.arange(3)[None, None, :], blocks.shape)
+        return sp.csr_matrix((blocks.ravel(), (rows.ravel(), cols.ravel())), shape=(n, n))
+
+
+class Assembler:
+    """Internal force, residual and reduced tangent of a model at a configuration."""
+
+    def __init__(self, model: Beam3DModel, supports, loads):
+        self.model = model
+        self.space = Space(model, supports)
+        self.f_ext = load_vector(model, loads)
+        self.Kb = basic_stiffness(model)
+
+    def evaluate(self, u, R, lam, tangent=True):
+        """(r_full, rz, Kz, T, T_p, K_full, f_l) with r = f_int - lam f_ext (N, N m)."""
+        x = self.model.nodes + u
+        fe, ke, fl = internal_forces(self.model, self.Kb, x, R, tangent)
+        r = gather(self.model, fe) - lam * self.f_ext
+        T, Tp = self.space.jacobian(R)
+        rz = T.T @ r
+        if not tangent:
+            return r, rz, None, T, Tp, None, fl
+        K = scatter(self.model, ke) + self.space.constraint_tangent(R, r)
+        Kz = (T.T @ K @ T).tocsc()
+        return r, rz, Kz, T, Tp, K, fl
+
+
+def symmetric_tangent(asm: Assembler, about=None):
+    """(K_z, T, u, R): the reduced tangent about a converged state ``about`` (a Beam3DState
+    of the same model, supports and loads; default undeformed), symmetric. ValueError if
+    it is not symmetric (to 1e-6, Jacobi-scaled): at equilibrium it is only under
+    dead forces; dead moments about fixed axes are not conservative for finite rotations,
+    and then modes and compliance about the state are not defined by a symmetric K."""
+    if about is None:
+        (u, R), lam = asm.space.reference(), 0.0
+    else:
+        if getattr(about, "model", None) is not asm.model:
+            raise ValueError("about: a Beam3DState of this model is needed")
+        u, R, lam = about.u, about.R, about.load_factor
+    _, _, K, T, _, _, _ = asm.evaluate(u, R, lam)
+    d = sp.diags(1.0 / np.sqrt(np.abs(K.diagonal())))
+    skew_part = abs(d @ (K - K.T) @ d).max()  # Jacobi-scaled: DOFs of any stiffness compare
+    if skew_part > 1e-6:
+        raise ValueError(f"about: the tangent is not symmetric ({skew_part:.1e}, Jacobi-"
+                         "scaled): applied moments at a rotated state, or a state that is "
+                         "not converged for these supports and loads")
+    return (0.5 * (K + K.T)).tocsc(), T, u, R

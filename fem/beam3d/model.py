@@ -1,0 +1,274 @@
+"""Spatial beam models: sections, nodes and elements, rigid links, supports and loads.
+
+    model = Beam3DModel(nodes, elements, Section.rect(2e-3, 10e-3), steel)
+
+DOFs per node: (u_x, u_y, u_z) displacement (m) and (r_x, r_y, r_z) rotation (rad, about the
+global axes; at large rotations the nodes carry rotation matrices, see nonlinear.py).
+Each element's local axes: x along it (node 1 to node 2), z the component of its
+``orientation`` vector normal to x (default global z; global x for an element along z),
+y = z cross x. A planar model in the x-y plane then has local z = global z and bends in
+plane about local z (Iz), as the planar model (fem/beam) does with its I.
+"""
+from dataclasses import dataclass
+import math
+import numbers
+
+import numpy as np
+
+from ..materials import Material
+
+DOF_NAMES = {"x": 0, "y": 1, "z": 2, "rx": 3, "ry": 4, "rz": 5}
+ALL_DOFS = ("x", "y", "z", "rx", "ry", "rz")
+
+
+def _positive(name, value, allow_none=False):
+    if value is None and allow_none:
+        return None
+    ok = isinstance(value, numbers.Real) and not isinstance(value, bool)
+    if not (ok and math.isfinite(value) and value > 0):
+        raise ValueError(f"{name} = {value!r} must be a finite number > 0")
+    return float(value)
+
+
+def dof_index(dof) -> int:
+    """Index 0..5 of a DOF given as 0..5 or 'x', 'y', 'z', 'rx', 'ry', 'rz'."""
+    if isinstance(dof, str) and dof.lower() in DOF_NAMES:
+        return DOF_NAMES[dof.lower()]
+    if isinstance(dof, (int, np.integer)) and not isinstance(dof, bool) and 0 <= dof <= 5:
+        return int(dof)
+    raise ValueError(f"dof = {dof!r} must be 0..5 or one of {', '.join(ALL_DOFS)}")
+
+
+def rect_torsion_constant(a, b):
+    """Saint-Venant torsion constant J (m^4) of a x b rectangles (arrays broadcast): the
+    series solution for rectangular bars (Timoshenko & Goodier, Theory of Elasticity, 3rd
+    ed., 1970), 20 odd terms."""
+    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    a, b = np.maximum(a, b), np.minimum(a, b)
+    n = np.arange(1, 40, 2).reshape((-1,) + (1,) * a.ndim)
+    series = np.sum(np.tanh(n * np.pi * a / (2 * b)) / n**5, axis=0)
+    J = a * b**3 / 3.0 * (1.0 - 192.0 / np.pi**5 * (b / a) * series)
+    return float(J) if J.ndim == 0 else J
+
+
+def rect_depth(t0, t1, tm, xi):
+    """Depth (m) at fractions xi (k,) of elements with end depths t0, t1 (n_e,) and mid
+    depth tm (n_e,; NaN: linear taper): (n_e, k), the planar model's tapers."""
+    x = np.asarray(xi, dtype=float)[None, :]
+    t0, t1, tm = t0[:, None], t1[:, None], tm[:, None]
+    quadratic = t0 * (1 - x) * (1 - 2 * x) + 4 * tm * x * (1 - x) + t1 * x * (2 * x - 1)
+    return np.where(np.isfinite(tm), quadratic, t0 + (t1 - t0) * x)
+
+
+@dataclass(frozen=True)
+class Section:
+    """Cross-section of one element: area ``A`` (m^2), second moments ``Iy`` = int z^2 dA
+    and ``Iz`` = int y^2 dA (m^4, about the local y and z axes), torsion constant ``J``
+    (m^4), optional shear areas ``Ay``, ``Az`` (m^2; None: no shear deformation in that
+    direction, Euler-Bernoulli). Prismatic, or a rectangle tapered along local y
+    (``Section.rect``; A, Iy, Iz, J are then those at the element's first node)."""
+
+    A: float
+    Iy: float
+    Iz: float
+    J: float
+    Ay: float | None = None
+    Az: float | None = None
+    taper: tuple | None = None  # (depth_y at node 1, at node 2, at mid or NaN, depth_z)
+
+    def __post_init__(self):
+        for name in ("A", "Iy", "Iz", "J"):
+            _positive(name, getattr(self, name))
+        _positive("Ay", self.Ay, allow_none=True)
+        _positive("Az", self.Az, allow_none=True)
+
+    @classmethod
+    def rect(cls, depth_y: float, depth_z: float, shear: bool = False,
+             depth_y_end: float | None = None, depth_y_mid: float | None = None):
+        """Rectangle of ``depth_y`` along local y by ``depth_z`` along local z (m); depth_y
+        tapered linearly to ``depth_y_end`` at the second node, or quadratically through
+        ``depth_y_mid`` too (the planar model's tapers); shear areas 5/6 A (of the mid-length
+        section) if ``shear``."""
+        b, h = _positive("depth_y", depth_y), _positive("depth_z", depth_z)
+        end = _positive("depth_y_end", depth_y_end, allow_none=True)
+        mid = _positive("depth_y_mid", depth_y_mid, allow_none=True)
+        taper = None
+        if end is not None or mid is not None:
+            end = b if end is None else end
+            taper = (b, end, math.nan if mid is None else mid, h)
+        t_mid = b if taper is None else float(rect_depth(*(np.array([v]) for v in taper[:3]),
+                                                          [0.5])[0, 0])
+        k = 5.0 / 6.0 * t_mid * h if shear else None
+        return cls(A=b * h, Iy=b * h**3 / 12.0, Iz=h * b**3 / 12.0,
+                   J=float(rect_torsion_constant(b, h)), Ay=k, Az=k, taper=taper)
+
+    @property
+    def Ip(self) -> float:
+        """Polar second moment Iy + Iz (m^4): the section's torsional inertia per rho."""
+        return self.Iy + self.Iz
+
+
+@dataclass(frozen=True)
+class RigidLink:
+    """Nodes ``slaves`` move rigidly with node ``master`` (exact rigid-body constraint)."""
+
+    master: int
+    slaves: tuple
+
+    def __post_init__(self):
+        object.__setattr__(self, "slaves", tuple(int(s) for s in np.atleast_1d(self.slaves)))
+        object.__setattr__(self, "master", int(self.master))
+
+
+@dataclass(frozen=True)
+class Fixed:
+    """Hold ``dofs`` (default all six) of ``nodes`` at zero."""
+
+    nodes: tuple
+    dofs: tuple = ALL_DOFS
+
+    def prescribed(self):
+        for n in np.atleast_1d(self.nodes):
+            for d in np.atleast_1d(self.dofs):
+                yield int(n), dof_index(d.item() if hasattr(d, "item") else d), 0.0
+
+
+@dataclass(frozen=True)
+class Prescribed:
+    """Prescribe DOF ``dof`` of ``node`` to ``value`` (m or rad) times the load factor. A
+    prescribed rotation is applied as a rotation about that fixed global axis."""
+
+    node: int
+    dof: object
+    value: float
+
+    def prescribed(self):
+        yield int(self.node), dof_index(self.dof), float(self.value)
+
+
+@dataclass(frozen=True)
+class NodalLoad:
+    """Dead force (fx, fy, fz) in N and moment (mx, my, mz) in N m about the global axes on
+    ``node``, times the load factor."""
+
+    node: int
+    fx: float = 0.0
+    fy: float = 0.0
+    fz: float = 0.0
+    mx: float = 0.0
+    my: float = 0.0
+    mz: float = 0.0
+
+    @property
+    def vector(self) -> np.ndarray:
+        return np.array([self.fx, self.fy, self.fz, self.mx, self.my, self.mz], dtype=float)
+
+
+def element_frames(nodes, elements, orientation=None) -> np.ndarray:
+    """(n_e, 3, 3) local axes (columns x, y, z) of each element; ``orientation``: one
+    vector or one per element (n_e, 3) towards which local z points (default global z,
+    or global x for an element along global z)."""
+    d = nodes[elements[:, 1]] - nodes[elements[:, 0]]
+    ex = d / np.linalg.norm(d, axis=1)[:, None]
+    if orientation is None:
+        ref = np.tile([0.0, 0.0, 1.0], (len(ex), 1))
+        along_z = np.abs(ex[:, 2]) > 1.0 - 1e-9
+        ref[along_z] = [1.0, 0.0, 0.0]
+    else:
+        ref = np.broadcast_to(np.asarray(orientation, dtype=float), ex.shape)
+    ez = ref - np.einsum("ei,ei->e", ref, ex)[:, None] * ex
+    norm = np.linalg.norm(ez, axis=1)
+    bad = ~(norm > 1e-9 * np.maximum(np.linalg.norm(ref, axis=1), 1e-300))
+    if np.any(bad):
+        raise ValueError(f"orientation: parallel to elements {np.flatnonzero(bad).tolist()} "
+                         "(or zero); give a vector off their axis")
+    ez = ez / norm[:, None]
+    ey = np.cross(ez, ex)
+    return np.stack([ex, ey, ez], axis=2)
+
+
+class Beam3DModel:
+    """Spatial beam model. nodes (n, 3) m; elements (n_e, 2) node indices; sections: one
+    Section or one per element; material: Material (E, nu, rho); orientation: local z
+    reference (see element_frames); rigid_links: RigidLink sequence; point_masses:
+    {node: (mass kg, Jx, Jy, Jz kg m^2 about global axes through the node)}."""
+
+    def __init__(self, nodes, elements, sections, material: Material, orientation=None,
+                 rigid_links=(), point_masses=None):
+        self.nodes = np.asarray(nodes, dtype=float)
+        if self.nodes.ndim != 2 or self.nodes.shape[1] != 3 or not np.all(np.isfinite(self.nodes)):
+            raise ValueError(f"nodes must be a finite (n, 3) array, got shape {self.nodes.shape}")
+        self.elements = np.asarray(elements, dtype=int).reshape(-1, 2)
+        n = len(self.nodes)
+        if self.elements.size and (self.elements.min() < 0 or self.elements.max() >= n):
+            raise ValueError(f"elements refer to nodes outside 0..{n - 1}")
+        if not isinstance(material, Material):
+            raise ValueError(f"material = {material!r} must be a flexfem Material")
+        self.material = material
+        secs = [sections] * len(self.elements) if isinstance(sections, Section) else list(sections)
+        if len(secs) != len(self.elements) or not all(isinstance(s, Section) for s in secs):
+            raise ValueError(f"sections: need one Section or {len(self.elements)} Sections")
+        self.sections = secs
+        d = self.nodes[self.elements[:, 1]] - self.nodes[self.elements[:, 0]]
+        self.lengths = np.linalg.norm(d, axis=1)
+        if np.any(self.lengths <= 0):
+            bad = np.flatnonzero(self.lengths <= 0).tolist()
+            raise ValueError(f"elements {bad} have zero length")
+        self.frames = element_frames(self.nodes, self.elements, orientation)
+        self.rigid_links = tuple(rigid_links)
+        self.point_masses = dict(point_masses or {})
+        self._check_links()
+
+    def _check_links(self):
+        n = len(self.nodes)
+        self.master_of = -np.ones(n, dtype=int)
+        for link in self.rigid_links:
+            if not isinstance(link, RigidLink):
+                raise ValueError(f"rigid_links: {link!r} is not a RigidLink")
+            for node in (link.master,) + link.slaves:
+                if not 0 <= node < n:
+                    raise ValueError(f"rigid_links: node {node} outside 0..{n - 1}")
+            for s in link.slaves:
+                if s == link.master or self.master_of[s] >= 0:
+                    raise ValueError(f"rigid_links: node {s} is slaved twice or to itself")
+                self.master_of[s] = link.master
+        if np.any(self.master_of[self.master_of[self.master_of >= 0]] >= 0):
+            raise ValueError("rigid_links: a master node is itself a slave; use one master")
+        for node, value in self.point_masses.items():
+            if not 0 <= int(node) < n or len(value) != 4 or min(value) < 0:
+                raise ValueError(f"point_masses[{node!r}] = {value!r} must be (m, Jx, Jy, Jz) "
+                                 ">= 0 on an existing node")
+
+    @property
+    def n_nodes(self) -> int:
+        return len(self.nodes)
+
+    @property
+    def n_dofs(self) -> int:
+        return 6 * len(self.nodes)
+
+    @property
+    def n_elements(self) -> int:
+        return len(self.elements)
+
+    def section_table(self) -> dict:
+        """Shear areas Ay, Az (m^2, inf where shear is off) as (n_e,) arrays."""
+        shear = lambda name: np.array([math.inf if getattr(s, name) is None else getattr(s, name)
+                                       for s in self.sections], dtype=float)
+        return {"Ay": shear("Ay"), "Az": shear("Az")}
+
+    def section_at(self, xi) -> dict:
+        """A, Iy, Iz, J, Ip (m^2, m^4) of every element at fractions ``xi`` (k,) along it,
+        each (n_e, k)."""
+        xi = np.atleast_1d(np.asarray(xi, dtype=float))
+        get = lambda name: np.array([getattr(s, name) for s in self.sections], dtype=float)
+        out = {k: np.repeat(get(k)[:, None], len(xi), axis=1) for k in ("A", "Iy", "Iz", "J")}
+        tapered = [e for e, s in enumerate(self.sections) if s.taper is not None]
+        if tapered:
+            t0, t1, tm, w = np.array([self.sections[e].taper for e in tapered]).T
+            t = rect_depth(t0, t1, tm, xi)
+            w = w[:, None]
+            out["A"][tapered], out["Iy"][tapered] = t * w, t * w**3 / 12.0
+            out["Iz"][tapered], out["J"][tapered] = w * t**3 / 12.0, rect_torsion_constant(t, w)
+        out["Ip"] = out["Iy"] + out["Iz"]
+        return out

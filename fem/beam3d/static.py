@@ -1,0 +1,95 @@
+"""Linear static analysis and the compliance matrix of a node of a spatial beam model.
+
+    res = solve_beam3d_static(model, [Fixed(0)], [NodalLoad(tip, fz=-1.0)])
+    C = compliance3d(model, [Fixed(0)], node=tip)     # 6x6 (x, y, z, rx, ry, rz)
+"""
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..beam.assembly import Factor
+from .assembly import Assembler, symmetric_tangent
+from .corotational import kinematics
+from .model import Beam3DModel
+from .rotations import expm, logm
+
+
+@dataclass(frozen=True, eq=False)
+class Beam3DState:
+    """One equilibrium state. u : (n_nodes, 3) displacement (m); R : (n_nodes, 3, 3) nodal
+    rotation matrices; reactions : {node: (F_x, F_y, F_z N, M_x, M_y, M_z N m)} at
+    supported nodes; local_forces : (n_e, 7) N (N, tension > 0) and the two ends' moments
+    (N m, element axes: torsion, bending about y, about z) acting on the element."""
+
+    model: Beam3DModel
+    u: np.ndarray
+    R: np.ndarray
+    reactions: dict
+    local_forces: np.ndarray
+    load_factor: float = 1.0
+    info: dict = field(default_factory=dict)
+
+    @property
+    def rotation(self) -> np.ndarray:
+        """(n_nodes, 3) rotation vectors (rad; angle <= pi) of the nodal rotations."""
+        return logm(self.R)
+
+    @property
+    def q(self) -> np.ndarray:
+        """(n_nodes, 6): displacement (m) and rotation vector (rad) per node."""
+        return np.hstack([self.u, self.rotation])
+
+    @property
+    def axial_force(self) -> np.ndarray:
+        """(n_e,) N, tension > 0."""
+        return self.local_forces[:, 0]
+
+
+def make_state(asm: Assembler, u, R, r, lam, fl, T, Tp, info=None) -> Beam3DState:
+    """Package a state: reactions from the residual r = f_int - lam f_ext."""
+    space = asm.space
+    rr = np.zeros(asm.model.n_dofs)
+    rr[space.free], rr[space.held] = T.T @ r, Tp.T @ r
+    rr = rr.reshape(-1, 6)
+    reactions = {int(k): rr[k].copy() for k in np.unique(space.held // 6)}
+    return Beam3DState(model=asm.model, u=u.copy(), R=R.copy(), reactions=reactions,
+                       local_forces=fl.copy(), load_factor=float(lam), info=dict(info or {}))
+
+
+def solve_beam3d_static(model: Beam3DModel, supports, loads=()) -> Beam3DState:
+    """Linear (small-displacement) static solve for the loads (NodalLoad) and the supports'
+    values (Fixed, Prescribed) at load factor 1. Element forces are the linear ones; R is
+    exp of the linear rotation vector."""
+    asm = Assembler(model, supports, loads)
+    space = asm.space
+    u0, R0 = space.reference()
+    _, _, K, T, Tp, Kfull, _ = asm.evaluate(u0, R0, 0.0)
+    p = space.p_hat
+    rhs = T.T @ (asm.f_ext - Kfull @ (Tp @ p))
+    z = Factor(K).solve(rhs)
+    q = T @ z + Tp @ p
+    r = Kfull @ q - asm.f_ext
+    q = q.reshape(-1, 6)
+    _, _, Bg, _ = kinematics(model, model.nodes, R0)
+    qe = q[model.elements].reshape(-1, 12)
+    fl = np.einsum("eij,ej->ei", asm.Kb, np.einsum("eij,ej->ei", Bg, qe))
+    return make_state(asm, q[:, :3], expm(q[:, 3:]), r, 1.0, fl, T, Tp,
+                      {"n_unknowns": space.n})
+
+
+def compliance3d(model: Beam3DModel, supports, node: int, about=None, loads=()) -> np.ndarray:
+    """6x6 compliance of ``node``'s (x, y, z, r_x, r_y, r_z) under (F_x, F_y, F_z, M_x,
+    M_y, M_z) with the supports held (m/N, 1/N, rad/(N m)); about: a converged Beam3DState
+    of the same supports and ``loads`` (tangent compliance, stress stiffening included;
+    rotations as spins about the global axes), default undeformed. The node may be a
+    rigid-link slave; none of its DOFs may be held."""
+    if not (isinstance(node, (int, np.integer)) and 0 <= node < model.n_nodes):
+        raise ValueError(f"node = {node!r} must be a node index in 0..{model.n_nodes - 1}")
+    asm = Assembler(model, supports, loads)
+    K, T, _, _ = symmetric_tangent(asm, about)
+    rows = T[6 * int(node):6 * int(node) + 6]
+    if np.any(abs(rows).sum(axis=1) == 0):
+        raise ValueError(f"node = {node}: a DOF of it is held by a support; its compliance "
+                         "is zero there")
+    X = Factor(K).solve(rows.T.toarray())
+    return np.asarray(rows @ X)

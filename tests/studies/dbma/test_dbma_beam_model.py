@@ -1,0 +1,119 @@
+"""The DBMA's beam model: its input member and pad against beam theory's closed form, and the
+whole model against the 2-D continuum on designs other than the paper's (docs/beam.md,
+"DBMA: the pad block")."""
+import dataclasses
+
+import numpy as np
+import pytest
+from flexfem.fem import Material
+from flexfem.fem.beam import BeamModel, Fixed, NodalLoad, solve_beam_static
+from flexfem.geometry.beam_layout import ROOT_EXTENSION
+from flexfem.geometry.dbma import beam as gb
+from flexfem.geometry.dbma.drawing import DBMALayout, quarter_rects
+from flexfem.geometry.dbma.params import paper_design
+
+MM = 1e-3
+
+
+def _member_alone(p, layout, root_extension):
+    """The right input member and its pad alone, from the generator: (model, face, ends)."""
+    bld, links = gb._Builder(), []
+    q = quarter_rects(p, layout)
+    face = gb._input_member(bld, links, p, layout, q[0], q[1], 1, [], root_extension)
+    model = BeamModel(np.vstack(bld.nodes), np.vstack(bld.elements), bld.sections,
+                      Material("steel", p.E, p.nu, p.rho), shear=True, rigid_links=links)
+    xc = (q[0].x0 + q[0].x1) / 2
+    ends = [int(np.argmin(np.hypot(*(model.nodes - (xc, y)).T))) for y in (p.ll, -p.ll)]
+    return model, face, ends
+
+
+@pytest.mark.parametrize("a, pad_height", [(10 * MM, 10 * MM), (7 * MM, 12 * MM)])
+def test_input_member_is_a_timoshenko_cantilever_from_the_pad_block(a, pad_height):
+    """Equal forces P on both ends of the member (the load of the output stiffness, symmetric
+    about the actuator axis): each half is a Timoshenko cantilever of length ll - y0 from the
+    block, y0 = pad_height / 2 - 0.38 a, plus the pad's axial compliance under 2 P:
+    u = P L^3 / (3 E I) + P L / (kappa G A) + 2 P pad_depth / (E d pad_height)."""
+    p = dataclasses.replace(paper_design(), a=a)
+    layout = DBMALayout(pad_height=pad_height)
+    model, face, ends = _member_alone(p, layout, ROOT_EXTENSION)
+    P = 3.0
+    s = solve_beam_static(model, [Fixed(face)], [NodalLoad(n, fx=P) for n in ends])
+    L = p.ll - (pad_height / 2 - ROOT_EXTENSION * a)
+    I, A, G = p.d * a ** 3 / 12, p.d * a, p.E / (2 * (1 + p.nu))
+    expected = (P * L ** 3 / (3 * p.E * I) + P * L / (5 / 6 * G * A)
+                + 2 * P * layout.pad_depth / (p.E * p.d * pad_height))
+    for n in ends:
+        assert s.q[n, 0] == pytest.approx(expected, rel=1e-9)
+
+
+def test_a_pad_lower_than_the_root_extension_is_a_point_support():
+    """pad_height / 2 <= 0.38 a: the member's halves meet at one node on the actuator axis
+    (cantilevers of length ll), the root extension cannot reach past the block's middle."""
+    p = dataclasses.replace(paper_design(), a=14 * MM)
+    layout = DBMALayout(pad_height=6 * MM)
+    model, face, ends = _member_alone(p, layout, ROOT_EXTENSION)
+    s = solve_beam_static(model, [Fixed(face)], [NodalLoad(n, fx=1.0) for n in ends])
+    I, A, G = p.d * p.a ** 3 / 12, p.d * p.a, p.E / (2 * (1 + p.nu))
+    L = p.ll
+    expected = (L ** 3 / (3 * p.E * I) + L / (5 / 6 * G * A)
+                + 2 * layout.pad_depth / (p.E * p.d * layout.pad_height))
+    assert s.q[ends[0], 0] == pytest.approx(expected, rel=1e-9)
+
+
+def test_no_root_extension_makes_the_member_rigid_over_the_whole_pad():
+    p = paper_design()
+    layout = DBMALayout()
+    model, face, ends = _member_alone(p, layout, 0.0)
+    s = solve_beam_static(model, [Fixed(face)], [NodalLoad(n, fx=1.0) for n in ends])
+    I, A, G = p.d * p.a ** 3 / 12, p.d * p.a, p.E / (2 * (1 + p.nu))
+    L = p.ll - layout.pad_height / 2
+    expected = (L ** 3 / (3 * p.E * I) + L / (5 / 6 * G * A)
+                + 2 * layout.pad_depth / (p.E * p.d * layout.pad_height))
+    assert s.q[ends[1], 0] == pytest.approx(expected, rel=1e-9)
+
+
+# designs other than the paper's: slender hinges, a thinner input member, a taller pad, a
+# smaller hinge offset h (R ~ 30), long arms with thick hinges (l/b = 4.4)
+OTHER_DESIGNS = [
+    ({"b": 0.3 * MM, "l": 6 * MM}, {}),
+    ({"a": 7 * MM}, {}),
+    ({}, {"pad_height": 14 * MM, "arm_gap": 9 * MM}),
+    ({"h": 1.2 * MM}, {}),
+    ({"e": 30 * MM, "b": 1.0 * MM}, {}),
+]
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("params, layout", OTHER_DESIGNS)
+def test_dbma_beam_model_against_the_continuum(params, layout):
+    """R, k_in and the working frequency within 3 % of the 2-D continuum (the target); k_out
+    within 5 %: the beam is 0-4 % too soft on these designs, the deep input member next to
+    its pad block (docs/beam.md, "DBMA: the pad block", has the table and the designs
+    where it is worse)."""
+    from flexfem.fem import Force, solve_static
+    from flexfem.studies.dbma import analysis as fem
+    from flexfem.studies.dbma.beam import analyze_dbma_beam
+
+    p = dataclasses.replace(paper_design(), **params)
+    lay = DBMALayout(**layout)
+    model = fem.build_model(p, lay, 2, 1.0)
+    static = fem.static_response(model, 100.0)
+    probe = solve_static(model, fem.modal_supports(), [Force("output", (0.0, 100.0))])
+    cont = {"R_fem_per_side": static["R_fem_per_side"], "k_in": static["k_in"],
+            "k_out": 100.0 / float(probe.mean_displacement("output")[1]),
+            "fn_working": fem.modal_response(model, 6)[0]["fn_working"]}
+    beam = analyze_dbma_beam(p, lay)
+    for key in ("R_fem_per_side", "k_in", "fn_working"):
+        assert beam[key] == pytest.approx(cont[key], rel=0.03), key
+    assert beam["k_out"] == pytest.approx(cont["k_out"], rel=0.05)
+
+
+def test_the_notch_deficit_grows_with_t_over_r():
+    """A circular notch between two blocks: the beam model (Paros-Weisbord's plane-section
+    integral along the profile) is stiffer than the 2-D continuum, outside the 3 % band, and
+    more so for the thicker notch (t/R = 0.67 against 0.2): docs/beam.md."""
+    from flexfem.studies.dbma.beam_slenderness import TRUST_LIMIT, slenderness_rows
+
+    rows = {r["l_over_b"]: r for r in slenderness_rows((3.0, 10.0), ("circular",))}
+    thick, thin = rows[3.0]["bending_error"], rows[10.0]["bending_error"]
+    assert thick < thin < -TRUST_LIMIT

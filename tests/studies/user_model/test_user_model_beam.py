@@ -1,0 +1,211 @@
+"""The beam model a model file declares ([[beam]], [[rigid]]): the examples' parallel guide and
+cross pivot against closed forms (24 E I / L^3 and the exact two-leaf frame; 8 E I / L) and
+against the continuum FEM of the same file; the same keys from analyze, evaluate, the CLI and a
+study; errors that name the file and line."""
+import argparse
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from flexfem.geometry.user_model import load_spec
+from flexfem.studies.engine.validate import normalise_options
+from flexfem.studies.mechanisms import get_evaluator, model_mechanism
+from flexfem.studies.user_model import analyze_model, cli, evaluate
+
+EXAMPLES = Path(__file__).resolve().parents[3] / "examples"
+GUIDE = EXAMPLES / "parallel_guide" / "guide.toml"
+PIVOT = EXAMPLES / "cross_pivot" / "pivot.toml"
+E, W = 200e9, 0.01  # structural_steel; out-of-plane width of both examples, m
+BARE = {"beam_model.root_extension": 0.0}  # the beams alone: what beam theory describes
+
+
+def frame_stiffness_x(L, t, d, hs, w=W):
+    """Lateral stiffness (N/m) at the stage's top centre of two Euler-Bernoulli leaves (x =
+    +-d/2, clamped at y = 0) under a rigid stage reaching hs above their tips: each tip's
+    stiffness in (u_x, u_y, theta) is [[12EI/L^3, 0, 6EI/L^2], [0, EA/L, 0], [6EI/L^2, 0,
+    4EI/L]], moved to the load point by the rigid offset (x_i, -hs). The leaves' axial
+    compliance lets the stage tilt: 24 E I / L^3 is its inextensible limit."""
+    I, A = w * t**3 / 12, w * t
+    k_tip = np.array([[12 * E * I / L**3, 0, 6 * E * I / L**2], [0, E * A / L, 0],
+                      [6 * E * I / L**2, 0, 4 * E * I / L]])
+    K = sum(T.T @ k_tip @ T for T in (np.array([[1, 0, hs], [0, 1, x], [0, 0, 1.0]])
+                                      for x in (-d / 2, d / 2)))
+    return 1 / np.linalg.inv(K)[0, 0]
+
+
+def pivot_stiffness(result, arm, force=1.0):
+    """K = M / theta (N m/rad): couple 2 arm F, theta = (v_right - v_left) / (2 arm)."""
+    u = result["mean_displacement"]
+    return 2 * arm * force / ((u["right"][1] - u["left"][1]) / (2 * arm))
+
+
+def test_guide_beam_against_closed_forms():
+    spec = load_spec(GUIDE, {**BARE, "beam_model.shear": False})
+    p = spec.constants
+    k = analyze_model(spec, model="beam")["stiffness"]["stage"]["x"]
+    assert k == pytest.approx(frame_stiffness_x(p["L"], p["t"], p["d"], p["hs"]), rel=1e-9)
+    inextensible = 24 * E * W * p["t"] ** 3 / 12 / p["L"] ** 3
+    assert k == pytest.approx(inextensible, rel=0.01)  # measured 0.9951 (the stage's tilt)
+    # Timoshenko (the default): shear adds 2 (1 + nu) / kappa (t / L)^2 = 0.2 % compliance
+    k_shear = analyze_model(load_spec(GUIDE, BARE), model="beam")["stiffness"]["stage"]["x"]
+    assert k / k_shear - 1 == pytest.approx(3.12 * (p["t"] / p["L"]) ** 2, rel=0.05)
+
+
+def test_pivot_beam_against_8EI_over_L():
+    spec = load_spec(PIVOT, {**BARE, "beam_model.shear": False})
+    p = spec.constants
+    K = pivot_stiffness(analyze_model(spec, model="beam"), p["arm"])
+    assert K == pytest.approx(8 * E * W * p["t"] ** 3 / 12 / p["L"], rel=2e-3)  # 0.99917
+
+
+@pytest.fixture(scope="module")
+def guide_both():
+    spec = load_spec(GUIDE)
+    return analyze_model(spec, model="beam"), analyze_model(spec)
+
+
+def test_guide_beam_against_continuum(guide_both):
+    """With the common root extension (0.38 t per root) the beam model has the continuum's
+    root compliance: stiffness and first frequency within 1 %; the same keys."""
+    beam, cont = guide_both
+    assert set(beam) == set(cont)
+    assert beam["solver"] == "beam" and beam["dofs"] < cont["dofs"] / 20
+    k_b, k_c = beam["stiffness"]["stage"]["x"], cont["stiffness"]["stage"]["x"]
+    assert k_b == pytest.approx(k_c, rel=0.01), k_b / k_c  # measured 0.996
+    assert beam["frequencies_hz"][0] == pytest.approx(cont["frequencies_hz"][0], rel=0.01)
+    assert beam["reactions"]["fixed"] == pytest.approx(cont["reactions"]["fixed"], abs=1e-6)
+    # beam stress at the leaves' roots; the continuum's peak adds the corners' concentration
+    assert 0.5 < beam["max_von_mises"] / cont["max_von_mises"] < 1.0
+
+
+def test_pivot_beam_against_continuum():
+    """The continuum's joint (a rhombus of side ~t where the leaves cross) is stiffer than the
+    beams' point weld: the beam model is within 6 % (measured -4.4 %)."""
+    spec = load_spec(PIVOT)
+    beam, cont = analyze_model(spec, model="beam"), analyze_model(spec)
+    assert set(beam) == set(cont)
+    ratio = pivot_stiffness(beam, spec.constants["arm"]) / pivot_stiffness(
+        cont, spec.constants["arm"])
+    assert 0.94 < ratio < 1.0, ratio
+
+
+def test_beam_follows_the_parameters_in_evaluate_and_a_study():
+    k = {L: evaluate({"L": L}, file=str(GUIDE), model="beam", **BARE)["stiffness_stage_x"]
+         for L in (0.04, 0.05)}
+    spec = load_spec(GUIDE)
+    p = spec.constants
+    for L, value in k.items():
+        assert value == pytest.approx(frame_stiffness_x(L, p["t"], p["d"], p["hs"]), rel=0.005)
+    study = get_evaluator(model_mechanism(GUIDE))
+    options = normalise_options(study, {"model": "beam"}, "model")
+    metrics = study({"L": 0.05}, **options)
+    assert metrics["stiffness_stage_x"] < k[0.05]  # root extension on: softer
+    assert metrics["dofs"] < 500 and "f1_hz" in metrics
+    with pytest.raises(ValueError, match="model = 'shell'"):
+        study({}, model="shell")
+
+
+def test_cli_model_beam_json_keys(capsys):
+    args = argparse.Namespace(model=str(GUIDE), set=["L=0.05"], reduced="beam")
+    out = json.loads(json.dumps(cli.run(args)))
+    assert out["solver"] == "beam" and out["parameters"]["L"] == 0.05
+    assert "stiffness of 'stage' along x" in cli.summarize(out)
+
+
+def _guide_copy(tmp_path, old, new):
+    text = GUIDE.read_text()
+    assert old in text
+    (tmp_path / "guide.geo").write_text((GUIDE.parent / "guide.geo").read_text())
+    path = tmp_path / "guide.toml"
+    path.write_text(text.replace(old, new))
+    return path, path.read_text().splitlines()
+
+
+def _line_of(lines, fragment):
+    return next(i + 1 for i, line in enumerate(lines) if fragment in line)
+
+
+@pytest.mark.parametrize("old, new, fragment, match", [
+    ('thickness = "t"', 'thickness = "tt"', '"tt"', "'tt' .* is not a parameter"),
+    ('groups = { stage = [0, "L + hs"] }', 'groups = { top = [0, "L + hs"] }', "top =",
+     "group 'stage' has no point in the beam model"),
+    ('joins = [["-d / 2", "L"], ["d / 2", "L"]]', 'joins = [["-d / 2", "L"], ["d", "L"]]',
+     '["d", "L"]', "joins .* which is no point of a \\[\\[beam\\]\\]"),
+    ('[[rigid]]                  # the base, held on its bottom face "fixed"',
+     '[[rigid]]\nbogus = 1\n[[rigid]]', "bogus",
+     "unknown key 'bogus'"),
+])
+def test_errors_name_the_file_and_line(tmp_path, old, new, fragment, match):
+    path, lines = _guide_copy(tmp_path, old, new)
+    with pytest.raises(ValueError, match=match) as error:
+        analyze_model(load_spec(path), model="beam")
+    message = str(error.value)
+    assert message.startswith(str(path)), message
+    if "has no point" not in match:
+        assert f"line {_line_of(lines, fragment)}" in message, message
+
+
+def test_traction_and_missing_beams_refused(tmp_path):
+    path, _ = _guide_copy(tmp_path, "force = [1.0, 0.0]", "traction = [100.0, 0.0]")
+    with pytest.raises(ValueError, match="takes forces"):
+        analyze_model(load_spec(path), model="beam")
+    bare = tmp_path / "bare.toml"
+    bare.write_text(GUIDE.read_text().split("# The reduced beam model")[0])
+    with pytest.raises(ValueError, match="declares no beams"):
+        analyze_model(load_spec(bare), model="beam")
+
+
+@pytest.mark.slow
+def test_compliance_and_large_deflection_keys_and_values():
+    """[analysis] compliance and steps: the continuum's keys; the lateral compliance and the
+    centre of compliance (on the axis, 20 mm up: the leaves' mid-height) as the continuum's;
+    the axial and rotational compliances within 7 % (the roots' axial spreading, which the
+    extension carries only for the bending side here: no block height is declared)."""
+    spec = load_spec(GUIDE, {"analysis.compliance": "stage", "analysis.steps": 3})
+    beam, cont = analyze_model(spec, model="beam"), analyze_model(spec)
+    assert set(beam) == set(cont)
+    for key in ("compliance", "nonlinear"):
+        assert set(beam[key]) == set(cont[key])
+    Cb, Cc = np.array(beam["compliance"]["matrix"]), np.array(cont["compliance"]["matrix"])
+    assert Cb[0, 0] == pytest.approx(Cc[0, 0], rel=0.01)  # measured +0.5 %
+    assert np.diag(Cb)[1:] == pytest.approx(np.diag(Cc)[1:], rel=0.07)  # -6.0 %, -6.0 %
+    assert beam["compliance"]["centre_of_compliance_m"] == pytest.approx(
+        cont["compliance"]["centre_of_compliance_m"], abs=2e-4)
+    ub, uc = (r["nonlinear"]["mean_displacement"]["stage"] for r in (beam, cont))
+    assert ub[0] == pytest.approx(uc[0], rel=0.01)
+    assert ub[1] == pytest.approx(uc[1], rel=0.05)  # parasitic shortening, measured +2 %
+
+
+def test_thickness_profile_against_the_unit_load_integral(tmp_path):
+    """Leaves thickening as t(s) = t (1 + 4 (s/L - 1/2)^2), an expression of the arc length s:
+    pushed through the guide's centre of compliance (mid-height: no tilt), each leaf bends
+    antisymmetrically, M = (F/2)(L/2 - s), so k = 2 / int (L/2 - s)^2 / (E I(s)) ds
+    (Euler-Bernoulli, bare beams)."""
+    from scipy.integrate import quad
+
+    path, _ = _guide_copy(tmp_path, 'groups = { stage = [0, "L + hs"] }',
+                          'groups = { stage = [0, "L / 2"] }')
+    path.write_text(path.read_text().replace('thickness = "t"',
+                                             'thickness = "t * (1 + 4 * (s / L - 0.5)**2)"'))
+    spec = load_spec(path, {**BARE, "beam_model.shear": False})
+    L, t = spec.constants["L"], spec.constants["t"]
+    flex = quad(lambda s: (L / 2 - s) ** 2 / (E * W * (t * (1 + 4 * (s / L - 0.5) ** 2)) ** 3
+                                             / 12), 0, L, epsabs=0, epsrel=1e-12)[0]
+    k = analyze_model(spec, model="beam")["stiffness"]["stage"]["x"]
+    # measured 5.9e-6 with 20 elements (5, 10, 40: 1.4e-3, 9.4e-5, 3.7e-7: order 4)
+    assert k == pytest.approx(2 / flex, rel=2e-5), k * flex / 2
+    with pytest.raises(ValueError, match="must be > 0 along the beam"):
+        load_spec(path, {"t": -1e-3})
+
+
+def test_a_block_is_held_once(tmp_path):
+    (tmp_path / "pivot.geo").write_text((PIVOT.parent / "pivot.geo").read_text())
+    path = tmp_path / "pivot.toml"
+    path.write_text(PIVOT.read_text().replace(
+        '[[loads]]\ngroup = "right"', '[[supports]]\ngroup = "right"\n\n[[supports]]\n'
+        'group = "left"\n\n[[loads]]\ngroup = "right"', 1))
+    with pytest.raises(ValueError, match=r"pivot.toml line \d+: \[\[supports\]\] 'left' and "
+                                         "'right' are on the same"):
+        analyze_model(load_spec(path), model="beam")
