@@ -138,7 +138,8 @@ class Factor:
         try:
             self.lu = spla.splu(scaled, permc_spec=ORDERING)
         except RuntimeError as exc:
-            raise SingularBeamError(f"singular stiffness: {exc}") from None
+            raise SingularBeamError(f"singular stiffness ({exc}): a mechanism; the supports or "
+                                    "links leave a motion free") from None
         d = self.lu.U.diagonal()
         if not np.isfinite(d).all() or np.abs(d).min() <= 1e-13:
             raise SingularBeamError(f"singular stiffness (scaled pivot {np.abs(d).min():.1e}): "
