@@ -134,7 +134,7 @@ def _line_mesh(parts, tol: float) -> BeamMesh | None:
                     [sec for part in parts for sec in part.sections], [0, n - 1])
 
 
-def _clip(poly, clipper) -> list:
+def clip_convex(poly, clipper) -> list:
     """Sutherland-Hodgman: the part of convex polygon ``poly`` inside convex counter-
     clockwise ``clipper`` (lists of (x, y))."""
     out = list(poly)
@@ -185,12 +185,12 @@ def link_inertia(parts, link: str, out_of_plane: float, rho: float) -> tuple:
     total, n = sum(_moments(r) for r in rects), len(rects)
     for i in range(n):
         for j in range(i + 1, n):
-            pair = _clip(rects[i], rects[j])
+            pair = clip_convex(rects[i], rects[j])
             if len(pair) < 3:
                 continue
             total = total - _moments(pair)
             for k in range(j + 1, n):
-                triple = _clip(pair, rects[k])
+                triple = clip_convex(pair, rects[k])
                 if len(triple) >= 3:
                     total = total + _moments(triple)
     A, Sx, Sy, J = total

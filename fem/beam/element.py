@@ -17,7 +17,7 @@ XI = 0.5 * (GAUSS_X + 1.0)
 WXI = 0.5 * GAUSS_W
 
 
-def _shape(xi, L, phi):
+def bending_shape_functions(xi, L, phi):
     """IIE shape functions at xi (k,) for (n_e,) elements: N_w, dN_w/dx, N_psi, dN_psi/dx,
     each (n_e, k, 4) for DOFs (v1, theta1, v2, theta2)."""
     x = xi[None, :]
@@ -88,7 +88,7 @@ def local_stiffness(model) -> np.ndarray:
     L, mat = model.lengths, model.material
     phi = shear_parameter(model)
     A, I, _ = sections(model, XI)
-    _, dNw, Np, dNp = _shape(XI, L, phi)
+    _, dNw, Np, dNp = bending_shape_functions(XI, L, phi)
     wdx = WXI[None, :] * L[:, None]
     Kb = _gram(mat.E * I * wdx, dNp, dNp)
     if model.shear:
@@ -118,7 +118,7 @@ def local_mass(model) -> np.ndarray:
     L, rho = model.lengths, model.material.rho
     phi = shear_parameter(model)
     A, I, _ = sections(model, XI)
-    Nw, _, Np, _ = _shape(XI, L, phi)
+    Nw, _, Np, _ = bending_shape_functions(XI, L, phi)
     wdx = WXI[None, :] * L[:, None]
     Mb = _gram(rho * A * wdx, Nw, Nw) + _gram(rho * I * wdx, Np, Np)
     Nu = np.stack([1.0 - XI, XI], axis=-1)
