@@ -67,17 +67,20 @@ def check_root_extension(value) -> float:
 
 def filleted_thickness(length: float, width: float, radius: float):
     """t(s) (m) of a flexure of ``length`` and ``width`` with quarter-circle root fillets of
-    ``radius`` (m, 0: sharp) inside its length, s from its first end (m)."""
+    ``radius`` (m, 0: sharp) inside its length, s from its first end (m; a number or an
+    array)."""
     def t(s):
+        s = np.asarray(s, dtype=float)
         if radius <= 0:
-            return width
-        u = max(radius - s, s - (length - radius), 0.0)
-        return width + 2 * (radius - math.sqrt(max(radius ** 2 - u ** 2, 0.0)))
+            return np.full_like(s, width)
+        u = np.maximum(np.maximum(radius - s, s - (length - radius)), 0.0)
+        return width + 2 * (radius - np.sqrt(np.maximum(radius ** 2 - u ** 2, 0.0)))
     return t
 
 
 def profile_beam(a, b, thickness_fn, out_of_plane: float, breaks=(), n_total: int = 24,
-                 root_extension: float = ROOT_EXTENSION, blocks=(None, None)) -> BeamMesh:
+                 root_extension: float = ROOT_EXTENSION, blocks=(None, None),
+                 vectorized: bool = False) -> BeamMesh:
     """A flexure from ``a`` to ``b`` (m) of in-plane thickness ``thickness_fn(s)`` (s from
     a, m) and out-of-plane width ``out_of_plane`` (m), as beam elements: pieces between the
     arc lengths ``breaks`` (e.g. the fillets' tangent points) meshed separately, about
@@ -85,34 +88,53 @@ def profile_beam(a, b, thickness_fn, out_of_plane: float, breaks=(), n_total: in
     root thickness at both ends (those elements at the root's bending stiffness, and its
     axial compliance where the height of the block it enters, ``blocks`` = (H at a, H at b)
     m, is given: :func:`root_section`). point_nodes: [first node, last node] (the ends of the
-    extended beam)."""
+    extended beam). ``vectorized``: thickness_fn takes arrays of s (beam_from_profile's)."""
     a, b = np.asarray(a, float), np.asarray(b, float)
     length = float(np.linalg.norm(b - a))
-    d = (b - a) / length
+    d, tol = (b - a) / length, 1e-9 * length
     cuts = [0.0] + sorted(float(s) for s in breaks if 0 < s < length) + [length]
     t0, t1 = float(thickness_fn(0.0)), float(thickness_fn(length))
     e0, e1 = root_extension * t0, root_extension * t1
-    mesh = None
-    for s0, s1 in zip(cuts[:-1], cuts[1:]):
-        n = max(4, int(round(n_total * (s1 - s0) / length)))
-        part = beam_from_profile(a + s0 * d, a + s1 * d, (lambda s, s0=s0: thickness_fn(s0 + s)),
-                                 out_of_plane, n)
-        mesh = part if mesh is None else mesh.join(part, tol=1e-9 * length)
-    start, end = a, b
+    pieces = [beam_from_profile(a + s0 * d, a + s1 * d, (lambda s, s0=s0: thickness_fn(s0 + s)),
+                                out_of_plane, max(4, int(round(n_total * (s1 - s0) / length))),
+                                vectorized) for s0, s1 in zip(cuts[:-1], cuts[1:])]
+    start, end, root, tip = a, b, None, None
     if e0 > 0:
         start = a - e0 * d
         root = beam_chain([start, a], root_section(out_of_plane, t0, e0, blocks[0]), 1)
-        mesh = root.join(mesh, tol=1e-9 * length)
     if e1 > 0:
         end = b + e1 * d
-        mesh = mesh.join(beam_chain([b, end], root_section(out_of_plane, t1, e1, blocks[1]), 1),
-                         tol=1e-9 * length)
-    first = mesh.node_at(start, tol=1e-9 * length)
-    last = mesh.node_at(end, tol=1e-9 * length)
+        tip = beam_chain([b, end], root_section(out_of_plane, t1, e1, blocks[1]), 1)
+    mesh = _line_mesh([m for m in [root, *pieces, tip] if m is not None], tol)
+    if mesh is None:  # a piece shorter than tol: BeamMesh.join's general merge decides
+        mesh = pieces[0]
+        for part in pieces[1:]:
+            mesh = mesh.join(part, tol=tol)
+        mesh = mesh if root is None else root.join(mesh, tol=tol)
+        mesh = mesh if tip is None else mesh.join(tip, tol=tol)
+    first, last = mesh.node_at(start, tol=tol), mesh.node_at(end, tol=tol)
     return BeamMesh(mesh.nodes, mesh.elements, mesh.sections, [first, last])
 
 
-def _clip(poly, clipper) -> list:
+def _line_mesh(parts, tol: float) -> BeamMesh | None:
+    """Chains ``parts`` (BeamMesh, each a chain of consecutive nodes) along one straight line,
+    each starting where the previous one ends, joined as successive BeamMesh.join calls
+    would (the shared end node kept from the earlier part), without their all-pairs node
+    search; None where two nodes are within ``tol`` (m) of each other other than at a joint
+    (then the general join decides which merge)."""
+    for prev, part in zip(parts, parts[1:]):
+        if math.dist(prev.nodes[-1], part.nodes[0]) > tol:
+            return None
+    nodes = np.vstack([parts[0].nodes] + [part.nodes[1:] for part in parts[1:]])
+    step = np.diff(nodes, axis=0)
+    if np.hypot(step[:, 0], step[:, 1]).min() <= tol:
+        return None
+    n = len(nodes)
+    return BeamMesh(nodes, np.column_stack([np.arange(n - 1), np.arange(1, n)]),
+                    [sec for part in parts for sec in part.sections], [0, n - 1])
+
+
+def clip_convex(poly, clipper) -> list:
     """Sutherland-Hodgman: the part of convex polygon ``poly`` inside convex counter-
     clockwise ``clipper`` (lists of (x, y))."""
     out = list(poly)
@@ -163,12 +185,12 @@ def link_inertia(parts, link: str, out_of_plane: float, rho: float) -> tuple:
     total, n = sum(_moments(r) for r in rects), len(rects)
     for i in range(n):
         for j in range(i + 1, n):
-            pair = _clip(rects[i], rects[j])
+            pair = clip_convex(rects[i], rects[j])
             if len(pair) < 3:
                 continue
             total = total - _moments(pair)
             for k in range(j + 1, n):
-                triple = _clip(pair, rects[k])
+                triple = clip_convex(pair, rects[k])
                 if len(triple) >= 3:
                     total = total + _moments(triple)
     A, Sx, Sy, J = total
@@ -194,7 +216,7 @@ def layout_beam_model(layout, material, out_of_plane: float, fillet_radius: floa
         fn = filleted_thickness(fj.length, fj.width, r)
         breaks = (r, fj.length - r) if r > 0 else ()
         part = profile_beam(a, b, fn, out_of_plane, breaks, n_per_flexure, root_extension,
-                            blocks=(layout.link_width, layout.link_width))
+                            blocks=(layout.link_width, layout.link_width), vectorized=True)
         offset_e = 0 if mesh is None else len(mesh.elements)
         if mesh is None:
             mesh, index = part, np.arange(len(part.nodes))

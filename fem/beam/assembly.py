@@ -1,49 +1,58 @@
-"""Assembly and the reduced space of unknowns: supports and rigid links eliminated.
+"""Assembly of a beam model on the reduced space of unknowns (fem/beam/space.py): residual,
+tangent, mass, and the sparse LU of the reduced tangent.
 
-Rigid links are exact rigid-body constraints (master-slave elimination), not stiff beams: a
-stiff beam 10^4-10^6 times stiffer than the flexures would raise the condition number of K
-by as much and spoil the Newton convergence test of the flexible part, while elimination
-keeps the system as well conditioned as the flexures alone and is exact at large rotations:
-x_s = x_m + R(theta_m) (X_s - X_m), theta_s = theta_m.
+Sparsity patterns are computed once (fem/beam/pattern.py): the global matrix's per topology,
+the condensed tangent's (supports and rigid links eliminated) per Space and topology; derived
+per-model data (the basic stiffness, the undeformed tangent, the mass) is cached on the model
+(BeamModel.cached).
 """
+from dataclasses import dataclass
+import math
+
 import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from .element import basic_stiffness, corotational, local_mass, rotation_to_global
-from .model import BeamModel, Fixed, NodalLoad, Prescribed
+from .model import BeamModel, NodalLoad
+from .pattern import block_dofs, global_matrix
+from .space import Space
 
 DENSE_EIGEN_LIMIT = 800  # unknowns up to which modal analysis uses a dense eigensolver
+ORDERING = "MMD_AT_PLUS_A"  # SuperLU column ordering: the reduced K's pattern is symmetric
 
 
 class SingularBeamError(ValueError):
     """The reduced stiffness is singular: a mechanism (supports leave a motion free)."""
 
 
-def scatter(model: BeamModel, ke: np.ndarray) -> sp.csr_matrix:
-    """Global sparse matrix from element matrices (n_e, 6, 6) in global DOF order."""
-    dofs = (3 * model.elements[:, :, None] + np.arange(3)).reshape(-1, 6)
-    rows = np.broadcast_to(dofs[:, :, None], ke.shape).ravel()
-    cols = np.broadcast_to(dofs[:, None, :], ke.shape).ravel()
-    n = model.n_dofs
-    return sp.csr_matrix((ke.ravel(), (rows, cols)), shape=(n, n))
+def element_dofs(model: BeamModel) -> np.ndarray:
+    """(n_e, 6) global DOFs of each element."""
+    return model.cached("element_dofs", lambda: block_dofs(model.elements))
 
 
 def gather(model: BeamModel, fe: np.ndarray) -> np.ndarray:
     """Global vector from element vectors (n_e, 6)."""
-    dofs = (3 * model.elements[:, :, None] + np.arange(3)).reshape(-1)
-    return np.bincount(dofs, weights=fe.ravel(), minlength=model.n_dofs)
+    return np.bincount(element_dofs(model).ravel(), weights=fe.ravel(), minlength=model.n_dofs)
+
+
+def element_mass(model: BeamModel) -> np.ndarray:
+    """(n_e, 6, 6) consistent element mass matrices in global DOF order (cached)."""
+    def compute():
+        T = rotation_to_global(model.angles)
+        return np.matmul(T.transpose(0, 2, 1), local_mass(model) @ T)
+    return model.cached("element_mass", compute)
 
 
 def mass_matrix(model: BeamModel) -> sp.csr_matrix:
-    """Consistent global mass matrix (kg, kg m, kg m^2), point masses included."""
-    T = rotation_to_global(model.angles)
-    M = scatter(model, np.einsum("eki,ekl,elj->eij", T, local_mass(model), T))
-    diag = np.zeros(model.n_dofs)
-    for node, (m, J) in model.point_masses.items():
-        diag[3 * int(node):3 * int(node) + 2] += m
-        diag[3 * int(node) + 2] += J
-    return (M + sp.diags(diag)).tocsr()
+    """Consistent global mass matrix (kg, kg m, kg m^2), point masses included (cached)."""
+    def compute():
+        diag = np.zeros(model.n_dofs)
+        for node, (m, J) in model.point_masses.items():
+            diag[3 * int(node):3 * int(node) + 2] += m
+            diag[3 * int(node) + 2] += J
+        return global_matrix(model, element_mass(model), diag)
+    return model.cached("mass_matrix", compute)
 
 
 def load_vector(model: BeamModel, loads) -> np.ndarray:
@@ -58,96 +67,24 @@ def load_vector(model: BeamModel, loads) -> np.ndarray:
     return f
 
 
-class Space:
-    """Unknowns z: the DOFs of independent (non-slave) nodes that are not prescribed.
+@dataclass(frozen=True, eq=False)
+class Evaluation:
+    """A state: q (n_nodes, 3); r (n_dofs,) = f_int - lam f_ext (N, N m); rz = T^T r; K the
+    reduced tangent (CSC, None without tangent); w the link weights (Space.weights); ke the
+    element tangents (n_e, 6, 6)."""
 
-    q(z, lam): full (n_nodes, 3) DOFs; prescribed DOFs = lam * value; slave nodes follow
-    their master rigidly. jacobian(q) -> sparse T = dq/dz (and T_p = dq/dp for the
-    prescribed values p)."""
+    model: BeamModel
+    q: np.ndarray
+    r: np.ndarray
+    rz: np.ndarray
+    K: object
+    w: np.ndarray
+    ke: object
 
-    def __init__(self, model: BeamModel, supports):
-        self.model = model
-        n = model.n_dofs
-        values = np.full(n, np.nan)
-        for sup in supports:
-            if not isinstance(sup, (Fixed, Prescribed)):
-                raise ValueError(f"supports: {sup!r} is not a Fixed or Prescribed")
-            for node, dof, value in sup.prescribed():
-                if not 0 <= node < model.n_nodes:
-                    raise ValueError(f"supports: node {node} outside 0..{model.n_nodes - 1}")
-                if model.master_of[node] >= 0:
-                    raise ValueError(f"supports: node {node} is a rigid-link slave; "
-                                     f"support its master {model.master_of[node]}")
-                values[3 * node + dof] = value
-        slave_dofs = (3 * np.flatnonzero(model.master_of >= 0)[:, None] + np.arange(3)).ravel()
-        self.held = np.flatnonzero(~np.isnan(values))
-        self.p_hat = values[self.held]
-        dependent = np.zeros(n, dtype=bool)
-        dependent[slave_dofs] = True
-        dependent[self.held] = True
-        self.free = np.flatnonzero(~dependent)
-        self.slaves = np.flatnonzero(model.master_of >= 0)
-        self.masters = model.master_of[self.slaves]
-        self.arm = model.nodes[self.slaves] - model.nodes[self.masters]
-        self.n = len(self.free)
-        self.independent = np.concatenate([self.free, self.held])
-        self._col_free = -np.ones(n, dtype=int)
-        self._col_free[self.free] = np.arange(len(self.free))
-        self._col_held = -np.ones(n, dtype=int)
-        self._col_held[self.held] = np.arange(len(self.held))
-        if self.n == 0:
-            raise ValueError("supports: every DOF is held; nothing to solve")
-
-    def q(self, z, lam) -> np.ndarray:
-        """(n_nodes, 3) DOFs for unknowns z and load factor lam."""
-        flat = np.zeros(self.model.n_dofs)
-        flat[self.free] = z
-        flat[self.held] = lam * self.p_hat
-        q = flat.reshape(-1, 3)
-        if len(self.slaves):
-            qm = q[self.masters]
-            c, s = np.cos(qm[:, 2]), np.sin(qm[:, 2])
-            ax, ay = self.arm[:, 0], self.arm[:, 1]
-            q[self.slaves, 0] = qm[:, 0] + c * ax - s * ay - ax
-            q[self.slaves, 1] = qm[:, 1] + s * ax + c * ay - ay
-            q[self.slaves, 2] = qm[:, 2]
-        return q
-
-    def jacobian(self, q):
-        """Sparse dq/dz (T, for the free DOFs) and dq/dp (T_p, for the held ones)."""
-        rows, cols = [self.independent], [self.independent]
-        vals = [np.ones(len(self.independent))]
-        if len(self.slaves):
-            th = q[self.masters, 2]
-            c, s = np.cos(th), np.sin(th)
-            ax, ay = self.arm[:, 0], self.arm[:, 1]
-            sd, md = 3 * self.slaves, 3 * self.masters
-            for r, col, v in [(0, 0, 1.0), (1, 1, 1.0), (2, 2, 1.0),
-                              (0, 2, -s * ax - c * ay), (1, 2, c * ax - s * ay)]:
-                rows.append(sd + r)
-                cols.append(md + col)
-                vals.append(np.broadcast_to(v, sd.shape))
-        rows, cols, vals = np.concatenate(rows), np.concatenate(cols), np.concatenate(vals)
-        n = self.model.n_dofs
-        out = []
-        for column, width in ((self._col_free, self.n), (self._col_held, len(self.held))):
-            k = column[cols]
-            keep = k >= 0
-            out.append(sp.csr_matrix((vals[keep], (rows[keep], k[keep])), shape=(n, width)))
-        return out[0], out[1]
-
-    def constraint_tangent(self, q, r_full) -> np.ndarray:
-        """Second-order term sum_s r_s . d^2 x_s / d theta_m^2 on the free theta_m DOFs
-        (dense diagonal contribution, (n, n) as a sparse diagonal)."""
-        diag = np.zeros(self.model.n_dofs)
-        if len(self.slaves):
-            th = q[self.masters, 2]
-            c, s = np.cos(th), np.sin(th)
-            ax, ay = self.arm[:, 0], self.arm[:, 1]
-            rs = r_full.reshape(-1, 3)[self.slaves]
-            term = rs[:, 0] * (-c * ax + s * ay) + rs[:, 1] * (-s * ax - c * ay)
-            np.add.at(diag, 3 * self.masters + 2, term)
-        return sp.diags(diag[self.free])
+    def full_times(self, v) -> np.ndarray:
+        """K_full v (n_dofs,) for a full vector v, element by element."""
+        dofs = element_dofs(self.model)
+        return gather(self.model, np.einsum("eij,ej->ei", self.ke, v[dofs]))
 
 
 class Assembler:
@@ -157,20 +94,26 @@ class Assembler:
         self.model = model
         self.space = Space(model, supports)
         self.f_ext = load_vector(model, loads)
-        self.Kb = basic_stiffness(model)
+        self.Kb = model.cached("basic_stiffness", lambda: basic_stiffness(model))
 
-    def evaluate(self, z, lam, tangent=True):
-        """(q, r_full, rz, Kz, T, T_p, K_full) with r = f_int - lam f_ext (N, N m)."""
-        q = self.space.q(z, lam)
-        fe, ke, _ = corotational(self.model, self.Kb, q, tangent)
+    def elements(self, q, tangent=True) -> tuple:
+        """corotational(model, Kb, q, tangent); the undeformed state's is cached (the linear
+        solves of a design point all start there)."""
+        if not q.any():
+            return self.model.cached("undeformed", lambda: corotational(
+                self.model, self.Kb, np.zeros((self.model.n_nodes, 3)), True))
+        return corotational(self.model, self.Kb, q, tangent)
+
+    def evaluate(self, z, lam, tangent=True) -> Evaluation:
+        """The state at unknowns z and load factor lam (r = f_int - lam f_ext, N, N m)."""
+        space = self.space
+        q = space.q(z, lam)
+        fe, ke, _ = self.elements(q, tangent)
         r = gather(self.model, fe) - lam * self.f_ext
-        T, Tp = self.space.jacobian(q)
-        rz = T.T @ r
-        if not tangent:
-            return q, r, rz, None, T, Tp, None
-        K = scatter(self.model, ke)
-        Kz = (T.T @ K @ T + self.space.constraint_tangent(q, r)).tocsc()
-        return q, r, rz, Kz, T, Tp, K
+        w = space.weights(q)
+        rz = space.reduce(r, w)[0]
+        K = space.condense(ke, w, space.constraint_diagonal(q, r)) if tangent else None
+        return Evaluation(self.model, q, r, rz, K, w, ke)
 
 
 class Factor:
@@ -181,16 +124,22 @@ class Factor:
 
     def __init__(self, K):
         K = sp.csc_matrix(K)
+        if not K.has_canonical_format:  # the scaled copy below shares K's index arrays
+            K = K.copy()
+            K.sum_duplicates()
         diag = np.abs(K.diagonal())
         if not np.all(np.isfinite(diag)) or np.any(diag == 0):
             raise SingularBeamError("singular stiffness: a DOF has no stiffness at all (a "
                                     "node without elements, or a mechanism)")
         self.scale = 1.0 / np.sqrt(diag)
-        S = sp.diags(self.scale)
+        col = np.repeat(np.arange(K.shape[1]), np.diff(K.indptr))
+        scaled = sp.csc_matrix((K.data * self.scale[K.indices] * self.scale[col], K.indices,
+                                K.indptr), shape=K.shape)
         try:
-            self.lu = spla.splu((S @ K @ S).tocsc())
+            self.lu = spla.splu(scaled, permc_spec=ORDERING)
         except RuntimeError as exc:
-            raise SingularBeamError(f"singular stiffness: {exc}") from None
+            raise SingularBeamError(f"singular stiffness ({exc}): a mechanism; the supports or "
+                                    "links leave a motion free") from None
         d = self.lu.U.diagonal()
         if not np.isfinite(d).all() or np.abs(d).min() <= 1e-13:
             raise SingularBeamError(f"singular stiffness (scaled pivot {np.abs(d).min():.1e}): "
@@ -209,17 +158,15 @@ class Factor:
 
 
 def _parity(perm) -> int:
-    """0 for an even permutation, 1 for an odd one."""
-    seen = np.zeros(len(perm), dtype=bool)
-    cycles = 0
-    for start in range(len(perm)):
-        if not seen[start]:
-            cycles += 1
-            j = start
-            while not seen[j]:
-                seen[j] = True
-                j = perm[j]
-    return (len(perm) - cycles) % 2
+    """0 for an even permutation, 1 for an odd one: (n - number of cycles) mod 2, the cycles
+    counted by pointer doubling (label each index with the smallest index of its cycle)."""
+    perm = np.asarray(perm, dtype=np.int64)
+    n = len(perm)
+    label, step = np.arange(n), perm.copy()
+    for _ in range(max(1, math.ceil(math.log2(max(n, 2))))):
+        label = np.minimum(label, label[step])
+        step = step[step]
+    return int(n - np.count_nonzero(label == np.arange(n))) % 2
 
 
 def solve(K, b):

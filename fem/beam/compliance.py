@@ -21,10 +21,10 @@ def compliance(model: BeamModel, supports, node: int, about=None, loads=()) -> n
         z, lam = np.zeros(asm.space.n), 0.0
     else:
         z, lam = about.q.ravel()[asm.space.free], about.load_factor
-    _, _, _, K, T, _, _ = asm.evaluate(z, lam)
-    rows = T[3 * int(node):3 * int(node) + 3]  # d(node DOFs)/dz, (3, n)
-    if rows.nnz == 0 or np.any(abs(rows).sum(axis=1) == 0):
+    ev = asm.evaluate(z, lam)
+    rows = asm.space.rows(int(node), ev.w)  # d(node DOFs)/dz, (3, n)
+    if np.any(np.abs(rows).sum(axis=1) == 0):
         raise ValueError(f"node = {node}: a DOF of it is held by a support; its compliance "
                          "is zero there")
-    X = solve(K, rows.T.toarray())
-    return np.asarray(rows @ X)
+    X = solve(ev.K, rows.T)
+    return rows @ X

@@ -17,7 +17,7 @@ XI = 0.5 * (GAUSS_X + 1.0)
 WXI = 0.5 * GAUSS_W
 
 
-def _shape(xi, L, phi):
+def bending_shape_functions(xi, L, phi):
     """IIE shape functions at xi (k,) for (n_e,) elements: N_w, dN_w/dx, N_psi, dN_psi/dx,
     each (n_e, k, 4) for DOFs (v1, theta1, v2, theta2)."""
     x = xi[None, :]
@@ -42,6 +42,16 @@ def _shape(xi, L, phi):
     return Nw, dNw, Np, dNp
 
 
+def _gram(weight, A, B) -> np.ndarray:
+    """sum_g weight[e, g] A[e, g, i] B[e, g, j]: (n_e, i, j) (einsum's, by matmul)."""
+    return np.matmul((A * weight[:, :, None]).transpose(0, 2, 1), B)
+
+
+def sections(model, xi):
+    """model.section_at(xi) at the fixed point sets used here (Gauss points, ends), cached."""
+    return model.cached(("section_at", tuple(xi)), lambda: model.section_at(xi))
+
+
 BEND = [1, 2, 4, 5]  # local DOFs (v1, theta1, v2, theta2) in (u1, v1, theta1, u2, v2, theta2)
 AXIAL = [0, 3]
 
@@ -53,7 +63,7 @@ def shear_parameter(model) -> np.ndarray:
         return np.zeros(model.n_elements)
     mat = model.material
     G = mat.E / (2.0 * (1.0 + mat.nu))
-    A, I, _ = model.section_at([0.5])
+    A, I, _ = sections(model, [0.5])
     kappa = model.section_table[:, 7]
     return 12.0 * mat.E * I[:, 0] / (kappa * G * A[:, 0] * model.lengths**2)
 
@@ -61,14 +71,14 @@ def shear_parameter(model) -> np.ndarray:
 def axial_stiffness(model) -> np.ndarray:
     """EA / L per element as E / int_0^L ds / A(s): exact (logarithmic mean) for a linear
     taper, 6-point Gauss quadrature of 1 / A for a quadratic one."""
-    A, _, _ = model.section_at([0.0, 1.0])
+    A, _, _ = sections(model, [0.0, 1.0])
     a0, a1 = A[:, 0], A[:, 1]
     ratio = a1 / a0
     close = np.abs(ratio - 1.0) < 1e-6
     mean = np.where(close, 0.5 * (a0 + a1), (a1 - a0) / np.log(np.where(close, 2.0, ratio)))
     quadratic = np.isfinite(model.section_table[:, 8])
     if quadratic.any():
-        A_g, _, _ = model.section_at(XI)
+        A_g, _, _ = sections(model, XI)
         mean = np.where(quadratic, 1.0 / (WXI / A_g).sum(axis=1), mean)
     return model.material.E * mean / model.lengths
 
@@ -77,15 +87,15 @@ def local_stiffness(model) -> np.ndarray:
     """(n_e, 6, 6) linear stiffness in each element's local frame (N/m, N, N m)."""
     L, mat = model.lengths, model.material
     phi = shear_parameter(model)
-    A, I, _ = model.section_at(XI)
-    _, dNw, Np, dNp = _shape(XI, L, phi)
+    A, I, _ = sections(model, XI)
+    _, dNw, Np, dNp = bending_shape_functions(XI, L, phi)
     wdx = WXI[None, :] * L[:, None]
-    Kb = np.einsum("eg,egi,egj->eij", mat.E * I * wdx, dNp, dNp)
+    Kb = _gram(mat.E * I * wdx, dNp, dNp)
     if model.shear:
         G = mat.E / (2.0 * (1.0 + mat.nu))
         gamma = dNw - Np
         kGA = model.section_table[:, 7][:, None] * G * A
-        Kb += np.einsum("eg,egi,egj->eij", kGA * wdx, gamma, gamma)
+        Kb += _gram(kGA * wdx, gamma, gamma)
     K = np.zeros((model.n_elements, 6, 6))
     K[:, np.array(BEND)[:, None], np.array(BEND)[None, :]] = Kb
     ea = axial_stiffness(model)
@@ -107,11 +117,10 @@ def local_mass(model) -> np.ndarray:
     rho A and rotary inertia rho I, with the same shape functions as the stiffness."""
     L, rho = model.lengths, model.material.rho
     phi = shear_parameter(model)
-    A, I, _ = model.section_at(XI)
-    Nw, _, Np, _ = _shape(XI, L, phi)
+    A, I, _ = sections(model, XI)
+    Nw, _, Np, _ = bending_shape_functions(XI, L, phi)
     wdx = WXI[None, :] * L[:, None]
-    Mb = (np.einsum("eg,egi,egj->eij", rho * A * wdx, Nw, Nw)
-          + np.einsum("eg,egi,egj->eij", rho * I * wdx, Np, Np))
+    Mb = _gram(rho * A * wdx, Nw, Nw) + _gram(rho * I * wdx, Np, Np)
     Nu = np.stack([1.0 - XI, XI], axis=-1)
     Ma = np.einsum("eg,gi,gj->eij", rho * A * wdx, Nu, Nu)
     M = np.zeros((model.n_elements, 6, 6))
@@ -168,7 +177,7 @@ def corotational(model, Kb, q, tangent=True):
     f = np.einsum("eij,ei->ej", B, fb)
     if not tangent:
         return f, None, fb
-    K = np.einsum("eki,ekl,elj->eij", B, Kb, B)
+    K = np.matmul(B.transpose(0, 2, 1), Kb @ B)
     K += (fb[:, 0] / Ln)[:, None, None] * np.einsum("ei,ej->eij", zv, zv)
     rz = np.einsum("ei,ej->eij", r, zv)
     K += ((fb[:, 1] + fb[:, 2]) / Ln**2)[:, None, None] * (rz + rz.transpose(0, 2, 1))
@@ -179,7 +188,7 @@ def bending_stress(model, fb, n_points: int = 5):
     """Largest |N/A| + |M| c / I (Pa) per element over ``n_points`` along it (the moment
     is linear between the ends: M(0) = -M1, M(L) = M2). Returns (sigma (n_e,), xi (n_e,))."""
     xi = np.linspace(0.0, 1.0, n_points)
-    A, I, c = model.section_at(xi)
+    A, I, c = sections(model, xi)
     M = -fb[:, 1:2] * (1.0 - xi) + fb[:, 2:3] * xi
     sigma = np.abs(fb[:, 0:1]) / A + np.abs(M) * c / I
     k = np.argmax(np.nan_to_num(sigma, nan=-1.0), axis=1)

@@ -66,13 +66,13 @@ class _Stepper:
                                  "slave; control a free DOF")
             self.c_index = int(where[0])
 
-    def dr_dlam(self, K, T, Tp):
-        """d(rz)/d(lam) = T^T (K T_p p - f_ext)."""
-        p = self.asm.space.p_hat
-        g = -(T.T @ self.asm.f_ext)
-        if len(p):
-            g = g + T.T @ (K @ (Tp @ p))
-        return g
+    def dr_dlam(self, ev):
+        """d(rz)/d(lam) = T^T (K T_p p - f_ext) at the Evaluation ``ev``."""
+        space = self.asm.space
+        f = self.asm.f_ext
+        if len(space.p_hat):
+            f = f - ev.full_times(space.expand(np.zeros(space.n), space.p_hat, ev.w))
+        return -space.reduce(f, ev.w)[0]
 
     def newton(self, z, lam, target):
         """Converged (z, lam, q, r, iterations, flipped) reaching ``target`` (a load factor,
@@ -80,7 +80,8 @@ class _Stepper:
         the step (a limit or bifurcation point crossed)."""
         history, signs, dz = [], [], None
         for it in range(1, self.max_iterations + 1):
-            q, r, rz, K, T, Tp, Kf = self.asm.evaluate(z, lam)
+            ev = self.asm.evaluate(z, lam)
+            q, r, rz = ev.q, ev.r, ev.rz
             ref = self._reference(r, lam)
             norm = float(np.linalg.norm(rz))
             if it > 1:
@@ -92,12 +93,12 @@ class _Stepper:
                 if (norm <= self.tol * ref and self._small(dz, z)) or floor:
                     return z, lam, q, r, it - 1, signs[0] != signs[-1]
             try:
-                F = Factor(K)
+                F = Factor(ev.K)
                 signs.append(F.sign)
                 if self.c_index is None and it > 1:
                     a, b = F.solve(-rz), None
                 else:
-                    a, b = F.solve(np.column_stack([-rz, self.dr_dlam(Kf, T, Tp)])).T
+                    a, b = F.solve(np.column_stack([-rz, self.dr_dlam(ev)])).T
                 if self.c_index is None:
                     dlam = target - lam if it == 1 else 0.0  # predictor: load increment
                     dz = a if b is None else a - dlam * b
@@ -134,8 +135,8 @@ def solve_beam_nonlinear(model: BeamModel, supports, loads=(), steps: int = 10,
     asm = Assembler(model, supports, loads)
     stepper = _Stepper(asm, control, tol, max_iterations)
     z, lam, t = np.zeros(asm.space.n), 0.0, 0.0
-    q0, r0, *_ = asm.evaluate(z, 0.0, tangent=False)
-    states, lams, its = [make_state(asm, q0, r0, 0.0)], [0.0], [0]
+    ev0 = asm.evaluate(z, 0.0, tangent=False)
+    states, lams, its = [make_state(asm, ev0.q, ev0.r, 0.0, w=ev0.w)], [0.0], [0]
     goal = 1.0 if control is None else float(stepper.c_value)
     nominal, dt, cuts, good, crossings = 1.0 / steps, 1.0 / steps, 0, 0, []
     while t < 1.0 - 1e-12:

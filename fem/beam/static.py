@@ -4,7 +4,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .assembly import Assembler, solve
-from .element import bending_stress, corotational
+from .element import bending_stress
 from .model import BeamModel
 
 
@@ -53,18 +53,17 @@ class BeamState:
 BeamStaticResult = BeamState
 
 
-def make_state(assembler: Assembler, q, r, lam, info=None, fb=None, jac=None) -> BeamState:
+def make_state(assembler: Assembler, q, r, lam, info=None, fb=None, w=None) -> BeamState:
     """Package a converged state: reactions from the residual r = f_int - lam f_ext; basic
-    element forces ``fb`` (n_e, 3) from the co-rotational element and the links' Jacobians
-    ``jac`` = (T, T_p) at q unless given."""
+    element forces ``fb`` (n_e, 3) from the co-rotational element and the links' weights
+    ``w`` (Space.weights) at q unless given."""
     model = assembler.model
     if fb is None:
-        _, _, fb = corotational(model, assembler.Kb, q, tangent=False)
+        _, _, fb = assembler.elements(q, tangent=False)
     space = assembler.space
     held_nodes = np.unique(space.held // 3)
-    T, Tp = space.jacobian(q) if jac is None else jac
     rr = np.zeros(model.n_dofs)  # generalised residual of the independent DOFs
-    rr[space.free], rr[space.held] = T.T @ r, Tp.T @ r
+    rr[space.free], rr[space.held] = space.reduce(r, space.weights(q) if w is None else w)
     rr = rr.reshape(-1, 3)
     reactions = {int(k): rr[k].copy() for k in held_nodes}
     sigma, xi = bending_stress(model, fb)
@@ -80,14 +79,14 @@ def solve_beam_static(model: BeamModel, supports, loads=()) -> BeamState:
     asm = Assembler(model, supports, loads)
     space = asm.space
     z0 = np.zeros(space.n)
-    _, _, _, K, T, Tp, Kfull = asm.evaluate(z0, 0.0)
+    ev = asm.evaluate(z0, 0.0)
     p = space.p_hat
-    rhs = T.T @ (asm.f_ext - Kfull @ (Tp @ p))
-    z = solve(K, rhs)
-    q = (T @ z + Tp @ p).reshape(-1, 3)
-    r = Kfull @ q.ravel() - asm.f_ext
+    rhs = space.reduce(asm.f_ext - ev.full_times(space.expand(z0, p, ev.w)), ev.w)[0]
+    z = solve(ev.K, rhs)
+    q = space.expand(z, p, ev.w).reshape(-1, 3)
+    r = ev.full_times(q.ravel()) - asm.f_ext
     fb = np.einsum("eij,ej->ei", asm.Kb, _natural(model, q))
-    return make_state(asm, q, r, 1.0, {"n_unknowns": space.n}, fb=fb, jac=(T, Tp))
+    return make_state(asm, q, r, 1.0, {"n_unknowns": space.n}, fb=fb, w=ev.w)
 
 
 def _natural(model: BeamModel, q) -> np.ndarray:

@@ -11,7 +11,7 @@ rectangles tapered along local y (model.Section.rect), as the planar model's.
 """
 import numpy as np
 
-from ..beam.element import WXI, XI, _shape
+from ..beam.element import WXI, XI, bending_shape_functions
 
 XY = [1, 5, 7, 11]   # (v1, rz1, v2, rz2)
 XZ = [2, 4, 8, 10]   # (w1, ry1, w2, ry2)
@@ -24,7 +24,7 @@ def _bending(E, I, G, As, I_mid, rho, A, L):
     """(n_e, 4, 4) stiffness and mass of one bending plane (planar DOF order v, theta); I,
     A (n_e, k) at the Gauss points; phi from the mid-length I_mid and the shear area As."""
     phi = np.where(np.isfinite(As), 12.0 * E * I_mid / (G * As * L**2), 0.0)
-    Nw, dNw, Np, dNp = _shape(XI, L, phi)
+    Nw, dNw, Np, dNp = bending_shape_functions(XI, L, phi)
     wdx = WXI[None, :] * L[:, None]
     K = np.einsum("eg,egi,egj->eij", E * I * wdx, dNp, dNp)
     gamma = dNw - Np

@@ -7,10 +7,10 @@ rigid links eliminated; about the undeformed state, or about a converged nonline
 from dataclasses import dataclass
 
 import numpy as np
-import scipy.linalg as sla
 import scipy.sparse.linalg as spla
 
 from ..beam.assembly import DENSE_EIGEN_LIMIT
+from ..beam.modal import dense_lowest_modes
 from .assembly import Assembler, mass_matrix, symmetric_tangent
 from .model import Beam3DModel
 
@@ -47,7 +47,7 @@ def solve_beam3d_modes(model: Beam3DModel, supports, n: int = 6, about=None,
     M_full = mass_matrix(model) if about is None else mass_matrix(model, u, R)
     M = (T.T @ M_full @ T).tocsr()
     if asm.space.n <= DENSE_EIGEN_LIMIT:
-        w2, phi = sla.eigh(K.toarray(), M.toarray(), subset_by_index=[0, n - 1])
+        w2, phi = dense_lowest_modes(K.toarray(), M.toarray(), n)
     else:
         shift = -1e-6 * abs(K.diagonal()).max() / max(abs(M.diagonal()).max(), 1e-300)
         w2, phi = spla.eigsh(K.tocsc(), k=n, M=M.tocsc(), sigma=shift, which="LM")

@@ -30,7 +30,7 @@ QUARTERS = ((1, 1), (-1, 1), (1, -1), (-1, -1))
 
 def _hinge_fn(p: DBMAParams, layout: DBMALayout):
     prof, rf = layout.hinge_profile, layout.hinge_fillet_radius
-    fn = lambda s: float(profile_thickness(prof, p.l, p.b, rf, s))
+    fn = lambda s: profile_thickness(prof, p.l, p.b, rf, s)  # vectorized over s
     breaks = (rf, p.l - rf) if prof == "filleted" else ()
     return fn, breaks, (24 if prof == "leaf" else 40)
 
@@ -111,11 +111,11 @@ def dbma_beam_model(p: DBMAParams, layout: DBMALayout | None = None,
             ya, yb = sy * (yc - h / 2), sy * (yc + h / 2)
             e0 = len(bld.sections)
             ha = bld.add(profile_beam((sx * x_out, ya), (sx * (x_out + l), ya), fn, p.d, breaks,
-                                      n_hinge, root_extension, blocks))
+                                      n_hinge, root_extension, blocks, vectorized=True))
             arm = bld.add(beam_chain([(sx * (x_out + l), sy * yc), (sx * (x_in - l), sy * yc)],
                                      Section.rect(p.d, p.c), arm_elements))
             hb = bld.add(profile_beam((sx * (x_in - l), yb), (sx * x_in, yb), fn, p.d, breaks,
-                                      n_hinge, root_extension, blocks))
+                                      n_hinge, root_extension, blocks, vectorized=True))
             spans[f"{sx:+d}{sy:+d}{row}"] = (e0, len(bld.sections))
             links += [RigidLink(arm[0], (ha[1],)), RigidLink(arm[-1], (hb[0],))]
             (slaves["output"] if sy > 0 else ground).append((ha[0], ya))

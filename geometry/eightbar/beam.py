@@ -11,6 +11,7 @@ rigid bodies with their masses; flexures O, C are clamped at their anchors. Root
 see :mod:`flexfem.geometry.beam_layout` (0.38 x root thickness per root by default).
 """
 from dataclasses import fields
+import functools
 
 import numpy as np
 
@@ -19,6 +20,8 @@ from ..beam_layout import ROOT_EXTENSION, layout_beam_model
 from .flexure import EightBarFlexureParams, eightbar_layout
 
 EE_LINK = "end_effector"
+# the material library is a data file read on each lookup; a sweep builds thousands of models
+_material = functools.lru_cache(maxsize=16)(material_named)
 
 
 def unchecked_params(base: EightBarFlexureParams, **changes) -> EightBarFlexureParams:
@@ -44,7 +47,7 @@ def eightbar_beam_model(params: EightBarFlexureParams, n_per_flexure: int = 24,
     layout = eightbar_layout(params)
     face = np.asarray(layout.edges["end_effector"], float).mean(axis=0)  # end_effector_point
     model, info = layout_beam_model(
-        layout, material_named(params.material), params.thickness,
+        layout, _material(params.material), params.thickness,
         fillet_radius=params.root_fillet_radius, n_per_flexure=n_per_flexure,
         root_extension=root_extension, anchors={EE_LINK: face}, shear=shear)
     info["end_effector"] = info["masters"][EE_LINK]

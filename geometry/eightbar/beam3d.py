@@ -14,7 +14,7 @@ about its centroid.
 import numpy as np
 
 from ...fem.beam3d import Beam3DModel, RigidLink, Section, rect_torsion_constant
-from ..beam_layout import ROOT_EXTENSION, _clip
+from ..beam_layout import ROOT_EXTENSION, clip_convex
 from .beam import eightbar_beam_model
 from .flexure import EightBarFlexureParams, eightbar_layout
 
@@ -39,12 +39,12 @@ def link_plate_inertia(parts, link: str, out_of_plane: float, rho: float) -> tup
     total, n = sum(_plane_moments(r) for r in rects), len(rects)
     for i in range(n):
         for j in range(i + 1, n):
-            pair = _clip(rects[i], rects[j])
+            pair = clip_convex(rects[i], rects[j])
             if len(pair) < 3:
                 continue
             total = total - _plane_moments(pair)
             for k in range(j + 1, n):
-                triple = _clip(pair, rects[k])
+                triple = clip_convex(pair, rects[k])
                 if len(triple) >= 3:
                     total = total + _plane_moments(triple)
     A, Sx, Sy, Ixx, Iyy = total

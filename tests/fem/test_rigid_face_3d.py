@@ -151,6 +151,20 @@ def test_nonlinear_end_moment_bends_the_prism_into_an_arc(tets):
     assert np.abs(force).max() < 1e-6 * EI / L ** 2
 
 
+def test_arc_length_with_a_dead_face_moment_follows_the_arc(tets):
+    # the same dead moment traced by arc-length (its tangent is not symmetric: general
+    # factorisation): every state on the analytic path, rotation = load factor x theta n
+    n = np.array([0.0, 1.0, 1.0]) / np.sqrt(2.0)
+    theta = np.pi / 4
+    face = RigidFace("tip", moment=tuple(EI * theta / L * n))
+    result = solve_nonlinear(tets, [Fixed("fixed")], [], steps=4, rigid_faces=[face],
+                             control="arc-length")
+    assert result.load_factors[-1] == pytest.approx(1.0)
+    assert len(result.load_factors) > 2 and not result.info["limit_points"]
+    for lam, motion in zip(result.load_factors[1:], result.face_motion[1:]):
+        assert motion["tip"][3:] == pytest.approx(lam * theta * n, rel=0.01, abs=0.01 * lam * theta)
+
+
 @pytest.mark.slow
 def test_nonlinear_prescribed_rotation_half_turn(tets):
     # rotation theta about z held (8 steps to 180 degrees), translations free: reaction
