@@ -55,7 +55,8 @@ def driving_metrics(beam: dict, cont: dict) -> list:
             Metric("driving linkage: peak stress, linear, 1 mm of input", "Pa", NAN,
                    beam["max_von_mises_pa"] * MM / beam["input_m"],
                    cont["max_von_mises_pa"] * MM / cont["input_m"], STRESS_TOL,
-                   note="continuum: von Mises at the filleted roots")]
+                   note="continuum: nodal von Mises at the sharp roots the driving linkage "
+                        "is drawn with (a corner: mesh-dependent)")]
     for k, (mb, mc) in enumerate(zip(beam.get("modes", []), cont.get("modes", []))):
         rows.append(Metric(f"driving linkage: mode {k + 1} frequency", "Hz", NAN, mb["f_hz"],
                            mc["f_hz"]))
