@@ -144,8 +144,8 @@ def add_eightbar_commands(eb_sub) -> None:
     p.add_argument("--model", choices=("continuum", "beam"), default="continuum",
                    help="continuum: 2-D FEM (default); beam: the reduced beam model (~0.1 s)")
     p.add_argument("--dim", type=int, choices=(2, 3), default=2,
-                   help="continuum in 2-D (plane stress, default) or 3-D (the solid, ~250k DOFs:"
-                   " linear and modal only, ~2 min)")
+                   help="continuum in 2-D (plane stress, default) or 3-D (the solid, 240k DOFs:"
+                   " linear and modal only, ~40 s)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(run=_run_eightbar_analyze, summarize=_summarize_eightbar_analyze)
     p = eb_sub.add_parser("driving", help="the Ch. 6 driving linkage (two lambdas, two "

@@ -105,12 +105,13 @@ def test_cli_analyze_dim_3_refuses_the_planar_beam_model(capsys):
 
 @pytest.mark.slow
 def test_cli_analyze_dim_3_quick(capsys):
-    """The solid's k_x, k_y and modes (150k DOFs): k_x within 10 % above the 2-D plane-
-    stress model's on its own coarse mesh (the solid's wide flexures bend stiffer, by up to
-    1 / (1 - nu^2) = +12 %, and its mesh is coarse), the first mode out of plane."""
+    """The solid's k_x, k_y and modes (150k DOFs): k_x above the 2-D plane-stress model's,
+    by less than 15 % (measured +9.8 %: this coarse mesh of layered tetrahedra is ~9 % stiff,
+    as its working mode is +4.7 % in frequency against the converged ~+0.4 %,
+    docs/beam.md), the first mode out of plane."""
     assert main(["eightbar", "analyze", "--dim", "3", "--quick", "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     plane = analyze_eightbar(size_factor=2.0, n_modes=0, nonlinear=False)
-    assert 1.0 <= out["k_x"] / plane["k_x"] <= 1.10
+    assert 1.0 <= out["k_x"] / plane["k_x"] <= 1.15
     first = out["modes"][0]
     assert first["m_eff_z_kg"] > 10 * (first["m_eff_x_kg"] + first["m_eff_y_kg"])
