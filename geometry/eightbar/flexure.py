@@ -219,7 +219,9 @@ def mesh_eightbar_flexure(params: EightBarFlexureParams, n_across: int = 3,
     """Mesh the flexure suspension: triangles (use order=2), ``max(n_across, 3 / size_factor)``
     elements across every flexure, element length ``aspect * size_factor`` times the width
     across it (at most 20), links graded to W / 2 * size_factor. ``dim=3``: the solid of
-    thickness t (tetrahedra, mid-plane z = 0), sized by :func:`solid_mesh_options`. Returns (FEMesh, sizes dict {"flexure_size", "coarse_size"}, m). Subdomains:
+    thickness t (tetrahedra, mid-plane z = 0), sized by :func:`solid_mesh_options` (``aspect``
+    unused). Returns (FEMesh, sizes dict {"flexure_size", "coarse_size"(, "layer_size")}, m).
+    Subdomains:
     each link, "flexure_<joint>", "links", "flexures", "anchors", "body"; boundaries: "fixed",
     "end_effector"."""
     check_mesh_options(n_across, size_factor)

@@ -15,7 +15,9 @@ Anchors clamped in both models. SI units; frequencies in Hz.
 import time
 
 import numpy as np
+import skfem
 from scipy.spatial import cKDTree
+from skfem.models.elasticity import linear_elasticity
 
 from ...fem import Fixed, solve_modes
 from ...fem.beam3d import Beam3DModel, rect_torsion_constant, solve_beam3d_modes
@@ -54,9 +56,6 @@ def out_of_plane_share(vertex_shapes, mirror: np.ndarray) -> np.ndarray:
 def energy_share(model, shapes: np.ndarray, subdomain: str) -> np.ndarray:
     """Share (0-1) of each mode's strain energy in the elements of ``subdomain``:
     phi.K_sub.phi / phi.K.phi (``shapes`` (n, n_dofs))."""
-    import skfem
-    from skfem.models.elasticity import linear_elasticity
-
     basis = skfem.Basis(model.mesh.mesh, model.basis.elem, intorder=2 * (model.order - 1),
                         elements=model.mesh.subdomains[subdomain])
     K_sub = skfem.asm(linear_elasticity(*model.lame), basis)
@@ -67,7 +66,8 @@ def continuum_modes(params: EightBarFlexureParams, n_modes: int = 10, size_facto
                     layers: int | None = None, n_across: int = 3,
                     max_dofs: int | None = None) -> dict:
     """The solid's first ``n_modes`` (anchors clamped): {"f_hz", "mass_fraction" (n, 3),
-    "out_of_plane_share", "links_energy_share" (strain energy outside the flexures), "dofs", "mesh_s", "solve_s" (wall-clock s), "sizes" (m)}."""
+    "out_of_plane_share", "links_energy_share" (strain energy outside the flexures), "dofs",
+    "mesh_s", "solve_s" (wall-clock s), "sizes" (m)}."""
     t0 = time.perf_counter()
     model, sizes = build_model(params, size_factor, n_across, max_dofs, dim=3, layers=layers)
     t1 = time.perf_counter()

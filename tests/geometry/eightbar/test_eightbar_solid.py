@@ -35,12 +35,14 @@ def _measure(mesh, elements) -> float:
     edges = np.stack([p[:, t[k]] - p[:, t[0]] for k in range(1, t.shape[0])], axis=0)
     if t.shape[0] == 3:
         return float(np.abs(edges[0, 0] * edges[1, 1] - edges[0, 1] * edges[1, 0]).sum() / 2)
-    return float(np.abs(np.einsum("ij,ij->j", edges[0], np.cross(edges[1].T, edges[2].T).T)).sum() / 6)
+    volume = np.einsum("ij,ij->j", edges[0], np.cross(edges[1].T, edges[2].T).T)
+    return float(np.abs(volume).sum() / 6)
 
 
 def _face_area(mesh, facets) -> float:
     p = mesh.p[:, mesh.facets[:, facets]]
-    return float(np.linalg.norm(np.cross((p[:, 1] - p[:, 0]).T, (p[:, 2] - p[:, 0]).T), axis=1).sum() / 2)
+    normal = np.cross((p[:, 1] - p[:, 0]).T, (p[:, 2] - p[:, 0]).T)
+    return float(np.linalg.norm(normal, axis=1).sum() / 2)
 
 
 def test_every_subdomain_is_its_planar_area_times_the_thickness(params, solid, plane):

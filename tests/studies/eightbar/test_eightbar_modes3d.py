@@ -8,9 +8,11 @@ import pytest
 from flexfem.geometry.eightbar.flexure import EightBarFlexureParams
 from flexfem.studies.cli import main
 from flexfem.studies.eightbar.analysis import analyze_eightbar
+from flexfem.studies.eightbar.analysis import build_model
 from flexfem.studies.eightbar.modes3d import (
     beam_modes,
     compare_modes,
+    energy_share,
     mirror_vertices,
     out_of_plane_share,
     pair_modes,
@@ -30,6 +32,16 @@ def test_mirror_split_sorts_in_plane_and_out_of_plane_motion():
     assert share == pytest.approx([0.0, 1.0, 0.5])
     with pytest.raises(ValueError, match="not symmetric about z = 0"):
         mirror_vertices(p + np.array([[0.0], [0.0], [0.1]]))
+
+
+def test_energy_shares_of_the_parts_add_up_to_one():
+    """Strain energy of any displacement split over flexures, links and anchors (coarse
+    solid): the shares sum to 1, the body's is 1."""
+    model, _ = build_model(EightBarFlexureParams(), size_factor=3.0, dim=3)
+    u = np.random.default_rng(0).standard_normal((2, model.n_dofs))
+    parts = sum(energy_share(model, u, name) for name in ("flexures", "links", "anchors"))
+    assert parts == pytest.approx([1.0, 1.0], rel=1e-9)
+    assert energy_share(model, u, "body") == pytest.approx([1.0, 1.0], rel=1e-9)
 
 
 def test_pairing_takes_the_k_th_mode_of_each_family():
