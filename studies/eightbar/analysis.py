@@ -57,7 +57,8 @@ def build_model(params: EightBarFlexureParams, size_factor: float = 1.0, n_acros
     affords) is refused before meshing. 3-D: ``layers`` through the thickness (see
     :func:`~flexfem.geometry.eightbar.flexure.solid_mesh_options`)."""
     check_budget(estimate_mesh(params, n_across, size_factor, dim=dim, layers=layers), dim,
-                 max_dofs, what=f"the eight-bar {dim}-D mesh at size_factor {size_factor:g}")
+                 max_dofs, what=f"the eight-bar mesh at size_factor {size_factor:g}"
+                 + (" in 3-D" if dim == 3 else ""))
     mesh, sizes = mesh_eightbar_flexure(params, n_across=n_across, size_factor=size_factor,
                                         dim=dim, layers=layers)
     formulation = PlaneStress(params.thickness) if dim == 2 else Solid3D()
