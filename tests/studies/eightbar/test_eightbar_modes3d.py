@@ -5,6 +5,7 @@ import json
 import numpy as np
 import pytest
 
+from flexfem.fem.budget import BudgetError
 from flexfem.geometry.eightbar.flexure import EightBarFlexureParams
 from flexfem.studies.cli import main
 from flexfem.studies.eightbar.analysis import analyze_eightbar
@@ -42,6 +43,11 @@ def test_energy_shares_of_the_parts_add_up_to_one():
     parts = sum(energy_share(model, u, name) for name in ("flexures", "links", "anchors"))
     assert parts == pytest.approx([1.0, 1.0], rel=1e-9)
     assert energy_share(model, u, "body") == pytest.approx([1.0, 1.0], rel=1e-9)
+
+
+def test_a_solid_above_the_budget_is_refused_before_meshing():
+    with pytest.raises(BudgetError, match="eight-bar mesh at size_factor 1 in 3-D.*10,000 DOFs"):
+        build_model(EightBarFlexureParams(), dim=3, max_dofs=10_000)
 
 
 def test_pairing_takes_the_k_th_mode_of_each_family():
