@@ -60,12 +60,13 @@ def _extrude(gmsh, thickness: float, layers: int) -> dict:
 
 def _swept_faces(gmsh, curves, thickness: float, tol: float) -> list:
     """The faces swept by ``curves`` (planar, z = 0): those whose bounding box is the
-    curve's, stretched over 0 <= z <= thickness (m, to ``tol``)."""
+    curve's, stretched by ``thickness`` along z (m, to ``tol``; both boxes carry OCC's
+    tolerance margin)."""
     boxes = {t: np.array(gmsh.model.getBoundingBox(2, t)) for _, t in gmsh.model.getEntities(2)}
     found = []
     for c in curves:
         want = np.array(gmsh.model.getBoundingBox(1, c))
-        want[[2, 5]] = 0.0, thickness
+        want[5] += thickness
         found += [t for t, box in boxes.items() if np.all(np.abs(box - want) <= tol)]
     return found
 
@@ -82,7 +83,7 @@ def draw_layout_solid(gmsh, layout: FlexureLayout, thickness: float, layers: int
     groups = _groups(gmsh)
     gmsh.model.removePhysicalGroups()
     volume_of = _extrude(gmsh, thickness, layers)
-    tol = 1e-3 * min(p.width for p in layout.parts)  # above OCC's bounding-box slack (1e-7 m)
+    tol = 1e-3 * min(p.width for p in layout.parts)
     for (dim, name), tags in groups.items():
         if dim == 2:
             gmsh.model.addPhysicalGroup(3, [volume_of[t] for t in tags], name=name)
