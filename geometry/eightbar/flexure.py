@@ -31,6 +31,7 @@ from ..flexure_linkage import (
     polygon_distance,
 )
 from ..flexure_roots import check_root_fillet_radius
+from ..flexure_solid import mesh_layout_solid
 from ..linkage import trace_from_reference
 from ..linkage_clearance import segment_distance
 from .rigid import (
@@ -44,6 +45,9 @@ from .rigid import (
 THESIS_TRAVEL = load_toml("eightbar_thesis.toml")["design_targets"]["travel_mm"] * 1e-3  # m, Ch. 5
 # m, our choice (docs/eightbar.md, "Flexure suspension (FEM)"): see the module docstring
 DEFAULT_ROOT_FILLET_RADIUS = 0.3e-3
+# the 3-D mesh's defaults (docs/eightbar.md, "The suspension in 3-D"): element length / size
+# across a flexure, element layers through the thickness
+SOLID_ASPECT, SOLID_LAYERS = 4.0, 2
 
 
 def _thesis_rigid() -> EightBarParams:
@@ -210,18 +214,42 @@ def check_mesh_options(n_across, size_factor) -> None:
 
 
 def mesh_eightbar_flexure(params: EightBarFlexureParams, n_across: int = 3,
-                          size_factor: float = 1.0, aspect: float = 4.0):
+                          size_factor: float = 1.0, aspect: float = 4.0, dim: int = 2,
+                          layers: int | None = None):
     """Mesh the flexure suspension: triangles (use order=2), ``max(n_across, 3 / size_factor)``
     elements across every flexure, element length ``aspect * size_factor`` times the width
-    across it (at most 20), links graded to W / 2 * size_factor. Returns (FEMesh, sizes dict
-    {"flexure_size", "coarse_size"}, m). Subdomains: each link, "flexure_<joint>", "links",
-    "flexures", "anchors", "body"; boundaries: "fixed", "end_effector"."""
+    across it (at most 20), links graded to W / 2 * size_factor. ``dim=3``: the solid of
+    thickness t (tetrahedra, mid-plane z = 0), sized by :func:`solid_mesh_options` (``aspect``
+    unused). Returns (FEMesh, sizes dict {"flexure_size", "coarse_size"(, "layer_size")}, m).
+    Subdomains:
+    each link, "flexure_<joint>", "links", "flexures", "anchors", "body"; boundaries: "fixed",
+    "end_effector"."""
     check_mesh_options(n_across, size_factor)
+    if dim not in (2, 3):
+        raise ValueError(f"dim = {dim!r} must be 2 or 3")
+    if dim == 3:
+        options = solid_mesh_options(params, n_across, size_factor, layers)
+        return mesh_layout_solid(eightbar_layout(params), params.thickness, name="eightbar_solid",
+                                 root_fillet_radius=params.root_fillet_radius, **options)
     n = max(int(n_across), int(math.ceil(3 / size_factor)))
     return mesh_layout(eightbar_layout(params), n_across=n,
                        aspect=min(20.0, max(0.5, aspect * size_factor)),
                        coarse=params.link_width / 2 * size_factor, name="eightbar_flexure",
                        root_fillet_radius=params.root_fillet_radius)
+
+
+def solid_mesh_options(params: EightBarFlexureParams, n_across: int = 3,
+                       size_factor: float = 1.0, layers: int | None = None) -> dict:
+    """In-plane sizes and layers of the 3-D mesh: n_across elements across a flexure, element
+    length SOLID_ASPECT * size_factor times the size across (at most 20), links graded to
+    W * size_factor (twice the 2-D mesh's: the solid's DOFs grow as (2 layers + 1) times the
+    plane's), ``layers`` (default max(2, SOLID_LAYERS / size_factor)) through t."""
+    check_mesh_options(n_across, size_factor)
+    if layers is None:
+        layers = max(2, int(round(SOLID_LAYERS / size_factor)))
+    return {"n_across": int(n_across), "layers": layers,
+            "aspect": min(20.0, max(0.5, SOLID_ASPECT * size_factor)),
+            "coarse": params.link_width * size_factor}
 
 
 def joint_rotation_rates(params: EightBarFlexureParams, step: float | None = None) -> dict:

@@ -25,6 +25,7 @@ from ...fem import (
     PlaneStress,
     Prescribed,
     RigidFace,
+    Solid3D,
     material,
     solve_modes,
     solve_nonlinear,
@@ -50,13 +51,18 @@ NEWTON_TOL = 1e-5
 
 
 def build_model(params: EightBarFlexureParams, size_factor: float = 1.0, n_across: int = 3,
-                max_dofs: int | None = None):
-    """(Model (plane stress, P2), mesh sizes dict) of the flexure suspension; a mesh above
-    ``max_dofs`` (None: what half the available memory affords) is refused before meshing."""
-    check_budget(estimate_mesh(params, n_across, size_factor), 2, max_dofs,
-                 what=f"the eight-bar mesh at size_factor {size_factor:g}")
-    mesh, sizes = mesh_eightbar_flexure(params, n_across=n_across, size_factor=size_factor)
-    return Model(mesh, material(params.material), PlaneStress(params.thickness), order=2), sizes
+                max_dofs: int | None = None, dim: int = 2, layers: int | None = None):
+    """(Model (P2: plane stress in 2-D, solid tetrahedra in 3-D), mesh sizes dict) of the
+    flexure suspension; a mesh above ``max_dofs`` (None: what half the available memory
+    affords) is refused before meshing. 3-D: ``layers`` through the thickness (see
+    :func:`~flexfem.geometry.eightbar.flexure.solid_mesh_options`)."""
+    check_budget(estimate_mesh(params, n_across, size_factor, dim=dim, layers=layers), dim,
+                 max_dofs, what=f"the eight-bar mesh at size_factor {size_factor:g}"
+                 + (" in 3-D" if dim == 3 else ""))
+    mesh, sizes = mesh_eightbar_flexure(params, n_across=n_across, size_factor=size_factor,
+                                        dim=dim, layers=layers)
+    formulation = PlaneStress(params.thickness) if dim == 2 else Solid3D()
+    return Model(mesh, material(params.material), formulation, order=2), sizes
 
 
 def group_at_vertex(model: Model, vertex: int) -> str:
@@ -82,11 +88,10 @@ def linear_analysis(model: Model, displacement: float) -> dict:
     k_x = float(along.reactions["end_effector"][0] / probe)
     k_y = float(across.reactions["end_effector"][1] / probe)
     vertex = int(np.argmax(along.von_mises_nodal))
-    where = model.mesh.mesh.p[:, vertex]
+    where = dict(zip("xyz", (float(c) for c in model.mesh.mesh.p[:, vertex])))
     return {"k_x": k_x, "k_y": k_y, "max_von_mises": along.max_von_mises,
             "max_von_mises_element": along.max_von_mises_element,
-            "max_stress_location": {"x": float(where[0]), "y": float(where[1]),
-                                    "flexure": group_at_vertex(model, vertex)},
+            "max_stress_location": {**where, "flexure": group_at_vertex(model, vertex)},
             "stress_displacement_m": probe, "result": along}
 
 
@@ -120,11 +125,12 @@ def stress_convergence(params: EightBarFlexureParams, size_factors=(1.0, 0.7, 0.
 
 
 def modal_analysis(model: Model, n: int = 4) -> list:
-    """First ``n`` modes: [{"f_hz", "m_eff_x_kg", "m_eff_y_kg"}] with the base fixed."""
+    """First ``n`` modes: [{"f_hz", "m_eff_x_kg", "m_eff_y_kg"(, "m_eff_z_kg" in 3-D)}] with
+    the base fixed."""
     # a shift just below zero: the default (1e-6 of the stiffness/mass scale) sits far above
     # this mechanism's few-Hz modes and Lanczos then needs tens of seconds
     modes = solve_modes(model, n=n, supports=[Fixed("fixed")], shift_hz=-1.0)
-    return [{"f_hz": float(f), "m_eff_x_kg": float(m[0]), "m_eff_y_kg": float(m[1])}
+    return [{"f_hz": float(f), **{f"m_eff_{a}_kg": float(v) for a, v in zip("xyz", m)}}
             for f, m in zip(modes.frequencies_hz, modes.effective_mass)]
 
 
@@ -186,16 +192,19 @@ def _mirror_name(name: str) -> str:
 def analyze_eightbar(params: EightBarFlexureParams | None = None, travel: float | None = None,
                      size_factor: float = 1.0, steps: int = 8, n_modes: int = 4,
                      both_halves: bool = True, nonlinear: bool = True,
-                     max_dofs: int | None = None) -> dict:
+                     max_dofs: int | None = None, dim: int = 2) -> dict:
     """Linear stiffness and stress, modes, pseudo-rigid-body estimate and (``nonlinear``) the
     large-deflection trace over ``travel`` (m, default the rigid design's travel). SI units.
-    The linear stress is at half the travel (the end of the stroke from the middle)."""
+    The linear stress is at half the travel (the end of the stroke from the middle).
+    ``dim=3``: the solid (linear and modal only: ``nonlinear`` must be False)."""
     params = params or EightBarFlexureParams()
+    if dim == 3 and nonlinear:
+        raise ValueError("nonlinear=True needs dim=2: the 3-D model is linear and modal only")
     travel = params.rigid.travel if travel is None else float(travel)
     if not (math.isfinite(travel) and 0 < travel < params.rigid.ground_spacing):
         raise ValueError(f"travel = {travel!r} m must be in (0, ground_spacing = "
                          f"{params.rigid.ground_spacing} m)")
-    model, sizes = build_model(params, size_factor, max_dofs=max_dofs)
+    model, sizes = build_model(params, size_factor, max_dofs=max_dofs, dim=dim)
     lin = linear_analysis(model, travel / 2)
     prbm = prbm_stiffness(params)
     prbm_stress = prbm_peak_stress(params, travel / 2)
@@ -206,7 +215,7 @@ def analyze_eightbar(params: EightBarFlexureParams | None = None, travel: float 
            "prbm_bending_stress": prbm_stress, "travel_m": travel,
            "dofs": model.n_dofs, "h": sizes["flexure_size"], "mesh_sizes": sizes,
            "n_elements": int(model.mesh.mesh.t.shape[1]), "linear_result": lin["result"],
-           "solver": lin["result"].solver}
+           "solver": lin["result"].solver, "dim": dim}
     if n_modes:
         out["modes"] = modal_analysis(model, n_modes)
     if nonlinear:
@@ -256,7 +265,7 @@ def summary_row(out: dict) -> dict:
     keys = ("k_x", "k_y", "k_x_prbm", "max_von_mises", "max_stress_location", "travel_m",
             "fem_deviation_pct", "fem_deviation_m", "fem_band_m", "rigid_deviation_pct",
             "rigid_deviation_m", "peak_von_mises_travel", "peak_von_mises_flexure",
-            "safety_factor", "max_rotation_rad", "end_force_n", "dofs", "solver")
+            "safety_factor", "max_rotation_rad", "end_force_n", "dofs", "solver", "dim")
     row = require_finite({k: out[k] for k in keys if k in out}, "eight-bar")
     if "modes" in out:
         row["modes"] = out["modes"]

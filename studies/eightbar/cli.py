@@ -42,6 +42,12 @@ def _summarize_eightbar_trace(result: dict) -> str:
 
 
 def _run_eightbar_analyze(args) -> dict:
+    if args.dim == 3:
+        if args.model == "beam":
+            raise ValueError("--dim 3 is the solid continuum; --model beam is planar (drop one)")
+        out = analyze_eightbar(travel=args.travel, size_factor=2.0 if args.quick else 1.0,
+                               n_modes=4, nonlinear=False, dim=3)
+        return summary_row(out)
     if args.model == "beam":
         out = analyze_eightbar_beam(travel=args.travel, steps=8, n_modes=2)
         return {**summary_row(out), "model": "beam"}
@@ -53,6 +59,13 @@ def _run_eightbar_analyze(args) -> dict:
 
 def _summarize_eightbar_analyze(r: dict) -> str:
     loc = r["max_stress_location"]
+    if r.get("dim") == 3:
+        modes = ", ".join(f"{m['f_hz']:.4g}" for m in r["modes"])
+        return (f"eight-bar flexure suspension, 3-D FEM ({r['dofs']} DOFs): k_x = {r['k_x']:.4g} "
+                f"N/m (pseudo-rigid-body {r['k_x_prbm']:.4g}), k_y = {r['k_y']:.4g} N/m; linear "
+                f"max von Mises {r['max_von_mises'] / 1e6:.4g} MPa at x = "
+                f"{r['travel_m'] / 2 * 1e3:.4g} mm, in {loc['flexure']}\nmodes {modes} Hz "
+                "(no large-deflection trace in 3-D)")
     model = "beam model" if r.get("model") == "beam" else "2-D FEM"
     return (f"eight-bar flexure suspension, {model} ({r['dofs']} DOFs): k_x = {r['k_x']:.4g} N/m "
             f"(pseudo-rigid-body {r['k_x_prbm']:.4g}), k_y = {r['k_y']:.4g} N/m; linear max von "
@@ -100,14 +113,16 @@ def _summarize_eightbar_driving(r: dict) -> str:
 
 
 def _run_eightbar_mesh(args) -> dict:
-    mesh, sizes = mesh_eightbar_flexure(EightBarFlexureParams(), size_factor=args.size_factor)
+    mesh, sizes = mesh_eightbar_flexure(EightBarFlexureParams(), size_factor=args.size_factor,
+                                        dim=args.dim)
     path = write_mesh(mesh, args.out, order=args.order)
     return {"path": str(path), "order": args.order, "vertices": int(mesh.mesh.p.shape[1]),
+            "cells": "tetrahedra" if args.dim == 3 else "triangles",
             "elements": int(mesh.mesh.t.shape[1]), "groups": mesh.group_names, **sizes}
 
 
 def _summarize_eightbar_mesh(r: dict) -> str:
-    return (f"wrote {r['path']}: {r['elements']} triangles of order {r['order']}, "
+    return (f"wrote {r['path']}: {r['elements']} {r['cells']} of order {r['order']}, "
             f"{r['vertices']} vertices, flexure "
             f"element {r['flexure_size'] * 1e3:.3g} mm; groups {', '.join(r['groups'])}")
 
@@ -128,6 +143,9 @@ def add_eightbar_commands(eb_sub) -> None:
     p.add_argument("--quick", action="store_true", help="coarse mesh, half stroke mirrored")
     p.add_argument("--model", choices=("continuum", "beam"), default="continuum",
                    help="continuum: 2-D FEM (default); beam: the reduced beam model (~0.1 s)")
+    p.add_argument("--dim", type=int, choices=(2, 3), default=2,
+                   help="continuum in 2-D (plane stress, default) or 3-D (the solid, 240k DOFs:"
+                   " linear and modal only, ~40 s)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(run=_run_eightbar_analyze, summarize=_summarize_eightbar_analyze)
     p = eb_sub.add_parser("driving", help="the Ch. 6 driving linkage (two lambdas, two "
@@ -146,6 +164,8 @@ def add_eightbar_commands(eb_sub) -> None:
     p = eb_sub.add_parser("mesh", help="write the flexure suspension's mesh (.msh .vtu .xdmf .inp)")
     p.add_argument("out", help="output file; the format follows the extension")
     p.add_argument("--size-factor", type=float, default=1.0, help="element size factor")
+    p.add_argument("--dim", type=int, choices=(2, 3), default=2,
+                   help="2: triangles (default); 3: the solid, tetrahedra in layers through t")
     p.add_argument("--order", type=int, default=2, choices=(1, 2),
                    help="element order written (default 2: the quadratic elements analyze solves)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
