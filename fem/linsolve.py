@@ -18,6 +18,8 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
+from . import memory
+
 # Above these sizes (free DOFs) "auto" uses AMG-CG: measured crossover on 2 cores, see
 # docs/performance.md. Direct factorization fill grows much faster in 3-D.
 AMG_THRESHOLD = {2: 2_000_000, 3: 400_000}
@@ -170,6 +172,7 @@ class Factorization:
         # block graph, -25 % to -40 % CPU on 3-D P2 (docs/performance.md)
         iparm[36] = 0 if self.kind == "general" else -80
         self._pt = np.zeros(64, dtype=np.int64)
+        memory.release_freed()  # before the factor, the largest allocation, is made
         # release the MKL factor when this object goes away, even without free()
         self._finalizer = weakref.finalize(self, _pardiso_release, self._pt, self._mtype, self.n)
         dummy = np.zeros(self.n)

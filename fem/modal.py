@@ -9,7 +9,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse.linalg as spla
 
-from . import linsolve
+from . import linsolve, memory
 from .boundary import component_indices, constrained_dofs
 from .model import Model
 from .static import check_supports, vertex_displacement
@@ -102,4 +102,5 @@ def solve_modes(model: Model, n: int = 6, supports=(), shift_hz: float | None = 
     participation = shapes @ (Mfull @ influence.T)  # (n, dim)
     total_mass = float(influence[0] @ (Mfull @ influence[0]))
     frequencies = np.sqrt(np.clip(eigvals, 0.0, None)) / (2 * np.pi)
+    memory.release_freed()  # the factorization's leftovers
     return Modes(model, frequencies, shapes, participation ** 2, total_mass, solve.backend)

@@ -13,7 +13,7 @@ import numpy as np
 import skfem
 from skfem.helpers import eye, grad, trace
 
-from . import assembly
+from . import assembly, memory
 from .materials import Material
 from .mesh import FEMesh
 
@@ -163,17 +163,21 @@ class Model:
         matrix of skfem's BilinearForm t (2 mu eps(u):eps(v) + lam tr eps(u) tr eps(v)) on
         ``stiffness_basis``, assembled ~3x faster and without its triplets."""
         lam, mu = self.lame
-        return assembly.elasticity_stiffness(
+        K = assembly.elasticity_stiffness(
             self.mesh.mesh, scalar_element(self.mesh.mesh, self.order), self.stiffness_quadrature,
             self.node_pattern, self.dim, lam, mu, self.thickness)
+        memory.release_freed()  # the element blocks' temporaries
+        return K
 
     @cached_property
     def mass(self):
         """Consistent mass matrix M (kg), CSR: :func:`.assembly.consistent_mass` on the
         quadrature of ``basis`` (the matrix of skfem's BilinearForm rho t u.v)."""
-        return assembly.consistent_mass(
+        M = assembly.consistent_mass(
             self.mesh.mesh, scalar_element(self.mesh.mesh, self.order), self.quadrature,
             self.node_pattern, self.dim, self.material.rho * self.thickness)
+        memory.release_freed()
+        return M
 
     def with_stiffness(self, extra) -> "Model":
         """A copy of this model whose stiffness is K + ``extra`` (N/m; a symmetric sparse

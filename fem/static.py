@@ -1,7 +1,7 @@
 """Linear static analysis: ``solve_static(model, supports, loads) -> StaticResult``."""
 import numpy as np
 
-from . import linsolve
+from . import linsolve, memory
 from .boundary import component_indices, constrained_dofs, load_vector
 from .model import Model, von_mises
 from .rigid_static import solve_static_faces
@@ -53,6 +53,7 @@ def solve_static(model: Model, supports, loads, solver: str = "auto",
     sig = model.stress(u)
     vm_qp = von_mises(sig)
     nodal = nodal_average(model, sig)
+    memory.release_freed()  # the factorization's and the stress recovery's leftovers
     return StaticResult(
         model=model, u=u, displacement=vertex_displacement(model, u),
         von_mises_nodal=von_mises(nodal), von_mises_element_max=vm_qp.max(axis=1),
