@@ -14,8 +14,10 @@ that the results recorded (``solver``: mkl-pardiso, cholmod, superlu or amg-cg).
 
 Each (row, program) runs in its own subprocess so that its peak resident memory is measured
 cleanly: flexfem's from ``getrusage(RUSAGE_SELF)`` of that process, CalculiX's from
-``wait4`` of the ccx process. flexfem's times exclude building the mesh; CalculiX's include
-reading its deck (it cannot be split), not writing it.
+``wait4`` of the ccx process. CalculiX's times include reading its deck (it cannot be split),
+not writing it; flexfem's include reading the same mesh from a .vtu file written beforehand
+(``read_mesh_s``, added to the static and modal totals of the table), not the import of
+flexfem (``import_s``, reported apart).
 """
 import argparse
 import importlib.util
@@ -26,6 +28,7 @@ import resource
 import signal
 import subprocess
 import sys
+import tempfile
 import time
 
 import numpy as np
@@ -61,12 +64,12 @@ def cantilever_mesh(dim: int, target_dofs: int):
     return FEMesh(mesh, groups, {"body": np.arange(mesh.t.shape[1])})
 
 
-def cantilever_model(dim: int, target_dofs: int):
+def cantilever_model(dim: int, target_dofs: int, mesh=None):
     from flexfem.fem import Material, Model, PlaneStress, Solid3D
 
     steel = Material("steel", E=200e9, nu=0.3, rho=7800.0)
     form = PlaneStress(0.01) if dim == 2 else Solid3D()
-    return Model(cantilever_mesh(dim, target_dofs), steel, form, order=2)
+    return Model(mesh or cantilever_mesh(dim, target_dofs), steel, form, order=2)
 
 
 def _loads(dim):
@@ -76,13 +79,23 @@ def _loads(dim):
 
 
 def run_flexfem(row: str) -> dict:
-    """Times (s) of assembly (K, then M), static solve (incl. stress recovery) and modes."""
-    from flexfem.fem import solve_modes, solve_static
+    """Times (s) of importing flexfem.fem, reading the mesh (a .vtu written beforehand, as
+    ccx reads its deck), assembly (K, then M), static solve (incl. stress recovery) and
+    modes."""
+    t = time.perf_counter()
+    from flexfem.fem import read_mesh, solve_modes, solve_static, write_mesh
+    import_s = time.perf_counter() - t
 
     dim, target = ROWS[row]
-    model = cantilever_model(dim, target)
+    with tempfile.TemporaryDirectory() as folder:
+        path = write_mesh(cantilever_mesh(dim, target), Path(folder) / "cantilever.vtu")
+        t = time.perf_counter()
+        mesh = read_mesh(path)
+        read_s = time.perf_counter() - t
+    model = cantilever_model(dim, target, mesh)
     supports, loads = _loads(dim)
     out = {"row": row, "program": "flexfem", "n_dofs": int(model.n_dofs),
+           "import_s": import_s, "read_mesh_s": read_s,
            "pypardiso": importlib.util.find_spec("pypardiso") is not None,
            "mkl": importlib.util.find_spec("mkl") is not None or any(
                Path(sys.prefix, "lib").glob("libmkl_rt.*"))}
@@ -176,16 +189,18 @@ def table(rows: list[dict]) -> str:
     fallbacks in the notes column (details in the JSON lines)."""
     head = ("| mesh | DOFs | flexfem assembly K+M (s) | flexfem static (s) | ccx static (s) | "
             "ratio static | flexfem 6 modes (s) | ccx 6 modes (s) | ratio modes | "
-            "flexfem peak MB | ccx peak MB | f1 flexfem / ccx (Hz) | flexfem solver | notes |")
+            "flexfem peak MB | ccx peak MB | f1 flexfem / ccx (Hz) | flexfem solver | "
+            "flexfem import (s) | notes |")
     lines = [head, "|" + "---|" * (head.count("|") - 1)]
     for f, c in rows:
         asm = f.get("assemble_K_s", np.nan) + f.get("assemble_M_s", np.nan)
-        # static: K assembly + solve; modes: K + M assembly + eigen solve (ccx's own times
-        # include its assembly)
-        fs = f.get("assemble_K_s", np.nan) + f.get("static_s", np.nan)
+        # static: mesh read + K assembly + solve; modes: mesh read + K + M assembly + eigen
+        # solve (ccx's own times include reading its deck and its assembly)
+        read = f.get("read_mesh_s", np.nan)
+        fs = read + f.get("assemble_K_s", np.nan) + f.get("static_s", np.nan)
         if "static_error" in f:  # time until the solve was refused
-            fs = f.get("assemble_K_s", np.nan) + float(f["static_error"].split()[1])
-        fm = asm + f.get("modes_s", np.nan)
+            fs = read + f.get("assemble_K_s", np.nan) + float(f["static_error"].split()[1])
+        fm = read + asm + f.get("modes_s", np.nan)
         cs, cm = c.get("static_s"), c.get("modes_s")
         notes = [f"{p}: {e}" for p, e in (("flexfem", f.get("error")), ("ccx", c.get("error")),
                                            ("flexfem static", f.get("static_error")),
@@ -198,7 +213,8 @@ def table(rows: list[dict]) -> str:
             f"{_cell(cm, c.get('error') or c.get('modes_error'))} | "
             f"{_fmt(fm / cm if cm else None, '.2f')} | {_fmt(f.get('peak_rss_mb'), '.0f')} | "
             f"{_fmt(c.get('peak_rss_mb'), '.0f')} | {_fmt(f.get('f1_hz'), '.3f')} / "
-            f"{_fmt(c.get('f1_hz'), '.3f')} | {f.get('solver', '-')} | {'; '.join(notes)[:120]} |")
+            f"{_fmt(c.get('f1_hz'), '.3f')} | {f.get('solver', '-')} | "
+            f"{_fmt(f.get('import_s'), '.1f')} | {'; '.join(notes)[:120]} |")
     return "\n".join(lines)
 
 

@@ -9,7 +9,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse.linalg as spla
 
-from . import linsolve
+from . import linsolve, memory
 from .boundary import component_indices, constrained_dofs
 from .model import Model
 from .static import check_supports, vertex_displacement
@@ -66,11 +66,13 @@ def solve_modes(model: Model, n: int = 6, supports=(), shift_hz: float | None = 
     if n >= len(I):
         raise ValueError(f"n = {n} modes asked for but only {len(I)} free DOFs exist")
     if prestress is None:
-        K = model.stiffness[I][:, I]
+        K_full = model.stiffness
     else:
         from .stability import tangent_stiffness
-        K = tangent_stiffness(model, prestress)[I][:, I]
-    M = model.mass[I][:, I]
+        K_full = tangent_stiffness(model, prestress)
+    # K and M on the free DOFs as operators on the full matrices (no copies); only the
+    # matrix factorized, K - sigma M, is built
+    K, M = linsolve.Restriction(K_full, I), linsolve.Restriction(model.mass, I)
     if shift_hz is None:
         # -(scale of the stiffness/mass ratio) * 1e-6: far below any elastic mode, and keeps
         # K - sigma M positive definite for a free body
@@ -80,7 +82,10 @@ def solve_modes(model: Model, n: int = 6, supports=(), shift_hz: float | None = 
     # one factorization of K - sigma M for every Lanczos step; SPD for sigma < 0 (Cholesky),
     # indefinite for a positive shift
     kind = "spd" if sigma < 0 and prestress is None else "symmetric"
-    with linsolve.factorize((K - sigma * M).tocsr(), kind=kind) as solve:
+    shifted = (linsolve.block_to_factorize(K_full, I, kind)
+               - sigma * linsolve.block_to_factorize(model.mass, I, kind)).tocsr()
+    with linsolve.factorize(shifted, kind=kind) as solve:
+        del shifted  # the factorization keeps what it needs
         op = spla.LinearOperator(K.shape, matvec=solve, matmat=solve, dtype=float)
         eigvals, vectors = spla.eigsh(K, k=n, M=M, sigma=sigma, which="LM", OPinv=op, tol=1e-10)
     order = np.argsort(eigvals)
@@ -97,4 +102,5 @@ def solve_modes(model: Model, n: int = 6, supports=(), shift_hz: float | None = 
     participation = shapes @ (Mfull @ influence.T)  # (n, dim)
     total_mass = float(influence[0] @ (Mfull @ influence[0]))
     frequencies = np.sqrt(np.clip(eigvals, 0.0, None)) / (2 * np.pi)
+    memory.release_freed()  # the factorization's leftovers
     return Modes(model, frequencies, shapes, participation ** 2, total_mass, solve.backend)

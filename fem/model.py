@@ -10,10 +10,10 @@ from dataclasses import dataclass, replace
 from functools import cached_property
 
 import numpy as np
-import scipy.sparse as sp
 import skfem
 from skfem.helpers import eye, grad, trace
 
+from . import assembly, memory
 from .materials import Material
 from .mesh import FEMesh
 
@@ -67,6 +67,32 @@ def scalar_element(mesh: skfem.Mesh, order: int) -> skfem.Element:
     raise ValueError(f"order = {order} must be 1 or 2 for a {type(mesh).__name__}")
 
 
+class LazyCellBasis(skfem.CellBasis):
+    """skfem's CellBasis, with the shape functions at the quadrature points (``basis``, ``dx``)
+    evaluated on first use instead of on construction: a 3-D P2 vector basis holds ~26 kB of
+    them per element (530 MiB and 1.1 s at 20 580 tetrahedra), which the assembly, the static
+    and the modal solves do not read (they need its DOFs and rule only)."""
+
+    def __init__(self, mesh, elem, mapping=None, intorder=None, elements=None,
+                 quadrature=None, dofs=None, disable_doflocs=False):
+        # CellBasis.__init__ less its two eager lines (skfem >= 10)
+        skfem.assembly.basis.AbstractBasis.__init__(self, mesh, elem, mapping, intorder,
+                                                    quadrature, mesh.refdom, dofs,
+                                                    disable_doflocs)
+        self.tind = None if elements is None else mesh.normalize_elements(elements)
+        self.nelems = mesh.nelements if elements is None else len(self.tind)
+
+    @cached_property
+    def basis(self):
+        return [self.elem.gbasis(self.mapping, self.X, j, tind=self.tind)
+                for j in range(self.Nbfun)]
+
+    @cached_property
+    def dx(self):
+        return (np.abs(self.mapping.detDF(self.X, tind=self.tind))
+                * np.broadcast_to(self.W, (self.nelems, self.W.shape[-1])))
+
+
 @dataclass(frozen=True, eq=False)
 class Model:
     """mesh : FEMesh (m); material : Material; formulation : PlaneStress, PlaneStrain or
@@ -111,7 +137,7 @@ class Model:
         """Vector basis; quadrature exact for the mass matrix (degree 2 * order)."""
         element = skfem.ElementVector(scalar_element(self.mesh.mesh, self.order))
         intorder = 2 * self.order if self.is_affine else 2 * self.order + 1
-        return skfem.Basis(self.mesh.mesh, element, intorder=intorder)
+        return LazyCellBasis(self.mesh.mesh, element, intorder=intorder)
 
     @cached_property
     def stiffness_basis(self) -> skfem.CellBasis:
@@ -119,29 +145,39 @@ class Model:
         straight-sided simplices; the mass-matrix rule elsewhere."""
         if not self.is_affine:
             return self.basis
-        return skfem.Basis(self.mesh.mesh, self.basis.elem, intorder=max(2 * (self.order - 1), 1))
+        return LazyCellBasis(self.mesh.mesh, self.basis.elem, intorder=max(2 * (self.order - 1), 1))
 
     @property
     def n_dofs(self) -> int:
         return self.basis.N
 
     @cached_property
+    def node_pattern(self) -> assembly.NodePattern:
+        """Node-to-node sparsity pattern of the mesh, shared by the stiffness and the mass."""
+        dofs = assembly.node_dofs(self.basis.element_dofs, self.dim)
+        return assembly.node_pattern(dofs, self.n_dofs // self.dim)
+
+    @cached_property
     def stiffness(self):
-        """Global stiffness matrix K (N/m), CSR: :func:`elasticity_stiffness`, the matrix of
-        skfem's BilinearForm t (2 mu eps(u):eps(v) + lam tr eps(u) tr eps(v)) on
-        ``stiffness_basis``, assembled ~3x faster."""
+        """Global stiffness matrix K (N/m), CSR: :func:`.assembly.elasticity_stiffness`, the
+        matrix of skfem's BilinearForm t (2 mu eps(u):eps(v) + lam tr eps(u) tr eps(v)) on
+        ``stiffness_basis``, assembled ~3x faster and without its triplets."""
         lam, mu = self.lame
-        scalar = self._scalar_basis(self.stiffness_quadrature)
-        return elasticity_stiffness(scalar, self.basis.element_dofs, self.dim, lam, mu,
-                                    self.thickness, self.n_dofs)
+        K = assembly.elasticity_stiffness(
+            self.mesh.mesh, scalar_element(self.mesh.mesh, self.order), self.stiffness_quadrature,
+            self.node_pattern, self.dim, lam, mu, self.thickness)
+        memory.release_freed()  # the element blocks' temporaries
+        return K
 
     @cached_property
     def mass(self):
-        """Consistent mass matrix M (kg), CSR: :func:`consistent_mass` on the quadrature of
-        ``basis`` (the matrix of skfem's BilinearForm rho t u.v)."""
-        scalar = self._scalar_basis((self.basis.X, self.basis.W))
-        return consistent_mass(scalar, self.basis.element_dofs, self.dim,
-                               self.material.rho * self.thickness, self.n_dofs)
+        """Consistent mass matrix M (kg), CSR: :func:`.assembly.consistent_mass` on the
+        quadrature of ``basis`` (the matrix of skfem's BilinearForm rho t u.v)."""
+        M = assembly.consistent_mass(
+            self.mesh.mesh, scalar_element(self.mesh.mesh, self.order), self.quadrature,
+            self.node_pattern, self.dim, self.material.rho * self.thickness)
+        memory.release_freed()
+        return M
 
     def with_stiffness(self, extra) -> "Model":
         """A copy of this model whose stiffness is K + ``extra`` (N/m; a symmetric sparse
@@ -162,82 +198,22 @@ class Model:
             return self.basis.X, self.basis.W
         return skfem.quadrature.get_quadrature(self.basis.elem.refdom, max(2 * (self.order - 1), 1))
 
-    def _scalar_basis(self, quadrature) -> skfem.CellBasis:
-        return skfem.CellBasis(self.mesh.mesh, scalar_element(self.mesh.mesh, self.order),
-                               quadrature=quadrature)
+    @property
+    def quadrature(self):
+        """(points, weights) of ``basis``'s rule on the reference element."""
+        return self.basis.X, self.basis.W
 
     def stress(self, u: np.ndarray, basis=None):
         """Cauchy stress (Pa) at the quadrature points of ``basis`` (default: the model's),
         as a (3, 3, n_elements, n_points) array (plane stress: zz = 0; plane strain:
         zz = lambda (xx + yy))."""
-        basis = basis or self.basis
-        return linear_stress(self, grad(basis.interpolate(u)))
-
-
-# elements per block of the vectorised assembly: bounds its temporaries to ~0.1 GB in 3-D P2
-_BLOCK = 20_000
-
-
-def _scalar_gradients(scalar: skfem.CellBasis, elements: slice) -> np.ndarray:
-    """(n_elements, n_local, dim, n_points) gradients (1/m) of the scalar shape functions."""
-    return np.stack([phi[0].grad[:, elements] for phi in scalar.basis]).transpose(2, 0, 1, 3)
-
-
-def elasticity_stiffness(scalar: skfem.CellBasis, element_dofs: np.ndarray, dim: int,
-                         lam: float, mu: float, thickness: float, n_dofs: int):
-    """Isotropic linear-elastic stiffness (N/m), CSR, from the scalar shape-function gradients
-    of ``scalar`` (its quadrature sets the rule) and the vector element DOFs ``element_dofs``
-    ((n_local dim, n_elements), skfem's ElementVector order: local DOF a dim + i is
-    component i of scalar function a).
-
-    K_e[a i, b j] = t sum_q w_q (lam d_i phi_a d_j phi_b + mu d_j phi_a d_i phi_b
-    + mu delta_ij grad phi_a . grad phi_b), i.e. t (2 mu eps(u):eps(v) + lam div u div v).
-    """
-    n_local = len(scalar.basis)
-    n_el = element_dofs.shape[1]
-    data = np.empty((n_el, n_local, dim, n_local, dim))
-    eye = np.eye(dim)
-    for start in range(0, n_el, _BLOCK):
-        block = slice(start, min(start + _BLOCK, n_el))
-        G = _scalar_gradients(scalar, block).reshape(-1, n_local * dim, scalar.dx.shape[1])
-        C = np.matmul(G * (thickness * scalar.dx[block])[:, None, :], G.transpose(0, 2, 1))
-        C = C.reshape(-1, n_local, dim, n_local, dim)  # t sum_q w d_i phi_a d_j phi_b
-        laplace = np.einsum("eakbk->eab", C)
-        out = data[block]
-        np.multiply(lam, C, out=out)
-        out += mu * C.transpose(0, 1, 4, 3, 2)
-        out += mu * laplace[:, :, None, :, None] * eye[None, None, :, None, :]
-    return _to_csr(data.reshape(n_el, n_local * dim, n_local * dim), element_dofs, n_dofs)
-
-
-def consistent_mass(scalar: skfem.CellBasis, element_dofs: np.ndarray, dim: int,
-                    density: float, n_dofs: int):
-    """Consistent mass matrix (kg), CSR: M_e[a i, b j] = delta_ij sum_q w_q rho t phi_a phi_b,
-    ``density`` = rho t (kg/m^3 in 3-D, kg/m^2 in 2-D); arguments as
-    :func:`elasticity_stiffness`. Only the delta_ij blocks are assembled."""
-    n_local = len(scalar.basis)
-    # a DiscreteField is the array of values in skfem >= 11, a named tuple before
-    phi = np.stack([np.asarray(f[0]) if isinstance(f[0], np.ndarray) else f[0].value
-                    for f in scalar.basis]).transpose(1, 0, 2)  # (e, a, q)
-    m = np.matmul(phi * (density * scalar.dx)[:, None, :], phi.transpose(0, 2, 1))  # (e, a, b)
-    dofs = element_dofs.reshape(n_local, dim, -1).transpose(2, 1, 0)  # (e, i, a)
-    rows = np.broadcast_to(dofs[:, :, :, None], dofs.shape + (n_local,))
-    cols = np.broadcast_to(dofs[:, :, None, :], dofs.shape + (n_local,))
-    data = np.broadcast_to(m[:, None], rows.shape)
-    return sp.coo_matrix((data.ravel(), (rows.ravel(), cols.ravel())),
-                         shape=(n_dofs, n_dofs)).tocsr()
-
-
-def _to_csr(local: np.ndarray, element_dofs: np.ndarray, n_dofs: int):
-    """Sum element matrices (n_elements, n, n) into a global CSR matrix (duplicates added,
-    exact zeros dropped as skfem does)."""
-    dofs = element_dofs.T.astype(np.int64 if n_dofs > 2**31 - 1 else np.int32)  # (e, n)
-    n = dofs.shape[1]
-    rows = np.repeat(dofs, n, axis=1).ravel()
-    cols = np.tile(dofs, (1, n)).ravel()
-    K = sp.coo_matrix((local.ravel(), (rows, cols)), shape=(n_dofs, n_dofs)).tocsr()
-    K.eliminate_zeros()
-    return K
+        if basis is None:  # from the scalar shape functions: the vector basis is not built
+            gu = assembly.displacement_gradient(
+                self.mesh.mesh, scalar_element(self.mesh.mesh, self.order), self.quadrature,
+                self.basis.element_dofs, self.dim, u)
+        else:
+            gu = grad(basis.interpolate(u))
+        return linear_stress(self, gu)
 
 
 def von_mises(sig: np.ndarray) -> np.ndarray:

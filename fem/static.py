@@ -1,7 +1,7 @@
 """Linear static analysis: ``solve_static(model, supports, loads) -> StaticResult``."""
 import numpy as np
 
-from . import linsolve
+from . import linsolve, memory
 from .boundary import component_indices, constrained_dofs, load_vector
 from .model import Model, von_mises
 from .rigid_static import solve_static_faces
@@ -25,22 +25,26 @@ def solve_static(model: Model, supports, loads, solver: str = "auto",
     u = np.zeros(model.n_dofs)
     u[D] = xD
     I = np.setdiff1d(np.arange(model.n_dofs), D)
-    K_II = K[I][:, I]
-    rhs = f[I] - K[I][:, D] @ xD
+    rhs = f[I] - (K @ u)[I]  # f_I - K_ID u_D
+    # K_II only as an operator on K, and its upper triangle for the factorization: no copy
+    # of the full block
+    K_II = linsolve.Restriction(K, I)
     if not np.any(rhs):
         chosen = "none"
     else:
         chosen = linsolve.choose_solver(len(I), model.dim, solver)
         if chosen == "amg":
-            u[I] = linsolve.solve_amg(K_II, rhs, rigid_body_dof_modes(model)[I])
+            u[I] = linsolve.solve_amg(K[I][:, I], rhs, rigid_body_dof_modes(model)[I])
             linsolve.check_solution(K_II, u[I], rhs, rtol=1e-6)
             chosen = "amg-cg"
         else:
             chosen = linsolve.direct_backend("spd")
             # K_II is symmetric positive definite once check_supports has passed: Cholesky
-            u[I] = linsolve.solve_and_check(K_II, rhs, kind="spd", rtol=1e-6)
+            u[I] = linsolve.solve_and_check(K_II, rhs, kind="spd", rtol=1e-6,
+                                            factor=linsolve.block_to_factorize(K, I))
 
-    residual = K @ u - f
+    Ku = K @ u
+    residual = Ku - f
     reactions = {g: np.array([residual[np.intersect1d(dofs, idx)].sum()
                               for idx in component_indices(model)])
                  for g, dofs in owned.items()}
@@ -49,9 +53,10 @@ def solve_static(model: Model, supports, loads, solver: str = "auto",
     sig = model.stress(u)
     vm_qp = von_mises(sig)
     nodal = nodal_average(model, sig)
+    memory.release_freed()  # the factorization's and the stress recovery's leftovers
     return StaticResult(
         model=model, u=u, displacement=vertex_displacement(model, u),
         von_mises_nodal=von_mises(nodal), von_mises_element_max=vm_qp.max(axis=1),
-        reactions=reactions, applied_force=applied, strain_energy=0.5 * float(u @ (K @ u)),
+        reactions=reactions, applied_force=applied, strain_energy=0.5 * float(u @ Ku),
         solver=chosen, info={"n_dofs": model.n_dofs, "n_constrained": len(D)},
         nodal_stress_full=np.moveaxis(nodal, 2, 0))

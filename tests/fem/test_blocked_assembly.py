@@ -1,0 +1,73 @@
+"""The memory-lean paths of fem/assembly.py and fem/model.py give what skfem's own gives: the
+lazily evaluated basis, the node pattern and the stress from the scalar shape functions."""
+import numpy as np
+import pytest
+import skfem
+from flexfem.fem import FEMesh, Model, PlaneStress, Solid3D, assembly
+from flexfem.fem.model import LazyCellBasis
+from skfem.helpers import grad
+
+MESHES = {
+    "tri": lambda: skfem.MeshTri().refined(2),
+    "quad": lambda: skfem.MeshQuad().refined(2),
+    "tet": lambda: skfem.MeshTet().refined(1),
+    "hex": lambda: skfem.MeshHex().refined(1),
+}
+
+
+@pytest.mark.parametrize("name", list(MESHES))
+def test_lazy_basis_equals_skfem_basis(name):
+    mesh = MESHES[name]()
+    element = skfem.ElementVector(skfem.ElementTriP2() if name == "tri" else
+                                  skfem.ElementQuad2() if name == "quad" else
+                                  skfem.ElementTetP2() if name == "tet" else skfem.ElementHex2())
+    lazy, eager = LazyCellBasis(mesh, element, intorder=4), skfem.CellBasis(mesh, element, intorder=4)
+    assert "basis" not in lazy.__dict__  # nothing evaluated on construction
+    assert np.array_equal(lazy.element_dofs, eager.element_dofs)
+    assert np.array_equal(lazy.doflocs, eager.doflocs)
+    assert np.array_equal(lazy.dx, eager.dx)
+    for a, b in zip(lazy.basis, eager.basis):
+        assert np.array_equal(np.asarray(a[0].grad), np.asarray(b[0].grad))
+    some = lazy.with_elements(np.arange(3))
+    assert isinstance(some, LazyCellBasis) and some.dx.shape == (3, len(lazy.W))
+    u = np.random.default_rng(0).standard_normal(lazy.N)
+    assert np.array_equal(grad(lazy.interpolate(u)), grad(eager.interpolate(u)))
+
+
+def test_node_pattern_positions_hold_each_element_pair():
+    mesh = skfem.MeshTet().refined(1)
+    nodes = skfem.CellBasis(mesh, skfem.ElementTetP2()).element_dofs
+    pattern = assembly.node_pattern(nodes, nodes.max() + 1)
+    rows = np.repeat(np.arange(pattern.n), np.diff(pattern.indptr))
+    # entry position[e, a, b] is the pair (nodes[a, e], nodes[b, e]), and no pair is stored twice
+    pos = pattern.position
+    assert np.array_equal(rows[pos], np.broadcast_to(nodes.T[:, :, None], pos.shape))
+    assert np.array_equal(pattern.indices[pos], np.broadcast_to(nodes.T[:, None, :], pos.shape))
+    assert len(set(zip(rows, pattern.indices))) == len(rows)
+
+
+def test_node_dofs_refuses_a_numbering_not_by_node():
+    dofs = np.arange(12).reshape(6, 2)  # DOF a dim + i is not dim k + i here
+    with pytest.raises(ValueError, match="not numbered dim k"):
+        assembly.node_dofs(dofs[::-1], 3)
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_stress_from_scalar_functions_equals_vector_basis(steel, dim, monkeypatch):
+    mesh = skfem.MeshTri().refined(2) if dim == 2 else skfem.MeshTet().refined(1)
+    model = Model(FEMesh(mesh), steel, PlaneStress(0.01) if dim == 2 else Solid3D(), order=2)
+    u = np.random.default_rng(1).standard_normal(model.n_dofs) * 1e-6
+    monkeypatch.setattr(assembly, "BLOCK", 7)  # several blocks, the last one short
+    lean = model.stress(u)
+    assert "basis" not in model.basis.__dict__  # the vector basis was not evaluated
+    full = model.stress(u, model.basis)
+    assert np.abs(lean - full).max() <= 1e-12 * np.abs(full).max()
+
+
+def test_blocks_of_any_size_give_the_same_matrices(steel, monkeypatch):
+    mesh = skfem.MeshTet().refined(1)
+    K0, M0 = (m := Model(FEMesh(mesh), steel, Solid3D())).stiffness, m.mass
+    monkeypatch.setattr(assembly, "BLOCK", 5)
+    K1, M1 = (m := Model(FEMesh(mesh), steel, Solid3D())).stiffness, m.mass
+    assert abs(K1 - K0).max() <= 1e-14 * abs(K0).max()
+    assert abs(M1 - M0).max() <= 1e-14 * abs(M0).max()
