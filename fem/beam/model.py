@@ -226,6 +226,26 @@ def beam_from_profile(x0, x1, thickness_fn, width: float, n: int,
     return BeamMesh(nodes, elements, sections, [0, n])
 
 
+def link_masters(rigid_links, n_nodes: int, link_type) -> np.ndarray:
+    """(n_nodes,) the master node of each slave node, -1 for a node no link holds; a
+    ValueError for a link of another type, a node outside the model, a node slaved twice or to
+    itself, or a master that is itself a slave."""
+    master_of = -np.ones(n_nodes, dtype=int)
+    for link in rigid_links:
+        if not isinstance(link, link_type):
+            raise ValueError(f"rigid_links: {link!r} is not a RigidLink")
+        for node in (link.master,) + link.slaves:
+            if not 0 <= node < n_nodes:
+                raise ValueError(f"rigid_links: node {node} outside 0..{n_nodes - 1}")
+        for s in link.slaves:
+            if s == link.master or master_of[s] >= 0:
+                raise ValueError(f"rigid_links: node {s} is slaved twice or to itself")
+            master_of[s] = link.master
+    if np.any(master_of[master_of[master_of >= 0]] >= 0):
+        raise ValueError("rigid_links: a master node is itself a slave; use one master")
+    return master_of
+
+
 class BeamModel:
     """Planar beam model. nodes (n, 2) m; elements (n_e, 2) node indices; sections: one
     Section or one per element; material: Material (E, nu, rho); shear: Timoshenko shear
@@ -260,19 +280,7 @@ class BeamModel:
 
     def _check_links(self):
         n = len(self.nodes)
-        self.master_of = -np.ones(n, dtype=int)
-        for link in self.rigid_links:
-            if not isinstance(link, RigidLink):
-                raise ValueError(f"rigid_links: {link!r} is not a RigidLink")
-            for node in (link.master,) + link.slaves:
-                if not 0 <= node < n:
-                    raise ValueError(f"rigid_links: node {node} outside 0..{n - 1}")
-            for s in link.slaves:
-                if s == link.master or self.master_of[s] >= 0:
-                    raise ValueError(f"rigid_links: node {s} is slaved twice or to itself")
-                self.master_of[s] = link.master
-        if np.any(self.master_of[self.master_of[self.master_of >= 0]] >= 0):
-            raise ValueError("rigid_links: a master node is itself a slave; use one master")
+        self.master_of = link_masters(self.rigid_links, n, RigidLink)
         for node, value in self.point_masses.items():
             if not 0 <= int(node) < n or len(value) != 2 or min(value) < 0:
                 raise ValueError(f"point_masses[{node!r}] = {value!r} must be (m >= 0, J >= 0) "

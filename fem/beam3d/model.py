@@ -15,6 +15,7 @@ import numbers
 
 import numpy as np
 
+from ..beam.model import link_masters
 from ..materials import Material
 
 DOF_NAMES = {"x": 0, "y": 1, "z": 2, "rx": 3, "ry": 4, "rz": 5}
@@ -221,19 +222,7 @@ class Beam3DModel:
 
     def _check_links(self):
         n = len(self.nodes)
-        self.master_of = -np.ones(n, dtype=int)
-        for link in self.rigid_links:
-            if not isinstance(link, RigidLink):
-                raise ValueError(f"rigid_links: {link!r} is not a RigidLink")
-            for node in (link.master,) + link.slaves:
-                if not 0 <= node < n:
-                    raise ValueError(f"rigid_links: node {node} outside 0..{n - 1}")
-            for s in link.slaves:
-                if s == link.master or self.master_of[s] >= 0:
-                    raise ValueError(f"rigid_links: node {s} is slaved twice or to itself")
-                self.master_of[s] = link.master
-        if np.any(self.master_of[self.master_of[self.master_of >= 0]] >= 0):
-            raise ValueError("rigid_links: a master node is itself a slave; use one master")
+        self.master_of = link_masters(self.rigid_links, n, RigidLink)
         for node, value in self.point_masses.items():
             if not 0 <= int(node) < n or len(value) != 4 or min(value) < 0:
                 raise ValueError(f"point_masses[{node!r}] = {value!r} must be (m, Jx, Jy, Jz) "
