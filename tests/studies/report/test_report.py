@@ -205,13 +205,16 @@ def test_quick_reproduction_report_renders(quick_report):
 def test_quick_report_prints_every_number_it_printed_before(quick_report):
     """Every number of the quick report's summary.json before the mechanism contract
     reshaped the code (tests/data/quick_report_before.json) is printed again, within solver
-    round-off, except the relative differences that are no longer printed."""
+    round-off, except the relative differences that are no longer printed. Round-off: the
+    blocked assembly and PARDISO's block format (docs/performance.md, fifth run) moved the
+    eight-bar's k_x by 1.5e-6 (its K has a condition number ~1e12) and a pivot's stiffness
+    error, a difference of two close stiffnesses, by 1.5e-9 absolute."""
     _, report = quick_report
     after = np.sort([v for _, v in _numbers(json.loads(json.dumps(report, default=float)))])
     missing = []
     for path, value in _numbers(json.loads(BEFORE.read_text())):
         k = np.searchsorted(after, value)
         near = after[max(k - 1, 0):k + 1]
-        if not np.any(np.isclose(near, value, rtol=1e-6, atol=1e-9)):
+        if not np.any(np.isclose(near, value, rtol=1e-5, atol=1e-8)):
             missing.append(f"{path} = {value}")
     assert missing == []
