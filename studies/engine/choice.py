@@ -1,6 +1,7 @@
 """An evaluate that chooses between models of one mechanism by the study option ``model``
 (e.g. the continuum FEM or the reduced beam model)."""
 import inspect
+import typing
 
 
 class ModelChoice:
@@ -25,7 +26,8 @@ class ModelChoice:
         functions = list(self.models.values())
         first = next(iter(inspect.signature(functions[0]).parameters.values()))
         options = {"model": inspect.Parameter("model", inspect.Parameter.KEYWORD_ONLY,
-                                              default=self.default)}
+                                              default=self.default,
+                                              annotation=typing.Literal[tuple(self.models)])}
         for function in functions:
             for p in list(inspect.signature(function).parameters.values())[1:]:
                 if p.kind in (p.POSITIONAL_OR_KEYWORD, p.KEYWORD_ONLY):

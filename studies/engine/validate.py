@@ -6,7 +6,8 @@ name before anything runs: ``dim = 2.0`` is the integer option 2 (``dim = 2.5`` 
 a number written as a string (``b = "0.6e-3"``) is refused rather than hashed as another case,
 an option the mechanism's evaluate does not declare is refused. The declared options and their
 types are read from the evaluate's signature: each keyword parameter's default (an int, float
-or bool) or its annotation (``int | None``) gives its type.
+or bool) or its annotation (``int | None``) gives its type; an annotation
+``Literal["continuum", "beam"]`` lists the values an option may take.
 """
 import functools
 import inspect
@@ -19,6 +20,8 @@ KINDS = (bool, int, float, str)
 
 
 def _kind(parameter: inspect.Parameter):
+    if typing.get_origin(parameter.annotation) is typing.Literal:
+        return parameter.annotation
     default = parameter.default
     if default is not inspect.Parameter.empty and default is not None:
         return next((k for k in KINDS if isinstance(default, k)), None)
@@ -62,6 +65,10 @@ def check_value(where: str, value) -> None:
 
 
 def _normalise(where: str, value, kind):
+    if typing.get_origin(kind) is typing.Literal:
+        if value not in typing.get_args(kind):
+            raise ValueError(f"{where} = {value!r} must be one of {list(typing.get_args(kind))}")
+        return value
     if kind is bool:
         if not isinstance(value, bool):
             raise ValueError(f"{where} = {value!r} must be true or false")

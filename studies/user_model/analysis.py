@@ -1,6 +1,7 @@
 """Analysis of a user's model file: static solve (and natural frequencies, and a
 large-deflection solve where asked), as a JSON-able dict and as flat metrics for sweeps."""
 import re
+from typing import Literal
 
 import numpy as np
 
@@ -171,8 +172,8 @@ def flat_metrics(result: dict) -> dict[str, float]:
     return out
 
 
-def evaluate(params: dict | None = None, *, model: str = "continuum", file: str | None = None,
-             size_factor: float = 1.0, **options) -> dict[str, float]:
+def evaluate(params: dict | None = None, *, model: Literal["continuum", "beam"] = "continuum",
+             file: str | None = None, size_factor: float = 1.0, **options) -> dict[str, float]:
     """Metrics of the model file ``file`` with ``params`` overriding its [parameters]
     (SI) and ``options`` its other tables ('material.E': 210e9, 'analysis.modes': 3, ...),
     by the continuum FEM or (``model="beam"``) its declared beam model. Keys: dofs, h (m),

@@ -88,6 +88,16 @@ def test_options_take_their_declared_types_before_hashing():
             normalise_options(_dbma_like, options, "m")
 
 
+def test_a_model_the_mechanism_does_not_have_is_refused_by_name():
+    """ModelChoice declares its models as a Literal: options.model is checked with the other
+    options, before any case runs or is stored."""
+    evaluate = mechanisms.get_evaluator("dbma")
+    assert normalise_options(evaluate, {"model": "beam"}, "dbma") == {"model": "beam"}
+    with pytest.raises(ValueError, match=r"options.model = 'shell' must be one of "
+                                         r"\['continuum', 'beam'\]"):
+        normalise_options(evaluate, {"model": "shell"}, "dbma")
+
+
 def test_dim_2_0_is_the_case_dim_2_and_never_a_stored_failure(tmp_path):
     evaluate = mechanisms.get_evaluator("dbma")
     assert normalise_options(evaluate, {"dim": 2.0}, "dbma") == {"dim": 2}

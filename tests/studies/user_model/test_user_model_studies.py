@@ -75,4 +75,6 @@ def test_a_study_sweeps_the_declared_beam_model(guide, capsys):
     k = {L: row["stiffness_stage_x"] for L, row in rows.items()}
     assert k[0.04] / k[0.05] == pytest.approx((0.05 / 0.04) ** 3, rel=0.03)
     study.write_text(study.read_text().replace('model = "beam"', 'model = "shell"'))
-    assert _sweep(guide, capsys)["failed"] == 2
+    assert main(["sweep", str(study), "--out", str(guide / "out2"), "--workers", "1"]) != 0
+    assert "options.model = 'shell' must be one of ['continuum', 'beam']" in capsys.readouterr().err
+    assert not (guide / "out2" / "results.sqlite").exists()  # refused before anything ran
