@@ -110,7 +110,7 @@ def paragraph(out: dict) -> str:
         f"drive stiffness of {s['k_x_min']:.3g}-{s['k_x_max']:.3g} N/m, k_y / k_x >= "
         f"{s['support_ratio_min']:.3g}; its rotational stiffness falls to "
         f"{s['k_theta_min']:.3g} N m/rad at the ends, and a push along x turns the face by up "
-        f"to {s['parasitic_rotation_max']:.3g} rad/m. The first mode (the drive mode) stays at "
+        f"to {s['parasitic_rotation_max']:.3g} rad/m. The first in-plane mode (the drive mode) stays at "
         f"{s['f1_hz_min']:.3g}-{s['f1_hz_max']:.3g} Hz along the stroke. The flexures buckle "
         f"under a drive force {b['drive_factor']:.3g} times the end-of-stroke drive"
         + (f", and under {b['off_axis_critical_n']:.3g} N across the stroke."
@@ -118,6 +118,7 @@ def paragraph(out: dict) -> str:
 
 
 def plane_sentence(planes: dict) -> str:
+    """The paragraph's sentence on the out-of-plane mode (:func:`plane_modes`)."""
     return (f" Out of the plane the suspension is softer: the spatial beam model's first mode "
             f"({planes['out_of_plane_hz']:.3g} Hz, the flexures twisting) lies below the drive "
             f"mode ({planes['in_plane_hz']:.3g} Hz); the 3-D continuum of the same design "
