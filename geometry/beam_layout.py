@@ -162,26 +162,25 @@ def _cross(p, q, a, b) -> tuple:
 
 
 def _moments(poly) -> np.ndarray:
-    """(area, first moments Sx, Sy, polar second moment about the origin) of a polygon."""
-    A = Sx = Sy = J = 0.0
+    """(area, S_x = int x, S_y = int y, int x^2, int y^2) of a polygon about the origin."""
+    out = np.zeros(5)
     for (x0, y0), (x1, y1) in zip(poly, poly[1:] + poly[:1]):
         c = x0 * y1 - x1 * y0
-        A += c / 2
-        Sx += (x0 + x1) * c / 6
-        Sy += (y0 + y1) * c / 6
-        J += (x0 * x0 + x0 * x1 + x1 * x1 + y0 * y0 + y0 * y1 + y1 * y1) * c / 12
-    return np.array([A, Sx, Sy, J])
+        out += np.array([c / 2, (x0 + x1) * c / 6, (y0 + y1) * c / 6,
+                         (x0 * x0 + x0 * x1 + x1 * x1) * c / 12,
+                         (y0 * y0 + y0 * y1 + y1 * y1) * c / 12])
+    return out
 
 
-def link_inertia(parts, link: str, out_of_plane: float, rho: float) -> tuple:
-    """(mass kg, centroid (2,) m, rotary inertia about it kg m^2) of the union of the
-    rectangles of ``link`` (bars and hubs, which overlap at the bars' corners and ends):
-    inclusion-exclusion over the rectangles' overlaps up to three at a time (bars meeting at
-    a point with a hub; exact unless four overlap)."""
+def link_moments(parts, link: str) -> np.ndarray | None:
+    """:func:`_moments` of the union of the rectangles of ``link`` (bars and hubs, which
+    overlap at the bars' corners and ends): inclusion-exclusion over the rectangles' overlaps
+    up to three at a time (bars meeting at a point with a hub; exact unless four overlap);
+    None for a link without rectangles."""
     rects = [[tuple(c) for c in p.corners()] for p in parts
              if p.link == link and p.kind != "flexure"]
     if not rects:
-        return 0.0, None, 0.0
+        return None
     total, n = sum(_moments(r) for r in rects), len(rects)
     for i in range(n):
         for j in range(i + 1, n):
@@ -193,7 +192,17 @@ def link_inertia(parts, link: str, out_of_plane: float, rho: float) -> tuple:
                 triple = clip_convex(pair, rects[k])
                 if len(triple) >= 3:
                     total = total + _moments(triple)
-    A, Sx, Sy, J = total
+    return total
+
+
+def link_inertia(parts, link: str, out_of_plane: float, rho: float) -> tuple:
+    """(mass kg, centroid (2,) m, rotary inertia about it kg m^2) of the union of the
+    rectangles of ``link`` (:func:`link_moments`)."""
+    total = link_moments(parts, link)
+    if total is None:
+        return 0.0, None, 0.0
+    A, Sx, Sy, Ixx, Iyy = total
+    J = Ixx + Iyy
     centroid = np.array([Sx / A, Sy / A])
     m = rho * out_of_plane * A
     return float(m), centroid, float(rho * out_of_plane * (J - A * float(centroid @ centroid)))

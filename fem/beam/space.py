@@ -18,11 +18,13 @@ from .model import BeamModel, Fixed, Prescribed
 from .pattern import Condensed, block_dofs, global_matrix, shared
 
 
-def _held_values(model: BeamModel, supports) -> np.ndarray:
-    """(n_dofs,) prescribed value of each held DOF (m, rad), NaN where free."""
+def held_values(model, supports, kinds=(Fixed, Prescribed)) -> np.ndarray:
+    """(n_dofs,) prescribed value of each held DOF (m, rad), NaN where free, of a planar or a
+    spatial beam model; ``kinds``: the support classes of that model."""
     values = np.full(model.n_dofs, np.nan)
+    per_node = model.n_dofs // model.n_nodes
     for sup in supports:
-        if not isinstance(sup, (Fixed, Prescribed)):
+        if not isinstance(sup, kinds):
             raise ValueError(f"supports: {sup!r} is not a Fixed or Prescribed")
         for node, dof, value in sup.prescribed():
             if not 0 <= node < model.n_nodes:
@@ -30,7 +32,7 @@ def _held_values(model: BeamModel, supports) -> np.ndarray:
             if model.master_of[node] >= 0:
                 raise ValueError(f"supports: node {node} is a rigid-link slave; "
                                  f"support its master {model.master_of[node]}")
-            values[3 * node + dof] = value
+            values[per_node * node + dof] = value
     return values
 
 
@@ -44,7 +46,7 @@ class Space:
     def __init__(self, model: BeamModel, supports):
         self.model = model
         n = model.n_dofs
-        values = _held_values(model, supports)
+        values = held_values(model, supports)
         self.slaves = np.flatnonzero(model.master_of >= 0)
         self.masters = model.master_of[self.slaves]
         self.arm = model.nodes[self.slaves] - model.nodes[self.masters]

@@ -8,6 +8,7 @@ x_s = x_m + R_m (X_s - X_m), R_s = R_m.
 import numpy as np
 import scipy.sparse as sp
 
+from ..beam.space import held_values
 from .corotational import internal_forces, local_deformations
 from .element import basic_stiffness, local_matrices, to_global
 from .model import Beam3DModel, Fixed, NodalLoad, Prescribed
@@ -74,17 +75,7 @@ class Space:
     def __init__(self, model: Beam3DModel, supports):
         self.model = model
         n = model.n_dofs
-        values = np.full(n, np.nan)
-        for sup in supports:
-            if not isinstance(sup, (Fixed, Prescribed)):
-                raise ValueError(f"supports: {sup!r} is not a Fixed or Prescribed")
-            for node, dof, value in sup.prescribed():
-                if not 0 <= node < model.n_nodes:
-                    raise ValueError(f"supports: node {node} outside 0..{model.n_nodes - 1}")
-                if model.master_of[node] >= 0:
-                    raise ValueError(f"supports: node {node} is a rigid-link slave; "
-                                     f"support its master {model.master_of[node]}")
-                values[6 * node + dof] = value
+        values = held_values(model, supports, (Fixed, Prescribed))
         self.slaves = np.flatnonzero(model.master_of >= 0)
         self.masters = model.master_of[self.slaves]
         self.arm = model.nodes[self.slaves] - model.nodes[self.masters]

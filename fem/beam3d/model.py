@@ -15,7 +15,7 @@ import numbers
 
 import numpy as np
 
-from ..beam.model import link_masters
+from ..beam.model import RigidLink, link_masters
 from ..materials import Material
 
 DOF_NAMES = {"x": 0, "y": 1, "z": 2, "rx": 3, "ry": 4, "rz": 5}
@@ -107,18 +107,6 @@ class Section:
     def Ip(self) -> float:
         """Polar second moment Iy + Iz (m^4): the section's torsional inertia per rho."""
         return self.Iy + self.Iz
-
-
-@dataclass(frozen=True)
-class RigidLink:
-    """Nodes ``slaves`` move rigidly with node ``master`` (exact rigid-body constraint)."""
-
-    master: int
-    slaves: tuple
-
-    def __post_init__(self):
-        object.__setattr__(self, "slaves", tuple(int(s) for s in np.atleast_1d(self.slaves)))
-        object.__setattr__(self, "master", int(self.master))
 
 
 @dataclass(frozen=True)

@@ -14,40 +14,16 @@ about its centroid.
 import numpy as np
 
 from ...fem.beam3d import Beam3DModel, RigidLink, Section, rect_torsion_constant
-from ..beam_layout import ROOT_EXTENSION, clip_convex
+from ..beam_layout import ROOT_EXTENSION, link_moments
 from .beam import eightbar_beam_model
 from .flexure import EightBarFlexureParams, eightbar_layout
 
 
-def _plane_moments(poly) -> np.ndarray:
-    """(area, S_x = int x, S_y = int y, int x^2, int y^2) of a polygon (m^k)."""
-    out = np.zeros(5)
-    for (x0, y0), (x1, y1) in zip(poly, poly[1:] + poly[:1]):
-        c = x0 * y1 - x1 * y0
-        out += np.array([c / 2, (x0 + x1) * c / 6, (y0 + y1) * c / 6,
-                         (x0 * x0 + x0 * x1 + x1 * x1) * c / 12,
-                         (y0 * y0 + y0 * y1 + y1 * y1) * c / 12])
-    return out
-
-
 def link_plate_inertia(parts, link: str, out_of_plane: float, rho: float) -> tuple:
-    """(mass kg, centroid (2,) m, J_x, J_y kg m^2) of ``link``'s plate (union of its
-    rectangles, inclusion-exclusion up to three overlaps as the planar model's
-    link_inertia) about in-plane axes through its centroid."""
-    rects = [[tuple(c) for c in p.corners()] for p in parts
-             if p.link == link and p.kind != "flexure"]
-    total, n = sum(_plane_moments(r) for r in rects), len(rects)
-    for i in range(n):
-        for j in range(i + 1, n):
-            pair = clip_convex(rects[i], rects[j])
-            if len(pair) < 3:
-                continue
-            total = total - _plane_moments(pair)
-            for k in range(j + 1, n):
-                triple = clip_convex(pair, rects[k])
-                if len(triple) >= 3:
-                    total = total + _plane_moments(triple)
-    A, Sx, Sy, Ixx, Iyy = total
+    """(mass kg, centroid (2,) m, J_x, J_y kg m^2) of ``link``'s plate (the union of its
+    rectangles, :func:`..beam_layout.link_moments`) about in-plane axes through its
+    centroid."""
+    A, Sx, Sy, Ixx, Iyy = link_moments(parts, link)
     c = np.array([Sx / A, Sy / A])
     m = rho * out_of_plane * A
     thick = m * out_of_plane**2 / 12.0
