@@ -16,7 +16,9 @@ from ..materials import Material
 DOF_NAMES = {"x": 0, "u": 0, "y": 1, "v": 1, "theta": 2, "t": 2, "rz": 2}
 
 
-def _positive(name, value, allow_none=False):
+def positive(name, value, allow_none=False):
+    """``value`` as a float if it is a finite number > 0 (None if allowed), else a
+    ValueError naming ``name``."""
     if type(value) in (float, np.float64) and 0.0 < value < math.inf:  # fast common case
         return value
     if value is None and allow_none:
@@ -58,15 +60,15 @@ class Section:
         if rect:
             if self.A is not None or self.I is not None:
                 raise ValueError("Section: give either width/thickness or A/I, not both")
-            _positive("width", self.width)
-            _positive("thickness", self.thickness)
-            _positive("thickness_end", self.thickness_end, allow_none=True)
-            _positive("thickness_mid", self.thickness_mid, allow_none=True)
+            positive("width", self.width)
+            positive("thickness", self.thickness)
+            positive("thickness_end", self.thickness_end, allow_none=True)
+            positive("thickness_mid", self.thickness_mid, allow_none=True)
         else:
-            _positive("A", self.A)
-            _positive("I", self.I)
-            _positive("c", self.c, allow_none=True)
-        _positive("shear_factor", self.shear_factor)
+            positive("A", self.A)
+            positive("I", self.I)
+            positive("c", self.c, allow_none=True)
+        positive("shear_factor", self.shear_factor)
 
     @classmethod
     def rect(cls, width: float, thickness: float, thickness_end: float | None = None,

@@ -11,24 +11,14 @@ plane about local z (Iz), as the planar model (fem/beam) does with its I.
 """
 from dataclasses import dataclass
 import math
-import numbers
 
 import numpy as np
 
-from ..beam.model import RigidLink, link_masters
+from ..beam.model import RigidLink, link_masters, positive
 from ..materials import Material
 
 DOF_NAMES = {"x": 0, "y": 1, "z": 2, "rx": 3, "ry": 4, "rz": 5}
 ALL_DOFS = ("x", "y", "z", "rx", "ry", "rz")
-
-
-def _positive(name, value, allow_none=False):
-    if value is None and allow_none:
-        return None
-    ok = isinstance(value, numbers.Real) and not isinstance(value, bool)
-    if not (ok and math.isfinite(value) and value > 0):
-        raise ValueError(f"{name} = {value!r} must be a finite number > 0")
-    return float(value)
 
 
 def dof_index(dof) -> int:
@@ -79,9 +69,9 @@ class Section:
 
     def __post_init__(self):
         for name in ("A", "Iy", "Iz", "J"):
-            _positive(name, getattr(self, name))
-        _positive("Ay", self.Ay, allow_none=True)
-        _positive("Az", self.Az, allow_none=True)
+            positive(name, getattr(self, name))
+        positive("Ay", self.Ay, allow_none=True)
+        positive("Az", self.Az, allow_none=True)
 
     @classmethod
     def rect(cls, depth_y: float, depth_z: float, shear: bool = False,
@@ -90,9 +80,9 @@ class Section:
         tapered linearly to ``depth_y_end`` at the second node, or quadratically through
         ``depth_y_mid`` too (the planar model's tapers); shear areas 5/6 A (of the mid-length
         section) if ``shear``."""
-        b, h = _positive("depth_y", depth_y), _positive("depth_z", depth_z)
-        end = _positive("depth_y_end", depth_y_end, allow_none=True)
-        mid = _positive("depth_y_mid", depth_y_mid, allow_none=True)
+        b, h = positive("depth_y", depth_y), positive("depth_z", depth_z)
+        end = positive("depth_y_end", depth_y_end, allow_none=True)
+        mid = positive("depth_y_mid", depth_y_mid, allow_none=True)
         taper = None
         if end is not None or mid is not None:
             end = b if end is None else end
