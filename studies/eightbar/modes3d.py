@@ -22,6 +22,7 @@ from skfem.models.elasticity import linear_elasticity
 from ...fem import Fixed, solve_modes
 from ...fem.beam3d import Beam3DModel, rect_torsion_constant, solve_beam3d_modes
 from ...fem.beam3d import Fixed as BeamFixed
+from ...fem.beam3d.energy import strain_energy_share
 from ...geometry.eightbar.beam3d import eightbar_beam3d_model
 from ...geometry.eightbar.flexure import EightBarFlexureParams
 from .analysis import build_model
@@ -110,12 +111,16 @@ class _TorsionScaled(Beam3DModel):
         return out
 
 
-def beam_modes(params: EightBarFlexureParams, n_modes: int = 10, warping: bool = False) -> dict:
+def beam_modes(params: EightBarFlexureParams, n_modes: int = 10, warping: bool = False,
+               links: str = "flexible") -> dict:
     """The spatial beam model's first ``n_modes`` (anchors clamped): {"f_hz",
-    "mass_fraction", "out_of_plane_share" (of the nodes' translations), "total_mass_kg"}.
-    ``warping``: each flexure's J times its :func:`vlasov_factor` (a sensitivity: the beam's
-    Saint-Venant torsion leaves the roots' warping restraint out)."""
-    model, info = eightbar_beam3d_model(params)
+    "mass_fraction", "out_of_plane_share" (of the nodes' translations), "total_mass_kg",
+    "links_energy_share" (strain energy outside the flexures: links and anchors; 0 with
+    rigid links)}. ``links``: "flexible" (link plates and anchors as beams) or "rigid"
+    (:func:`~flexfem.geometry.eightbar.beam3d.eightbar_beam3d_model`). ``warping``: each
+    flexure's J times its :func:`vlasov_factor` (the beam's Saint-Venant torsion leaves the
+    roots' warping restraint out)."""
+    model, info = eightbar_beam3d_model(params, links=links)
     if warping:
         factors = np.ones(len(model.elements))
         nu = model.material.nu
@@ -126,9 +131,14 @@ def beam_modes(params: EightBarFlexureParams, n_modes: int = 10, warping: bool =
     modes = solve_beam3d_modes(model, [BeamFixed(tuple(info["ground"]))], n=n_modes)
     u = modes.shapes[:, :, :3]
     share = np.sum(u[:, :, 2] ** 2, axis=1) / np.sum(u ** 2, axis=(1, 2))
+    flexures = [e for a, b in info["flexures"].values() for e in range(a, b)]
+    outside = np.setdiff1d(np.arange(model.n_elements), flexures)
+    energy = (strain_energy_share(model, modes.shapes, outside) if len(outside)
+              else np.zeros(n_modes))
     return {"f_hz": modes.frequencies_hz.tolist(),
             "mass_fraction": modes.effective_mass_fraction.tolist(),
-            "out_of_plane_share": share.tolist(), "total_mass_kg": float(modes.total_mass)}
+            "out_of_plane_share": share.tolist(), "total_mass_kg": float(modes.total_mass),
+            "links_energy_share": energy.tolist()}
 
 
 def pair_modes(beam: dict, continuum: dict, split: float = SPLIT) -> list:
@@ -154,8 +164,10 @@ def compare_modes(params: EightBarFlexureParams | None = None, n_modes: int = 10
                   size_factor: float = 1.0, layers: int | None = None,
                   max_dofs: int | None = None) -> dict:
     """Beam and continuum modes of ``params`` (default design) side by side: {"rows" (see
-    :func:`pair_modes`), "beam", "continuum"}."""
+    :func:`pair_modes`), "beam" (flexible links), "continuum", "rigid_rows", "rigid" (the
+    beam model with rigid links)}."""
     params = params or EightBarFlexureParams()
     continuum = continuum_modes(params, n_modes, size_factor, layers, max_dofs=max_dofs)
-    beam = beam_modes(params, n_modes)
-    return {"rows": pair_modes(beam, continuum), "beam": beam, "continuum": continuum}
+    beam, rigid = beam_modes(params, n_modes), beam_modes(params, n_modes, links="rigid")
+    return {"rows": pair_modes(beam, continuum), "beam": beam, "continuum": continuum,
+            "rigid_rows": pair_modes(rigid, continuum), "rigid": rigid}
