@@ -158,7 +158,7 @@ def mesh_skeleton(skeleton: Skeleton, stations, size: float, tol: float = 1e-9) 
         e = b - a
         length = float(np.linalg.norm(e))
         s = sorted({0.0, 1.0} | {float((c - a) @ e) / length**2 for c in cuts
-                                 if np.linalg.norm(np.cross(e, c - a)) <= tol * length
+                                 if abs(e[0] * (c - a)[1] - e[1] * (c - a)[0]) <= tol * length
                                  and -tol <= (c - a) @ e <= length**2 + tol})
         for s0, s1 in zip(s[:-1], s[1:]):
             if (s1 - s0) * length <= tol:
