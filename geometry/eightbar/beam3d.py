@@ -1,15 +1,18 @@
 """Spatial (6-DOF) beam model of the eight-bar flexure suspension, for out-of-plane modes.
 
-    model, info = eightbar_beam3d_model(EightBarFlexureParams())
+    model, info = eightbar_beam3d_model(EightBarFlexureParams())            # flexible links
+    model, info = eightbar_beam3d_model(EightBarFlexureParams(), links="rigid")
 
 Built from the planar beam model of the same parameters
-(:func:`flexfem.geometry.eightbar.beam.eightbar_beam_model`): the same nodes (in the plane
-z = 0), elements, rigid links, clamps and link masses, with the out-of-plane properties
-added: every section becomes the t x w rectangle of its in-plane depth t (tapered as the
-planar element's through the root fillets) and the out-of-plane width w = ``thickness``,
-with I_y = t w^3 / 12 and the Saint-Venant J. Links: the planar model's mass and polar
-inertia J_z, and J_x, J_y of the link's plate (union of its bars and hubs, thickness w)
-about its centroid.
+(:func:`flexfem.geometry.eightbar.beam.eightbar_beam_model`): the same flexure nodes (in the
+plane z = 0), elements and clamps, with the out-of-plane properties added: every section
+becomes the t x w rectangle of its in-plane depth t (tapered as the planar element's through
+the root fillets) and the out-of-plane width w = ``thickness``, with I_y = t w^3 / 12 and the
+Saint-Venant J. Links "flexible" (default; more accurate, docs/beam.md): every link plate and
+anchor as beams of its W x w section along its skeleton (:mod:`.link_beams`), the flexures
+rigidly offset to their real ends on it. Links "rigid": the planar model's rigid links, mass
+and polar inertia J_z, and J_x, J_y of the link's plate (union of its bars and hubs,
+thickness w) about its centroid.
 """
 import numpy as np
 
@@ -66,6 +69,10 @@ def eightbar_beam3d_model(params: EightBarFlexureParams, n_per_flexure: int = 24
     length (m, default the link width)."""
     if links not in LINKS:
         raise ValueError(f"links = {links!r} must be one of {LINKS}")
+    if link_element is not None and not (isinstance(link_element, (int, float))
+                                         and 0 < link_element < float("inf")):
+        raise ValueError(f"link_element = {link_element!r} m must be a number > 0 (or None: "
+                         "the link width)")
     planar, info = eightbar_beam_model(params, n_per_flexure, root_extension, shear)
     if links == "flexible":
         return flexible_links(planar, info, params, link_element, shear)

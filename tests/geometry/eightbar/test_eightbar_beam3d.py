@@ -107,3 +107,5 @@ def test_flexible_links_converge_in_the_link_elements_and_decouple():
 def test_links_option_is_checked():
     with pytest.raises(ValueError, match="links = 'soft' must be one of"):
         eightbar_beam3d_model(EightBarFlexureParams(), links="soft")
+    with pytest.raises(ValueError, match="link_element = -0.001 m must be a number > 0"):
+        eightbar_beam3d_model(EightBarFlexureParams(), link_element=-1e-3)
