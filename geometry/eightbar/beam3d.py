@@ -163,7 +163,7 @@ def flexible_links(planar, info: dict, params: EightBarFlexureParams,
         n += len(xy)
     xyz = np.vstack(nodes)
     model = Beam3DModel(np.column_stack([xyz, np.zeros(len(xyz))]), np.vstack(elements),
-                        sections, planar.material, rigid_links=_groups(pairs, {face}))
+                        sections, planar.material, rigid_links=_groups(pairs, {face, *ground}))
     return model, {"end_effector": face, "ground": ground, "flexures": info["flexures"],
                    "links": {k: v for k, v in spans.items() if k != layout.ground},
                    "anchors": spans[layout.ground]}
