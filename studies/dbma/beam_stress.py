@@ -1,0 +1,90 @@
+"""Peak stress of a filleted hinge from the beam model: the nominal stress in the hinge's
+straight part times a published stress-concentration factor of the shoulder fillet where it
+meets the body (data/stress_concentration.toml: Roark's Table 17.1, case 17, fits to
+Peterson's charts; docs/beam.md, "DBMA: peak stress at the fillets").
+
+    sigma_peak = K_t,tension |N| / (w b) + K_t,bending 6 |M| / (w b^2)
+
+with N and M the beam's axial force and bending moment at the fillet's tangent point (where
+the straight part of thickness b begins; M is linear along a hinge, so its largest value on
+the straight part is there). The two peaks lie at the same point of the fillet's arc and add
+(linear elasticity). SI units.
+"""
+import math
+
+import numpy as np
+
+from ...data import load_toml
+
+_SOURCE = "shoulder_fillet_flat_bar"
+
+
+def _coefficients(load: str) -> dict:
+    if load not in ("tension", "bending"):
+        raise ValueError(f"load = {load!r} must be 'tension' or 'bending'")
+    return load_toml("stress_concentration.toml")[_SOURCE][load]
+
+
+def shoulder_fillet_kt(d: float, D: float, r: float, load: str) -> float:
+    """K_t (-) of a flat bar of width d (m) stepping to D (m) through fillets of radius r (m)
+    on both edges, in 'tension' or in-plane 'bending', nominal stress in the d section. The
+    fit holds for 0.1 <= h / r <= 20, h = (D - d) / 2; beyond 20 it is taken at 20 (the
+    shoulder is then so deep that K_t no longer depends on it: the filleted-hinge specimen in
+    tests/studies/dbma/test_dbma_beam_stress.py gives the same peak for h / r = 2.4 to 9.4).
+    ValueError for a shallower shoulder or non-positive sizes."""
+    for name, value in (("d", d), ("D", D), ("r", r)):
+        if not (math.isfinite(value) and value > 0):
+            raise ValueError(f"shoulder_fillet_kt: {name} = {value!r} must be a finite number > 0 (m)")
+    coef = _coefficients(load)
+    lo, hi = load_toml("stress_concentration.toml")[_SOURCE]["h_over_r_range"]
+    h = (D - d) / 2
+    if not h / r >= lo:
+        raise ValueError(f"shoulder_fillet_kt: h / r = {h / r!r} is below the fit's range "
+                         f"[{lo}, {hi}] (h = (D - d) / 2 = {h!r} m, r = {r!r} m)")
+    if h / r > hi:  # deep shoulder: K_t saturates; evaluate at the range's end
+        h = hi * r
+        D = d + 2 * h
+    hr, x = h / r, 2 * h / D
+    rows = coef["low"] if hr <= 2.0 else coef["high"]
+    c = [a + b * math.sqrt(hr) + e * hr for a, b, e in rows]
+    return c[0] + c[1] * x + c[2] * x ** 2 + c[3] * x ** 3
+
+
+def hinge_shoulder(p, layout) -> float:
+    """Width D (m) of the body a DBMA hinge enters, as a symmetric shoulder: the smaller of the
+    two shoulders the hinge meets at its arm's end (the hinge sits h / 2 off the arm's centre
+    line), on both sides: D = b + 2 (c - h - b) / 2."""
+    return p.b + (p.c - p.h - p.b)
+
+
+def filleted_peak_stress(model, state, thickness: float, kt_tension: float,
+                         kt_bending: float) -> tuple:
+    """(peak stress (Pa), element) over the elements of in-plane thickness ``thickness`` (m:
+    the hinges' straight parts), from the beam state's axial force and end moments."""
+    sec = model.sections
+    straight = np.array([s.thickness is not None and math.isclose(s.thickness, thickness,
+                                                                   rel_tol=1e-9)
+                         and (s.thickness_end is None
+                              or math.isclose(s.thickness_end, thickness, rel_tol=1e-9))
+                         for s in sec])
+    if not straight.any():
+        raise ValueError(f"no element of thickness {thickness!r} m: not a filleted hinge model")
+    w = np.array([s.width if s.width is not None else np.nan for s in sec])
+    N, M = np.abs(state.axial_force), np.abs(state.end_moments).max(axis=1)
+    sigma = kt_tension * N / (w * thickness) + kt_bending * 6 * M / (w * thickness ** 2)
+    sigma = np.where(straight, sigma, -np.inf)
+    e = int(np.argmax(sigma))
+    return float(sigma[e]), e
+
+
+def dbma_fillet_stress(p, layout, model, state) -> dict:
+    """The DBMA's filleted-hinge peak stress (Pa) from a beam state: K_t of both loads for
+    the hinge's shoulder (:func:`hinge_shoulder`), 'fillet_stress', 'kt_tension',
+    'kt_bending' and where (m)."""
+    D, r = hinge_shoulder(p, layout), layout.hinge_fillet_radius
+    kt_t = shoulder_fillet_kt(p.b, D, r, "tension")
+    kt_b = shoulder_fillet_kt(p.b, D, r, "bending")
+    peak, e = filleted_peak_stress(model, state, p.b, kt_t, kt_b)
+    xy = model.nodes[model.elements[e]].mean(axis=0)
+    return {"fillet_stress": peak, "kt_tension": kt_t, "kt_bending": kt_b,
+            "fillet_stress_location": [float(xy[0]), float(xy[1])]}
