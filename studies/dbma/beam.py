@@ -7,7 +7,8 @@ Same loadings as the continuum: equal and opposite forces on the pads, member 11
 along y with the pads held along x (and their rotation: the continuum holds every pad node's
 x); modes with the pads held along x, the working mode the one of largest effective mass along
 y. The beam stress is |N|/A + |M|c/I: no stress concentration at the sharp hinge roots, where
-the continuum's von Mises peak is singular (mesh-dependent). SI units.
+the continuum's von Mises peak is singular (mesh-dependent); with filleted hinges the peak is
+that nominal stress times the shoulder fillet's published K_t (:mod:`.beam_stress`). SI units.
 """
 import math
 
@@ -19,22 +20,29 @@ from ...geometry.dbma.beam import dbma_beam_model
 from ...geometry.dbma.drawing import DBMALayout
 from ...geometry.dbma.params import DBMAParams
 from .analysis import dbma_material, params_from_dict
+from .beam_stress import dbma_fillet_stress
 from .figures import analytical_metrics
 
 
-def beam_static(model, info, force: float) -> dict:
+def beam_static(model, info, force: float, peak_stress=None) -> dict:
     """R_fem, R_fem_per_side, k_in (N/m), elongation and output displacement (m), max beam
-    stress (Pa) under the actuator force pair ``force`` (N)."""
-    a, b, out = info["input_a"], info["input_b"], info["output"]
+    stress (Pa) under the actuator force pair ``force`` (N). ``peak_stress(model, state)``
+    (optional, e.g. the fillets' K_t) returns {"fillet_stress", ...}: max_von_mises is then
+    its peak, the beam's own in "nominal_stress"."""
+    a, b, top = info["input_a"], info["input_b"], info["output"]
     s = solve_beam_static(model, [Fixed(tuple(info["ground"]))],
                           [NodalLoad(a, fx=-force), NodalLoad(b, fx=force)])
     elongation = float(s.q[b, 0] - s.q[a, 0])
-    u_out = float(s.q[out, 1])
+    u_out = float(s.q[top, 1])
     where = s.max_stress_location[2]
-    return {"force": force, "elongation": elongation, "output_displacement": u_out,
-            "max_von_mises_location": [float(where[0]), float(where[1])],
-            "R_fem": u_out / elongation, "R_fem_per_side": 2 * u_out / elongation,
-            "k_in": force / elongation, "max_von_mises": s.max_stress}
+    out = {"force": force, "elongation": elongation, "output_displacement": u_out,
+           "max_von_mises_location": [float(where[0]), float(where[1])],
+           "R_fem": u_out / elongation, "R_fem_per_side": 2 * u_out / elongation,
+           "k_in": force / elongation, "max_von_mises": s.max_stress}
+    if peak_stress is not None:
+        out.update(peak_stress(model, s), nominal_stress=s.max_stress)
+        out["max_von_mises"] = out["fillet_stress"]
+    return out
 
 
 def _pads_held(info) -> list:
@@ -62,8 +70,11 @@ def analyze_dbma_beam(p: DBMAParams, layout: DBMALayout | None = None, force: fl
                       n_modes: int = 6, root_extension: float = ROOT_EXTENSION) -> dict:
     """Static, output stiffness and modal results of the beam model beside the analytical
     models (the keys of the continuum analyze_dbma where they mean the same)."""
+    layout = layout or DBMALayout()
     model, info = dbma_beam_model(p, layout, root_extension)
-    out = {**analytical_metrics(p), **beam_static(model, info, force),
+    peak = ((lambda m, s: dbma_fillet_stress(p, layout, m, s))
+            if layout.hinge_profile == "filleted" else None)
+    out = {**analytical_metrics(p), **beam_static(model, info, force, peak),
            "k_out": beam_output_stiffness(model, info), "dofs": int(model.n_dofs),
            "model": "beam", "root_extension": root_extension}
     out["safety_factor"] = dbma_material(p).yield_strength / out["max_von_mises"]
