@@ -117,3 +117,54 @@ def test_the_notch_deficit_grows_with_t_over_r():
     rows = {r["l_over_b"]: r for r in slenderness_rows((3.0, 10.0), ("circular",))}
     thick, thin = rows[3.0]["bending_error"], rows[10.0]["bending_error"]
     assert thick < thin < -TRUST_LIMIT
+
+
+def _member_cells_away_from_roots(model, p, layout, margin):
+    """Cells of both input members whose centroid is more than ``margin`` (m) from every
+    hinge root on the member's inner face (where the hinges' stress spreads into it)."""
+    J = quarter_rects(p, layout)[0]
+    m = model.mesh.mesh
+    cx, cy = np.abs(m.p[:, m.t].mean(axis=1))
+    yc = (layout.arm_gap + p.c / 2, p.ll - p.c / 2)
+    rows = [y + s * p.h / 2 for y in yc for s in (-1, 1)]
+    near = np.zeros_like(cx, bool)
+    for yr in rows:
+        near |= (cx < J.x0 + margin) & (np.abs(cy - yr) < margin)
+    return np.nonzero((cx > J.x0) & (cx < J.x1) & ~near)[0], (J.x0 + J.x1) / 2
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("params", [{}, {"a": 7 * MM}, {"b": 0.3 * MM, "l": 6 * MM}])
+def test_the_k_out_deficit_is_the_input_members(params):
+    """Both models with their input members 1000x stiffer (continuum: away from the hinge
+    roots, 2.5 mm, whose spreading belongs to the hinges; beam: the member's elements): k_out
+    agrees within 2 % (-0.4, +1.5, -0.2 %), while as built the beam is 4.0 % low on the
+    paper's design. So the residual is the members' bending in the beam, not the hinges,
+    arms or roots (docs/beam.md, "DBMA: the pad block")."""
+    import skfem
+    from skfem.models.elasticity import linear_elasticity
+    from flexfem.fem import Force, solve_static
+    from flexfem.fem.beam import Section
+    from flexfem.studies.dbma import analysis as fem
+    from flexfem.studies.dbma.beam import beam_output_stiffness
+
+    p, layout, factor = dataclasses.replace(paper_design(), **params), DBMALayout(), 1000.0
+    model = fem.build_model(p, layout, 2, 1.0)
+    cells, xc = _member_cells_away_from_roots(model, p, layout, 2.5 * MM)
+    basis = skfem.Basis(model.mesh.mesh, model.basis.elem, elements=cells, intorder=2)
+    extra = (factor - 1) * p.d * skfem.asm(linear_elasticity(*model.lame), basis)
+    k = {}
+    for tag, mdl in (("built", model), ("stiff", model.with_stiffness(extra))):
+        s = solve_static(mdl, fem.modal_supports(), [Force("output", (0.0, 100.0))])
+        k[tag] = 100.0 / float(s.mean_displacement("output")[1])
+    bm, info = gb.dbma_beam_model(p, layout)
+    mid = bm.nodes[bm.elements].mean(axis=1)
+    member = np.isclose(np.abs(mid[:, 0]), xc, atol=1e-9)
+    sections = [Section(A=factor * s.width * s.thickness, I=factor * s.width * s.thickness ** 3
+                        / 12, c=s.thickness / 2) if member[e] else s
+                for e, s in enumerate(bm.sections)]
+    stiff = BeamModel(bm.nodes, bm.elements, sections, bm.material, shear=True,
+                      rigid_links=bm.rigid_links)
+    assert beam_output_stiffness(stiff, info) == pytest.approx(k["stiff"], rel=0.02)
+    if not params:
+        assert beam_output_stiffness(bm, info) / k["built"] - 1 < -0.03
