@@ -8,8 +8,8 @@ DefineConstant[
   L = {0.03, Name "Parameters/L", Label "leaf length between the faces (m)"},
   t = {0.001, Name "Parameters/t", Label "leaf thickness (m)"},
   phi = {Pi / 4, Name "Parameters/phi", Label "angle between leaf and block faces (rad)"},
-  hb = {0.004, Name "Parameters/hb", Label "base height (m)"},
-  hs = {0.004, Name "Parameters/hs", Label "stage height (m)"},
+  hb = {0.012, Name "Parameters/hb", Label "base height (m)"},
+  hs = {0.012, Name "Parameters/hs", Label "stage height (m)"},
   lc_leaf = {t / 4, Name "Parameters/lc_leaf", Label "element size in the leaf (m)"},
   lc_block = {0.003, Name "Parameters/lc_block", Label "element size in base and stage (m)"}
 ];
