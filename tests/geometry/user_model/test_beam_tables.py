@@ -150,3 +150,11 @@ def test_oblique_leaf_begins_at_its_acute_edge(degrees):
     cot = 1 / math.tan(math.radians(degrees))
     assert beam_model(spec)[0].lengths.sum() == pytest.approx(L - t * cot + 2 * 0.38 * t)
     assert beam_model(bare)[0].lengths.sum() == pytest.approx(L)
+
+
+def test_oblique_roots_that_leave_no_beam_or_are_too_shallow_are_refused():
+    leaf = EXAMPLES / "oblique_leaf" / "leaf.toml"
+    with pytest.raises(ValueError, match=r"leaf.toml.*oblique roots .* leave no length"):
+        beam_model(load_spec(leaf, {"phi": math.radians(15), "L": 0.003}))  # 2 x 1.87 t > L
+    with pytest.raises(ValueError, match=r"leaf.toml.*leaves its block .* less than 10"):
+        beam_model(load_spec(leaf, {"phi": math.radians(8)}))
