@@ -9,8 +9,10 @@ names (where the continuum's supports and loads act) and the mass of its blocks 
 their centroid). A beam end joined to a rigid body is extended into it by root_extension x its
 thickness (:func:`flexfem.geometry.beam_layout.root_section`: the root's compliance, which
 beam theory has not; docs/beam.md, "Joints and slenderness"), axially too where the body
-declares the block it enters (its chord across the beam is the block height H). Where two
-beams cross they are joined by a rigid joint (:mod:`.crossings`). Lengths in m.
+declares the block it enters (its chord across the beam is the block height H). A beam
+leaving a declared block's face at an angle begins where its whole section has left the block,
+(t/2) cot(phi) along it (:mod:`.roots`), and is extended from there. Where two beams cross
+they are joined by a rigid joint (:mod:`.crossings`). Lengths in m.
 """
 import math
 
@@ -19,21 +21,30 @@ import numpy as np
 from ...fem.beam import BeamMesh, BeamModel, RigidLink, beam_chain, beam_from_profile
 from ..beam_layout import root_section
 from .crossings import crossings
+from .roots import root_offset
 
 
 def _error(where: str, message: str) -> ValueError:
     return ValueError(f"{where}: {message}")
 
 
-def _line_mesh(line, tol, cuts=None) -> BeamMesh:
+def _line_mesh(line, tol, cuts=None, trim=(0.0, 0.0)) -> BeamMesh:
     """Each segment ``line.elements`` quadratically tapered elements through t(s); a segment
     split at ``cuts`` {segment: [arc lengths from its first point, m]} (a crossing's rigid
-    stubs) shares them among its pieces by length, at least one each."""
+    stubs) shares them among its pieces by length, at least one each; ``trim`` (m): the
+    lengths left out at the first and last point (an oblique root's, :mod:`.roots`)."""
     mesh, profile, cuts = None, line.thickness, cuts or {}
-    for k in range(len(line.points) - 1):
+    last = len(line.points) - 2
+    for k in range(last + 1):
         a, b = np.asarray(line.points[k], float), np.asarray(line.points[k + 1], float)
         length = float(np.linalg.norm(b - a))
-        marks = [0.0] + sorted(cuts.get(k, [])) + [length]
+        start, stop = (trim[0] if k == 0 else 0.0), length - (trim[1] if k == last else 0.0)
+        marks = [start] + sorted(cuts.get(k, [])) + [stop]
+        if any(s1 - s0 <= tol for s0, s1 in zip(marks[:-1], marks[1:])):
+            raise ValueError(f"{line.source}: [[beam]] its oblique roots (the section leaves "
+                             f"the block {trim[0]:.3g} m, {trim[1]:.3g} m along it) or a "
+                             "crossing's joint leave no length of its segment "
+                             f"{list(line.points[k])} - {list(line.points[k + 1])}")
         for s0, s1 in zip(marks[:-1], marks[1:]):
             n = max(1, round(line.elements * (s1 - s0) / length))
             part = beam_from_profile(a + s0 / length * (b - a), a + s1 / length * (b - a),
@@ -43,19 +54,27 @@ def _line_mesh(line, tol, cuts=None) -> BeamMesh:
     return mesh
 
 
-def _extension(line, end: int, factor: float, bodies=()) -> BeamMesh | None:
-    """The root-extension element beyond the beam's first (end 0) or last (end -1) point,
-    with the root's axial compliance where a block of ``bodies`` (the [[rigid]] bodies joining
-    that point) declares the height it enters (:func:`_block_height`)."""
+def _end(line, end: int) -> tuple:
+    """(end point, unit direction (2,) from the beam into the block beyond it, thickness m)."""
     a, b = (line.points[0], line.points[1]) if end == 0 else (line.points[-1], line.points[-2])
     t = line.thickness(0.0 if end == 0 else line.thickness.length)
+    return a, np.subtract(a, b) / math.dist(a, b), t
+
+
+def _extension(line, end: int, factor: float, bodies=(), offset: float = 0.0):
+    """(root point, its root-extension element or None): the root point is ``offset`` (m)
+    inside the beam from its first (end 0) or last (end -1) point, where its whole section has
+    left the block (:func:`.roots.root_offset`); the element reaches factor x t beyond it, with
+    the root's axial compliance where a block of ``bodies`` (the [[rigid]] bodies joining that
+    point) declares the height it enters (:func:`_block_height`)."""
+    a, d, t = _end(line, end)
+    root = tuple(np.subtract(a, offset * d))
     length = factor * t
     if length <= 0:
-        return None
-    d = np.subtract(a, b) / math.dist(a, b)
+        return root, None
     height = _block_height(a, d, [r for body in bodies for r in body.blocks])
-    return beam_chain([a, tuple(np.add(a, length * d))],
-                      root_section(line.depth, t, length, height), 1)
+    return root, beam_chain([root, tuple(np.add(root, length * d))],
+                            root_section(line.depth, t, length, height), 1)
 
 
 def _block_height(point, direction, blocks) -> float | None:
@@ -79,31 +98,43 @@ def _block_height(point, direction, blocks) -> float | None:
     return best
 
 
+def _root_offsets(line, bodies_at, factor: float, tol: float) -> list:
+    """[s_root at the first point, at the last] (m): the oblique roots' offsets where the end
+    is joined to a block (0 elsewhere, and for the bare beams, root extension 0)."""
+    out = []
+    for end in (0, -1):
+        blocks = [r for body in bodies_at[end] for r in body.blocks]
+        a, d, t = _end(line, end)
+        out.append(root_offset(a, -d, t, blocks, tol, line.source) if factor > 0 else 0.0)
+    return out
+
+
 def _mesh(beams, tol) -> tuple:
-    """(BeamMesh of all beams, {node of a joined beam end: [the ends of its root
-    extensions]}, [(crossing node, its rigid stubs' nodes)])."""
+    """(BeamMesh of all beams, {joined beam end point: [the ends of its root extensions, or
+    its root node]}, [(crossing node, its rigid stubs' nodes)])."""
     found = crossings(beams.beams, tol, beams.root_extension) if beams.crossings == "rigid" else []
     cuts = [{} for _ in beams.beams]
     for crossing in found:
         for i, seg, s in crossing.cuts:
             cuts[i].setdefault(seg, []).append(s)
-    mesh, extensions = None, []
+    mesh, roots = None, []
     for line, line_cuts in zip(beams.beams, cuts):
-        part = _line_mesh(line, tol, line_cuts)
+        bodies_at = [[body for body in beams.rigid
+                      if any(math.dist(line.points[end], q) <= tol for q in body.joins)]
+                     for end in (0, -1)]
+        offsets = _root_offsets(line, bodies_at, beams.root_extension, tol)
+        part = _line_mesh(line, tol, line_cuts, offsets)
         mesh = part if mesh is None else mesh.join(part, tol)
-        for end in (0, -1):
-            p = line.points[end]
-            bodies = [body for body in beams.rigid
-                      if any(math.dist(p, q) <= tol for q in body.joins)]
-            if bodies:
-                ext = _extension(line, end, beams.root_extension, bodies)
-                if ext is not None:
-                    extensions.append(ext)
+        for end, bodies, offset in zip((0, -1), bodies_at, offsets):
+            if bodies and (offset > 0 or beams.root_extension > 0):
+                roots.append((line.points[end], *_extension(
+                    line, end, beams.root_extension, bodies, offset)))
     ends = {}
-    for ext in extensions:  # after all beams: node numbers of the joined mesh are final
-        mesh = mesh.join(ext, tol)
-        ends.setdefault(mesh.node_at(ext.nodes[0], tol), []).append(
-            mesh.node_at(ext.nodes[1], tol))
+    for point, root, ext in roots:  # after all beams: node numbers of the joined mesh are final
+        if ext is not None:
+            mesh = mesh.join(ext, tol)
+        far = ext.nodes[1] if ext is not None else root
+        ends.setdefault(tuple(point), []).append(mesh.node_at(far, tol))
     joints = []
     for crossing in found:
         stubs = []
@@ -175,11 +206,12 @@ def beam_model(spec) -> tuple:
     for i, body in enumerate(beams.rigid):
         slaves = []
         for p in body.joins:
-            node = nodes.at(p, add=False)
-            if node is None:
+            rooted = [n for q, ns in ends.items() if math.dist(p, q) <= tol for n in ns]
+            node = nodes.at(p, add=False) if not rooted else None
+            if node is None and not rooted:
                 raise _error(body.source, f"[[rigid]] joins {list(p)}, which is no point of "
                              "a [[beam]]")
-            slaves += ends.get(node, [node])
+            slaves += rooted or [node]
         # a group's point or the mass centre reuses only this body's nodes: never welds
         # another beam's node to the block
         named = {g: nodes.at(p, among=set(slaves)) for g, p in body.groups.items()}

@@ -36,7 +36,8 @@ def test_pivot_leaves_are_joined_where_they_cross():
     # the base's master is its supported group; the stage carries its block's mass
     assert info["masters"][0] == info["groups"]["fixed"]
     hs, arm = spec.constants["hs"], spec.constants["arm"]
-    (mass, inertia), = model.point_masses.values()
+    stage, = (n for n in model.point_masses if model.nodes[n][1] > 0)  # the base's is held
+    mass, inertia = model.point_masses[stage]
     assert mass == pytest.approx(7850 * 0.01 * 2 * arm * hs)
     assert inertia == pytest.approx(mass * ((2 * arm) ** 2 + hs ** 2) / 12)
     assert len(model.rigid_links) == 3  # base, stage and the leaves' crossing joint
@@ -116,3 +117,44 @@ def test_axial_root_compliance_where_the_block_is_declared():
     for e in roots:
         compliance = model.lengths[e] / model.sections[e].A  # x E w
         assert compliance * W_GUIDE == pytest.approx(axial_root_compliance(H, p["t"]))
+
+
+def test_root_offset_is_where_the_whole_section_has_left_the_face():
+    """(t/2) cot(phi) along the beam from its centre line's meeting with the face: where its
+    acute edge meets the face (constructed here from the edge line's intersection)."""
+    from flexfem.geometry.user_model.roots import root_offset
+    block, t, tol = [((-1.0, -1.0), (1.0, 0.0))], 1e-3, 1e-12  # the face y = 0
+    for phi in np.radians([15, 30, 45, 60, 90, 120]):
+        d = np.array([math.cos(phi), math.sin(phi)])
+        edge = -np.sign(math.cos(phi)) * t / 2 * np.array([-d[1], d[0]])  # the acute edge
+        s_edge = -edge[1] / d[1]  # where edge + s d meets y = 0
+        assert root_offset((0.2, 0.0), d, t, block, tol, "f") == pytest.approx(
+            max(s_edge, 0.0) if abs(math.cos(phi)) > 1e-12 else 0.0, abs=1e-15)
+        assert root_offset((0.2, 0.0), d, t, block, tol, "f") == pytest.approx(
+            t / 2 / abs(math.tan(phi)), abs=1e-15)
+    assert root_offset((5.0, 0.0), (0.6, 0.8), t, block, tol, "f") == 0.0  # on no face
+    assert root_offset((1.0, 0.0), (0.6, 0.8), t, block, tol, "f") == 0.0  # a corner
+    with pytest.raises(ValueError, match=r"f: .* 8.02 degrees, less than 10"):
+        root_offset((0.2, 0.0), (math.cos(0.14), math.sin(0.14)), t, block, tol, "f")
+
+
+@pytest.mark.parametrize("degrees", [90, 45, 30, 15])
+def test_oblique_leaf_begins_at_its_acute_edge(degrees):
+    """The one-leaf example: its flexible length is L - 2 (t/2) cot(phi), plus the common root
+    extension 0.38 t at both roots; the bare beams (root extension 0) keep the whole L."""
+    over = {"phi": math.radians(degrees)}
+    spec = load_spec(EXAMPLES / "oblique_leaf" / "leaf.toml", over)
+    bare = load_spec(EXAMPLES / "oblique_leaf" / "leaf.toml",
+                     {**over, "beam_model.root_extension": 0})
+    L, t = spec.constants["L"], spec.constants["t"]
+    cot = 1 / math.tan(math.radians(degrees))
+    assert beam_model(spec)[0].lengths.sum() == pytest.approx(L - t * cot + 2 * 0.38 * t)
+    assert beam_model(bare)[0].lengths.sum() == pytest.approx(L)
+
+
+def test_oblique_roots_that_leave_no_beam_or_are_too_shallow_are_refused():
+    leaf = EXAMPLES / "oblique_leaf" / "leaf.toml"
+    with pytest.raises(ValueError, match=r"leaf.toml.*oblique roots .* leave no length"):
+        beam_model(load_spec(leaf, {"phi": math.radians(15), "L": 0.003}))  # 2 x 1.87 t > L
+    with pytest.raises(ValueError, match=r"leaf.toml.*leaves its block .* less than 10"):
+        beam_model(load_spec(leaf, {"phi": math.radians(8)}))
