@@ -1,9 +1,10 @@
 """Oblique roots: the beam model against the continuum of the same model file, for one leaf
 (examples/oblique_leaf/leaf.toml) and the cross pivot (examples/cross_pivot/pivot.toml) at
 several angles phi between leaf and block face and several L/t, with the beams' roots at the
-centre line's meeting with the face (the model file as it is) and at the acute edge's (the
-leaf's whole section free: (t/2) cot(phi) further along the leaf, then the common root
-extension), as the crossing joint does. Prints one row per case: phi, L/t, continuum K
+centre line's meeting with the face (`[beam_model] roots = "centre_line"`) and at the acute
+edge's (the default: the leaf's whole section free, (t/2) cot(phi) further along the leaf, then
+the common root extension, as the crossing joint does; also built here independently, by moving
+the model file's end points there, as a check of the builder). Prints one row per case: phi, L/t, continuum K
 (N m/rad), error of each rule (%).
 
     python examples/oblique_leaf/root_table.py [leaf|pivot] [lc_leaf / t]
@@ -52,8 +53,9 @@ def arm_of(kind: str, p: dict) -> float:
 
 def row(kind: str, degrees: float, slenderness: float, lc: float, acute: Path) -> tuple:
     """(K continuum N m/rad, f1 continuum Hz (None without modes), errors % of K and f1 with
-    centre-line roots, the same with acute-edge roots). The leaf: t = 1 mm, L = slenderness
-    t; the pivot: its own L = 30 mm, t = L / slenderness."""
+    centre-line roots, with acute-edge roots (the builder's default), and with the end points
+    moved to the acute edge). The leaf: t = 1 mm, L = slenderness t; the pivot: its own L =
+    30 mm, t = L / slenderness."""
     path, angle = CASES[kind][:2]
     if kind == "pivot":
         t = 0.03 / slenderness
@@ -63,12 +65,14 @@ def row(kind: str, degrees: float, slenderness: float, lc: float, acute: Path) -
         over = {angle: math.radians(degrees), "t": t, "L": slenderness * t, "lc_leaf": lc * t}
     spec = load_spec(path, over)
     arm = arm_of(kind, spec.constants)
-    results = [analyze_model(spec), analyze_model(spec, model="beam"),
+    centre = load_spec(path, {**over, "beam_model.roots": "centre_line"})
+    results = [analyze_model(spec), analyze_model(centre, model="beam"),
+               analyze_model(spec, model="beam"),
                analyze_model(load_spec(acute, over), model="beam")]
     k = [couple_stiffness(r, arm) for r in results]
     f = [(r.get("frequencies_hz") or [None])[0] for r in results]
     out = [k[0], f[0]]
-    for i in (1, 2):
+    for i in (1, 2, 3):
         out += [100 * (k[i] / k[0] - 1), 100 * (f[i] / f[0] - 1) if f[0] else float("nan")]
     return tuple(out)
 
@@ -78,7 +82,7 @@ def main(kind: str = "leaf", lc: float = 0.25) -> None:
     with tempfile.TemporaryDirectory() as folder:
         acute = acute_edge_copy(path, angle, Path(folder))
         print(f"{kind} (leaf mesh {lc} t): phi (deg), L/t, continuum K (N m/rad), f1 (Hz); "
-              "errors % of K, f1: centre-line roots, acute-edge roots")
+              "errors % of K, f1: centre-line roots, acute-edge roots, end points moved")
         for s in slenderness:
             for d in degrees:
                 k, f, *errors = row(kind, d, s, lc, acute)

@@ -100,7 +100,8 @@ def _block_height(point, direction, blocks) -> float | None:
 
 def _root_offsets(line, bodies_at, factor: float, tol: float) -> list:
     """[s_root at the first point, at the last] (m): the oblique roots' offsets where the end
-    is joined to a block (0 elsewhere, and for the bare beams, root extension 0)."""
+    is joined to a block (0 elsewhere, for the bare beams, root extension 0, and for roots at
+    the centre line, ``factor`` 0)."""
     out = []
     for end in (0, -1):
         blocks = [r for body in bodies_at[end] for r in body.blocks]
@@ -122,7 +123,8 @@ def _mesh(beams, tol) -> tuple:
         bodies_at = [[body for body in beams.rigid
                       if any(math.dist(line.points[end], q) <= tol for q in body.joins)]
                      for end in (0, -1)]
-        offsets = _root_offsets(line, bodies_at, beams.root_extension, tol)
+        oblique = beams.root_extension if beams.roots == "acute_edge" else 0.0
+        offsets = _root_offsets(line, bodies_at, oblique, tol)
         part = _line_mesh(line, tol, line_cuts, offsets)
         mesh = part if mesh is None else mesh.join(part, tol)
         for end, bodies, offset in zip((0, -1), bodies_at, offsets):

@@ -17,7 +17,7 @@ from .tables import Locator, check_keys, is_number
 
 BEAM_KEYS = ("points", "thickness", "depth", "elements")
 RIGID_KEYS = ("joins", "groups", "blocks")
-OPTION_KEYS = ("elements", "shear", "root_extension", "crossings")
+OPTION_KEYS = ("elements", "shear", "root_extension", "crossings", "roots")
 _FUNCTIONS = {"sqrt": math.sqrt, "sin": math.sin, "cos": math.cos, "tan": math.tan,
               "atan": math.atan, "atan2": math.atan2}
 _BINARY = {ast.Add: operator.add, ast.Sub: operator.sub, ast.Mult: operator.mul,
@@ -74,7 +74,9 @@ class RigidBody:
 class BeamSpec:
     """The beam model of a model file: beams, rigid bodies and options (elements per segment
     by default, Timoshenko shear, root extension x root thickness at joined ends, crossings
-    "rigid" (the leaves' solid joint, geometry/user_model/crossings.py) or "weld")."""
+    "rigid" (the leaves' solid joint, geometry/user_model/crossings.py) or "weld", oblique roots
+    at the "acute_edge" (geometry/user_model/roots.py) or the "centre_line"'s meeting with the
+    face)."""
 
     beams: tuple
     rigid: tuple
@@ -82,6 +84,7 @@ class BeamSpec:
     shear: bool = True
     root_extension: float = 0.38
     crossings: str = "rigid"
+    roots: str = "acute_edge"
     source: str = ""
     groups: dict = field(default_factory=dict)
 
@@ -260,6 +263,12 @@ def _options(raw, loc: Locator) -> dict:
                             "(the leaves' solid joint) or \"weld\" (a point)", "beam_model",
                             "crossings")
         out["crossings"] = raw["crossings"]
+    if "roots" in raw:
+        if raw["roots"] not in ("acute_edge", "centre_line"):
+            raise loc.error(f"[beam_model] roots = {raw['roots']!r} must be \"acute_edge\" "
+                            "(an oblique beam starts where its whole section has left the "
+                            "block) or \"centre_line\"", "beam_model", "roots")
+        out["roots"] = raw["roots"]
     return out
 
 

@@ -148,8 +148,16 @@ def test_oblique_leaf_begins_at_its_acute_edge(degrees):
                      {**over, "beam_model.root_extension": 0})
     L, t = spec.constants["L"], spec.constants["t"]
     cot = 1 / math.tan(math.radians(degrees))
+    centre = load_spec(EXAMPLES / "oblique_leaf" / "leaf.toml",
+                       {**over, "beam_model.roots": "centre_line"})
     assert beam_model(spec)[0].lengths.sum() == pytest.approx(L - t * cot + 2 * 0.38 * t)
     assert beam_model(bare)[0].lengths.sum() == pytest.approx(L)
+    assert beam_model(centre)[0].lengths.sum() == pytest.approx(L + 2 * 0.38 * t)
+
+
+def test_an_unknown_roots_rule_is_refused():
+    with pytest.raises(ValueError, match=r"leaf.toml.*roots = 'edge' must be \"acute_edge\""):
+        load_spec(EXAMPLES / "oblique_leaf" / "leaf.toml", {"beam_model.roots": "edge"})
 
 
 def test_oblique_roots_that_leave_no_beam_or_are_too_shallow_are_refused():
