@@ -163,13 +163,15 @@ def _cross(p, q, a, b) -> tuple:
 
 def _moments(poly) -> np.ndarray:
     """(area, S_x = int x, S_y = int y, int x^2, int y^2) of a polygon about the origin."""
-    out = np.zeros(5)
+    a = sx = sy = ixx = iyy = 0.0  # float sums, in the order of the former array sums
     for (x0, y0), (x1, y1) in zip(poly, poly[1:] + poly[:1]):
         c = x0 * y1 - x1 * y0
-        out += np.array([c / 2, (x0 + x1) * c / 6, (y0 + y1) * c / 6,
-                         (x0 * x0 + x0 * x1 + x1 * x1) * c / 12,
-                         (y0 * y0 + y0 * y1 + y1 * y1) * c / 12])
-    return out
+        a += c / 2
+        sx += (x0 + x1) * c / 6
+        sy += (y0 + y1) * c / 6
+        ixx += (x0 * x0 + x0 * x1 + x1 * x1) * c / 12
+        iyy += (y0 * y0 + y0 * y1 + y1 * y1) * c / 12
+    return np.array([a, sx, sy, ixx, iyy])
 
 
 def link_moments(parts, link: str) -> np.ndarray | None:
