@@ -157,9 +157,14 @@ class Space:
         self._tangents += 1
         if self._tangents == 1:
             return self.condense_global(global_matrix(self.model, ke, diagonal), w)
+        d = np.zeros(self.n) if diagonal is None else diagonal[self.free]
+        return self.condensed().matrix(ke, w, d)
+
+    def condensed(self) -> Condensed:
+        """The reduced matrix's fixed pattern (Condensed) of this Space's elements, shared
+        between the models of one topology and held DOFs (a sweep's designs)."""
         if self._stiffness is None:
             key = ("condensed", self.n, self.col.tobytes(), self.model.elements.tobytes())
             self._stiffness = shared(key, lambda: Condensed(self.col, self.n,
                                                             block_dofs(self.model.elements)))
-        d = np.zeros(self.n) if diagonal is None else diagonal[self.free]
-        return self._stiffness.matrix(ke, w, d)
+        return self._stiffness
