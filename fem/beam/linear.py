@@ -11,7 +11,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from .assembly import Assembler, SingularBeamError, mass_matrix
+from .assembly import Assembler, SingularBeamError, element_mass, point_mass_diagonal
 from .banded import spd_factor
 from .model import BeamModel, Fixed
 from .space import held_values
@@ -43,8 +43,10 @@ class LinearSystem:
     def mass(self):
         """Reduced consistent mass T^T M T (CSR)."""
         if self._mass is None:
-            self._mass = self.space.condense_global(mass_matrix(self.asm.model),
-                                                    self.ev.w).tocsr()
+            model, space, w = self.asm.model, self.space, self.ev.w
+            elements = space.condensed().matrix(element_mass(model), w, np.zeros(space.n))
+            self._mass = (elements + space.condense_diagonal(point_mass_diagonal(model),
+                                                             w)).tocsr()
         return self._mass
 
 
