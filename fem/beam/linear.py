@@ -64,7 +64,7 @@ def solve_linear(model: BeamModel, supports, f_ext) -> tuple:
     held = np.flatnonzero(~np.isnan(values))
     base = [s for s in supports if isinstance(s, Fixed)]
     key = ("linear", held.tobytes())
-    if base and key not in model.__dict__.get("_derived", {}):
+    if base and not model.is_cached(key):
         system = linear_system(model, base)
         extra = np.setdiff1d(held, system.space.held)
         if len(extra) <= MAX_EXTRA:

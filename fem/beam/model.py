@@ -313,6 +313,10 @@ class BeamModel:
             cache[key] = value
         return cache[key]
 
+    def is_cached(self, key) -> bool:
+        """Whether ``cached(key, ...)`` has been computed for this model."""
+        return key in self.__dict__.get("_derived", {})
+
     @property
     def n_nodes(self) -> int:
         return len(self.nodes)
