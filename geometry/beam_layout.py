@@ -27,7 +27,7 @@ import math
 
 import numpy as np
 
-from ..fem.beam import BeamMesh, BeamModel, RigidLink, Section, beam_chain, beam_from_profile
+from ..fem.beam import BeamMesh, BeamModel, RigidLink, Section, beam_from_profile
 
 ROOT_EXTENSION = 0.38  # x root thickness, per root (docs/beam.md: l/b 5-20 within 0.15 %)
 # axial compliance of a root, per root, in units of 1 / (E w): the load in a neck of thickness
@@ -101,19 +101,25 @@ def profile_beam(a, b, thickness_fn, out_of_plane: float, breaks=(), n_total: in
     start, end, root, tip = a, b, None, None
     if e0 > 0:
         start = a - e0 * d
-        root = beam_chain([start, a], root_section(out_of_plane, t0, e0, blocks[0]), 1)
+        root = _one_element(start, a, root_section(out_of_plane, t0, e0, blocks[0]))
     if e1 > 0:
         end = b + e1 * d
-        tip = beam_chain([b, end], root_section(out_of_plane, t1, e1, blocks[1]), 1)
+        tip = _one_element(b, end, root_section(out_of_plane, t1, e1, blocks[1]))
     mesh = _line_mesh([m for m in [root, *pieces, tip] if m is not None], tol)
-    if mesh is None:  # a piece shorter than tol: BeamMesh.join's general merge decides
-        mesh = pieces[0]
-        for part in pieces[1:]:
-            mesh = mesh.join(part, tol=tol)
-        mesh = mesh if root is None else root.join(mesh, tol=tol)
-        mesh = mesh if tip is None else mesh.join(tip, tol=tol)
+    if mesh is not None:  # one chain from start to end, point_nodes [0, n - 1]
+        return mesh
+    mesh = pieces[0]  # a piece shorter than tol: BeamMesh.join's general merge decides
+    for part in pieces[1:]:
+        mesh = mesh.join(part, tol=tol)
+    mesh = mesh if root is None else root.join(mesh, tol=tol)
+    mesh = mesh if tip is None else mesh.join(tip, tol=tol)
     first, last = mesh.node_at(start, tol=tol), mesh.node_at(end, tol=tol)
     return BeamMesh(mesh.nodes, mesh.elements, mesh.sections, [first, last])
+
+
+def _one_element(a, b, section) -> BeamMesh:
+    """beam_chain([a, b], section, 1) (the same nodes: a, b) without its checks."""
+    return BeamMesh(np.array([a, b], dtype=float), np.array([[0, 1]]), [section], [0, 1])
 
 
 def _line_mesh(parts, tol: float) -> BeamMesh | None:
@@ -163,13 +169,15 @@ def _cross(p, q, a, b) -> tuple:
 
 def _moments(poly) -> np.ndarray:
     """(area, S_x = int x, S_y = int y, int x^2, int y^2) of a polygon about the origin."""
-    out = np.zeros(5)
+    a = sx = sy = ixx = iyy = 0.0  # float sums, in the order of the former array sums
     for (x0, y0), (x1, y1) in zip(poly, poly[1:] + poly[:1]):
         c = x0 * y1 - x1 * y0
-        out += np.array([c / 2, (x0 + x1) * c / 6, (y0 + y1) * c / 6,
-                         (x0 * x0 + x0 * x1 + x1 * x1) * c / 12,
-                         (y0 * y0 + y0 * y1 + y1 * y1) * c / 12])
-    return out
+        a += c / 2
+        sx += (x0 + x1) * c / 6
+        sy += (y0 + y1) * c / 6
+        ixx += (x0 * x0 + x0 * x1 + x1 * x1) * c / 12
+        iyy += (y0 * y0 + y0 * y1 + y1 * y1) * c / 12
+    return np.array([a, sx, sy, ixx, iyy])
 
 
 def link_moments(parts, link: str) -> np.ndarray | None:

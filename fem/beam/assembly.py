@@ -44,15 +44,19 @@ def element_mass(model: BeamModel) -> np.ndarray:
     return model.cached("element_mass", compute)
 
 
+def point_mass_diagonal(model: BeamModel) -> np.ndarray:
+    """(n_dofs,) the point masses (kg; rotary inertia kg m^2 on theta) as a diagonal."""
+    diag = np.zeros(model.n_dofs)
+    for node, (m, J) in model.point_masses.items():
+        diag[3 * int(node):3 * int(node) + 2] += m
+        diag[3 * int(node) + 2] += J
+    return diag
+
+
 def mass_matrix(model: BeamModel) -> sp.csr_matrix:
     """Consistent global mass matrix (kg, kg m, kg m^2), point masses included (cached)."""
-    def compute():
-        diag = np.zeros(model.n_dofs)
-        for node, (m, J) in model.point_masses.items():
-            diag[3 * int(node):3 * int(node) + 2] += m
-            diag[3 * int(node) + 2] += J
-        return global_matrix(model, element_mass(model), diag)
-    return model.cached("mass_matrix", compute)
+    return model.cached("mass_matrix", lambda: global_matrix(model, element_mass(model),
+                                                             point_mass_diagonal(model)))
 
 
 def load_vector(model: BeamModel, loads) -> np.ndarray:

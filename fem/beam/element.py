@@ -42,6 +42,13 @@ def bending_shape_functions(xi, L, phi):
     return Nw, dNw, Np, dNp
 
 
+def gauss_shape_functions(model, phi):
+    """bending_shape_functions at the Gauss points XI, cached on the model (the stiffness
+    and the mass use the same)."""
+    return model.cached("gauss_shape_functions",
+                        lambda: bending_shape_functions(XI, model.lengths, phi))
+
+
 def _gram(weight, A, B) -> np.ndarray:
     """sum_g weight[e, g] A[e, g, i] B[e, g, j]: (n_e, i, j) (einsum's, by matmul)."""
     return np.matmul((A * weight[:, :, None]).transpose(0, 2, 1), B)
@@ -88,7 +95,7 @@ def local_stiffness(model) -> np.ndarray:
     L, mat = model.lengths, model.material
     phi = shear_parameter(model)
     A, I, _ = sections(model, XI)
-    _, dNw, Np, dNp = bending_shape_functions(XI, L, phi)
+    _, dNw, Np, dNp = gauss_shape_functions(model, phi)
     wdx = WXI[None, :] * L[:, None]
     Kb = _gram(mat.E * I * wdx, dNp, dNp)
     if model.shear:
@@ -118,7 +125,7 @@ def local_mass(model) -> np.ndarray:
     L, rho = model.lengths, model.material.rho
     phi = shear_parameter(model)
     A, I, _ = sections(model, XI)
-    Nw, _, Np, _ = bending_shape_functions(XI, L, phi)
+    Nw, _, Np, _ = gauss_shape_functions(model, phi)
     wdx = WXI[None, :] * L[:, None]
     Mb = _gram(rho * A * wdx, Nw, Nw) + _gram(rho * I * wdx, Np, Np)
     Nu = np.stack([1.0 - XI, XI], axis=-1)

@@ -10,7 +10,10 @@ import numpy as np
 import scipy.linalg as sla
 import scipy.sparse.linalg as spla
 
-from .assembly import DENSE_EIGEN_LIMIT, ORDERING, Assembler, mass_matrix
+from .assembly import (DENSE_EIGEN_LIMIT, ORDERING, Assembler, SingularBeamError,
+                       load_vector, mass_matrix)
+from .eigen import lowest_modes
+from .linear import linear_system
 from .model import BeamModel
 
 
@@ -56,30 +59,58 @@ def dense_lowest_modes(K: np.ndarray, M: np.ndarray, n: int) -> tuple:
     return sigma + 1.0 / mu[::-1], phi
 
 
+def _check_count(n, n_free):
+    if n > n_free:
+        raise ValueError(f"n = {n} modes asked for but the model has {n_free} free DOFs")
+
+
+def _krylov(system, n) -> tuple:
+    """(w2, phi) by block Lanczos on the cached factor of K (fem/beam/eigen.py), or (None,
+    None) where K is singular (a free body: the shifted ARPACK below) or it did not converge."""
+    try:
+        out = lowest_modes(system.factor.solve, system.mass, n)
+    except SingularBeamError:
+        return None, None
+    return (None, None) if out is None else out
+
+
+def _modes(K, M, n, n_free) -> tuple:
+    """(w2, phi): dense up to DENSE_EIGEN_LIMIT unknowns, else ARPACK shift-inverted about a
+    slightly negative shift (K may be singular)."""
+    if n_free <= DENSE_EIGEN_LIMIT:
+        return dense_lowest_modes(K.toarray(), M.toarray(), n)
+    sigma = -1e-6 * abs(K.diagonal()).max() / max(abs(M.diagonal()).max(), 1e-300)
+    lu = spla.splu((K - sigma * M).tocsc(), permc_spec=ORDERING)
+    # plain operators: ARPACK calls them ~200 times, a sparse matrix's wrapper costs more
+    shift_invert = spla.LinearOperator(K.shape, matvec=lu.solve, dtype=float)
+    mass = spla.LinearOperator(K.shape, matvec=M.tocsr().dot, dtype=float)
+    w2, phi = spla.eigsh(K, k=n, M=mass, sigma=sigma, which="LM", OPinv=shift_invert)
+    order = np.argsort(w2)
+    return w2[order], phi[:, order]
+
+
 def solve_beam_modes(model: BeamModel, supports, n: int = 6, about=None, loads=()) -> BeamModes:
     """The ``n`` lowest natural frequencies (Hz) and shapes. supports : Fixed/Prescribed
     (held at their values at ``about``); about : a BeamState from solve_beam_nonlinear (with
     the same supports and ``loads``) to linearise about (default: undeformed)."""
     if not (isinstance(n, (int, np.integer)) and n >= 1):
         raise ValueError(f"n = {n!r} must be an integer >= 1")
-    asm = Assembler(model, supports, loads)
-    z, lam = _state_z(asm, about)
-    ev = asm.evaluate(z, lam)
-    space, K = asm.space, ev.K
-    if n > space.n:
-        raise ValueError(f"n = {n} modes asked for but the model has {space.n} free DOFs")
-    M = space.condense_global(mass_matrix(model), ev.w)
-    if space.n <= DENSE_EIGEN_LIMIT:
-        w2, phi = dense_lowest_modes(K.toarray(), M.toarray(), n)
+    w2 = None
+    if about is None:  # the undeformed system, shared with the static solves of the model
+        load_vector(model, loads)  # checked only: the undeformed K holds no load
+        system = linear_system(model, supports)
+        space, ev, K = system.space, system.ev, system.ev.K
+        _check_count(n, space.n)
+        if space.n > DENSE_EIGEN_LIMIT:
+            w2, phi = _krylov(system, n)
     else:
-        sigma = -1e-6 * abs(K.diagonal()).max() / max(abs(M.diagonal()).max(), 1e-300)
-        lu = spla.splu((K - sigma * M).tocsc(), permc_spec=ORDERING)
-        # plain operators: ARPACK calls them ~200 times, a sparse matrix's wrapper costs more
-        shift_invert = spla.LinearOperator(K.shape, matvec=lu.solve, dtype=float)
-        mass = spla.LinearOperator(K.shape, matvec=M.tocsr().dot, dtype=float)
-        w2, phi = spla.eigsh(K, k=n, M=mass, sigma=sigma, which="LM", OPinv=shift_invert)
-        order = np.argsort(w2)
-        w2, phi = w2[order], phi[:, order]
+        asm = Assembler(model, supports, loads)
+        ev = asm.evaluate(*_state_z(asm, about))
+        space, K = asm.space, ev.K
+        _check_count(n, space.n)
+    if w2 is None:
+        M = space.condense_global(mass_matrix(model), ev.w)
+        w2, phi = _modes(K, M, n, space.n)
     full = space.expand(phi, np.zeros(len(space.held)), ev.w).T  # (n, n_dofs)
     M_full = mass_matrix(model)
     trans = np.zeros((model.n_dofs, 2))

@@ -199,6 +199,19 @@ def beam_chain(points, sections, n_per_segment) -> BeamMesh:
     return BeamMesh(np.array(nodes), elements, sec_list, point_nodes)
 
 
+def rect_sections(width: float, t0, t1, tm) -> list:
+    """[Section.rect(width, t0[i], t1[i], tm[i])] for thickness arrays (m) already checked
+    finite and > 0: ``width`` checked once instead of every field of every section."""
+    width = positive("width", width)
+    out = []
+    for a, b, c in zip(np.asarray(t0).tolist(), np.asarray(t1).tolist(), np.asarray(tm).tolist()):
+        sec = object.__new__(Section)  # frozen dataclass: its fields set as __init__ would
+        sec.__dict__.update(width=width, thickness=a, thickness_end=b, thickness_mid=c, A=None,
+                            I=None, c=None, shear_factor=5.0 / 6.0)
+        out.append(sec)
+    return out
+
+
 def beam_from_profile(x0, x1, thickness_fn, width: float, n: int,
                       vectorized: bool = False) -> BeamMesh:
     """A straight flexure from ``x0`` to ``x1`` (m) whose in-plane thickness (m) is
@@ -223,7 +236,7 @@ def beam_from_profile(x0, x1, thickness_fn, width: float, n: int,
     if not np.all(np.isfinite(t) & (t > 0)):
         raise ValueError(f"thickness_fn must return finite thicknesses > 0; got {t.min()!r}")
     nodes = a + (s[::2] / length)[:, None] * (b - a)
-    sections = [Section.rect(width, t[2 * i], t[2 * i + 2], t[2 * i + 1]) for i in range(n)]
+    sections = rect_sections(width, t[0:-1:2], t[2::2], t[1::2])
     elements = np.column_stack([np.arange(n), np.arange(1, n + 1)])
     return BeamMesh(nodes, elements, sections, [0, n])
 
@@ -299,6 +312,10 @@ class BeamModel:
                     a.setflags(write=False)
             cache[key] = value
         return cache[key]
+
+    def is_cached(self, key) -> bool:
+        """Whether ``cached(key, ...)`` has been computed for this model."""
+        return key in self.__dict__.get("_derived", {})
 
     @property
     def n_nodes(self) -> int:

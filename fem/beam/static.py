@@ -3,8 +3,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .assembly import Assembler, solve
+from .assembly import Assembler
 from .element import bending_stress
+from .linear import solve_linear
 from .model import BeamModel
 
 
@@ -75,18 +76,15 @@ def make_state(assembler: Assembler, q, r, lam, info=None, fb=None, w=None) -> B
 def solve_beam_static(model: BeamModel, supports, loads=()) -> BeamState:
     """Linear (small-displacement) static solve: K z = f - K_p p for the loads (NodalLoad)
     and the supports' values (Fixed, Prescribed) at load factor 1. Forces and stresses are
-    the linear element forces (no co-rotational update)."""
+    the linear element forces (no co-rotational update). The factor of K is cached on the
+    model (fem/beam/linear.py): further load cases and supports of the model reuse it."""
     asm = Assembler(model, supports, loads)
-    space = asm.space
-    z0 = np.zeros(space.n)
-    ev = asm.evaluate(z0, 0.0)
-    p = space.p_hat
-    rhs = space.reduce(asm.f_ext - ev.full_times(space.expand(z0, p, ev.w)), ev.w)[0]
-    z = solve(ev.K, rhs)
-    q = space.expand(z, p, ev.w).reshape(-1, 3)
-    r = ev.full_times(q.ravel()) - asm.f_ext
+    q, system = solve_linear(model, supports, asm.f_ext)
+    r = system.ev.full_times(q) - asm.f_ext
+    q = q.reshape(-1, 3)
     fb = np.einsum("eij,ej->ei", asm.Kb, _natural(model, q))
-    return make_state(asm, q, r, 1.0, {"n_unknowns": space.n}, fb=fb, w=ev.w)
+    w = asm.space.weights(np.zeros_like(q))
+    return make_state(asm, q, r, 1.0, {"n_unknowns": asm.space.n}, fb=fb, w=w)
 
 
 def _natural(model: BeamModel, q) -> np.ndarray:

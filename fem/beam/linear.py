@@ -1,0 +1,98 @@
+"""The undeformed reduced system of a beam model for one set of held DOFs, assembled and
+factored once and cached on the model: the linear static solves and the modal analysis of
+a design point share it.
+
+A static solve whose supports add a few Prescribed DOFs to the Fixed ones (a stiffness with
+the load point held in some directions) is solved on the Fixed supports' system with the
+extra DOFs as constraints (Lagrange multipliers, a k x k Schur complement): one
+factorisation serves every load case of the point and the modes held by the Fixed supports.
+"""
+from dataclasses import replace
+
+import numpy as np
+
+from .assembly import Assembler, SingularBeamError, element_mass, point_mass_diagonal
+from .banded import spd_factor
+from .model import BeamModel, Fixed
+from .space import held_values
+
+MAX_EXTRA = 12  # extra prescribed DOFs solved by the Schur complement (more: own factor)
+
+
+class LinearSystem:
+    """Space, undeformed evaluation (K: reduced stiffness), its factor and the reduced mass
+    (on first use) for ``supports`` (their held DOFs; the values are the caller's)."""
+
+    def __init__(self, model: BeamModel, supports):
+        self.asm = Assembler(model, supports, ())
+        self.space = self.asm.space
+        ev = self.asm.evaluate(np.zeros(self.space.n), 0.0, tangent=False)
+        # K by the Space's shared pattern (~5x faster than the sparse products of a first
+        # tangent once a sweep's topology has it): every design of a sweep assembles alike
+        d = self.space.constraint_diagonal(ev.q, ev.r)[self.space.free]
+        self.ev = replace(ev, K=self.space.condensed().matrix(ev.ke, ev.w, d))
+        self._factor = self._mass = None
+
+    @property
+    def factor(self):
+        if self._factor is None:
+            self._factor = spd_factor(self.ev.K)
+        return self._factor
+
+    @property
+    def mass(self):
+        """Reduced consistent mass T^T M T (CSR)."""
+        if self._mass is None:
+            model, space, w = self.asm.model, self.space, self.ev.w
+            elements = space.condensed().matrix(element_mass(model), w, np.zeros(space.n))
+            self._mass = (elements + space.condense_diagonal(point_mass_diagonal(model),
+                                                             w)).tocsr()
+        return self._mass
+
+
+def linear_system(model: BeamModel, supports) -> LinearSystem:
+    """The model's cached LinearSystem for the DOFs ``supports`` hold."""
+    held = np.flatnonzero(~np.isnan(held_values(model, supports)))
+    return model.cached(("linear", held.tobytes()), lambda: LinearSystem(model, supports))
+
+
+def solve_linear(model: BeamModel, supports, f_ext) -> tuple:
+    """(q (n_dofs,), LinearSystem used) of K q = f_ext with the supports' values: on the
+    system of the Fixed supports with the other held DOFs as constraints where that system
+    is nonsingular and they are few, else on the supports' own system."""
+    values = held_values(model, supports)
+    held = np.flatnonzero(~np.isnan(values))
+    base = [s for s in supports if isinstance(s, Fixed)]
+    key = ("linear", held.tobytes())
+    if base and not model.is_cached(key):
+        system = linear_system(model, base)
+        extra = np.setdiff1d(held, system.space.held)
+        if len(extra) <= MAX_EXTRA:
+            try:
+                return _constrained(system, values, extra, f_ext), system
+            except SingularBeamError:
+                pass
+    system = linear_system(model, supports)
+    return _constrained(system, values, np.zeros(0, dtype=np.int64), f_ext), system
+
+
+def _constrained(system: LinearSystem, values, extra, f_ext) -> np.ndarray:
+    """q of K z = rhs + E lam, E^T z = values[extra] on ``system`` (E: unit columns of the
+    ``extra`` DOFs, free unknowns there)."""
+    space, ev = system.space, system.ev
+    p = values[space.held]
+    z0 = np.zeros(space.n)
+    rhs = space.reduce(f_ext - ev.full_times(space.expand(z0, p, ev.w)), ev.w)[0]
+    if len(extra) == 0:
+        z = system.factor.solve(rhs)
+    else:
+        j = space.col[extra, 0]  # their unknowns (held DOFs are never rigid-link slaves)
+        E = np.zeros((space.n, len(extra)))
+        E[j, np.arange(len(extra))] = 1.0
+        Y = system.factor.solve(np.column_stack([rhs, E]))
+        z0, Y = Y[:, 0], Y[:, 1:]
+        S = Y[j]
+        if not np.isfinite(S).all() or np.linalg.cond(S) > 1e12:
+            raise SingularBeamError("the prescribed DOFs are not independent")
+        z = z0 + Y @ np.linalg.solve(S, values[extra] - z0[j])
+    return space.expand(z, p, ev.w)
