@@ -294,7 +294,8 @@ def main(argv=None) -> int:
         if row in args.skip_ccx:
             c = {"row": row, "program": "calculix", "error": "not run"}
         else:
-            c = _in_subprocess(row, "calculix", args.threads, args.timeout, args.mem_gb)
+            # the deck is written by flexfem: the same Python (and flexfem) as its cases
+            c = _in_subprocess(row, "calculix", args.threads, args.timeout, args.mem_gb, python)
         print(json.dumps(c), flush=True)
         results.append((f, c))
     print(table(results))
