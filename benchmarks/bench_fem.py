@@ -12,12 +12,14 @@ checkout, runs flexfem's cases with that environment's Python, and runs the 3-D 
 30k and 100k DOFs unless ``--rows`` says otherwise. Every flexfem line names the linear solver
 that the results recorded (``solver``: mkl-pardiso, cholmod, superlu or amg-cg).
 
-Each (row, program) runs in its own subprocess so that its peak resident memory is measured
-cleanly: flexfem's from ``getrusage(RUSAGE_SELF)`` of that process, CalculiX's from
-``wait4`` of the ccx process. CalculiX's times include reading its deck (it cannot be split),
-not writing it; flexfem's include reading the same mesh from a .vtu file written beforehand
-(``read_mesh_s``, added to the static and modal totals of the table), not the import of
-flexfem (``import_s``, reported apart).
+Each program measures the static and the modal case of a row in two processes of their own
+(CalculiX: one ``ccx`` run per deck; flexfem: one subprocess per case, the modal one on a fresh
+model), and the row's peak resident memory is the larger of the two (both are in the JSON
+lines): flexfem's from ``getrusage(RUSAGE_SELF)`` of its process, CalculiX's from ``wait4`` of
+the ccx process. CalculiX's times include reading its deck (it cannot be split), not writing
+it; flexfem's include reading the same mesh from a .vtu file written beforehand (``read_mesh_s``,
+added to the static and modal totals of the table), not the import of flexfem (``import_s``,
+reported apart).
 """
 import argparse
 import importlib.util
@@ -78,10 +80,11 @@ def _loads(dim):
     return [Fixed("fixed")], [Force("tip", vector)]
 
 
-def run_flexfem(row: str) -> dict:
-    """Times (s) of importing flexfem.fem, reading the mesh (a .vtu written beforehand, as
-    ccx reads its deck), assembly (K, then M), static solve (incl. stress recovery) and
-    modes."""
+def run_flexfem(row: str, part: str = "static") -> dict:
+    """One of flexfem's two cases, as CalculiX runs its static and its frequency deck in
+    two processes: ``part`` 'static' (mesh read, K assembly, static solve with stress
+    recovery) or 'modes' (mesh read, M assembly, ``solve_modes`` on the fresh model: its K
+    assembly is inside ``modes_s``). Times (s); the import of flexfem.fem apart."""
     t = time.perf_counter()
     from flexfem.fem import read_mesh, solve_modes, solve_static, write_mesh
     import_s = time.perf_counter() - t
@@ -94,36 +97,59 @@ def run_flexfem(row: str) -> dict:
         read_s = time.perf_counter() - t
     model = cantilever_model(dim, target, mesh)
     supports, loads = _loads(dim)
-    out = {"row": row, "program": "flexfem", "n_dofs": int(model.n_dofs),
+    out = {"row": row, "program": "flexfem", "part": part, "n_dofs": int(model.n_dofs),
            "import_s": import_s, "read_mesh_s": read_s,
            "pypardiso": importlib.util.find_spec("pypardiso") is not None,
            "mkl": importlib.util.find_spec("mkl") is not None or any(
                Path(sys.prefix, "lib").glob("libmkl_rt.*"))}
-    t = time.perf_counter()
-    model.stiffness
-    out["assemble_K_s"] = time.perf_counter() - t
-    t = time.perf_counter()
-    model.mass
-    out["assemble_M_s"] = time.perf_counter() - t
-    t = time.perf_counter()
-    try:
-        result = solve_static(model, supports, loads, solver="direct")
-        out["static_s"] = time.perf_counter() - t
-        out["tip_uy_m"] = float(result.mean_displacement("tip")[1])
-        out["solver"] = result.solver
-    except Exception as error:  # residual check refused it, or PARDISO ran out of memory
-        # the time until the refusal: factorization, solve and residual check, no stress
-        # recovery (AMG-CG, the other solver, does not converge on the slender 2d-1M row)
-        out["static_error"] = f"after {time.perf_counter() - t:.1f} s: {type(error).__name__} {error}"
-    t = time.perf_counter()
-    try:
-        modes = solve_modes(model, N_MODES, supports)
-        out["modes_s"] = time.perf_counter() - t
-        out["f1_hz"] = float(modes.frequencies_hz[0])
-        out["modes_solver"] = modes.solver
-    except Exception as error:  # e.g. PARDISO out of memory under --mem-gb
-        out["modes_error"] = f"after {time.perf_counter() - t:.0f} s: {type(error).__name__} {error}"
+    if part == "static":
+        t = time.perf_counter()
+        model.stiffness_upper  # what solve_static reads
+        out["assemble_K_s"] = time.perf_counter() - t
+        t = time.perf_counter()
+        try:
+            result = solve_static(model, supports, loads, solver="direct")
+            out["static_s"] = time.perf_counter() - t
+            out["tip_uy_m"] = float(result.mean_displacement("tip")[1])
+            out["solver"] = result.solver
+        except Exception as error:  # residual check refused it, or PARDISO ran out of memory
+            # the time until the refusal: factorization, solve and residual check, no stress
+            # recovery (AMG-CG, the other solver, does not converge on the slender 2d-1M row)
+            out["static_error"] = (f"after {time.perf_counter() - t:.1f} s: "
+                                   f"{type(error).__name__} {error}")
+    else:
+        t = time.perf_counter()
+        model.mass_upper
+        out["assemble_M_s"] = time.perf_counter() - t
+        t = time.perf_counter()
+        try:
+            modes = solve_modes(model, N_MODES, supports)
+            out["modes_s"] = time.perf_counter() - t
+            out["f1_hz"] = float(modes.frequencies_hz[0])
+            out["modes_solver"] = modes.solver
+        except Exception as error:  # e.g. PARDISO out of memory under --mem-gb
+            out["modes_error"] = (f"after {time.perf_counter() - t:.0f} s: "
+                                  f"{type(error).__name__} {error}")
     out["peak_rss_mb"] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+    return out
+
+
+def merge_flexfem(static: dict, modes: dict) -> dict:
+    """One row of flexfem from its static and its modal process: the peak memory is the
+    larger of the two, as for CalculiX's two runs."""
+    out = dict(static)
+    for key in ("modes_s", "f1_hz", "modes_solver", "modes_error", "assemble_M_s"):
+        if key in modes:
+            out[key] = modes[key]
+    if "error" in modes:
+        out["modes_error"] = modes["error"]
+    out["modes_read_mesh_s"] = modes.get("read_mesh_s")
+    out["peak_rss_static_mb"] = static.get("peak_rss_mb")
+    out["peak_rss_modes_mb"] = modes.get("peak_rss_mb")
+    out["peak_rss_mb"] = max(v for v in (static.get("peak_rss_mb"), modes.get("peak_rss_mb"),
+                                         0.0) if v is not None) or None
+    out["load_avg"] = static.get("load_avg", []) + modes.get("load_avg", [])
+    out.pop("part", None)
     return out
 
 
@@ -146,6 +172,8 @@ def run_calculix(row: str, threads: int) -> dict:
         return out
     out["modes_s"] = freq.wall_s
     out["f1_hz"] = float(parse_frequencies(freq.dat)[0])
+    out["peak_rss_static_mb"] = rss / 2**20
+    out["peak_rss_modes_mb"] = freq.peak_rss_bytes / 2**20
     out["peak_rss_mb"] = max(rss, freq.peak_rss_bytes) / 2**20
     return out
 
@@ -161,9 +189,9 @@ def default_install(venv: Path) -> str:
 
 
 def _in_subprocess(row: str, program: str, threads: int, timeout_s: float, mem_gb: float,
-                   python: str = sys.executable) -> dict:
+                   python: str = sys.executable, part: str = "static") -> dict:
     cmd = [python, __file__, "--case", row, "--program", program, "--threads", str(threads),
-           "--mem-gb", str(mem_gb)]
+           "--mem-gb", str(mem_gb), "--part", part]
     proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, text=True, start_new_session=True)
     try:
         stdout, _ = proc.communicate(timeout=timeout_s)
@@ -194,13 +222,15 @@ def table(rows: list[dict]) -> str:
     lines = [head, "|" + "---|" * (head.count("|") - 1)]
     for f, c in rows:
         asm = f.get("assemble_K_s", np.nan) + f.get("assemble_M_s", np.nan)
-        # static: mesh read + K assembly + solve; modes: mesh read + K + M assembly + eigen
-        # solve (ccx's own times include reading its deck and its assembly)
+        # static: mesh read + K assembly + solve; modes: mesh read + M assembly + eigen solve
+        # with its K assembly (ccx's own times include reading its deck and its assembly)
         read = f.get("read_mesh_s", np.nan)
         fs = read + f.get("assemble_K_s", np.nan) + f.get("static_s", np.nan)
         if "static_error" in f:  # time until the solve was refused
             fs = read + f.get("assemble_K_s", np.nan) + float(f["static_error"].split()[1])
-        fm = read + asm + f.get("modes_s", np.nan)
+        # the modal process: its mesh read, M assembly and solve_modes (K assembly inside)
+        fm = (f.get("modes_read_mesh_s") or np.nan) + f.get("assemble_M_s", np.nan) \
+            + f.get("modes_s", np.nan)
         cs, cm = c.get("static_s"), c.get("modes_s")
         notes = [f"{p}: {e}" for p, e in (("flexfem", f.get("error")), ("ccx", c.get("error")),
                                            ("flexfem static", f.get("static_error")),
@@ -236,11 +266,13 @@ def main(argv=None) -> int:
                         help="where --install default builds its environment")
     parser.add_argument("--case", help=argparse.SUPPRESS)
     parser.add_argument("--program", help=argparse.SUPPRESS)
+    parser.add_argument("--part", default="static", help=argparse.SUPPRESS)
     args = parser.parse_args(argv)
     if args.case:  # one measurement, in this (sub)process
         limit = int(args.mem_gb * 2**30)
         resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
-        fn = run_flexfem if args.program == "flexfem" else lambda r: run_calculix(r, args.threads)
+        fn = ((lambda r: run_flexfem(r, args.part)) if args.program == "flexfem"
+              else lambda r: run_calculix(r, args.threads))
         before = os.getloadavg()[0]
         out = fn(args.case)
         # 1-minute load average before and after: above the core count, times are inflated
@@ -254,13 +286,16 @@ def main(argv=None) -> int:
         python = default_install(args.venv)
     results = []
     for row in rows:
-        f = _in_subprocess(row, "flexfem", args.threads, args.timeout, args.mem_gb, python)
+        f = merge_flexfem(*(_in_subprocess(row, "flexfem", args.threads, args.timeout,
+                                           args.mem_gb, python, part)
+                            for part in ("static", "modes")))
         f["install"] = args.install
         print(json.dumps(f), flush=True)
         if row in args.skip_ccx:
             c = {"row": row, "program": "calculix", "error": "not run"}
         else:
-            c = _in_subprocess(row, "calculix", args.threads, args.timeout, args.mem_gb)
+            # the deck is written by flexfem: the same Python (and flexfem) as its cases
+            c = _in_subprocess(row, "calculix", args.threads, args.timeout, args.mem_gb, python)
         print(json.dumps(c), flush=True)
         results.append((f, c))
     print(table(results))

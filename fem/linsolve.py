@@ -19,6 +19,8 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from . import memory
+from .restriction import Restriction  # noqa: F401 (part of this module's interface)
+from .symmetric import symmetric_from_upper
 
 # Above these sizes (free DOFs) "auto" uses AMG-CG: measured crossover on 2 cores, see
 # docs/performance.md. Direct factorization fill grows much faster in 3-D.
@@ -147,7 +149,7 @@ class Factorization:
             except RuntimeError as error:  # "Factor is exactly singular"
                 raise SingularSystemError(f"SuperLU: {error}") from None
 
-    def _init_pardiso(self, A):
+    def _init_pardiso(self, A, keep_matrix: bool = False):
         self._mtype = MATRIX_KINDS[self.kind]
         if self.kind != "general" and not _is_upper(A):
             A = sp.triu(A, format="csr")
@@ -182,6 +184,12 @@ class Factorization:
         except BaseException:
             self.free()
             raise
+        # no perturbed pivot: PARDISO's Cholesky solves read the factor only (checked once
+        # per process), so the matrix, as big as K's upper triangle, is dropped before the
+        # solves; with perturbed pivots they refine iteratively on the matrix
+        if (not keep_matrix and self.kind == "spd" and self._iparm[13] == 0
+                and not _spd_solve_reads_matrix()):
+            self._data, self._indices = np.zeros(1), np.zeros(1, dtype=np.int32)
 
     def __call__(self, b) -> np.ndarray:
         b = np.asarray(b, dtype=float)
@@ -212,6 +220,27 @@ class Factorization:
         self.free()
 
 
+@functools.cache
+def _spd_solve_reads_matrix() -> bool:
+    """Whether this MKL's PARDISO reads the matrix (values, column indices) when it solves
+    with an SPD factorization: a small SPD system is solved twice, the second time with
+    the matrix overwritten (NaN values, zero column indices); True unless both solutions
+    are bitwise equal."""
+    n = 30  # nodes of 3 DOFs each, coupled as in a 3-D mesh, so the block format is used
+    A = sp.diags([-np.ones(n - 1), 6.0 * np.ones(n), -np.ones(n - 1)], [-1, 0, 1])
+    A = A + sp.diags(np.ones(n - 5), 5) + sp.diags(np.ones(n - 5), -5)
+    A = sp.kron(A, np.array([[2.0, 1.0, 0.0], [1.0, 2.0, 1.0], [0.0, 1.0, 2.0]]), format="csr")
+    b = np.arange(1.0, A.shape[0] + 1.0)
+    fact = Factorization.__new__(Factorization)
+    fact.kind, fact.n, fact._finalizer, fact.backend = "spd", A.shape[0], None, "mkl-pardiso"
+    with fact:
+        fact._init_pardiso(sp.triu(A, format="csr"), keep_matrix=True)
+        x = fact(b)
+        fact._data[:] = np.nan
+        fact._indices[:] = 0
+        return not np.array_equal(x, fact(b))
+
+
 def _is_upper(A) -> bool:
     """Whether the CSR matrix ``A`` (sorted indices) holds its upper triangle only: every
     row's first column is on or right of the diagonal (O(n), no copy)."""
@@ -221,44 +250,16 @@ def _is_upper(A) -> bool:
     return bool(np.all(A.indices[A.indptr[rows]] >= rows))
 
 
-def block_to_factorize(A, I: np.ndarray, kind: str = "spd"):
+def block_to_factorize(A, I: np.ndarray, kind: str = "spd", upper: bool = False):
     """What a :class:`Factorization` of ``kind`` needs of ``A[I][:, I]`` (CSR; ``I``
     sorted): for PARDISO's symmetric kinds the upper triangle only, taken before the rows
-    and columns so that every copy is half-size; the whole block otherwise."""
+    and columns so that every copy is half-size; the whole block otherwise. ``upper``:
+    ``A`` is symmetric and holds its upper triangle only (``Model.stiffness_upper``)."""
     if kind != "general" and direct_backend(kind) == "mkl-pardiso":
-        A = sp.triu(A, format="csr")
+        A = A if upper else sp.triu(A, format="csr")
+    elif upper:
+        return symmetric_from_upper(A[I][:, I].tocsr())
     return A[I][:, I].tocsr()
-
-
-class Restriction(spla.LinearOperator):
-    """``A[I][:, I]`` of a square sparse ``A`` as an operator, without copying ``A``: the
-    stiffness or mass on the free DOFs ``I`` (sorted)."""
-
-    def __init__(self, A, I: np.ndarray):
-        self.A, self.I = A, I
-        super().__init__(float, (len(I), len(I)))
-
-    def _matvec(self, x):
-        full = np.zeros(self.A.shape[1])
-        full[self.I] = np.ravel(x)
-        return (self.A @ full)[self.I]
-
-    def _matmat(self, X):
-        full = np.zeros((self.A.shape[1], X.shape[1]))
-        full[self.I] = X
-        return (self.A @ full)[self.I]
-
-    def _adjoint(self):
-        return Restriction(self.A.T.tocsr(), self.I)
-
-    def diagonal(self) -> np.ndarray:
-        return self.A.diagonal()[self.I]
-
-    def norm_inf(self) -> float:
-        """max_i sum_j |A_ij| over the block."""
-        keep = np.zeros(self.A.shape[1])
-        keep[self.I] = 1.0
-        return float((abs(self.A) @ keep)[self.I].max())
 
 
 def _norm_inf(A) -> float:

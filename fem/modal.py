@@ -13,6 +13,7 @@ from . import linsolve, memory
 from .boundary import component_indices, constrained_dofs
 from .model import Model
 from .static import check_supports, vertex_displacement
+from .symmetric import symmetric_matvec
 
 
 @dataclass(frozen=True, eq=False)
@@ -65,14 +66,20 @@ def solve_modes(model: Model, n: int = 6, supports=(), shift_hz: float | None = 
     I = np.setdiff1d(np.arange(model.n_dofs), D)
     if n >= len(I):
         raise ValueError(f"n = {n} modes asked for but only {len(I)} free DOFs exist")
-    if prestress is None:
-        K_full = model.stiffness
+    upper = prestress is None  # the model's K and M are kept as their upper triangles
+    if upper:
+        # K is needed only to build K - sigma M: when the model does not keep it, it is
+        # assembled for this solve and dropped before the factorization (the memory peak)
+        K_full = model.__dict__.get("stiffness_upper")
+        if K_full is None:
+            K_full = model.assemble_stiffness_upper()
     else:
         from .stability import tangent_stiffness
         K_full = tangent_stiffness(model, prestress)
-    # K and M on the free DOFs as operators on the full matrices (no copies); only the
+    # K and M on the free DOFs as operators on the model's matrices (no copies); only the
     # matrix factorized, K - sigma M, is built
-    K, M = linsolve.Restriction(K_full, I), linsolve.Restriction(model.mass, I)
+    K = linsolve.Restriction(K_full, I, upper=upper)
+    M = linsolve.Restriction(model.mass_upper, I, upper=True)
     if shift_hz is None:
         # -(scale of the stiffness/mass ratio) * 1e-6: far below any elastic mode, and keeps
         # K - sigma M positive definite for a free body
@@ -82,12 +89,15 @@ def solve_modes(model: Model, n: int = 6, supports=(), shift_hz: float | None = 
     # one factorization of K - sigma M for every Lanczos step; SPD for sigma < 0 (Cholesky),
     # indefinite for a positive shift
     kind = "spd" if sigma < 0 and prestress is None else "symmetric"
-    shifted = (linsolve.block_to_factorize(K_full, I, kind)
-               - sigma * linsolve.block_to_factorize(model.mass, I, kind)).tocsr()
+    shifted = (linsolve.block_to_factorize(K_full, I, kind, upper=upper)
+               - sigma * linsolve.block_to_factorize(model.mass_upper, I, kind, upper=True)).tocsr()
+    shape = K.shape
+    del K, K_full  # shift-invert Lanczos multiplies by M and (K - sigma M)^-1 only
     with linsolve.factorize(shifted, kind=kind) as solve:
         del shifted  # the factorization keeps what it needs
-        op = spla.LinearOperator(K.shape, matvec=solve, matmat=solve, dtype=float)
-        eigvals, vectors = spla.eigsh(K, k=n, M=M, sigma=sigma, which="LM", OPinv=op, tol=1e-10)
+        op = spla.LinearOperator(shape, matvec=solve, matmat=solve, dtype=float)
+        eigvals, vectors = spla.eigsh(_shape_only(shape), k=n, M=M, sigma=sigma, which="LM",
+                                      OPinv=op, tol=1e-10)
     order = np.argsort(eigvals)
     eigvals, vectors = eigvals[order], vectors[:, order]
     # normalise phi.M.phi = 1 exactly (eigsh returns M-orthonormal vectors up to its tolerance)
@@ -95,12 +105,20 @@ def solve_modes(model: Model, n: int = 6, supports=(), shift_hz: float | None = 
 
     shapes = np.zeros((n, model.n_dofs))
     shapes[:, I] = vectors.T
-    Mfull = model.mass
     influence = np.zeros((model.dim, model.n_dofs))
     for i, idx in enumerate(component_indices(model)):
         influence[i, idx] = 1.0
-    participation = shapes @ (Mfull @ influence.T)  # (n, dim)
-    total_mass = float(influence[0] @ (Mfull @ influence[0]))
+    M_influence = symmetric_matvec(model.mass_upper, influence.T)  # (n_dofs, dim)
+    participation = shapes @ M_influence  # (n, dim)
+    total_mass = float(influence[0] @ M_influence[:, 0])
     frequencies = np.sqrt(np.clip(eigvals, 0.0, None)) / (2 * np.pi)
     memory.release_freed()  # the factorization's leftovers
     return Modes(model, frequencies, shapes, participation ** 2, total_mass, solve.backend)
+
+
+def _shape_only(shape) -> spla.LinearOperator:
+    """The operator K for eigsh's shift-invert mode, which reads its shape only (ARPACK's
+    mode 3 multiplies by M and by OPinv = (K - sigma M)^-1); a product with it is an error."""
+    def refuse(x):
+        raise RuntimeError("shift-invert Lanczos does not multiply by K")
+    return spla.LinearOperator(shape, matvec=refuse, dtype=float)

@@ -1,8 +1,9 @@
 """A finite-element model: mesh + material + formulation + element order, and its matrices.
 
-The stiffness and mass matrices are assembled on first use and kept on the model (an
-explicit, named cache: ``model.stiffness``, ``model.mass``), so a static and a modal solve of
-the same model share them.
+The stiffness and mass matrices are assembled on first use and kept on the model as their
+upper triangles (an explicit, named cache: ``model.stiffness_upper``, ``model.mass_upper``),
+which is what the static and modal solves read, so that they share them; the full matrices
+``model.stiffness`` and ``model.mass`` are built from these on first use and kept too.
 """
 import math
 import numbers
@@ -10,10 +11,11 @@ from dataclasses import dataclass, replace
 from functools import cached_property
 
 import numpy as np
+import scipy.sparse as sp
 import skfem
 from skfem.helpers import eye, grad, trace
 
-from . import assembly, memory
+from . import assembly, memory, symmetric
 from .materials import Material
 from .mesh import FEMesh
 
@@ -158,26 +160,43 @@ class Model:
         return assembly.node_pattern(dofs, self.n_dofs // self.dim)
 
     @cached_property
-    def stiffness(self):
-        """Global stiffness matrix K (N/m), CSR: :func:`.assembly.elasticity_stiffness`, the
-        matrix of skfem's BilinearForm t (2 mu eps(u):eps(v) + lam tr eps(u) tr eps(v)) on
-        ``stiffness_basis``, assembled ~3x faster and without its triplets."""
+    def stiffness_upper(self):
+        """Upper triangle (diagonal included) of the global stiffness matrix K (N/m), CSR:
+        :func:`.assembly.elasticity_stiffness`, the matrix of skfem's BilinearForm
+        t (2 mu eps(u):eps(v) + lam tr eps(u) tr eps(v)) on ``stiffness_basis``."""
+        return self.assemble_stiffness_upper()
+
+    def assemble_stiffness_upper(self):
+        """``stiffness_upper`` assembled anew and not kept on the model."""
         lam, mu = self.lame
         K = assembly.elasticity_stiffness(
             self.mesh.mesh, scalar_element(self.mesh.mesh, self.order), self.stiffness_quadrature,
             self.node_pattern, self.dim, lam, mu, self.thickness)
-        memory.release_freed()  # the element blocks' temporaries
+        K = symmetric.upper(K)
+        memory.release_freed()  # the element blocks' and the full matrix's temporaries
         return K
 
     @cached_property
-    def mass(self):
-        """Consistent mass matrix M (kg), CSR: :func:`.assembly.consistent_mass` on the
-        quadrature of ``basis`` (the matrix of skfem's BilinearForm rho t u.v)."""
-        M = assembly.consistent_mass(
+    def mass_upper(self):
+        """Upper triangle (diagonal included) of the consistent mass matrix M (kg), CSR:
+        :func:`.assembly.consistent_mass` on the quadrature of ``basis`` (the matrix of
+        skfem's BilinearForm rho t u.v)."""
+        M = symmetric.upper(assembly.consistent_mass(
             self.mesh.mesh, scalar_element(self.mesh.mesh, self.order), self.quadrature,
-            self.node_pattern, self.dim, self.material.rho * self.thickness)
+            self.node_pattern, self.dim, self.material.rho * self.thickness))
         memory.release_freed()
         return M
+
+    @cached_property
+    def stiffness(self):
+        """Global stiffness matrix K (N/m), full CSR, built from ``stiffness_upper`` on first
+        use (the static and modal solves read the upper triangle only)."""
+        return symmetric.symmetric_from_upper(self.stiffness_upper)
+
+    @cached_property
+    def mass(self):
+        """Consistent mass matrix M (kg), full CSR, built from ``mass_upper`` on first use."""
+        return symmetric.symmetric_from_upper(self.mass_upper)
 
     def with_stiffness(self, extra) -> "Model":
         """A copy of this model whose stiffness is K + ``extra`` (N/m; a symmetric sparse
@@ -187,8 +206,14 @@ class Model:
         if getattr(extra, "shape", None) != (self.n_dofs, self.n_dofs):
             raise ValueError(f"extra stiffness of shape {getattr(extra, 'shape', None)} must be "
                              f"({self.n_dofs}, {self.n_dofs})")
+        extra = sp.csr_matrix(extra, dtype=float)
+        scale = abs(extra).max() if extra.nnz else 0.0
+        if extra.nnz and abs(extra - extra.T).max() > 1e-12 * scale:
+            raise ValueError("extra stiffness must be symmetric (it is added to K, which the "
+                             "solvers keep as its upper triangle)")
         copy = replace(self)
-        copy.__dict__["stiffness"] = (self.stiffness + extra).tocsr()  # the named cache
+        # the named cache: the upper triangle of K + extra
+        copy.__dict__["stiffness_upper"] = symmetric.upper(self.stiffness_upper + extra)
         return copy
 
     @property

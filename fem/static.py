@@ -5,6 +5,7 @@ from . import linsolve, memory
 from .boundary import component_indices, constrained_dofs, load_vector
 from .model import Model, von_mises
 from .rigid_static import solve_static_faces
+from .symmetric import symmetric_matvec
 from .static_result import (StaticResult, UnderConstrainedError, body_parts,  # noqa: F401
                             check_supports, mean_field, nodal_average, rigid_body_dof_modes,
                             vertex_displacement)
@@ -20,30 +21,31 @@ def solve_static(model: Model, supports, loads, solver: str = "auto",
         return solve_static_faces(model, supports, loads, rigid_faces, solver)
     D, xD, owned = constrained_dofs(model, supports)
     check_supports(model, D)
-    K = model.stiffness
+    K = model.stiffness_upper  # symmetric: its upper triangle only
     f = load_vector(model, loads)
     u = np.zeros(model.n_dofs)
     u[D] = xD
     I = np.setdiff1d(np.arange(model.n_dofs), D)
-    rhs = f[I] - (K @ u)[I]  # f_I - K_ID u_D
+    rhs = f[I] - symmetric_matvec(K, u)[I]  # f_I - K_ID u_D
     # K_II only as an operator on K, and its upper triangle for the factorization: no copy
     # of the full block
-    K_II = linsolve.Restriction(K, I)
+    K_II = linsolve.Restriction(K, I, upper=True)
     if not np.any(rhs):
         chosen = "none"
     else:
         chosen = linsolve.choose_solver(len(I), model.dim, solver)
         if chosen == "amg":
-            u[I] = linsolve.solve_amg(K[I][:, I], rhs, rigid_body_dof_modes(model)[I])
+            u[I] = linsolve.solve_amg(linsolve.block_to_factorize(K, I, "general", upper=True),
+                                      rhs, rigid_body_dof_modes(model)[I])
             linsolve.check_solution(K_II, u[I], rhs, rtol=1e-6)
             chosen = "amg-cg"
         else:
             chosen = linsolve.direct_backend("spd")
             # K_II is symmetric positive definite once check_supports has passed: Cholesky
             u[I] = linsolve.solve_and_check(K_II, rhs, kind="spd", rtol=1e-6,
-                                            factor=linsolve.block_to_factorize(K, I))
+                                            factor=linsolve.block_to_factorize(K, I, upper=True))
 
-    Ku = K @ u
+    Ku = symmetric_matvec(K, u)
     residual = Ku - f
     reactions = {g: np.array([residual[np.intersect1d(dofs, idx)].sum()
                               for idx in component_indices(model)])
