@@ -9,7 +9,7 @@ worked out once per sparsity pattern (fem/beam/pattern.py's shared cache).
 import numpy as np
 import scipy.linalg as sla
 import scipy.sparse as sp
-from scipy.sparse.csgraph import reverse_cuthill_mckee
+from scipy.sparse.csgraph import reverse_cuthill_mckee, shortest_path
 
 from .assembly import Factor, SingularBeamError
 from .pattern import shared
@@ -21,6 +21,50 @@ MAX_BAND_FRACTION = 0.1  # wider bands (half-bandwidth over size) go to SuperLU'
 PIVOT_TOL = 1e-10
 
 
+def _peripheral(pattern, start: int, sweeps: int = 8) -> int:
+    """A pseudo-peripheral node (George and Liu): from ``start``, repeatedly the least
+    connected node of the last breadth-first level, while the eccentricity grows."""
+    degree = np.diff(pattern.indptr)
+    ecc = -1
+    for _ in range(sweeps):
+        level = shortest_path(pattern, unweighted=True, directed=False, indices=start)
+        level[~np.isfinite(level)] = -1  # another component
+        if level.max() <= ecc:
+            break
+        ecc = level.max()
+        last = np.flatnonzero(level == ecc)
+        start = int(last[np.argmin(degree[last])])
+    return start
+
+
+def _rcm_from(pattern, start: int) -> np.ndarray:
+    """Reverse Cuthill-McKee ordering begun at ``start``: SciPy's (which begins at a least
+    connected node) on the pattern with one extra node joined only to ``start``."""
+    n = pattern.shape[0]
+    extra = sp.csr_matrix((np.ones(2), ([n, start], [start, n])), shape=(n + 1, n + 1))
+    grown = sp.block_diag([pattern, sp.csr_matrix((1, 1))], format="csr") + extra
+    perm = reverse_cuthill_mckee(grown, symmetric_mode=True)
+    return perm[perm != n]
+
+
+def _bandwidth(perm, rows, cols) -> int:
+    where = np.empty(len(perm), dtype=np.int64)
+    where[perm] = np.arange(len(perm))
+    return int(np.abs(where[rows] - where[cols]).max()) if len(rows) else 0
+
+
+def _ordering(pattern) -> np.ndarray:
+    """The narrower band of two reverse Cuthill-McKee orderings: SciPy's, and one begun at
+    a pseudo-peripheral node (the DBMA's ground-held K: half-bandwidth 20 against 32)."""
+    pattern = pattern.tocsr()
+    first = reverse_cuthill_mckee(pattern, symmetric_mode=True)
+    if pattern.shape[0] < 3:
+        return first
+    second = _rcm_from(pattern, _peripheral(pattern, int(first[-1])))
+    coo = pattern.tocoo()
+    return min((first, second), key=lambda perm: _bandwidth(perm, coo.row, coo.col))
+
+
 class _Band:
     """Reverse Cuthill-McKee permutation ``perm`` of a CSC pattern, its half-bandwidth and,
     for each stored entry on or above the permuted diagonal (``upper``), its flat position
@@ -28,7 +72,7 @@ class _Band:
 
     def __init__(self, indptr, indices, n: int):
         pattern = sp.csc_matrix((np.ones(len(indices)), indices, indptr), shape=(n, n))
-        self.perm = reverse_cuthill_mckee(pattern.tocsr(), symmetric_mode=True)
+        self.perm = _ordering(pattern)
         where = np.empty(n, dtype=np.int64)
         where[self.perm] = np.arange(n)
         col = np.repeat(np.arange(n), np.diff(indptr))

@@ -30,14 +30,17 @@ def _m_orthonormalise(W, MW):
 
 
 def lowest_modes(solve, M, n: int, block: int | None = None, max_dim: int = 240,
-                 tol: float = TOL):
+                 tol: float = TOL, held=()):
     """(w2 (n,) ascending in (rad/s)^2, M-normalised shapes (N, n)) of the ``n`` lowest
     modes, or None where the Krylov basis reaches ``max_dim`` (or loses rank) first: the
-    caller falls back to ARPACK. solve : b -> K^-1 b for (N, k) blocks; M : sparse (N, N)."""
+    caller falls back to ARPACK. solve : b -> K^-1 b for (N, k) blocks; M : sparse (N, N);
+    held : unknowns kept at zero (``solve`` returns zeros there: fem/beam/linear.py's
+    held_at_zero), where the start block is zero too."""
     N = M.shape[0]
     b = min(block or min(n, 4), N)
-    cap = min(max_dim, N)
+    cap = min(max_dim, N - len(held))
     start = np.random.default_rng(SEED).standard_normal((N, b))
+    start[held] = 0.0
     first = _m_orthonormalise(start, M @ start)
     if first is None:
         return None

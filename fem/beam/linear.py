@@ -56,24 +56,65 @@ def linear_system(model: BeamModel, supports) -> LinearSystem:
     return model.cached(("linear", held.tobytes()), lambda: LinearSystem(model, supports))
 
 
+def _on_fixed(model: BeamModel, supports):
+    """(the Fixed supports' system, the other held DOFs) where those are few and the
+    supports' own system is not cached, else None."""
+    held = np.flatnonzero(~np.isnan(held_values(model, supports)))
+    base = [s for s in supports if isinstance(s, Fixed)]
+    if base and not model.is_cached(("linear", held.tobytes())):
+        system = linear_system(model, base)
+        extra = np.setdiff1d(held, system.space.held)
+        if len(extra) <= MAX_EXTRA:
+            return system, extra
+    return None
+
+
 def solve_linear(model: BeamModel, supports, f_ext) -> tuple:
     """(q (n_dofs,), LinearSystem used) of K q = f_ext with the supports' values: on the
     system of the Fixed supports with the other held DOFs as constraints where that system
     is nonsingular and they are few, else on the supports' own system."""
     values = held_values(model, supports)
-    held = np.flatnonzero(~np.isnan(values))
-    base = [s for s in supports if isinstance(s, Fixed)]
-    key = ("linear", held.tobytes())
-    if base and not model.is_cached(key):
-        system = linear_system(model, base)
-        extra = np.setdiff1d(held, system.space.held)
-        if len(extra) <= MAX_EXTRA:
-            try:
-                return _constrained(system, values, extra, f_ext), system
-            except SingularBeamError:
-                pass
+    on_fixed = _on_fixed(model, supports)
+    if on_fixed is not None:
+        system, extra = on_fixed
+        try:
+            return _constrained(system, values, extra, f_ext), system
+        except SingularBeamError:
+            pass
     system = linear_system(model, supports)
     return _constrained(system, values, np.zeros(0, dtype=np.int64), f_ext), system
+
+
+def modal_system(model: BeamModel, supports) -> tuple:
+    """(LinearSystem, j) for modes held by ``supports``: the Fixed supports' cached system
+    with the other held DOFs' unknowns ``j`` kept at zero (:func:`held_at_zero`), where the
+    static solves would use it; else the supports' own system and no ``j``."""
+    on_fixed = _on_fixed(model, supports)
+    if on_fixed is not None:
+        system, extra = on_fixed
+        return system, system.space.col[extra, 0]
+    return linear_system(model, supports), np.zeros(0, dtype=np.int64)
+
+
+def held_at_zero(system: LinearSystem, j):
+    """B -> Z: the solution of K Z = B + E Lam, Z[j] = 0 (E: unit columns at the unknowns
+    ``j``), for (n, k) blocks: K^-1 of the system with those unknowns held, in the larger
+    system's numbering (the rows of B at ``j`` do not enter). Raises SingularBeamError where
+    the held unknowns are not independent."""
+    E = np.zeros((system.space.n, len(j)))
+    E[j, np.arange(len(j))] = 1.0
+    Y = system.factor.solve(E)
+    S = Y[j]
+    if not np.isfinite(S).all() or np.linalg.cond(S) > 1e12:
+        raise SingularBeamError("the held DOFs are not independent")
+    YS = Y @ np.linalg.inv(S)
+
+    def solve(B):
+        Z = system.factor.solve(B)
+        Z -= YS @ Z[j]
+        Z[j] = 0.0
+        return Z
+    return solve
 
 
 def _constrained(system: LinearSystem, values, extra, f_ext) -> np.ndarray:

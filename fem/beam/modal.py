@@ -13,7 +13,7 @@ import scipy.sparse.linalg as spla
 from .assembly import (DENSE_EIGEN_LIMIT, ORDERING, Assembler, SingularBeamError,
                        load_vector, mass_matrix)
 from .eigen import lowest_modes
-from .linear import linear_system
+from .linear import held_at_zero, linear_system, modal_system
 from .model import BeamModel
 
 
@@ -64,11 +64,13 @@ def _check_count(n, n_free):
         raise ValueError(f"n = {n} modes asked for but the model has {n_free} free DOFs")
 
 
-def _krylov(system, n) -> tuple:
-    """(w2, phi) by block Lanczos on the cached factor of K (fem/beam/eigen.py), or (None,
-    None) where K is singular (a free body: the shifted ARPACK below) or it did not converge."""
+def _krylov(system, n, j) -> tuple:
+    """(w2, phi) by block Lanczos on the cached factor of K (fem/beam/eigen.py), the
+    unknowns ``j`` held at zero, or (None, None) where K is singular (a free body: the
+    shifted ARPACK below) or it did not converge."""
     try:
-        out = lowest_modes(system.factor.solve, system.mass, n)
+        solve = held_at_zero(system, j) if len(j) else system.factor.solve
+        out = lowest_modes(solve, system.mass, n, held=j)
     except SingularBeamError:
         return None, None
     return (None, None) if out is None else out
@@ -98,11 +100,13 @@ def solve_beam_modes(model: BeamModel, supports, n: int = 6, about=None, loads=(
     w2 = None
     if about is None:  # the undeformed system, shared with the static solves of the model
         load_vector(model, loads)  # checked only: the undeformed K holds no load
-        system = linear_system(model, supports)
+        system, j = modal_system(model, supports)  # j: held unknowns of a larger system
+        _check_count(n, system.space.n - len(j))
+        if system.space.n - len(j) > DENSE_EIGEN_LIMIT:
+            w2, phi = _krylov(system, n, j)
+        if w2 is None and len(j):
+            system = linear_system(model, supports)
         space, ev, K = system.space, system.ev, system.ev.K
-        _check_count(n, space.n)
-        if space.n > DENSE_EIGEN_LIMIT:
-            w2, phi = _krylov(system, n)
     else:
         asm = Assembler(model, supports, loads)
         ev = asm.evaluate(*_state_z(asm, about))
