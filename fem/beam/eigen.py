@@ -53,7 +53,7 @@ def lowest_modes(solve, M, n: int, block: int | None = None, max_dim: int = 240,
     b = min(block or min(n, 4), N)
     cap = min(max_dim, N - len(held))
     start = _start(N, b).copy()
-    start[held] = 0.0
+    start[np.asarray(held, dtype=np.int64)] = 0.0
     V, MV = np.empty((N, cap + b), order="F"), np.empty((N, cap + b), order="F")
     if _m_orthonormalise(start, M @ start, (V[:, :b], MV[:, :b])) is None:
         return None
