@@ -35,6 +35,16 @@ def _hinge_fn(p: DBMAParams, layout: DBMALayout):
     return fn, breaks, (24 if prof == "leaf" else 40)
 
 
+def _placed(template: BeamMesh, a, b) -> BeamMesh:
+    """``template`` (a hinge built from (0, 0) along +x) laid from ``a`` to ``b`` (m): every
+    hinge of the DBMA has the same profile, length and blocks, so one profile_beam serves
+    all 16 (the same nodes to rounding, the same sections)."""
+    a, b = np.asarray(a, float), np.asarray(b, float)
+    d = (b - a) / float(np.linalg.norm(b - a))
+    nodes = a + template.nodes[:, :1] * d
+    return BeamMesh(nodes, template.elements, template.sections, template.point_nodes)
+
+
 class _Builder:
     """Accumulates nodes, elements and sections; nodes are appended, never merged."""
 
@@ -102,6 +112,8 @@ def dbma_beam_model(p: DBMAParams, layout: DBMALayout | None = None,
     J, pad, out4 = q[0], q[1], q[2]
     fn, breaks, n_hinge = _hinge_fn(p, layout)
     blocks = (p.c, p.c)  # the height of the faces the hinges enter (arm ends; members, ~)
+    hinge = profile_beam((0.0, 0.0), (p.l, 0.0), fn, p.d, breaks, n_hinge, root_extension,
+                         blocks, vectorized=True)
     x_out, x_in, l, h = p.ls / 2, p.ls / 2 + 2 * p.l + p.e, p.l, p.h
     bld, links = _Builder(), []
     slaves = {"input_a": [], "input_b": [], "output": []}
@@ -110,12 +122,10 @@ def dbma_beam_model(p: DBMAParams, layout: DBMALayout | None = None,
         for row, yc in (("i", layout.arm_gap + p.c / 2), ("o", p.ll - p.c / 2)):
             ya, yb = sy * (yc - h / 2), sy * (yc + h / 2)
             e0 = len(bld.sections)
-            ha = bld.add(profile_beam((sx * x_out, ya), (sx * (x_out + l), ya), fn, p.d, breaks,
-                                      n_hinge, root_extension, blocks, vectorized=True))
+            ha = bld.add(_placed(hinge, (sx * x_out, ya), (sx * (x_out + l), ya)))
             arm = bld.add(beam_chain([(sx * (x_out + l), sy * yc), (sx * (x_in - l), sy * yc)],
                                      Section.rect(p.d, p.c), arm_elements))
-            hb = bld.add(profile_beam((sx * (x_in - l), yb), (sx * x_in, yb), fn, p.d, breaks,
-                                      n_hinge, root_extension, blocks, vectorized=True))
+            hb = bld.add(_placed(hinge, (sx * (x_in - l), yb), (sx * x_in, yb)))
             spans[f"{sx:+d}{sy:+d}{row}"] = (e0, len(bld.sections))
             links += [RigidLink(arm[0], (ha[1],)), RigidLink(arm[-1], (hb[0],))]
             (slaves["output"] if sy > 0 else ground).append((ha[0], ya))
