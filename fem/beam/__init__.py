@@ -13,11 +13,12 @@ from .modal import BeamModes, solve_beam_modes
 from .model import (BeamMesh, BeamModel, Fixed, NodalLoad, Prescribed, RigidLink, Section,
                     beam_chain, beam_from_profile)
 from .nonlinear import BeamNonlinearResult, NonConvergenceError, solve_beam_nonlinear
-from .static import BeamState, BeamStaticResult, solve_beam_static
+from .static import BeamState, BeamStaticResult, solve_beam_displacements, solve_beam_static
 
 __all__ = [
     "BeamMesh", "BeamModel", "BeamModes", "BeamNonlinearResult", "BeamState",
     "BeamStaticResult", "Fixed", "NodalLoad", "NonConvergenceError", "Prescribed", "RigidLink",
     "Section", "SingularBeamError", "beam_chain", "beam_from_profile", "compliance",
-    "solve_beam_modes", "solve_beam_nonlinear", "solve_beam_static",
+    "solve_beam_displacements", "solve_beam_modes", "solve_beam_nonlinear",
+    "solve_beam_static",
 ]

@@ -3,7 +3,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .assembly import Assembler
+from .assembly import Assembler, load_vector
 from .element import bending_stress
 from .linear import solve_linear
 from .model import BeamModel
@@ -85,6 +85,12 @@ def solve_beam_static(model: BeamModel, supports, loads=()) -> BeamState:
     fb = np.einsum("eij,ej->ei", asm.Kb, _natural(model, q))
     w = asm.space.weights(np.zeros_like(q))
     return make_state(asm, q, r, 1.0, {"n_unknowns": asm.space.n}, fb=fb, w=w)
+
+
+def solve_beam_displacements(model: BeamModel, supports, loads=()) -> np.ndarray:
+    """q (n_nodes, 3) of solve_beam_static, without its element forces, stresses and
+    reactions (a stiffness needs only a displacement)."""
+    return solve_linear(model, supports, load_vector(model, loads))[0].reshape(-1, 3)
 
 
 def _natural(model: BeamModel, q) -> np.ndarray:

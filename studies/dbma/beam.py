@@ -14,7 +14,8 @@ import math
 
 import numpy as np
 
-from ...fem.beam import Fixed, NodalLoad, Prescribed, solve_beam_modes, solve_beam_static
+from ...fem.beam import (Fixed, NodalLoad, Prescribed, solve_beam_displacements,
+                         solve_beam_modes, solve_beam_static)
 from ...geometry.beam_layout import ROOT_EXTENSION
 from ...geometry.dbma.beam import dbma_beam_model
 from ...geometry.dbma.drawing import DBMALayout
@@ -53,8 +54,8 @@ def _pads_held(info) -> list:
 
 def beam_output_stiffness(model, info, force: float = 100.0) -> float:
     """k_out = F / u_out (N/m): output pushed along y, pads held (actuator rigid)."""
-    s = solve_beam_static(model, _pads_held(info), [NodalLoad(info["output"], fy=force)])
-    return force / float(s.q[info["output"], 1])
+    q = solve_beam_displacements(model, _pads_held(info), [NodalLoad(info["output"], fy=force)])
+    return force / float(q[info["output"], 1])
 
 
 def beam_modal(model, info, n_modes: int = 6) -> dict:
