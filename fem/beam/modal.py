@@ -11,7 +11,7 @@ import scipy.linalg as sla
 import scipy.sparse.linalg as spla
 
 from .assembly import (DENSE_EIGEN_LIMIT, ORDERING, Assembler, SingularBeamError,
-                       load_vector, mass_matrix)
+                       element_mass, load_vector, mass_matrix, point_mass_diagonal)
 from .eigen import lowest_modes
 from .linear import held_at_zero, linear_system, modal_system
 from .model import BeamModel
@@ -57,6 +57,20 @@ def dense_lowest_modes(K: np.ndarray, M: np.ndarray, n: int) -> tuple:
     phi = phi[:, ::-1]
     phi = phi / np.sqrt(np.einsum("ij,ij->j", phi, M @ phi))
     return sigma + 1.0 / mu[::-1], phi
+
+
+def _mass_translations(model: BeamModel) -> np.ndarray:
+    """M [1_x 1_y] (n_dofs, 2): the consistent mass times the unit translations along x and
+    y, summed element by element (no global mass matrix)."""
+    me = element_mass(model)  # (n_e, 6, 6) global DOF order: u, v, theta at each end
+    cols = np.stack([me[:, :, 0] + me[:, :, 3], me[:, :, 1] + me[:, :, 4]], axis=-1)
+    dofs = (3 * model.elements[:, [0, 0, 0, 1, 1, 1]] + np.array([0, 1, 2, 0, 1, 2])).ravel()
+    diag = point_mass_diagonal(model)
+    out = np.column_stack([np.bincount(dofs, cols[:, :, k].ravel(), model.n_dofs)
+                           for k in (0, 1)])
+    out[0::3, 0] += diag[0::3]
+    out[1::3, 1] += diag[1::3]
+    return out
 
 
 def _check_count(n, n_free):
@@ -116,12 +130,9 @@ def solve_beam_modes(model: BeamModel, supports, n: int = 6, about=None, loads=(
         M = space.condense_global(mass_matrix(model), ev.w)
         w2, phi = _modes(K, M, n, space.n)
     full = space.expand(phi, np.zeros(len(space.held)), ev.w).T  # (n, n_dofs)
-    M_full = mass_matrix(model)
-    trans = np.zeros((model.n_dofs, 2))
-    trans[0::3, 0] = 1.0
-    trans[1::3, 1] = 1.0
-    gamma = full @ (M_full @ trans)
-    total = float(trans[:, 0] @ (M_full @ trans[:, 0]))
+    MT = _mass_translations(model)
+    gamma = full @ MT
+    total = float(MT[0::3, 0].sum())
     freq = np.sqrt(np.clip(w2, 0.0, None)) / (2.0 * np.pi)
     return BeamModes(model=model, frequencies_hz=freq, shapes=full.reshape(n, -1, 3),
                      effective_mass=gamma**2, total_mass=total)

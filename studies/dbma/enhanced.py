@@ -114,6 +114,16 @@ def _solve_quarter(p, fixed, loads, rigid_arm=False, axially_rigid_hinges=False)
     return solve_frame(p, xy, members, fixed, loads, links, axially_rigid_hinges)
 
 
+STROKE = 1e-6  # input-block displacement delta of the linear solves (m)
+
+
+def _stroke(p: DBMAParams, rigid_arm: bool = False, axially_rigid_hinges: bool = False):
+    """(u, K) of the quarter row with the input block moved by -STROKE along x, no rotation,
+    the output block free along y (no load, no rotation, no x motion: symmetry)."""
+    return _solve_quarter(p, {0: -STROKE, 1: 0.0, 2: 0.0, 9: 0.0, 11: 0.0}, {}, rigid_arm,
+                          axially_rigid_hinges)
+
+
 def row_amplification_ratio(p: DBMAParams, rigid_arm: bool = False,
                             axially_rigid_hinges: bool = False) -> float:
     """Output displacement over input stroke of one bow-type row, r = |uy3| / delta (-).
@@ -121,10 +131,8 @@ def row_amplification_ratio(p: DBMAParams, rigid_arm: bool = False,
     Input block moved by -delta along x with no rotation, output block free along y with
     no load, no rotation and no x motion (symmetry).
     """
-    delta = 1e-6
-    u, _ = _solve_quarter(p, {0: -delta, 1: 0.0, 2: 0.0, 9: 0.0, 11: 0.0}, {},
-                          rigid_arm, axially_rigid_hinges)
-    return float(abs(u[10])) / delta
+    u, _ = _stroke(p, rigid_arm, axially_rigid_hinges)
+    return float(abs(u[10])) / STROKE
 
 
 def amplification_ratio_enhanced(p: DBMAParams, rigid_arm: bool = False) -> float:
@@ -175,9 +183,11 @@ def input_stiffness_enhanced(p: DBMAParams, rigid_arm: bool = False) -> float:
     Each input block of a row carries two quarters (force 2 F_q) and the stroke 2 delta spans
     the two input blocks, so a row has F_q / delta; the two rows share the stroke (parallel).
     """
-    delta = 1e-6
-    u, K = _solve_quarter(p, {0: -delta, 1: 0.0, 2: 0.0, 9: 0.0, 11: 0.0}, {}, rigid_arm)
-    return ROWS * float(abs((K @ u)[0])) / delta
+    return _input_stiffness(*_stroke(p, rigid_arm))
+
+
+def _input_stiffness(u, K) -> float:
+    return ROWS * float(abs((K @ u)[0])) / STROKE
 
 
 def amplification_ratio_post_chain(p: DBMAParams, post_rotation_blocked: bool = False) -> float:
@@ -207,13 +217,14 @@ def amplification_ratio_post_chain(p: DBMAParams, post_rotation_blocked: bool = 
 def enhanced_metrics(p: DBMAParams) -> dict:
     """Elastic-beam model for one design: ratios (-) and stiffnesses (N/m), keyed as in
     ``dbma_figures.analytical_metrics``."""
+    u, K = _stroke(p)  # R_enhanced and K_in_enhanced: one solve
     return {
-        "R_enhanced": amplification_ratio_enhanced(p),
+        "R_enhanced": ROWS * float(abs(u[10])) / STROKE,
         "R_rigid_arm": amplification_ratio_rigid_arm(p),
         "R_kinematic": amplification_ratio_kinematic(p) if p.h > 0 else float("inf"),
         "K_out_enhanced": output_stiffness_enhanced(p),
         "K_out_free_input_enhanced": output_stiffness_enhanced(p, input_blocked=False),
-        "K_in_enhanced": input_stiffness_enhanced(p),
+        "K_in_enhanced": _input_stiffness(u, K),
         "R_post_chain": amplification_ratio_post_chain(p),
         "R_post_chain_guided": amplification_ratio_post_chain(p, post_rotation_blocked=True),
     }
