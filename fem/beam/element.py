@@ -90,8 +90,47 @@ def axial_stiffness(model) -> np.ndarray:
     return model.material.E * mean / model.lengths
 
 
+class _Distinct:
+    """The distinct elements of a model (the same section row and length, bit for bit), which
+    the local matrices are computed for once each (the DBMA's 16 hinges share one profile):
+    the model's fields the local matrices read, for those elements; ``inverse`` maps every
+    element to its representative."""
+
+    def __init__(self, model):
+        key = np.column_stack([model.section_table, model.lengths])
+        key = np.nan_to_num(key, nan=-1.0)
+        mantissa, exponent = np.frexp(key)  # exactly: mantissa x 2^53 is an integer
+        key = np.column_stack([np.round(mantissa * 2.0**53), exponent]).astype(np.int64)
+        # rows grouped by a hash (np.unique by rows sorts ~10x slower), checked exactly
+        mix = np.random.default_rng(0).integers(1, 2**62, key.shape[1]) | 1
+        with np.errstate(over="ignore"):
+            h = (key * mix).sum(axis=1)
+        _, first, inverse = np.unique(h, return_index=True, return_inverse=True)
+        if not np.array_equal(key[first][inverse.ravel()], key):  # a collision: no grouping
+            first, inverse = np.arange(len(key)), np.arange(len(key))
+        self.inverse = inverse.ravel()
+        self.lengths, self.section_table = model.lengths[first], model.section_table[first]
+        self.material, self.shear, self.n_elements = model.material, model.shear, len(first)
+        self._model_type = type(model)
+
+    def cached(self, key, compute):
+        return self._model_type.cached(self, key, compute)
+
+    def section_at(self, xi):
+        return self._model_type.section_at(self, xi)
+
+
+def _distinct(model) -> _Distinct:
+    return model.cached("distinct_elements", lambda: _Distinct(model))
+
+
 def local_stiffness(model) -> np.ndarray:
     """(n_e, 6, 6) linear stiffness in each element's local frame (N/m, N, N m)."""
+    distinct = _distinct(model)
+    return _local_stiffness(distinct)[distinct.inverse]
+
+
+def _local_stiffness(model) -> np.ndarray:
     L, mat = model.lengths, model.material
     phi = shear_parameter(model)
     A, I, _ = sections(model, XI)
@@ -122,6 +161,11 @@ def basic_stiffness(model) -> np.ndarray:
 def local_mass(model) -> np.ndarray:
     """(n_e, 6, 6) consistent mass in the local frame (kg, kg m, kg m^2): translational
     rho A and rotary inertia rho I, with the same shape functions as the stiffness."""
+    distinct = _distinct(model)
+    return _local_mass(distinct)[distinct.inverse]
+
+
+def _local_mass(model) -> np.ndarray:
     L, rho = model.lengths, model.material.rho
     phi = shear_parameter(model)
     A, I, _ = sections(model, XI)
