@@ -17,6 +17,7 @@ SEED = 20261123  # the start block: fixed, for results that repeat bit for bit
 # the residual test (needs the Ritz vectors) once the wanted Ritz values moved by less than
 # this (relative) since the previous step: a residual of tol moves them by ~tol^2 / gap
 PRECHECK = 1e-12
+INITIAL_DIM = 64  # Krylov vectors allocated at first (the DBMA's six modes: 48)
 
 
 def _m_orthonormalise(W, MW, out=None):
@@ -33,6 +34,14 @@ def _m_orthonormalise(W, MW, out=None):
     inv = np.linalg.inv(R)  # b x b, upper triangular
     out = out or (None, None)
     return np.matmul(W, inv, out=out[0]), np.matmul(MW, inv, out=out[1]), R
+
+
+def _grown(old, N: int, width: int) -> np.ndarray:
+    """An (N, width) Fortran-ordered array whose first columns are ``old`` (None: none)."""
+    out = np.empty((N, width), order="F")
+    if old is not None:
+        out[:, :old.shape[1]] = old
+    return out
 
 
 @lru_cache(maxsize=8)
@@ -55,12 +64,18 @@ def lowest_modes(solve, M, n: int, block: int | None = None, max_dim: int = 240,
     cap = min(max_dim, N - len(held))
     start = _start(N, b).copy()
     start[np.asarray(held, dtype=np.int64)] = 0.0
-    V, MV = np.empty((N, cap + b), order="F"), np.empty((N, cap + b), order="F")
+    # the basis grows on demand: touching fresh memory for all max_dim vectors cost more
+    # than the DBMA's whole Krylov step count
+    width = min(cap, INITIAL_DIM) + b
+    V, MV = _grown(None, N, width), _grown(None, N, width)
     if _m_orthonormalise(start, M @ start, (V[:, :b], MV[:, :b])) is None:
         return None
     H = np.zeros((cap + b, cap + b))
     k, last = b, None  # basis size, the previous step's wanted Ritz values
     while k + b <= cap:
+        if k + b > V.shape[1]:
+            width = min(cap, 2 * V.shape[1]) + b
+            V, MV = _grown(V[:, :k], N, width), _grown(MV[:, :k], N, width)
         basis, m_basis = V[:, :k], MV[:, :k]
         W = solve(MV[:, k - b:k])
         C = m_basis.T @ W
