@@ -98,3 +98,33 @@ def test_lowest_modes_gives_up_beyond_max_dim(steel):
     w2, phi = lowest_modes(system.factor.solve, system.mass, 4)
     assert phi.T @ (system.mass @ phi) == pytest.approx(np.eye(4), abs=1e-10)
     assert np.all(np.diff(w2) > 0)
+
+
+def test_modes_with_prescribed_dofs_on_the_fixed_factor(steel):
+    """Modes held by Fixed + Prescribed DOFs, solved on the Fixed supports' factor with those
+    unknowns held at zero (the route the static solves take), against the held system
+    assembled and factored on its own (block Lanczos; and the dense eigensolver, which on
+    this K of condition ~1e12 is good to ~1e-7): a cantilever with its midpoint held along y
+    and in rotation (900 DOFs: the Krylov route)."""
+    model, _ = cantilever(steel, n=300)
+    supports = [Fixed(0), Prescribed(150, "y", 0.0), Prescribed(150, "theta", 0.0)]
+    solve_beam_static(model, [Fixed(0)], [NodalLoad(300, fy=-1.0)])  # Fixed system cached
+    modes = solve_beam_modes(model, supports, n=5)
+    own = linear_system(cantilever(steel, n=300)[0], supports)
+    w2, _ = lowest_modes(own.factor.solve, own.mass, 5)
+    assert modes.frequencies_hz == pytest.approx(np.sqrt(w2) / (2 * np.pi), rel=1e-9)
+    w2, _ = dense_lowest_modes(own.ev.K.toarray(), own.mass.toarray(), 5)
+    assert modes.frequencies_hz == pytest.approx(np.sqrt(w2) / (2 * np.pi), rel=2e-7)
+    held = modes.shapes[:, 150, 1:]  # v and theta of the held node: zero in every mode
+    assert np.abs(held).max() <= 1e-12 * np.abs(modes.shapes).max()
+
+
+def test_element_matrices_of_distinct_elements_equal_every_elements(steel):
+    """The local stiffness and mass computed once per distinct element (same section and
+    length) and spread: bit for bit those of every element computed on its own."""
+    from flexfem.fem.beam.element import (_distinct, _local_mass, _local_stiffness,
+                                          local_mass, local_stiffness)
+    model = parallel_guide(steel)[0]
+    assert _distinct(model).n_elements < model.n_elements
+    assert np.array_equal(local_stiffness(model), _local_stiffness(model))
+    assert np.array_equal(local_mass(model), _local_mass(model))
