@@ -123,7 +123,7 @@ def plane_sentence(planes: dict) -> str:
     return (f" Out of the plane the suspension is softer: the spatial beam model's first mode "
             f"({planes['out_of_plane_hz']:.3g} Hz, the flexures twisting) lies below the drive "
             f"mode ({planes['in_plane_hz']:.3g} Hz); the 3-D continuum of the same design "
-            "(`flexfem eightbar analyze --dim 3`) confirms the order.")
+            "(flexfem eightbar analyze --dim 3) confirms the order.")
 
 
 def reproduce(out_dir, quick: bool = False) -> dict:
