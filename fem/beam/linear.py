@@ -50,16 +50,21 @@ class LinearSystem:
         return self._mass
 
 
+def _held(model: BeamModel, supports) -> np.ndarray:
+    """The DOFs ``supports`` hold."""
+    return np.flatnonzero(~np.isnan(held_values(model, supports)))
+
+
 def linear_system(model: BeamModel, supports) -> LinearSystem:
     """The model's cached LinearSystem for the DOFs ``supports`` hold."""
-    held = np.flatnonzero(~np.isnan(held_values(model, supports)))
+    held = _held(model, supports)
     return model.cached(("linear", held.tobytes()), lambda: LinearSystem(model, supports))
 
 
 def _on_fixed(model: BeamModel, supports):
     """(the Fixed supports' system, the other held DOFs) where those are few and the
     supports' own system is not cached, else None."""
-    held = np.flatnonzero(~np.isnan(held_values(model, supports)))
+    held = _held(model, supports)
     base = [s for s in supports if isinstance(s, Fixed)]
     if base and not model.is_cached(("linear", held.tobytes())):
         system = linear_system(model, base)
@@ -101,13 +106,8 @@ def held_at_zero(system: LinearSystem, j):
     ``j``), for (n, k) blocks: K^-1 of the system with those unknowns held, in the larger
     system's numbering (the rows of B at ``j`` do not enter). Raises SingularBeamError where
     the held unknowns are not independent."""
-    E = np.zeros((system.space.n, len(j)))
-    E[j, np.arange(len(j))] = 1.0
-    Y = system.factor.solve(E)
-    S = Y[j]
-    if not np.isfinite(S).all() or np.linalg.cond(S) > 1e12:
-        raise SingularBeamError("the held DOFs are not independent")
-    YS = Y @ np.linalg.inv(S)
+    Y = system.factor.solve(_unit_columns(system.space.n, j))
+    YS = Y @ np.linalg.inv(_independent(Y[j], "held"))
 
     def solve(B):
         Z = system.factor.solve(B)
@@ -115,6 +115,21 @@ def held_at_zero(system: LinearSystem, j):
         Z[j] = 0.0
         return Z
     return solve
+
+
+def _unit_columns(n: int, j) -> np.ndarray:
+    """E (n, len(j)): unit columns at the unknowns ``j``."""
+    E = np.zeros((n, len(j)))
+    E[j, np.arange(len(j))] = 1.0
+    return E
+
+
+def _independent(S, what: str):
+    """The Schur block ``S`` = E^T K^-1 E; SingularBeamError where the ``what`` DOFs it
+    holds are not independent."""
+    if not np.isfinite(S).all() or np.linalg.cond(S) > 1e12:
+        raise SingularBeamError(f"the {what} DOFs are not independent")
+    return S
 
 
 def _constrained(system: LinearSystem, values, extra, f_ext) -> np.ndarray:
@@ -128,12 +143,8 @@ def _constrained(system: LinearSystem, values, extra, f_ext) -> np.ndarray:
         z = system.factor.solve(rhs)
     else:
         j = space.col[extra, 0]  # their unknowns (held DOFs are never rigid-link slaves)
-        E = np.zeros((space.n, len(extra)))
-        E[j, np.arange(len(extra))] = 1.0
-        Y = system.factor.solve(np.column_stack([rhs, E]))
+        Y = system.factor.solve(np.column_stack([rhs, _unit_columns(space.n, j)]))
         z0, Y = Y[:, 0], Y[:, 1:]
-        S = Y[j]
-        if not np.isfinite(S).all() or np.linalg.cond(S) > 1e12:
-            raise SingularBeamError("the prescribed DOFs are not independent")
+        S = _independent(Y[j], "prescribed")
         z = z0 + Y @ np.linalg.solve(S, values[extra] - z0[j])
     return space.expand(z, p, ev.w)
