@@ -2,9 +2,8 @@
 import math
 import numbers
 from dataclasses import dataclass
-from functools import lru_cache
 
-from ..data import load_toml
+from ..data import shared_toml
 
 
 @dataclass(frozen=True)
@@ -57,10 +56,9 @@ def _require(material, name, ok, bound):
     object.__setattr__(material, name, float(value))
 
 
-@lru_cache(maxsize=1)
 def _library() -> dict:
-    """data/materials.toml, parsed once (a parse costs ~0.5 ms; read, never changed here)."""
-    return load_toml("materials.toml")
+    """data/materials.toml (parsed once per process)."""
+    return shared_toml("materials.toml")
 
 
 def material_names() -> list[str]:

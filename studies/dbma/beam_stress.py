@@ -14,7 +14,7 @@ import math
 
 import numpy as np
 
-from ...data import load_toml
+from ...data import shared_toml
 
 _SOURCE = "shoulder_fillet_flat_bar"
 
@@ -22,7 +22,7 @@ _SOURCE = "shoulder_fillet_flat_bar"
 def _coefficients(load: str) -> dict:
     if load not in ("tension", "bending"):
         raise ValueError(f"load = {load!r} must be 'tension' or 'bending'")
-    return load_toml("stress_concentration.toml")[_SOURCE][load]
+    return shared_toml("stress_concentration.toml")[_SOURCE][load]
 
 
 def shoulder_fillet_kt(d: float, D: float, r: float, load: str) -> float:
@@ -36,7 +36,7 @@ def shoulder_fillet_kt(d: float, D: float, r: float, load: str) -> float:
         if not (math.isfinite(value) and value > 0):
             raise ValueError(f"shoulder_fillet_kt: {name} = {value!r} must be a finite number > 0 (m)")
     coef = _coefficients(load)
-    lo, hi = load_toml("stress_concentration.toml")[_SOURCE]["h_over_r_range"]
+    lo, hi = shared_toml("stress_concentration.toml")[_SOURCE]["h_over_r_range"]
     h = (D - d) / 2
     if not h / r >= lo:
         raise ValueError(f"shoulder_fillet_kt: h / r = {h / r!r} is below the fit's range "
