@@ -42,6 +42,12 @@ def _state_z(asm, about):
     return about.q.ravel()[asm.space.free], about.load_factor
 
 
+def negative_shift(k_diag, m_diag) -> float:
+    """A shift slightly below zero, (rad/s)^2, from the diagonals of K and M: K - sigma M is
+    positive definite where K is semi-definite (a free body)."""
+    return -1e-6 * abs(k_diag).max() / max(abs(m_diag).max(), 1e-300)
+
+
 def dense_lowest_modes(K: np.ndarray, M: np.ndarray, n: int) -> tuple:
     """(w2 (n,) in (rad/s)^2, M-normalised shapes (N, n)): the ``n`` lowest eigenpairs of
     K phi = w2 M phi, solved inverted, M phi = mu (K - sigma M) phi with sigma slightly
@@ -49,7 +55,7 @@ def dense_lowest_modes(K: np.ndarray, M: np.ndarray, n: int) -> tuple:
     inertias: the direct form lost 5e-5 of f1 there). Where K - sigma M is not positive
     definite (a state past buckling) the direct form."""
     size = K.shape[0]
-    sigma = -1e-6 * abs(np.diag(K)).max() / max(abs(np.diag(M)).max(), 1e-300)
+    sigma = negative_shift(np.diag(K), np.diag(M))
     try:
         mu, phi = sla.eigh(M, K - sigma * M, subset_by_index=[size - n, size - 1])
     except np.linalg.LinAlgError:
@@ -95,7 +101,7 @@ def _modes(K, M, n, n_free) -> tuple:
     slightly negative shift (K may be singular)."""
     if n_free <= DENSE_EIGEN_LIMIT:
         return dense_lowest_modes(K.toarray(), M.toarray(), n)
-    sigma = -1e-6 * abs(K.diagonal()).max() / max(abs(M.diagonal()).max(), 1e-300)
+    sigma = negative_shift(K.diagonal(), M.diagonal())
     lu = spla.splu((K - sigma * M).tocsc(), permc_spec=ORDERING)
     # plain operators: ARPACK calls them ~200 times, a sparse matrix's wrapper costs more
     shift_invert = spla.LinearOperator(K.shape, matvec=lu.solve, dtype=float)

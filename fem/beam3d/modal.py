@@ -10,7 +10,7 @@ import numpy as np
 import scipy.sparse.linalg as spla
 
 from ..beam.assembly import DENSE_EIGEN_LIMIT
-from ..beam.modal import dense_lowest_modes
+from ..beam.modal import dense_lowest_modes, negative_shift
 from .assembly import Assembler, mass_matrix, symmetric_tangent
 from .model import Beam3DModel
 
@@ -49,7 +49,7 @@ def solve_beam3d_modes(model: Beam3DModel, supports, n: int = 6, about=None,
     if asm.space.n <= DENSE_EIGEN_LIMIT:
         w2, phi = dense_lowest_modes(K.toarray(), M.toarray(), n)
     else:
-        shift = -1e-6 * abs(K.diagonal()).max() / max(abs(M.diagonal()).max(), 1e-300)
+        shift = negative_shift(K.diagonal(), M.diagonal())
         w2, phi = spla.eigsh(K.tocsc(), k=n, M=M.tocsc(), sigma=shift, which="LM")
         order = np.argsort(w2)
         w2, phi = w2[order], phi[:, order]
