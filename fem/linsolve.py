@@ -110,11 +110,12 @@ def _pardiso_call(pt, mtype, phase, n, data, indptr, indices, iparm, b, x) -> No
                            f"{_PARDISO_ERRORS.get(error.value, 'unknown')}")
 
 
-def _pardiso_release(pt, mtype, n) -> None:
-    """Release the factor that the handle ``pt`` holds in MKL (phase -1); idempotent."""
+def _pardiso_release(pt, mtype, n, iparm) -> None:
+    """Release the factor that the handle ``pt`` holds in MKL (phase -1), with the
+    ``iparm`` it was made with (the two-level factorization's release crashes on defaults);
+    idempotent."""
     if np.any(pt):
         empty_i, empty_d = np.zeros(1, dtype=np.int32), np.zeros(1)
-        iparm = np.zeros(64, dtype=np.int32)
         _pardiso_call(pt, mtype, -1, n, empty_d, empty_i, empty_i, iparm, empty_d, empty_d.copy())
         pt[:] = 0
 
@@ -135,6 +136,7 @@ class Factorization:
             raise ValueError(f"the matrix must be square, not {A.shape}")
         self.kind, self.n = kind, A.shape[0]
         self._finalizer = None
+        self.holds_matrix = False  # whether the solves still read A's arrays (PARDISO)
         self.backend = direct_backend(kind)
         if self.backend == "mkl-pardiso":
             self._init_pardiso(A)
@@ -158,6 +160,7 @@ class Factorization:
         if np.any(np.diff(A.indptr) == 0):
             raise SingularSystemError("the matrix has an empty row: a DOF that nothing stiffens")
         self._data = np.ascontiguousarray(A.data, dtype=float)
+        self.holds_matrix = True
         self._indptr = A.indptr.astype(np.int32, copy=False)
         self._indices = A.indices.astype(np.int32, copy=False)
         self._iparm = np.zeros(64, dtype=np.int32)
@@ -173,10 +176,14 @@ class Factorization:
         # variable-size blocks (VBSR, 80 % alike): the ordering works on the much smaller
         # block graph, -25 % to -40 % CPU on 3-D P2 (docs/performance.md)
         iparm[36] = 0 if self.kind == "general" else -80
+        # two-level factorization: the same factor and time on 2 cores, ~15 MiB less peak
+        # memory on a 3-D P2 K of 36k DOFs (its working buffers; docs/performance.md)
+        iparm[23] = 1
         self._pt = np.zeros(64, dtype=np.int64)
         memory.release_freed()  # before the factor, the largest allocation, is made
         # release the MKL factor when this object goes away, even without free()
-        self._finalizer = weakref.finalize(self, _pardiso_release, self._pt, self._mtype, self.n)
+        self._finalizer = weakref.finalize(self, _pardiso_release, self._pt, self._mtype, self.n,
+                                          self._iparm)
         dummy = np.zeros(self.n)
         try:
             _pardiso_call(self._pt, self._mtype, 12, self.n, self._data, self._indptr,
@@ -190,6 +197,7 @@ class Factorization:
         if (not keep_matrix and self.kind == "spd" and self._iparm[13] == 0
                 and not _spd_solve_reads_matrix()):
             self._data, self._indices = np.zeros(1), np.zeros(1, dtype=np.int32)
+            self.holds_matrix = False
 
     def __call__(self, b) -> np.ndarray:
         b = np.asarray(b, dtype=float)
@@ -300,17 +308,22 @@ def solve_direct(A, b, kind: str = "general") -> np.ndarray:
 
 def solve_and_check(A, b, kind: str = "spd", what: str = "static solve",
                     rtol: float = 1e-6, factor=None) -> np.ndarray:
-    """Direct solve of ``A x = b`` with one step of iterative refinement where the first
-    residual is above ``rtol`` ||b||, then :func:`check_solution`; the factor is freed.
+    """Direct solve of ``A x = b`` with :func:`refine_and_check`; the factor is freed.
     ``factor``: the matrix factorized, when not ``A`` itself (e.g. ``A`` a
     :class:`Restriction` and ``factor`` its :func:`block_to_factorize`)."""
     with Factorization(A if factor is None else factor, kind) as solve:
         del factor  # the factorization keeps what it needs
-        x = solve(b)
-        if np.all(np.isfinite(x)):
-            r = b - A @ x
-            if np.linalg.norm(r) > rtol * np.linalg.norm(b):
-                x = x + solve(r)
+        return refine_and_check(A, b, solve, what, rtol)
+
+
+def refine_and_check(A, b, solve, what: str = "static solve", rtol: float = 1e-6) -> np.ndarray:
+    """``x = solve(b)`` (a factorization of ``A``) with one step of iterative refinement
+    where the first residual is above ``rtol`` ||b||, then :func:`check_solution`."""
+    x = solve(b)
+    if np.all(np.isfinite(x)):
+        r = b - A @ x
+        if np.linalg.norm(r) > rtol * np.linalg.norm(b):
+            x = x + solve(r)
     check_solution(A, x, b, what, rtol)
     return x
 

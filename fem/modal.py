@@ -7,9 +7,11 @@ with one sparse factorization of K - sigma M.
 from dataclasses import dataclass
 
 import numpy as np
+import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from . import linsolve, memory
+from . import linsolve, memory, symmetric
+from .block_factor import BlockFactorization
 from .boundary import component_indices, constrained_dofs
 from .model import Model
 from .static import check_supports, vertex_displacement
@@ -66,37 +68,31 @@ def solve_modes(model: Model, n: int = 6, supports=(), shift_hz: float | None = 
     I = np.setdiff1d(np.arange(model.n_dofs), D)
     if n >= len(I):
         raise ValueError(f"n = {n} modes asked for but only {len(I)} free DOFs exist")
-    upper = prestress is None  # the model's K and M are kept as their upper triangles
-    if upper:
-        # K is needed only to build K - sigma M: when the model does not keep it, it is
-        # assembled for this solve and dropped before the factorization (the memory peak)
-        K_full = model.__dict__.get("stiffness_upper")
-        if K_full is None:
-            K_full = model.assemble_stiffness_upper()
+    M_upper = model.mass_upper
+    if prestress is None:  # the model keeps K and M as their upper triangles
+        K_full, owned = model.__dict__.get("stiffness_upper"), False
+        if K_full is None:  # assembled for this solve: changed in place, then dropped
+            K_full, owned = model.assemble_stiffness_upper(), True
     else:
         from .stability import tangent_stiffness
-        K_full = tangent_stiffness(model, prestress)
-    # K and M on the free DOFs as operators on the model's matrices (no copies); only the
-    # matrix factorized, K - sigma M, is built
-    K = linsolve.Restriction(K_full, I, upper=upper)
-    M = linsolve.Restriction(model.mass_upper, I, upper=True)
+        K_full, owned = symmetric.upper(tangent_stiffness(model, prestress)), True
+    M = linsolve.Restriction(M_upper, I, upper=True)  # an operator on M: no copy
     if shift_hz is None:
         # -(scale of the stiffness/mass ratio) * 1e-6: far below any elastic mode, and keeps
         # K - sigma M positive definite for a free body
-        sigma = -1e-6 * float(K.diagonal().mean() / M.diagonal().mean())
+        diagonal = K_full.diagonal()[I]
+        sigma = -1e-6 * float(diagonal.mean() / M.diagonal().mean())
     else:
         sigma = (2 * np.pi * shift_hz) ** 2 * np.sign(shift_hz)
     # one factorization of K - sigma M for every Lanczos step; SPD for sigma < 0 (Cholesky),
     # indefinite for a positive shift
     kind = "spd" if sigma < 0 and prestress is None else "symmetric"
-    shifted = (linsolve.block_to_factorize(K_full, I, kind, upper=upper)
-               - sigma * linsolve.block_to_factorize(model.mass_upper, I, kind, upper=True)).tocsr()
-    shape = K.shape
-    del K, K_full  # shift-invert Lanczos multiplies by M and (K - sigma M)^-1 only
-    with linsolve.factorize(shifted, kind=kind) as solve:
+    shifted = _shifted(K_full, M_upper, sigma, owned)
+    del K_full  # shift-invert Lanczos multiplies by M and (K - sigma M)^-1 only
+    with BlockFactorization(shifted, I, kind) as solve:
         del shifted  # the factorization keeps what it needs
-        op = spla.LinearOperator(shape, matvec=solve, matmat=solve, dtype=float)
-        eigvals, vectors = spla.eigsh(_shape_only(shape), k=n, M=M, sigma=sigma, which="LM",
+        op = spla.LinearOperator(M.shape, matvec=solve, matmat=solve, dtype=float)
+        eigvals, vectors = spla.eigsh(_shape_only(M.shape), k=n, M=M, sigma=sigma, which="LM",
                                       OPinv=op, tol=1e-10)
     order = np.argsort(eigvals)
     eigvals, vectors = eigvals[order], vectors[:, order]
@@ -114,6 +110,18 @@ def solve_modes(model: Model, n: int = 6, supports=(), shift_hz: float | None = 
     frequencies = np.sqrt(np.clip(eigvals, 0.0, None)) / (2 * np.pi)
     memory.release_freed()  # the factorization's leftovers
     return Modes(model, frequencies, shapes, participation ** 2, total_mass, solve.backend)
+
+
+def _shifted(K, M, sigma: float, owned: bool):
+    """K - sigma M, both upper triangles (CSR, sorted); on ``K``'s arrays when ``owned`` and
+    K and M share their pattern (as the model assembles them), indices then shared with M."""
+    same = (K.shape == M.shape and np.array_equal(K.indptr, M.indptr)
+            and np.array_equal(K.indices, M.indices))
+    if not same:
+        return symmetric.upper(K - sigma * M)
+    data = K.data if owned else K.data.copy()
+    data -= sigma * M.data
+    return sp.csr_matrix((data, M.indices, M.indptr), shape=K.shape)
 
 
 def _shape_only(shape) -> spla.LinearOperator:

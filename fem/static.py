@@ -2,6 +2,7 @@
 import numpy as np
 
 from . import linsolve, memory
+from .block_factor import BlockFactorization
 from .boundary import component_indices, constrained_dofs, load_vector
 from .model import Model, von_mises
 from .rigid_static import solve_static_faces
@@ -40,10 +41,11 @@ def solve_static(model: Model, supports, loads, solver: str = "auto",
             linsolve.check_solution(K_II, u[I], rhs, rtol=1e-6)
             chosen = "amg-cg"
         else:
-            chosen = linsolve.direct_backend("spd")
-            # K_II is symmetric positive definite once check_supports has passed: Cholesky
-            u[I] = linsolve.solve_and_check(K_II, rhs, kind="spd", rtol=1e-6,
-                                            factor=linsolve.block_to_factorize(K, I, upper=True))
+            # K_II is symmetric positive definite once check_supports has passed: Cholesky,
+            # on K's own arrays (no copy of the block)
+            with BlockFactorization(K, I, "spd") as solve:
+                u[I] = linsolve.refine_and_check(K_II, rhs, solve, rtol=1e-6)
+                chosen = solve.backend
 
     Ku = symmetric_matvec(K, u)
     residual = Ku - f
