@@ -17,9 +17,9 @@ Each program measures the static and the modal case of a row in two processes of
 model), and the row's peak resident memory is the larger of the two (both are in the JSON
 lines): flexfem's from ``getrusage(RUSAGE_SELF)`` of its process, CalculiX's from ``wait4`` of
 the ccx process. CalculiX's times include reading its deck (it cannot be split), not writing
-it; flexfem's include reading the same mesh from a .vtu file written beforehand (``read_mesh_s``,
-added to the static and modal totals of the table), not the import of flexfem (``import_s``,
-reported apart).
+it; flexfem's include reading the same mesh from a .vtu file written beforehand by another
+process, as the deck is (``read_mesh_s``, added to the static and modal totals of the table),
+not the import of flexfem (``import_s``, reported apart).
 """
 import argparse
 import importlib.util
@@ -80,18 +80,26 @@ def _loads(dim):
     return [Fixed("fixed")], [Force("tip", vector)]
 
 
-def run_flexfem(row: str, part: str = "static") -> dict:
+def write_cantilever_mesh(row: str, path: Path) -> Path:
+    """The row's mesh as a .vtu file, written by the driving process as CalculiX's deck is:
+    the measured process only reads it."""
+    from flexfem.fem import write_mesh
+    return write_mesh(cantilever_mesh(*ROWS[row]), path)
+
+
+def run_flexfem(row: str, part: str = "static", mesh_path: Path | None = None) -> dict:
     """One of flexfem's two cases, as CalculiX runs its static and its frequency deck in
     two processes: ``part`` 'static' (mesh read, K assembly, static solve with stress
     recovery) or 'modes' (mesh read, M assembly, ``solve_modes`` on the fresh model: its K
-    assembly is inside ``modes_s``). Times (s); the import of flexfem.fem apart."""
+    assembly is inside ``modes_s``), on the mesh file ``mesh_path`` (written here first when
+    None). Times (s); the import of flexfem.fem apart."""
     t = time.perf_counter()
-    from flexfem.fem import read_mesh, solve_modes, solve_static, write_mesh
+    from flexfem.fem import read_mesh, solve_modes, solve_static
     import_s = time.perf_counter() - t
 
     dim, target = ROWS[row]
     with tempfile.TemporaryDirectory() as folder:
-        path = write_mesh(cantilever_mesh(dim, target), Path(folder) / "cantilever.vtu")
+        path = mesh_path or write_cantilever_mesh(row, Path(folder) / "cantilever.vtu")
         t = time.perf_counter()
         mesh = read_mesh(path)
         read_s = time.perf_counter() - t
@@ -189,9 +197,11 @@ def default_install(venv: Path) -> str:
 
 
 def _in_subprocess(row: str, program: str, threads: int, timeout_s: float, mem_gb: float,
-                   python: str = sys.executable, part: str = "static") -> dict:
+                   python: str = sys.executable, part: str = "static",
+                   mesh_path: Path | None = None) -> dict:
     cmd = [python, __file__, "--case", row, "--program", program, "--threads", str(threads),
            "--mem-gb", str(mem_gb), "--part", part]
+    cmd += ["--mesh", str(mesh_path)] if mesh_path else []
     proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, text=True, start_new_session=True)
     try:
         stdout, _ = proc.communicate(timeout=timeout_s)
@@ -267,11 +277,16 @@ def main(argv=None) -> int:
     parser.add_argument("--case", help=argparse.SUPPRESS)
     parser.add_argument("--program", help=argparse.SUPPRESS)
     parser.add_argument("--part", default="static", help=argparse.SUPPRESS)
+    parser.add_argument("--mesh", type=Path, help=argparse.SUPPRESS)
     args = parser.parse_args(argv)
     if args.case:  # one measurement, in this (sub)process
         limit = int(args.mem_gb * 2**30)
         resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
-        fn = ((lambda r: run_flexfem(r, args.part)) if args.program == "flexfem"
+        if args.program == "mesh":
+            write_cantilever_mesh(args.case, args.mesh)
+            print(json.dumps({"row": args.case, "mesh": str(args.mesh)}))
+            return 0
+        fn = ((lambda r: run_flexfem(r, args.part, args.mesh)) if args.program == "flexfem"
               else lambda r: run_calculix(r, args.threads))
         before = os.getloadavg()[0]
         out = fn(args.case)
@@ -285,10 +300,15 @@ def main(argv=None) -> int:
         rows = args.rows or DEFAULT_INSTALL_ROWS
         python = default_install(args.venv)
     results = []
+    folder = tempfile.TemporaryDirectory()
     for row in rows:
+        mesh_path = Path(folder.name) / f"{row}.vtu"
+        _in_subprocess(row, "mesh", args.threads, args.timeout, args.mem_gb, python,
+                       mesh_path=mesh_path)
         f = merge_flexfem(*(_in_subprocess(row, "flexfem", args.threads, args.timeout,
-                                           args.mem_gb, python, part)
+                                           args.mem_gb, python, part, mesh_path)
                             for part in ("static", "modes")))
+        mesh_path.unlink(missing_ok=True)
         f["install"] = args.install
         print(json.dumps(f), flush=True)
         if row in args.skip_ccx:

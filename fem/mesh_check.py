@@ -12,8 +12,9 @@ another boundary facet.
 from itertools import combinations
 
 import numpy as np
-from scipy.spatial import cKDTree
 import skfem
+
+from .near_points import pairs_within
 
 _SHOWN = 10   # elements or vertices named in a message
 _TOL = 1e-9   # relative to an element's size: on a facet, inside it
@@ -94,10 +95,8 @@ def check_hanging_nodes(mesh: skfem.Mesh) -> None:
     corners = mesh.p[:, facets]  # (dim, k, n)
     centre = corners.mean(axis=1)
     radius = np.max(np.linalg.norm(corners - centre[:, None], axis=0), axis=0) * (1 + 1e-6)
-    tree = cKDTree(mesh.p[:, vertices].T)
-    near = tree.query_ball_point(centre.T, radius)
-    f_idx = np.repeat(np.arange(len(boundary)), [len(v) for v in near])
-    v_idx = vertices[np.concatenate([np.asarray(v, dtype=np.int64) for v in near])]
+    f_idx, v_idx = pairs_within(mesh.p[:, vertices], centre, radius)
+    v_idx = vertices[v_idx]
     own = np.any(facets[:, f_idx] == v_idx, axis=0)
     f_idx, v_idx = f_idx[~own], v_idx[~own]
     hit = _on_facet(mesh.p[:, v_idx], corners[:, :, f_idx])

@@ -10,7 +10,6 @@ inverse element map: exact for simplices, Newton for quadrilaterals and hexahedr
 element's own polynomial field is differentiated there: no smoothing.
 """
 import numpy as np
-from scipy.spatial import cKDTree
 import skfem
 from skfem.helpers import eye, trace
 
@@ -61,6 +60,7 @@ def locate(mesh: skfem.Mesh, points) -> tuple[np.ndarray, np.ndarray]:
                          f"coordinates (m) of a {dim}-D mesh")
     mapping = mesh.mapping()
     centroids = mesh.p[:, mesh.t].mean(axis=1).T
+    from scipy.spatial import cKDTree  # here: scipy.spatial costs every process ~7 MiB
     tree = cKDTree(centroids)
     k = min(_CANDIDATES, mesh.t.shape[1])
     cells = np.empty(len(pts), dtype=np.int64)
