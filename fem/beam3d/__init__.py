@@ -5,11 +5,12 @@
     big = solve_beam3d_nonlinear(model, [Fixed(0)], [NodalLoad(tip, fz=-50.0)], steps=20)
     modes = solve_beam3d_modes(model, [Fixed(0)], n=6)
     C = compliance3d(model, [Fixed(0)], node=tip)      # 6x6 at the tip
+    lin.max_stress                                     # Pa: normal + torsion, rectangles
 """
 from ..beam.assembly import SingularBeamError
 from .modal import Beam3DModes, solve_beam3d_modes
 from .model import (Beam3DModel, Fixed, NodalLoad, Prescribed, RigidLink, Section,
-                    element_frames, rect_torsion_constant)
+                    element_frames, rect_torsion_constant, rect_torsion_shear)
 from .nonlinear import Beam3DNonlinearResult, NonConvergenceError, solve_beam3d_nonlinear
 from .static import Beam3DState, compliance3d, solve_beam3d_static
 
@@ -17,5 +18,6 @@ __all__ = [
     "Beam3DModel", "Beam3DModes", "Beam3DNonlinearResult", "Beam3DState", "Fixed",
     "NodalLoad", "NonConvergenceError", "Prescribed", "RigidLink", "Section",
     "SingularBeamError", "compliance3d", "element_frames", "rect_torsion_constant",
+    "rect_torsion_shear",
     "solve_beam3d_modes", "solve_beam3d_nonlinear", "solve_beam3d_static",
 ]

@@ -42,6 +42,18 @@ def rect_torsion_constant(a, b):
     return float(J) if J.ndim == 0 else J
 
 
+def rect_torsion_shear(a, b):
+    """Largest shear stress per unit torque (1/m^3) of a x b rectangles under Saint-Venant
+    torsion, at the middle of the long sides: tau_max = G theta' t (1 - 8 / pi^2 sum_{n odd}
+    1 / (n^2 cosh(n pi a / (2 t)))), t the short side, theta' = T / (G J) (Timoshenko &
+    Goodier, Theory of Elasticity, 3rd ed., 1970, Sec. 109), 20 odd terms."""
+    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    a, t = np.maximum(a, b), np.minimum(a, b)
+    n = np.arange(1, 40, 2).reshape((-1,) + (1,) * a.ndim)
+    series = np.sum(1.0 / (n**2 * np.cosh(np.minimum(n * np.pi * a / (2 * t), 700.0))), axis=0)
+    return t * (1.0 - 8.0 / np.pi**2 * series) / rect_torsion_constant(a, t)
+
+
 def rect_depth(t0, t1, tm, xi):
     """Depth (m) at fractions xi (k,) of elements with end depths t0, t1 (n_e,) and mid
     depth tm (n_e,; NaN: linear taper): (n_e, k), the planar model's tapers."""
@@ -57,7 +69,8 @@ class Section:
     and ``Iz`` = int y^2 dA (m^4, about the local y and z axes), torsion constant ``J``
     (m^4), optional shear areas ``Ay``, ``Az`` (m^2; None: no shear deformation in that
     direction, Euler-Bernoulli). Prismatic, or a rectangle tapered along local y
-    (``Section.rect``; A, Iy, Iz, J are then those at the element's first node)."""
+    (``Section.rect``; A, Iy, Iz, J are then those at the element's first node). A rectangle
+    keeps its depths along local y and z (m; None for a general section: no stress)."""
 
     A: float
     Iy: float
@@ -66,6 +79,8 @@ class Section:
     Ay: float | None = None
     Az: float | None = None
     taper: tuple | None = None  # (depth_y at node 1, at node 2, at mid or NaN, depth_z)
+    depth_y: float | None = None
+    depth_z: float | None = None
 
     def __post_init__(self):
         for name in ("A", "Iy", "Iz", "J"):
@@ -91,7 +106,8 @@ class Section:
                                                           [0.5])[0, 0])
         k = 5.0 / 6.0 * t_mid * h if shear else None
         return cls(A=b * h, Iy=b * h**3 / 12.0, Iz=h * b**3 / 12.0,
-                   J=float(rect_torsion_constant(b, h)), Ay=k, Az=k, taper=taper)
+                   J=float(rect_torsion_constant(b, h)), Ay=k, Az=k, taper=taper,
+                   depth_y=b, depth_z=h)
 
     @property
     def Ip(self) -> float:
@@ -239,3 +255,16 @@ class Beam3DModel:
             out["Iz"][tapered], out["J"][tapered] = w * t**3 / 12.0, rect_torsion_constant(t, w)
         out["Ip"] = out["Iy"] + out["Iz"]
         return out
+
+    def depths_at(self, xi) -> tuple:
+        """(depth_y, depth_z) (m) of every element at fractions ``xi`` (k,), each (n_e, k);
+        NaN for general (non-rectangular) sections."""
+        xi = np.atleast_1d(np.asarray(xi, dtype=float))
+        get = lambda name: np.array([math.nan if getattr(s, name) is None else getattr(s, name)
+                                     for s in self.sections], dtype=float)
+        dy, dz = (np.repeat(get(k)[:, None], len(xi), axis=1) for k in ("depth_y", "depth_z"))
+        tapered = [e for e, s in enumerate(self.sections) if s.taper is not None]
+        if tapered:
+            t0, t1, tm, _ = np.array([self.sections[e].taper for e in tapered]).T
+            dy[tapered] = rect_depth(t0, t1, tm, xi)
+        return dy, dz

@@ -12,6 +12,7 @@ from .assembly import Assembler, symmetric_tangent
 from .corotational import kinematics
 from .model import Beam3DModel
 from .rotations import expm, logm
+from .stress import peak_stress, section_stresses
 
 
 @dataclass(frozen=True, eq=False)
@@ -43,6 +44,17 @@ class Beam3DState:
     def axial_force(self) -> np.ndarray:
         """(n_e,) N, tension > 0."""
         return self.local_forces[:, 0]
+
+    def stresses(self, n_points: int = 5) -> dict:
+        """Normal, torsion and von Mises-bound stresses (Pa) along every element
+        (:func:`.stress.section_stresses`)."""
+        return section_stresses(self.model, self.local_forces, n_points)
+
+    @property
+    def max_stress(self) -> float:
+        """Largest von Mises bound (Pa) over the rectangular sections: the largest normal
+        stress (axial + both bendings, at a corner) with the largest torsion shear."""
+        return peak_stress(self.model, self.local_forces)[0]
 
 
 def make_state(asm: Assembler, u, R, r, lam, fl, T, Tp, info=None) -> Beam3DState:
