@@ -219,8 +219,10 @@ def test_msh_gives_the_geo_result(tmp_path):
     from_msh = analyze_model(load_spec(tmp_path / "guide.toml"))
     from_geo = analyze_model(load_spec(GUIDE))
     assert from_msh["dofs"] == from_geo["dofs"]
+    # the same mesh read back: equal up to the round-off of a solve, ~eps cond(K) (the
+    # factorization's ordering follows the node numbering; measured 1.1e-9 to 1.6e-9)
     assert from_msh["stiffness"]["stage"]["x"] == pytest.approx(
-        from_geo["stiffness"]["stage"]["x"], rel=1e-9)
+        from_geo["stiffness"]["stage"]["x"], rel=1e-8)
     with pytest.raises(ValueError, match="guide.msh: a .msh mesh cannot be remeshed"):
         evaluate(model=str(tmp_path / "guide.toml"), size_factor=0.5)
     (tmp_path / "guide.toml").write_text(text.replace("order = 2", "order = 2\nsize = 0.001"))
