@@ -241,30 +241,20 @@ class Beam3DModel:
         return {"Ay": shear("Ay"), "Az": shear("Az")}
 
     def section_at(self, xi) -> dict:
-        """A, Iy, Iz, J, Ip (m^2, m^4) of every element at fractions ``xi`` (k,) along it,
-        each (n_e, k)."""
+        """A, Iy, Iz, J, Ip (m^2, m^4) and the rectangles' depth_y, depth_z (m; NaN for a
+        general section) of every element at fractions ``xi`` (k,) along it, each (n_e, k)."""
         xi = np.atleast_1d(np.asarray(xi, dtype=float))
-        get = lambda name: np.array([getattr(s, name) for s in self.sections], dtype=float)
-        out = {k: np.repeat(get(k)[:, None], len(xi), axis=1) for k in ("A", "Iy", "Iz", "J")}
+        get = lambda name: np.array([math.nan if getattr(s, name) is None else getattr(s, name)
+                                     for s in self.sections], dtype=float)
+        out = {k: np.repeat(get(k)[:, None], len(xi), axis=1)
+               for k in ("A", "Iy", "Iz", "J", "depth_y", "depth_z")}
         tapered = [e for e, s in enumerate(self.sections) if s.taper is not None]
         if tapered:
             t0, t1, tm, w = np.array([self.sections[e].taper for e in tapered]).T
             t = rect_depth(t0, t1, tm, xi)
             w = w[:, None]
+            out["depth_y"][tapered] = t
             out["A"][tapered], out["Iy"][tapered] = t * w, t * w**3 / 12.0
             out["Iz"][tapered], out["J"][tapered] = w * t**3 / 12.0, rect_torsion_constant(t, w)
         out["Ip"] = out["Iy"] + out["Iz"]
         return out
-
-    def depths_at(self, xi) -> tuple:
-        """(depth_y, depth_z) (m) of every element at fractions ``xi`` (k,), each (n_e, k);
-        NaN for general (non-rectangular) sections."""
-        xi = np.atleast_1d(np.asarray(xi, dtype=float))
-        get = lambda name: np.array([math.nan if getattr(s, name) is None else getattr(s, name)
-                                     for s in self.sections], dtype=float)
-        dy, dz = (np.repeat(get(k)[:, None], len(xi), axis=1) for k in ("depth_y", "depth_z"))
-        tapered = [e for e, s in enumerate(self.sections) if s.taper is not None]
-        if tapered:
-            t0, t1, tm, _ = np.array([self.sections[e].taper for e in tapered]).T
-            dy[tapered] = rect_depth(t0, t1, tm, xi)
-        return dy, dz

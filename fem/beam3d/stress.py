@@ -20,7 +20,7 @@ def section_stresses(model, local_forces: np.ndarray, n_points: int = 5) -> dict
     sections (no depths). local_forces: (n_e, 7) as Beam3DState.local_forces."""
     xi = np.linspace(0.0, 1.0, n_points)
     s = model.section_at(xi)
-    dy, dz = model.depths_at(xi)
+    dy, dz = s["depth_y"], s["depth_z"]
     f = np.asarray(local_forces, dtype=float)
     T, My, Mz = (-f[:, k:k + 1] * (1.0 - xi) + f[:, k + 3:k + 4] * xi for k in (1, 2, 3))
     normal = (np.abs(f[:, 0:1]) / s["A"] + np.abs(My) * dz / (2.0 * s["Iy"])
