@@ -26,13 +26,17 @@ from .drawing import DBMALayout, check_layout, quarter_rects
 from .params import DBMAParams
 
 QUARTERS = ((1, 1), (-1, 1), (1, -1), (-1, -1))
+# elements a hinge: a leaf is uniform (each element exact in statics) and light, so 8 give the
+# outputs of 48 to 1e-8 (tests/studies/dbma: the convergence test); a notch's or fillet's
+# profile needs more (docs/beam.md: 20-50 over a notch)
+LEAF_ELEMENTS, PROFILE_ELEMENTS = 8, 40
 
 
 def _hinge_fn(p: DBMAParams, layout: DBMALayout):
     prof, rf = layout.hinge_profile, layout.hinge_fillet_radius
     fn = lambda s: profile_thickness(prof, p.l, p.b, rf, s)  # vectorized over s
     breaks = (rf, p.l - rf) if prof == "filleted" else ()
-    return fn, breaks, (24 if prof == "leaf" else 40)
+    return fn, breaks
 
 
 def _placed(template: BeamMesh, a, b) -> BeamMesh:
@@ -100,17 +104,20 @@ def _input_member(bld, links, p, layout, J, pad, sx, hinge_ends, root_extension)
 
 def dbma_beam_model(p: DBMAParams, layout: DBMALayout | None = None,
                     root_extension: float = ROOT_EXTENSION, arm_elements: int = 8,
-                    shear: bool = True) -> tuple:
+                    shear: bool = True, hinge_elements: int | None = None) -> tuple:
     """(BeamModel, info) of the DBMA. info: "input_a" / "input_b" (masters of the left /
     right input members, on their pads' faces), "output" (master of member 4, on its top
     face), "ground" (the bottom of member 11, its mounting face), "hinges" {label: (first,
-    last element) of the hinge-arm-hinge chain}."""
+    last element) of the hinge-arm-hinge chain}. hinge_elements: elements a hinge (default:
+    LEAF_ELEMENTS for a leaf, PROFILE_ELEMENTS for a notch or filleted profile)."""
     layout = layout or DBMALayout()
     check_layout(p, layout)
     root_extension = check_root_extension(root_extension)
     q = quarter_rects(p, layout)
     J, pad, out4 = q[0], q[1], q[2]
-    fn, breaks, n_hinge = _hinge_fn(p, layout)
+    fn, breaks = _hinge_fn(p, layout)
+    n_hinge = hinge_elements or (LEAF_ELEMENTS if layout.hinge_profile == "leaf"
+                                 else PROFILE_ELEMENTS)
     blocks = (p.c, p.c)  # the height of the faces the hinges enter (arm ends; members, ~)
     hinge = profile_beam((0.0, 0.0), (p.l, 0.0), fn, p.d, breaks, n_hinge, root_extension,
                          blocks, vectorized=True)

@@ -76,25 +76,31 @@ def test_cli_stage_json(stage, capsys, monkeypatch):
     assert "k_y/k_x" in capsys.readouterr().out
 
 
-def test_beam_modes_dense_and_sparse_paths_agree():
-    """The eight-bar beam model with 12 elements a flexure (639 unknowns: the dense
-    eigensolver) against the sparse shift-invert path: the dense solve is done inverted, since
-    the direct form lost 5e-5 of f1 to the nearly singular mass (tiny rotary inertias)."""
+def test_beam_modes_lanczos_dense_and_arpack_paths_agree():
+    """The eight-bar beam model with 12 elements a flexure (639 unknowns: block Lanczos on the
+    cached factor) against the dense eigensolver and the sparse shift-invert (ARPACK) path:
+    the dense solve is done inverted, since the direct form lost 5e-5 of f1 to the nearly
+    singular mass (tiny rotary inertias)."""
     import flexfem.fem.beam.modal as beam_modal
     from flexfem.fem.beam import Fixed
     from flexfem.geometry.eightbar.beam import eightbar_beam_model
 
     model, info = eightbar_beam_model(EightBarFlexureParams(), n_per_flexure=12)
     supports = [Fixed(tuple(info["ground"]))]
-    dense = beam_modal.solve_beam_modes(model, supports, n=4)
-    old = beam_modal.DENSE_EIGEN_LIMIT
+    lanczos = beam_modal.solve_beam_modes(model, supports, n=4)
+    old = beam_modal.KRYLOV_FROM, beam_modal.DENSE_EIGEN_LIMIT
     try:
+        beam_modal.KRYLOV_FROM = 10**6
+        dense = beam_modal.solve_beam_modes(model, supports, n=4)
         beam_modal.DENSE_EIGEN_LIMIT = 0
         sparse = beam_modal.solve_beam_modes(model, supports, n=4)
     finally:
-        beam_modal.DENSE_EIGEN_LIMIT = old
-    assert dense.frequencies_hz == pytest.approx(sparse.frequencies_hz, rel=1e-7)
-    assert dense.effective_mass == pytest.approx(sparse.effective_mass, rel=1e-5, abs=1e-9)
+        beam_modal.KRYLOV_FROM, beam_modal.DENSE_EIGEN_LIMIT = old
+    for other in (dense, sparse):
+        assert lanczos.frequencies_hz == pytest.approx(other.frequencies_hz, rel=1e-7)
+        assert lanczos.effective_mass == pytest.approx(other.effective_mass, rel=1e-5,
+                                                       abs=1e-9)
+    assert not np.array_equal(dense.frequencies_hz, sparse.frequencies_hz)  # three solvers
 
 
 def test_out_of_plane_mode_row_of_the_stage_section():
