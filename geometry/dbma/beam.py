@@ -2,6 +2,7 @@
 
     model, info = dbma_beam_model(paper_design())
     info["input_a"], info["input_b"], info["output"]   # master nodes (pad faces, output face)
+    model3d, info = dbma_beam3d_model(paper_design())  # spatial: out-of-plane modes
 
 Same reconstruction as the continuum mesh (:func:`flexfem.geometry.dbma.drawing.quarter_rects`,
 mirrored into four quarters): each of the 16 hinges is a beam following its profile t(s)
@@ -22,6 +23,7 @@ from ...fem.beam import BeamMesh, BeamModel, RigidLink, Section, beam_chain
 from ...fem.materials import Material
 from ..beam_layout import ROOT_EXTENSION, check_root_extension, profile_beam
 from ..hinge_profiles import profile_thickness
+from ..spatial_beam import lifted_model
 from .drawing import DBMALayout, check_layout, quarter_rects
 from .params import DBMAParams
 
@@ -104,35 +106,39 @@ def _input_member(bld, links, p, layout, J, pad, sx, hinge_ends, root_extension)
 
 def dbma_beam_model(p: DBMAParams, layout: DBMALayout | None = None,
                     root_extension: float = ROOT_EXTENSION, arm_elements: int = 8,
-                    shear: bool = True, hinge_elements: int | None = None) -> tuple:
+                    shear: bool = True, elements_per_hinge: int | None = None) -> tuple:
     """(BeamModel, info) of the DBMA. info: "input_a" / "input_b" (masters of the left /
     right input members, on their pads' faces), "output" (master of member 4, on its top
     face), "ground" (the bottom of member 11, its mounting face), "hinges" {label: (first,
-    last element) of the hinge-arm-hinge chain}. hinge_elements: elements a hinge (default:
-    LEAF_ELEMENTS for a leaf, PROFILE_ELEMENTS for a notch or filleted profile)."""
+    last element) of the hinge-arm-hinge chain}, "hinge_elements" (the 16 hinges' elements,
+    their root extensions included). elements_per_hinge: default LEAF_ELEMENTS for a leaf,
+    PROFILE_ELEMENTS for a notch or filleted profile."""
     layout = layout or DBMALayout()
     check_layout(p, layout)
     root_extension = check_root_extension(root_extension)
     q = quarter_rects(p, layout)
     J, pad, out4 = q[0], q[1], q[2]
     fn, breaks = _hinge_fn(p, layout)
-    n_hinge = hinge_elements or (LEAF_ELEMENTS if layout.hinge_profile == "leaf"
-                                 else PROFILE_ELEMENTS)
+    n_hinge = elements_per_hinge or (LEAF_ELEMENTS if layout.hinge_profile == "leaf"
+                                     else PROFILE_ELEMENTS)
     blocks = (p.c, p.c)  # the height of the faces the hinges enter (arm ends; members, ~)
     hinge = profile_beam((0.0, 0.0), (p.l, 0.0), fn, p.d, breaks, n_hinge, root_extension,
                          blocks, vectorized=True)
     x_out, x_in, l, h = p.ls / 2, p.ls / 2 + 2 * p.l + p.e, p.l, p.h
     bld, links = _Builder(), []
     slaves = {"input_a": [], "input_b": [], "output": []}
-    ground, spans = [], {}
+    ground, spans, in_hinges = [], {}, []
     for sx, sy in QUARTERS:
         for row, yc in (("i", layout.arm_gap + p.c / 2), ("o", p.ll - p.c / 2)):
             ya, yb = sy * (yc - h / 2), sy * (yc + h / 2)
             e0 = len(bld.sections)
             ha = bld.add(_placed(hinge, (sx * x_out, ya), (sx * (x_out + l), ya)))
+            e1 = len(bld.sections)
             arm = bld.add(beam_chain([(sx * (x_out + l), sy * yc), (sx * (x_in - l), sy * yc)],
                                      Section.rect(p.d, p.c), arm_elements))
+            e2 = len(bld.sections)
             hb = bld.add(_placed(hinge, (sx * (x_in - l), yb), (sx * x_in, yb)))
+            in_hinges += [*range(e0, e1), *range(e2, len(bld.sections))]
             spans[f"{sx:+d}{sy:+d}{row}"] = (e0, len(bld.sections))
             links += [RigidLink(arm[0], (ha[1],)), RigidLink(arm[-1], (hb[0],))]
             (slaves["output"] if sy > 0 else ground).append((ha[0], ya))
@@ -148,5 +154,15 @@ def dbma_beam_model(p: DBMAParams, layout: DBMALayout | None = None,
     model = BeamModel(np.vstack(bld.nodes), np.vstack(bld.elements), bld.sections,
                       Material("dbma_steel", p.E, p.nu, p.rho), shear=shear, rigid_links=links)
     return model, {"input_a": slaves["input_a"], "input_b": slaves["input_b"],
-                   "output": master, "ground": ground, "hinges": spans}
+                   "output": master, "ground": ground, "hinges": spans,
+                   "hinge_elements": np.array(in_hinges)}
 
+
+
+def dbma_beam3d_model(p: DBMAParams, layout: DBMALayout | None = None,
+                      root_extension: float = ROOT_EXTENSION) -> tuple:
+    """(Beam3DModel, info) of the DBMA for its out-of-plane modes: the planar model
+    (:func:`dbma_beam_model`, same info) lifted into 3-D, every section the rectangle of its
+    in-plane depth and the plate thickness d (:func:`..spatial_beam.lifted_model`)."""
+    planar, info = dbma_beam_model(p, layout, root_extension)
+    return lifted_model(planar, p.d), info

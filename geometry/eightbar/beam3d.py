@@ -16,8 +16,9 @@ thickness w) about its centroid.
 """
 import numpy as np
 
-from ...fem.beam3d import Beam3DModel, RigidLink, Section, rect_torsion_constant
+from ...fem.beam3d import Beam3DModel, RigidLink, Section
 from ..beam_layout import ROOT_EXTENSION, link_moments
+from ..spatial_beam import lifted_model, spatial_sections
 from .beam import EE_LINK, eightbar_beam_model
 from .flexure import EightBarFlexureParams, eightbar_layout
 from .link_beams import link_skeleton, mesh_skeleton
@@ -36,26 +37,6 @@ def link_plate_inertia(parts, link: str, out_of_plane: float, rho: float) -> tup
     jx = rho * out_of_plane * (Iyy - A * c[1] ** 2) + thick  # about x: y^2 and z^2
     jy = rho * out_of_plane * (Ixx - A * c[0] ** 2) + thick
     return float(m), c, float(jx), float(jy)
-
-
-def spatial_sections(planar_model, out_of_plane: float) -> list:
-    """One spatial Section per planar element: a rectangular one keeps its taper (depth t
-    along local y, ``out_of_plane`` along z); a general one (a root extension: A, I) keeps
-    A and I_z = I, with t = (12 I / w)^(1/3) for I_y = t w^3 / 12 and the Saint-Venant J.
-    Shear areas kappa A (the planar model's, mid-length) in y and kappa w t in z if the
-    planar model has shear."""
-    shear, w = planar_model.shear, out_of_plane
-    out = []
-    for (rect, _, t0, t1, A, I, _, kappa, tm) in planar_model.section_table:
-        if rect:
-            out.append(Section.rect(t0, w, shear=shear, depth_y_end=t1,
-                                    depth_y_mid=None if np.isnan(tm) else tm))
-            continue
-        t = (12.0 * I / w) ** (1.0 / 3.0)
-        out.append(Section(A=A, Iy=t * w**3 / 12.0, Iz=I, J=rect_torsion_constant(t, w),
-                           Ay=kappa * A if shear else None,
-                           Az=kappa * t * w if shear else None))
-    return out
 
 
 def eightbar_beam3d_model(params: EightBarFlexureParams, n_per_flexure: int = 24,
@@ -87,11 +68,7 @@ def eightbar_beam3d_model(params: EightBarFlexureParams, n_per_flexure: int = 24
             raise ValueError(f"link {link!r}: no single mass node at its centroid {c}")
         m_planar, jz = planar.point_masses[at[0]]
         masses[at[0]] = (m_planar, jx, jy, jz)
-    nodes = np.column_stack([planar.nodes, np.zeros(planar.n_nodes)])
-    rigid = [RigidLink(k.master, k.slaves) for k in planar.rigid_links]
-    model = Beam3DModel(nodes, planar.elements, spatial_sections(planar, w), planar.material,
-                        rigid_links=rigid, point_masses=masses)
-    return model, info
+    return lifted_model(planar, w, masses), info
 
 
 def _stations(layout, link: str) -> tuple:

@@ -181,7 +181,7 @@ def test_leaf_hinges_are_converged_at_the_default_element_count(params):
     p = dataclasses.replace(paper_design(), **params)
 
     def outputs(n):
-        model, info = gb.dbma_beam_model(p, hinge_elements=n)
+        model, info = gb.dbma_beam_model(p, elements_per_hinge=n)
         s = beam_static(model, info, 100.0)
         return np.array([s["R_fem"], s["k_in"], s["max_von_mises"],
                          beam_output_stiffness(model, info),

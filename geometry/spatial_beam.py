@@ -1,0 +1,39 @@
+"""A planar beam model lifted into 3-D: the same nodes (in the plane z = 0), elements, rigid
+links and sections, with the out-of-plane properties of a part of uniform thickness (the
+drawing extruded by ``out_of_plane``).
+
+    model = lifted_model(planar, out_of_plane=p.d)    # a Beam3DModel
+"""
+import numpy as np
+
+from ..fem.beam3d import Beam3DModel, RigidLink, Section, rect_torsion_constant
+
+
+def spatial_sections(planar_model, out_of_plane: float) -> list:
+    """One spatial Section per planar element: a rectangular one keeps its taper (depth t
+    along local y, ``out_of_plane`` along z); a general one (a root extension: A, I) keeps
+    A and I_z = I, with t = (12 I / w)^(1/3) for I_y = t w^3 / 12 and the Saint-Venant J.
+    Shear areas kappa A (the planar model's, mid-length) in y and kappa w t in z if the
+    planar model has shear."""
+    shear, w = planar_model.shear, out_of_plane
+    out = []
+    for (rect, _, t0, t1, A, I, _, kappa, tm) in planar_model.section_table:
+        if rect:
+            out.append(Section.rect(t0, w, shear=shear, depth_y_end=t1,
+                                    depth_y_mid=None if np.isnan(tm) else tm))
+            continue
+        t = (12.0 * I / w) ** (1.0 / 3.0)
+        out.append(Section(A=A, Iy=t * w**3 / 12.0, Iz=I, J=rect_torsion_constant(t, w),
+                           Ay=kappa * A if shear else None,
+                           Az=kappa * t * w if shear else None))
+    return out
+
+
+def lifted_model(planar, out_of_plane: float, point_masses=None) -> Beam3DModel:
+    """The spatial model of ``planar`` (a BeamModel) extruded by ``out_of_plane`` (m): its
+    nodes at z = 0, its rigid links as spatial ones, :func:`spatial_sections`, and
+    ``point_masses`` {node: (m, J_x, J_y, J_z)} (default none)."""
+    nodes = np.column_stack([planar.nodes, np.zeros(planar.n_nodes)])
+    rigid = [RigidLink(k.master, k.slaves) for k in planar.rigid_links]
+    return Beam3DModel(nodes, planar.elements, spatial_sections(planar, out_of_plane),
+                       planar.material, rigid_links=rigid, point_masses=point_masses or {})

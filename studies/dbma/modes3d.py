@@ -1,0 +1,83 @@
+"""The DBMA's modes in 3-D: the solid continuum (the 2-D drawing extruded through the plate
+thickness d in layers of quadratic hexahedra) beside the spatial beam model
+(:func:`flexfem.geometry.dbma.beam.dbma_beam3d_model`), paired by shape.
+
+    out = compare_modes3d(paper_design(), n_modes=10)
+    out["rows"]                # family, k, beam_hz, continuum_hz, diff_pct, mass fractions
+    out["saint_venant_rows"]   # the same without the hinges' warping restraint
+
+Both held as the 2-D modal analysis: the mounting face clamped, the pads held along x by the
+actuator (the beam: each pad-face node's x and its rotations about y and z, which a face held
+along x cannot have). The modes are sorted into an in-plane and an out-of-plane family and
+paired within each (:mod:`flexfem.studies.modes3d`). SI units; frequencies in Hz.
+"""
+import time
+
+import numpy as np
+
+from ...fem import solve_modes
+from ...fem.beam3d import Fixed, Prescribed, solve_beam3d_modes
+from ...geometry.dbma.beam import dbma_beam3d_model
+from ...geometry.dbma.drawing import DBMALayout
+from ...geometry.dbma.params import DBMAParams, paper_design
+from ..modes3d import TorsionScaled, mirror_vertices, out_of_plane_share, pair_modes, vlasov_factor
+from .analysis import build_model, modal_supports
+
+PAD_DOFS = ("x", "ry", "rz")  # what the actuator holds on a pad face
+
+
+def beam_modes3d(p: DBMAParams, layout: DBMALayout | None = None, n_modes: int = 10,
+                 warping: bool = True) -> dict:
+    """The spatial beam model's first ``n_modes``: {"f_hz", "mass_fraction" (n, 3),
+    "out_of_plane_share" (of the nodes' translations), "total_mass_kg"}. ``warping``: each
+    hinge's J times :func:`~flexfem.studies.modes3d.vlasov_factor` for its l x b x d strip
+    (the arms and members it enters hold its ends against warping, which Saint-Venant
+    torsion leaves out); leaf hinges only."""
+    layout = layout or DBMALayout()
+    if warping and layout.hinge_profile != "leaf":
+        raise ValueError(f"warping = True needs leaf hinges (a uniform strip); the layout's "
+                         f"hinge_profile is {layout.hinge_profile!r}: pass warping=False")
+    model, info = dbma_beam3d_model(p, layout)
+    if warping:
+        factors = np.ones(model.n_elements)
+        factors[info["hinge_elements"]] = vlasov_factor(p.l, p.b, p.d, p.nu)
+        model = TorsionScaled(model, factors)
+    supports = [Fixed(tuple(info["ground"]))] + [
+        Prescribed(info[pad], dof, 0.0) for pad in ("input_a", "input_b") for dof in PAD_DOFS]
+    modes = solve_beam3d_modes(model, supports, n=n_modes)
+    u = modes.shapes[:, :, :3]
+    share = np.sum(u[:, :, 2] ** 2, axis=1) / np.sum(u ** 2, axis=(1, 2))
+    return {"f_hz": modes.frequencies_hz.tolist(),
+            "mass_fraction": modes.effective_mass_fraction.tolist(),
+            "out_of_plane_share": share.tolist(), "total_mass_kg": float(modes.total_mass)}
+
+
+def continuum_modes3d(p: DBMAParams, layout: DBMALayout | None = None, n_modes: int = 10,
+                      size_factor: float = 1.0, max_dofs: int | None = None) -> dict:
+    """The solid's first ``n_modes``: {"f_hz", "mass_fraction" (n, 3), "out_of_plane_share",
+    "total_mass_kg", "dofs", "solve_s" (wall-clock s, mesh included)}."""
+    t0 = time.perf_counter()
+    model = build_model(p, layout, 3, size_factor, max_dofs=max_dofs)
+    modes = solve_modes(model, n=n_modes, supports=modal_supports())
+    points = model.mesh.mesh.p
+    mid = (points[2].min() + points[2].max()) / 2  # the plate spans 0 <= z <= d
+    shapes = np.array([modes.vertex_shape(k) for k in range(n_modes)])
+    share = out_of_plane_share(shapes, mirror_vertices(points - np.array([[0], [0], [mid]])))
+    return {"f_hz": modes.frequencies_hz.tolist(),
+            "mass_fraction": modes.effective_mass_fraction.tolist(),
+            "out_of_plane_share": share.tolist(), "total_mass_kg": float(modes.total_mass),
+            "dofs": int(model.n_dofs), "solve_s": time.perf_counter() - t0}
+
+
+def compare_modes3d(p: DBMAParams | None = None, layout: DBMALayout | None = None,
+                    n_modes: int = 10, size_factor: float = 1.0,
+                    max_dofs: int | None = None) -> dict:
+    """Beam and continuum modes side by side: {"rows" (see
+    :func:`~flexfem.studies.modes3d.pair_modes`; the beam with the hinges' warping
+    restraint), "saint_venant_rows" (without it), "beam", "saint_venant", "continuum"}."""
+    p = p or paper_design()
+    continuum = continuum_modes3d(p, layout, n_modes, size_factor, max_dofs)
+    beam = beam_modes3d(p, layout, n_modes)
+    plain = beam_modes3d(p, layout, n_modes, warping=False)
+    return {"rows": pair_modes(beam, continuum), "saint_venant_rows": pair_modes(plain, continuum),
+            "beam": beam, "saint_venant": plain, "continuum": continuum}

@@ -1,0 +1,83 @@
+"""Modes of a part and of its spatial beam model side by side, in plane and out of plane
+(shared by the mechanisms' 3-D modal comparisons: studies/eightbar/modes3d.py,
+studies/dbma/modes3d.py).
+
+A part symmetric about its mid-plane z = 0 has each mode either in plane (u_x, u_y even in z,
+u_z odd) or out of plane (u_x, u_y odd, u_z even): the share of a mode's vertex motion in the
+out-of-plane parts sorts it (0 or 1 up to the mesh's asymmetry; a planar beam model's are
+exactly 0 or 1). Within each family the k-th continuum mode is paired with the k-th beam mode.
+"""
+import numpy as np
+from scipy.spatial import cKDTree
+
+from ..fem.beam3d import Beam3DModel, rect_torsion_constant
+
+SPLIT = 0.5  # out-of-plane share above which a mode is out of plane
+
+
+def mirror_vertices(p: np.ndarray) -> np.ndarray:
+    """Index of each vertex's mirror image about z = 0 (``p`` (3, n) m). Raises ValueError
+    if the mesh is not mirror-symmetric (a vertex without its image within 1e-9 of the
+    part's size)."""
+    tree = cKDTree(p.T)
+    mirrored = p.T * np.array([1.0, 1.0, -1.0])
+    dist, index = tree.query(mirrored)
+    size = np.ptp(p, axis=1).max()
+    if dist.max() > 1e-9 * size:
+        raise ValueError(f"the mesh is not symmetric about z = 0 (a vertex {dist.max():.3g} m "
+                         "from its image); extrude the part symmetrically")
+    return index
+
+
+def out_of_plane_share(vertex_shapes, mirror: np.ndarray) -> np.ndarray:
+    """Share (0-1) of each mode's vertex motion in the out-of-plane parts: u_x, u_y odd and
+    u_z even in z. ``vertex_shapes``: (n_modes, n_vertices, 3)."""
+    u = np.asarray(vertex_shapes)
+    even, odd = (u + u[:, mirror]) / 2, (u - u[:, mirror]) / 2
+    out = np.sum(odd[:, :, :2] ** 2, axis=(1, 2)) + np.sum(even[:, :, 2] ** 2, axis=1)
+    inp = np.sum(even[:, :, :2] ** 2, axis=(1, 2)) + np.sum(odd[:, :, 2] ** 2, axis=1)
+    return out / (out + inp)
+
+
+def vlasov_factor(length: float, depth: float, width: float, nu: float) -> float:
+    """Torsional stiffness of a rectangular depth x width (m, depth << width) bar of
+    ``length`` (m) with warping restrained at both ends over its Saint-Venant one (Vlasov):
+    1 / (1 - 2 tanh(lambda L / 2) / (lambda L)), lambda^2 = G J / (E Gamma), Gamma =
+    width^3 depth^3 / 144."""
+    lam = np.sqrt(rect_torsion_constant(depth, width) / (2 * (1 + nu))
+                  / (width**3 * depth**3 / 144))
+    x = lam * length
+    return float(1 / (1 - 2 * np.tanh(x / 2) / x))
+
+
+class TorsionScaled(Beam3DModel):
+    """A beam model whose elements' J are multiplied by ``factors`` (n_elements,)."""
+
+    def __init__(self, base: Beam3DModel, factors):
+        super().__init__(base.nodes, base.elements, base.sections, base.material,
+                         rigid_links=base.rigid_links, point_masses=base.point_masses)
+        self.j_factors = np.asarray(factors, dtype=float)
+
+    def section_at(self, xi) -> dict:
+        out = super().section_at(xi)
+        out["J"] = out["J"] * self.j_factors[:, None]
+        return out
+
+
+def pair_modes(beam: dict, continuum: dict, split: float = SPLIT) -> list:
+    """Rows pairing the k-th beam and continuum mode of each family ("in plane", "out of
+    plane"), as far as both have one: {"family", "k", "beam_mode", "continuum_mode"
+    (1-based), "beam_hz", "continuum_hz", "diff_pct" (beam over continuum - 1),
+    "beam_mass_fraction", "continuum_mass_fraction" (x, y, z)}."""
+    rows = []
+    for family, out in (("in plane", False), ("out of plane", True)):
+        b = [i for i, s in enumerate(beam["out_of_plane_share"]) if (s > split) == out]
+        c = [i for i, s in enumerate(continuum["out_of_plane_share"]) if (s > split) == out]
+        for k, (i, j) in enumerate(zip(b, c)):
+            fb, fc = beam["f_hz"][i], continuum["f_hz"][j]
+            rows.append({"family": family, "k": k + 1, "beam_mode": i + 1,
+                         "continuum_mode": j + 1, "beam_hz": fb, "continuum_hz": fc,
+                         "diff_pct": 100 * (fb / fc - 1),
+                         "beam_mass_fraction": list(beam["mass_fraction"][i]),
+                         "continuum_mass_fraction": list(continuum["mass_fraction"][j])})
+    return rows
