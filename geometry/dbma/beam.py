@@ -9,10 +9,11 @@ mirrored into four quarters): each of the 16 hinges is a beam following its prof
 (leaf, filleted or circular notch: :func:`flexfem.geometry.hinge_profiles.profile_thickness`
 through :func:`flexfem.fem.beam.beam_from_profile`), each inclined arm an elastic Timoshenko
 beam of width c along its centre line, joined to its two hinges (offset +-h/2 across it) by
-rigid offsets; the input members (width a) and output members 4 and 11 (width ls) are elastic beams along
-their centre lines, member 11 clamped at its bottom (the mounting face); each pad with the part of
-its input member it spans is a rigid block, which the member's halves enter with the common root
-extension (:func:`_input_member`; docs/beam.md, "DBMA: the pad block"). Root extension: see
+rigid offsets; the input members (width a) and output members 4 and 11 (width ls) are elastic
+beams along their centre lines, member 11 clamped at its bottom (the mounting face); each pad
+with the part of its input member it spans is a rigid block, which the member's halves enter
+with the common root extension (:func:`_input_member`; docs/beam.md, "DBMA: the pad block").
+Root extension: see
 :mod:`flexfem.geometry.beam_layout` (0.38 x root thickness per root by default, with the root's
 axial compliance for a block of height c at both ends: the arm's width; the members' faces
 around a hinge are about as tall). Lengths in m.
@@ -156,7 +157,6 @@ def dbma_beam_model(p: DBMAParams, layout: DBMALayout | None = None,
     return model, {"input_a": slaves["input_a"], "input_b": slaves["input_b"],
                    "output": master, "ground": ground, "hinges": spans,
                    "hinge_elements": np.array(in_hinges)}
-
 
 
 def dbma_beam3d_model(p: DBMAParams, layout: DBMALayout | None = None,

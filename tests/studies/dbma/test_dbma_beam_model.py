@@ -170,7 +170,8 @@ def test_the_k_out_deficit_is_the_input_members(params):
         assert beam_output_stiffness(bm, info) / k["built"] - 1 < -0.03
 
 
-@pytest.mark.parametrize("params", [{}, {"b": 0.3 * MM, "l": 6 * MM}, {"e": 30 * MM, "b": 1.0 * MM}])
+@pytest.mark.parametrize("params", [{}, {"b": 0.3 * MM, "l": 6 * MM},
+                                    {"e": 30 * MM, "b": 1.0 * MM}])
 def test_leaf_hinges_are_converged_at_the_default_element_count(params):
     """The default LEAF_ELEMENTS a hinge gives R, k_in, k_out, the stress and six
     frequencies of four times as many elements to 1e-7 (a uniform leaf: each element exact

@@ -4,13 +4,12 @@ modes pair by shape (docs/beam.md, "The DBMA's out-of-plane modes")."""
 import numpy as np
 import pytest
 
+from flexfem.geometry.dbma.beam import dbma_beam_model
 from flexfem.geometry.dbma.drawing import DBMALayout
 from flexfem.geometry.dbma.params import paper_design
 from flexfem.studies.dbma.beam import beam_modal
-from flexfem.geometry.dbma.beam import dbma_beam_model
 from flexfem.studies.dbma.modes3d import beam_modes3d, compare_modes3d
-
-SPLIT = 0.5
+from flexfem.studies.modes3d import SPLIT
 
 
 def _family(out, out_of_plane):
