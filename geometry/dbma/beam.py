@@ -13,10 +13,9 @@ rigid offsets; the input members (width a) and output members 4 and 11 (width ls
 beams along their centre lines, member 11 clamped at its bottom (the mounting face); each pad
 with the part of its input member it spans is a rigid block, which the member's halves enter
 with the common root extension (:func:`_input_member`; docs/beam.md, "DBMA: the pad block").
-Root extension: see
-:mod:`flexfem.geometry.beam_layout` (0.38 x root thickness per root by default, with the root's
-axial compliance for a block of height c at both ends: the arm's width; the members' faces
-around a hinge are about as tall). Lengths in m.
+Root extension: see :mod:`flexfem.geometry.beam_layout` (0.38 x root thickness per root by
+default, with the root's axial compliance for a block of height c at both ends: the arm's
+width; the members' faces around a hinge are about as tall). Lengths in m.
 """
 import numpy as np
 
