@@ -25,7 +25,7 @@ def _params(args):
 def run_analyze(args) -> dict:
     if args.model == "beam":
         force = float(published()["loading"]["force_max_N"])
-        return {**analyze_dbma_beam(_params(args), force=force), "dim": "beam"}
+        return {**analyze_dbma_beam(_params(args), force=force, dim=args.dim), "dim": args.dim}
     return analyze_dbma(_params(args), dim=args.dim, size_factor=args.size_factor,
                         max_dofs=args.max_dofs)
 
@@ -33,7 +33,7 @@ def run_analyze(args) -> dict:
 def summarize_analyze(r: dict) -> str:
     freqs = ", ".join(f"{f:.1f}" for f in r["frequencies_hz"])
     x, y = (1e3 * v for v in r["max_von_mises_location"][:2])
-    model = "beam model" if r["dim"] == "beam" else f"{r['dim']}-D FEM"
+    model = f"{r['dim']}-D " + ("beam model" if r.get("model") == "beam" else "FEM")
     return "\n".join([
         f"DBMA, {model}, {r['dofs']} DOFs",
         f"R FEM (output / elongation)         {r['R_fem']:.3f}",
@@ -128,7 +128,9 @@ def register(subparsers):
                          help="refuse a mesh above this many unknowns (default: what half the "
                               "available memory affords)")
     analyze.add_argument("--model", choices=("continuum", "beam"), default="continuum",
-                         help="continuum: FEM (default); beam: the reduced beam model")
+                         help="continuum: FEM (default); beam: the reduced beam model (its "
+                              "statics in-plane; --dim 3: the spatial beam's modes, out of "
+                              "plane too)")
     analyze.add_argument("--json", action="store_true", help="print one JSON object")
     analyze.set_defaults(run=run_analyze, summarize=summarize_analyze)
     frf = commands.add_parser("frf", help="output compliance, FRF from actuator force to "

@@ -17,6 +17,7 @@ import numpy as np
 
 from ...fem import solve_modes
 from ...fem.beam3d import Fixed, Prescribed, solve_beam3d_modes
+from ...geometry.beam_layout import ROOT_EXTENSION
 from ...geometry.dbma.beam import dbma_beam3d_model
 from ...geometry.dbma.drawing import DBMALayout
 from ...geometry.dbma.params import DBMAParams, paper_design
@@ -27,7 +28,7 @@ PAD_DOFS = ("x", "ry", "rz")  # what the actuator holds on a pad face
 
 
 def beam_modes3d(p: DBMAParams, layout: DBMALayout | None = None, n_modes: int = 10,
-                 warping: bool = True) -> dict:
+                 warping: bool = True, root_extension: float = ROOT_EXTENSION) -> dict:
     """The spatial beam model's first ``n_modes``: {"f_hz", "mass_fraction" (n, 3),
     "out_of_plane_share" (of the nodes' translations), "total_mass_kg"}. ``warping``: each
     hinge's J times :func:`~flexfem.studies.modes3d.vlasov_factor` for its l x b x d strip
@@ -37,7 +38,7 @@ def beam_modes3d(p: DBMAParams, layout: DBMALayout | None = None, n_modes: int =
     if warping and layout.hinge_profile != "leaf":
         raise ValueError(f"warping = True needs leaf hinges (a uniform strip); the layout's "
                          f"hinge_profile is {layout.hinge_profile!r}: pass warping=False")
-    model, info = dbma_beam3d_model(p, layout)
+    model, info = dbma_beam3d_model(p, layout, root_extension)
     if warping:
         factors = np.ones(model.n_elements)
         factors[info["hinge_elements"]] = vlasov_factor(p.l, p.b, p.d, p.nu)

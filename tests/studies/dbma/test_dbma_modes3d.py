@@ -64,3 +64,32 @@ def test_beside_the_3d_continuum():
         assert plain[key]["beam_hz"] < rows[key]["continuum_hz"] < rows[key]["beam_hz"]
     # the solid's lowest out-of-plane mode lies just below its working mode (in plane 2)
     assert rows["out of plane", 1]["continuum_hz"] < rows["in plane", 2]["continuum_hz"]
+
+
+def test_cli_beam_model_modes_follow_dim(capsys):
+    """``dbma analyze --model beam``: --dim 3 (the default) gives the spatial beam's modes,
+    an out-of-plane one among them, with the same statics and working mode as --dim 2."""
+    import json
+
+    from flexfem.studies.cli import main
+
+    out = {}
+    for dim in ("2", "3"):
+        assert main(["dbma", "analyze", "--model", "beam", "--dim", dim, "--json"]) == 0
+        out[dim] = json.loads(capsys.readouterr().out)
+    assert out["3"]["k_in"] == out["2"]["k_in"]
+    assert out["3"]["fn_working"] == pytest.approx(out["2"]["fn_working"], rel=1e-8)
+    assert np.array(out["2"]["effective_mass"]).shape == (6, 2)
+    mass = np.array(out["3"]["effective_mass"])  # an out-of-plane mode: z mass as large as
+    assert mass[:, 2].max() > 0.3 * mass[:, 1].max()  # the working mode's y mass (0.55, 0.85)
+    assert out["3"]["torsion"] == "Vlasov"
+    assert main(["dbma", "analyze", "--model", "beam"]) == 0
+    text = capsys.readouterr().out
+    assert "3-D beam model" in text and "screening grade" in text
+
+
+def test_beam_analysis_refuses_a_bad_dim():
+    from flexfem.studies.dbma.beam import analyze_dbma_beam
+
+    with pytest.raises(ValueError, match="dim = 4"):
+        analyze_dbma_beam(paper_design(), dim=4)
