@@ -113,3 +113,17 @@ def test_beam_analysis_refuses_a_bad_dim():
 
     with pytest.raises(ValueError, match="dim = 4"):
         analyze_dbma_beam(paper_design(), dim=4)
+
+
+@pytest.mark.slow
+def test_report_row_of_the_lowest_out_of_plane_mode():
+    """The DBMA beam section's 3-D row: the spatial beam (Vlasov) above the solid, and the
+    solid's out-of-plane mode below its working mode."""
+    import math
+
+    from flexfem.studies.dbma.beam_report import out_of_plane_metric
+
+    metric, solid_working = out_of_plane_metric(paper_design())
+    assert math.isnan(metric.prbm) and metric.unit == "Hz"
+    assert metric.continuum < metric.beam < 1.1 * metric.continuum
+    assert metric.continuum < solid_working
