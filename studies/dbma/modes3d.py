@@ -75,10 +75,11 @@ def compare_modes3d(p: DBMAParams | None = None, layout: DBMALayout | None = Non
                     max_dofs: int | None = None) -> dict:
     """Beam and continuum modes side by side: {"rows" (see
     :func:`~flexfem.studies.modes3d.pair_modes`; the beam with the hinges' warping
-    restraint), "saint_venant_rows" (without it), "beam", "saint_venant", "continuum"}."""
-    p = p or paper_design()
+    restraint where they are leaves, else Saint-Venant's), "saint_venant_rows" (without
+    it), "beam", "saint_venant", "continuum"}."""
+    p, layout = p or paper_design(), layout or DBMALayout()
     continuum = continuum_modes3d(p, layout, n_modes, size_factor, max_dofs)
-    beam = beam_modes3d(p, layout, n_modes)
     plain = beam_modes3d(p, layout, n_modes, warping=False)
+    beam = beam_modes3d(p, layout, n_modes) if layout.hinge_profile == "leaf" else plain
     return {"rows": pair_modes(beam, continuum), "saint_venant_rows": pair_modes(plain, continuum),
             "beam": beam, "saint_venant": plain, "continuum": continuum}
