@@ -60,6 +60,18 @@ def beam_modes(model, info, n: int = 4) -> list:
             for f, m in zip(modes.frequencies_hz, modes.effective_mass)]
 
 
+def spatial_beam_modes(params: EightBarFlexureParams, n: int = 4,
+                       root_extension: float = ROOT_EXTENSION) -> list:
+    """beam_modes' rows from the spatial beam model (flexible links, the flexures' torsion
+    with Vlasov's warping restraint; docs/beam.md), with "m_eff_z_kg", as the 3-D FEM's."""
+    from .modes3d import beam_modes as spatial
+
+    out = spatial(params, n, warping=True, root_extension=root_extension)
+    mass = np.array(out["mass_fraction"]) * out["total_mass_kg"]
+    return [{"f_hz": float(f), "m_eff_x_kg": float(m[0]), "m_eff_y_kg": float(m[1]),
+             "m_eff_z_kg": float(m[2])} for f, m in zip(out["f_hz"], mass)]
+
+
 def beam_stroke(model, info, params: EightBarFlexureParams, travel: float,
                 steps: int = 8, tol: float = NEWTON_TOL) -> dict:
     """Large deflection from the middle to +travel/2 (m), mirrored for the -x half: path
@@ -104,9 +116,12 @@ def _rigid_deviation(rigid, travel: float):
 def analyze_eightbar_beam(params: EightBarFlexureParams | None = None,
                           travel: float | None = None, steps: int = 8, n_modes: int = 4,
                           nonlinear: bool = True, n_per_flexure: int = 24,
-                          root_extension: float = ROOT_EXTENSION) -> dict:
+                          root_extension: float = ROOT_EXTENSION, dim: int = 2) -> dict:
     """The continuum :func:`~flexfem.studies.eightbar.analysis.analyze_eightbar`'s keys from
-    the beam model (the path's -x half mirrored)."""
+    the beam model (the path's -x half mirrored). ``dim`` 3: the modes of the spatial beam
+    model (:func:`spatial_beam_modes`: out-of-plane modes too); the rest is planar."""
+    if dim not in (2, 3):
+        raise ValueError(f"dim = {dim!r} must be 2 or 3")
     params = params or EightBarFlexureParams()
     travel = params.rigid.travel if travel is None else float(travel)
     if not (math.isfinite(travel) and 0 < travel < params.rigid.ground_spacing):
@@ -121,7 +136,9 @@ def analyze_eightbar_beam(params: EightBarFlexureParams | None = None,
                                    "flexure": _flexure_of(info, where[0])},
            "dofs": int(model.n_dofs), "model": "beam", "root_extension": root_extension}
     if n_modes:
-        out["modes"] = beam_modes(model, info, n_modes)
+        out["modes"] = (beam_modes(model, info, n_modes) if dim == 2
+                        else spatial_beam_modes(params, n_modes, root_extension))
+        out["dim"] = dim
     if nonlinear:
         coarse = eightbar_beam_model(params, min(n_per_flexure, STROKE_ELEMENTS), root_extension)
         nl = beam_stroke(*coarse, params, travel, steps)

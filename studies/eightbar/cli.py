@@ -44,7 +44,8 @@ def _summarize_eightbar_trace(result: dict) -> str:
 def _run_eightbar_analyze(args) -> dict:
     if args.dim == 3:
         if args.model == "beam":
-            raise ValueError("--dim 3 is the solid continuum; --model beam is planar (drop one)")
+            out = analyze_eightbar_beam(travel=args.travel, n_modes=4, nonlinear=False, dim=3)
+            return {**summary_row(out), "model": "beam"}
         out = analyze_eightbar(travel=args.travel, size_factor=2.0 if args.quick else 1.0,
                                n_modes=4, nonlinear=False, dim=3)
         return summary_row(out)
@@ -61,7 +62,8 @@ def _summarize_eightbar_analyze(r: dict) -> str:
     loc = r["max_stress_location"]
     if r.get("dim") == 3:
         modes = ", ".join(f"{m['f_hz']:.4g}" for m in r["modes"])
-        return (f"eight-bar flexure suspension, 3-D FEM ({r['dofs']} DOFs): k_x = {r['k_x']:.4g} "
+        model = "3-D beam model" if r.get("model") == "beam" else "3-D FEM"
+        return (f"eight-bar flexure suspension, {model} ({r['dofs']} DOFs): k_x = {r['k_x']:.4g} "
                 f"N/m (pseudo-rigid-body {r['k_x_prbm']:.4g}), k_y = {r['k_y']:.4g} N/m; linear "
                 f"max von Mises {r['max_von_mises'] / 1e6:.4g} MPa at x = "
                 f"{r['travel_m'] / 2 * 1e3:.4g} mm, in {loc['flexure']}\nmodes {modes} Hz "
@@ -145,7 +147,8 @@ def add_eightbar_commands(eb_sub) -> None:
                    help="continuum: 2-D FEM (default); beam: the reduced beam model (~0.1 s)")
     p.add_argument("--dim", type=int, choices=(2, 3), default=2,
                    help="continuum in 2-D (plane stress, default) or 3-D (the solid, 240k DOFs:"
-                   " linear and modal only, ~40 s)")
+                   " linear and modal only, ~40 s); with --model beam, 3: the spatial beam's "
+                   "modes (out of plane too)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(run=_run_eightbar_analyze, summarize=_summarize_eightbar_analyze)
     p = eb_sub.add_parser("driving", help="the Ch. 6 driving linkage (two lambdas, two "

@@ -20,6 +20,7 @@ from ...fem import Fixed, solve_modes
 from ...fem.beam3d import solve_beam3d_modes
 from ...fem.beam3d import Fixed as BeamFixed
 from ...fem.beam3d.energy import strain_energy_share
+from ...geometry.beam_layout import ROOT_EXTENSION
 from ...geometry.eightbar.beam3d import eightbar_beam3d_model
 from ...geometry.eightbar.flexure import EightBarFlexureParams
 from ..modes3d import (TorsionScaled, mirror_vertices, out_of_plane_share, pair_modes,
@@ -60,7 +61,7 @@ def continuum_modes(params: EightBarFlexureParams, n_modes: int = 10, size_facto
 
 
 def beam_modes(params: EightBarFlexureParams, n_modes: int = 10, warping: bool = False,
-               links: str = "flexible") -> dict:
+               links: str = "flexible", root_extension: float = ROOT_EXTENSION) -> dict:
     """The spatial beam model's first ``n_modes`` (anchors clamped): {"f_hz",
     "mass_fraction", "out_of_plane_share" (of the nodes' translations), "total_mass_kg",
     "links_energy_share" (strain energy outside the flexures: links and anchors; 0 with
@@ -68,7 +69,7 @@ def beam_modes(params: EightBarFlexureParams, n_modes: int = 10, warping: bool =
     (:func:`~flexfem.geometry.eightbar.beam3d.eightbar_beam3d_model`). ``warping``: each
     flexure's J times its :func:`vlasov_factor` (the beam's Saint-Venant torsion leaves the
     roots' warping restraint out)."""
-    model, info = eightbar_beam3d_model(params, links=links)
+    model, info = eightbar_beam3d_model(params, root_extension=root_extension, links=links)
     if warping:
         factors = np.ones(len(model.elements))
         nu = model.material.nu

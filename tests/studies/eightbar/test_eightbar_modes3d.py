@@ -134,9 +134,20 @@ def test_cli_mesh_dim_3_writes_the_solid(tmp_path, capsys):
     assert {"fixed", "end_effector", "flexure_A_L"} <= set(out["groups"])
 
 
-def test_cli_analyze_dim_3_refuses_the_planar_beam_model(capsys):
-    assert main(["eightbar", "analyze", "--dim", "3", "--model", "beam"]) == 2
-    assert "--dim 3" in capsys.readouterr().err
+def test_cli_analyze_dim_3_beam_model_gives_the_spatial_modes(capsys):
+    """``--dim 3 --model beam``: the planar beam's statics, the spatial beam's modes (Vlasov
+    torsion, flexible links): the lowest out of plane, as in the solid, then the drive mode
+    of the planar model."""
+    assert main(["eightbar", "analyze", "--dim", "3", "--model", "beam", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert main(["eightbar", "analyze", "--model", "beam", "--json"]) == 0
+    planar = json.loads(capsys.readouterr().out)
+    assert out["k_x"] == planar["k_x"] and out["model"] == "beam"
+    first, drive = out["modes"][0], out["modes"][1]
+    assert first["m_eff_z_kg"] > 10 * (first["m_eff_x_kg"] + first["m_eff_y_kg"])
+    assert drive["f_hz"] == pytest.approx(planar["modes"][0]["f_hz"], rel=0.01)
+    assert main(["eightbar", "analyze", "--dim", "3", "--model", "beam"]) == 0
+    assert "3-D beam model" in capsys.readouterr().out
 
 
 @pytest.mark.slow
@@ -151,3 +162,10 @@ def test_cli_analyze_dim_3_quick(capsys):
     assert 1.0 <= out["k_x"] / plane["k_x"] <= 1.15
     first = out["modes"][0]
     assert first["m_eff_z_kg"] > 10 * (first["m_eff_x_kg"] + first["m_eff_y_kg"])
+
+
+def test_beam_analysis_refuses_a_bad_dim():
+    from flexfem.studies.eightbar.beam import analyze_eightbar_beam
+
+    with pytest.raises(ValueError, match="dim = 4"):
+        analyze_eightbar_beam(dim=4, n_modes=0, nonlinear=False)
