@@ -97,11 +97,11 @@ def dbma_modes3d(rows, p):
     """Six modes of the DBMA in 3-D: the spatial beam model (Vlasov torsion on the hinges)
     against the 3-D solid (size_factor 1), mesh and model builds included."""
     from flexfem.studies.dbma.modes3d import beam_modes3d, continuum_modes3d
+    from flexfem.studies.modes3d import SPLIT, working_index
 
     def summary(out):
-        oop = [f for f, s in zip(out["f_hz"], out["out_of_plane_share"]) if s > 0.5]
-        working = max(range(len(out["f_hz"])), key=lambda k: out["mass_fraction"][k][1])
-        return {"out_of_plane_1_hz": oop[0], "working_hz": out["f_hz"][working]}
+        oop = [f for f, s in zip(out["f_hz"], out["out_of_plane_share"]) if s > SPLIT]
+        return {"out_of_plane_1_hz": oop[0], "working_hz": out["f_hz"][working_index(out)]}
 
     tb, b = timed(lambda: beam_modes3d(p, n_modes=6), 5)
     tc, c = timed(lambda: continuum_modes3d(p, n_modes=6), 2)

@@ -39,6 +39,12 @@ def out_of_plane_share(vertex_shapes, mirror: np.ndarray) -> np.ndarray:
     return out / (out + inp)
 
 
+def working_index(out: dict) -> int:
+    """0-based index of the mode (of a beam_modes3d / continuum_modes3d output) with the
+    largest effective mass fraction along y, the output axis."""
+    return int(np.argmax(np.asarray(out["mass_fraction"])[:, 1]))
+
+
 def vlasov_factor(length: float, depth: float, width: float, nu: float) -> float:
     """Torsional stiffness of a rectangular depth x width (m, depth << width) bar of
     ``length`` (m) with warping restrained at both ends over its Saint-Venant one (Vlasov):

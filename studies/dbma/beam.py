@@ -72,12 +72,13 @@ def beam_modal3d(p: DBMAParams, layout: DBMALayout, n_modes: int,
     """beam_modal's keys from the spatial beam model (in-plane and out-of-plane modes;
     effective_mass n x 3), the hinges' torsion with Vlasov's warping restraint where they
     are leaves ("torsion": "Vlasov" or "Saint-Venant")."""
+    from ..modes3d import working_index
     from .modes3d import beam_modes3d
 
     leaf = layout.hinge_profile == "leaf"
     modes = beam_modes3d(p, layout, n_modes, warping=leaf, root_extension=root_extension)
     fraction = np.array(modes["mass_fraction"])
-    k = int(np.argmax(fraction[:, 1])) + 1
+    k = working_index(modes) + 1
     note = ("out-of-plane modes from the spatial beam model, screening grade: with Vlasov's "
             "warping restraint on the hinges it reads above the 3-D solid, without it below "
             "(+5 to +7 % and -10 to -16 % on the paper's design, docs/beam.md); decide with "

@@ -60,16 +60,16 @@ def out_of_plane_metric(p) -> tuple:
     """(Metric, the solid's working-mode frequency Hz): the lowest out-of-plane mode of the
     spatial beam model (the hinges' torsion with Vlasov's warping restraint) against the 3-D
     solid (size_factor 1), no closed form."""
+    from ..modes3d import working_index
     from .modes3d import compare_modes3d
 
     out = compare_modes3d(p, n_modes=6)
     row = next(r for r in out["rows"] if r["family"] == "out of plane")
     solid = out["continuum"]
-    working = max(range(len(solid["f_hz"])), key=lambda k: solid["mass_fraction"][k][1])
     return Metric("lowest out-of-plane mode (spatial beam; 3-D solid)", "Hz", math.nan,
                   row["beam_hz"], row["continuum_hz"],
                   note="3-D only; the default solid mesh reads 1-2 % high (docs/beam.md)"
-                  ), solid["f_hz"][working]
+                  ), solid["f_hz"][working_index(solid)]
 
 
 def reproduce(out_dir, quick: bool = False) -> dict:

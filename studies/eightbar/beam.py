@@ -134,11 +134,11 @@ def analyze_eightbar_beam(params: EightBarFlexureParams | None = None,
            "max_von_mises": lin["max_von_mises"], "travel_m": travel,
            "max_stress_location": {"x": float(where[2][0]), "y": float(where[2][1]),
                                    "flexure": _flexure_of(info, where[0])},
-           "dofs": int(model.n_dofs), "model": "beam", "root_extension": root_extension}
+           "dofs": int(model.n_dofs), "model": "beam", "root_extension": root_extension,
+           "dim": dim}
     if n_modes:
         out["modes"] = (beam_modes(model, info, n_modes) if dim == 2
                         else spatial_beam_modes(params, n_modes, root_extension))
-        out["dim"] = dim
     if nonlinear:
         coarse = eightbar_beam_model(params, min(n_per_flexure, STROKE_ELEMENTS), root_extension)
         nl = beam_stroke(*coarse, params, travel, steps)
