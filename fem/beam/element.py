@@ -1,11 +1,14 @@
 """The planar beam element: local stiffness and mass, and Crisfield's co-rotational kinematics.
 
-Local element: axial bar + bending with the interdependent-interpolation (IIE) shape
-functions of Friedman & Kosmatka (1993), exact for a prismatic Timoshenko beam (phi =
-12 E I / (kappa G A L^2); phi = 0 gives the cubic Hermite Euler-Bernoulli element).
-Stiffness and consistent mass (translational + rotary inertia) are integrated with 6-point
-Gauss quadrature, exact for the stiffness of a linearly or quadratically tapered rectangular
-section (I of degree 6 at most).
+Local element: axial bar + bending. The bending stiffness is the inverse of the element's
+exact flexibility (:func:`bending_stiffness`: with no load along it the moment is linear and
+the shear constant, whatever the section does), so a tapered element, with or without
+Timoshenko shear, is exact in statics up to the quadrature of 1 / EI and 1 / kappa G A; for
+a prismatic one it is the classical element. The consistent mass (translational + rotary
+inertia) uses the interdependent-interpolation (IIE) shape functions of Friedman & Kosmatka
+(1993), exact for a prismatic Timoshenko beam (phi = 12 E I / (kappa G A L^2) from the
+mid-length section; phi = 0: the cubic Hermite functions). Integrals along an element use
+6-point Gauss quadrature.
 The co-rotational element (Crisfield, Non-linear Finite Element Analysis of Solids and
 Structures, vol. 1, sec. 7.3) carries the basic forces (N, M1, M2) of the local element's
 natural deformations (extension, end rotations relative to the chord).
@@ -130,18 +133,34 @@ def local_stiffness(model) -> np.ndarray:
     return _local_stiffness(distinct)[distinct.inverse]
 
 
-def _local_stiffness(model) -> np.ndarray:
-    L, mat = model.lengths, model.material
-    phi = shear_parameter(model)
-    A, I, _ = sections(model, XI)
-    _, dNw, Np, dNp = gauss_shape_functions(model, phi)
+def bending_stiffness(EI, kGA, L) -> np.ndarray:
+    """(n_e, 4, 4) bending stiffness (N/m, N, N m) for the DOFs (v1, theta1, v2, theta2) of
+    elements of length L (n_e,) m whose EI (N m^2) and kappa G A (N) (n_e, 6) at the Gauss
+    points XI may vary along them (kGA None: no shear deformation). With no load along an
+    element its moment is linear, M = (xi - 1) M1 + xi M2, and its shear (M1 + M2) / L
+    constant, so the flexibility of the end moments is exact (up to the quadrature):
+    f = int b b^T / EI dx + int dx / (kappa G A L^2) [1 1; 1 1], b = (xi - 1, xi). Its
+    inverse acts on the end rotations relative to the chord, theta_i - (v2 - v1) / L."""
+    n = len(L)
     wdx = WXI[None, :] * L[:, None]
-    Kb = _gram(mat.E * I * wdx, dNp, dNp)
+    b = np.broadcast_to(np.stack([XI - 1.0, XI], axis=-1), (n, len(XI), 2))
+    f = _gram(wdx / EI, b, b)
+    if kGA is not None:
+        f = f + ((wdx / kGA).sum(axis=1) / L**2)[:, None, None]
+    chord = np.zeros((n, 2, 4))  # basic deformations from the DOFs
+    chord[:, :, 0], chord[:, :, 2] = (1.0 / L)[:, None], (-1.0 / L)[:, None]
+    chord[:, 0, 1] = chord[:, 1, 3] = 1.0
+    return np.matmul(chord.transpose(0, 2, 1), np.linalg.inv(f) @ chord)
+
+
+def _local_stiffness(model) -> np.ndarray:
+    mat = model.material
+    A, I, _ = sections(model, XI)
+    kGA = None
     if model.shear:
         G = mat.E / (2.0 * (1.0 + mat.nu))
-        gamma = dNw - Np
         kGA = model.section_table[:, 7][:, None] * G * A
-        Kb += _gram(kGA * wdx, gamma, gamma)
+    Kb = bending_stiffness(mat.E * I, kGA, model.lengths)
     K = np.zeros((model.n_elements, 6, 6))
     K[:, np.array(BEND)[:, None], np.array(BEND)[None, :]] = Kb
     ea = axial_stiffness(model)

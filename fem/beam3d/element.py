@@ -2,16 +2,17 @@
 
 Local DOFs per node (u, v, w, r_x, r_y, r_z) along the element's axes (x along it). Axial
 bar (EA), Saint-Venant torsion (GJ) and two bending planes: x-y (v, r_z; Iz, shear area
-Ay) and x-z (w, r_y; Iy, Az, with r_y = -dw/dx). Each bending plane uses the planar
-element's interdependent-interpolation shape functions (Friedman & Kosmatka 1993, fem/beam/
-element.py), exact for a prismatic Timoshenko beam; no shear area: Euler-Bernoulli. The
-consistent mass holds translational (rho A), rotary (rho Iy, rho Iz) and torsional
-(rho Ip, Ip = Iy + Iz) inertia, integrated with the same shape functions. Sections may be
+Ay) and x-z (w, r_y; Iy, Az, with r_y = -dw/dx). Each bending plane is the planar element's
+(fem/beam/element.py): the stiffness the inverse of the exact flexibility (exact in statics
+for tapered sections too), the mass from the interdependent-interpolation shape functions
+(Friedman & Kosmatka 1993), exact for a prismatic Timoshenko beam; no shear area:
+Euler-Bernoulli. The consistent mass holds translational (rho A), rotary (rho Iy, rho Iz)
+and torsional (rho Ip, Ip = Iy + Iz) inertia. Sections may be
 rectangles tapered along local y (model.Section.rect), as the planar model's.
 """
 import numpy as np
 
-from ..beam.element import WXI, XI, bending_shape_functions
+from ..beam.element import WXI, XI, bending_shape_functions, bending_stiffness
 
 XY = [1, 5, 7, 11]   # (v1, rz1, v2, rz2)
 XZ = [2, 4, 8, 10]   # (w1, ry1, w2, ry2)
@@ -24,12 +25,9 @@ def _bending(E, I, G, As, I_mid, rho, A, L):
     """(n_e, 4, 4) stiffness and mass of one bending plane (planar DOF order v, theta); I,
     A (n_e, k) at the Gauss points; phi from the mid-length I_mid and the shear area As."""
     phi = np.where(np.isfinite(As), 12.0 * E * I_mid / (G * As * L**2), 0.0)
-    Nw, dNw, Np, dNp = bending_shape_functions(XI, L, phi)
+    Nw, _, Np, _ = bending_shape_functions(XI, L, phi)
     wdx = WXI[None, :] * L[:, None]
-    K = np.einsum("eg,egi,egj->eij", E * I * wdx, dNp, dNp)
-    gamma = dNw - Np
-    kGA = np.where(np.isfinite(As), G * As, 0.0)
-    K += np.einsum("e,eg,egi,egj->eij", kGA, wdx, gamma, gamma)
+    K = bending_stiffness(E * I, np.broadcast_to((G * As)[:, None], I.shape), L)  # inf: no shear
     M = (np.einsum("eg,egi,egj->eij", rho * A * wdx, Nw, Nw)
          + np.einsum("eg,egi,egj->eij", rho * I * wdx, Np, Np))
     return K, M
