@@ -1,4 +1,6 @@
-"""Published parameters and reference values, each with the document it came from.
+"""Published parameters and reference values, each with the document it came from, and
+tables flexfem computes once (each names the script that writes it and what it computes:
+notch_factors.toml).
 
 Every number a source document gives lives in a TOML file here, never in code. Lengths in the
 files are in the units the source prints (the key says which, e.g. ``l_mm``); loaders convert

@@ -23,6 +23,7 @@ model here applies the same rule to every root, so the beam models of all mechan
 calibration; ``root_extension=0`` turns both off.
 All lengths in m.
 """
+from dataclasses import replace
 import math
 
 import numpy as np
@@ -44,17 +45,19 @@ def axial_root_compliance(block_height: float, thickness: float) -> float:
 
 def root_section(out_of_plane: float, thickness: float, length: float,
                  block_height: float | None) -> Section:
-    """Section of a root-extension element of ``length`` (m): the root's bending stiffness;
-    its area such that the element's axial compliance is the root's (axial_root_compliance)
-    when ``block_height`` (m) is given (else the root's area); no stress reported there (c =
-    None: the root stress is the flexure's own end)."""
+    """Section of a root-extension element of ``length`` (m): the root's area and bending
+    stiffness; its axial stiffness factor such that the element's axial compliance is the
+    root's (axial_root_compliance) when ``block_height`` (m) is given (else the root's own);
+    no stress reported there (c = None: the root stress is the flexure's own end). Its mass
+    is the root's section's (the factor acts on the stiffness only)."""
     I = out_of_plane * thickness ** 3 / 12
     area = out_of_plane * thickness
+    factor = 1.0
     if block_height is not None:
         alpha = axial_root_compliance(block_height, thickness)
-        if alpha > 0:
-            area = length * out_of_plane / alpha
-    return Section(A=area, I=I, c=None)
+        if alpha > 0:  # length / (E A factor) = alpha / (E w)
+            factor = length / (thickness * alpha)
+    return Section(A=area, I=I, c=None, axial_factor=factor)
 
 
 def check_root_extension(value) -> float:
@@ -78,9 +81,17 @@ def filleted_thickness(length: float, width: float, radius: float):
     return t
 
 
+def corrected_sections(sections, factors) -> list:
+    """``sections`` with E I, kappa G A and E A multiplied by ``factors.bending``,
+    ``.shear`` and ``.axial`` (a notch's 2-D correction: :mod:`.hinge_patch`)."""
+    return [replace(s, bending_factor=s.bending_factor * factors.bending,
+                    shear_factor=s.shear_factor * factors.shear,
+                    axial_factor=s.axial_factor * factors.axial) for s in sections]
+
+
 def profile_beam(a, b, thickness_fn, out_of_plane: float, breaks=(), n_total: int = 24,
                  root_extension: float = ROOT_EXTENSION, blocks=(None, None),
-                 vectorized: bool = False) -> BeamMesh:
+                 vectorized: bool = False, factors=None) -> BeamMesh:
     """A flexure from ``a`` to ``b`` (m) of in-plane thickness ``thickness_fn(s)`` (s from
     a, m) and out-of-plane width ``out_of_plane`` (m), as beam elements: pieces between the
     arc lengths ``breaks`` (e.g. the fillets' tangent points) meshed separately, about
@@ -98,6 +109,9 @@ def profile_beam(a, b, thickness_fn, out_of_plane: float, breaks=(), n_total: in
     pieces = [beam_from_profile(a + s0 * d, a + s1 * d, (lambda s, s0=s0: thickness_fn(s0 + s)),
                                 out_of_plane, max(4, int(round(n_total * (s1 - s0) / length))),
                                 vectorized) for s0, s1 in zip(cuts[:-1], cuts[1:])]
+    if factors is not None:
+        pieces = [BeamMesh(m.nodes, m.elements, corrected_sections(m.sections, factors),
+                           m.point_nodes) for m in pieces]
     start, end, root, tip = a, b, None, None
     if e0 > 0:
         start = a - e0 * d

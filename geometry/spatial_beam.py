@@ -4,6 +4,8 @@ drawing extruded by ``out_of_plane``).
 
     model = lifted_model(planar, out_of_plane=p.d)    # a Beam3DModel
 """
+from dataclasses import replace
+
 import numpy as np
 
 from ..fem.beam3d import Beam3DModel, RigidLink, Section, rect_torsion_constant
@@ -14,18 +16,20 @@ def spatial_sections(planar_model, out_of_plane: float) -> list:
     along local y, ``out_of_plane`` along z); a general one (a root extension: A, I) keeps
     A and I_z = I, with t = (12 I / w)^(1/3) for I_y = t w^3 / 12 and the Saint-Venant J.
     Shear areas kappa A (the planar model's, mid-length) in y and kappa w t in z if the
-    planar model has shear."""
+    planar model has shear. The planar stiffness factors (a notch's 2-D correction, a root's
+    axial compliance) act on the in-plane bending, shear and axial stiffness."""
     shear, w = planar_model.shear, out_of_plane
     out = []
-    for (rect, _, t0, t1, A, I, _, kappa, tm) in planar_model.section_table:
-        if rect:
-            out.append(Section.rect(t0, w, shear=shear, depth_y_end=t1,
-                                    depth_y_mid=None if np.isnan(tm) else tm))
+    for (rect, _, t0, t1, A, I, _, kappa, tm, bending, axial) in planar_model.section_table:
+        if rect:  # Section.rect's shear area is 5/6 of the rectangle's
+            sec = Section.rect(t0, w, shear=shear, depth_y_end=t1,
+                               depth_y_mid=None if np.isnan(tm) else tm)
+            out.append(replace(sec, factors=(bending, kappa / (5.0 / 6.0), axial)))
             continue
         t = (12.0 * I / w) ** (1.0 / 3.0)
         out.append(Section(A=A, Iy=t * w**3 / 12.0, Iz=I, J=rect_torsion_constant(t, w),
                            Ay=kappa * A if shear else None,
-                           Az=kappa * t * w if shear else None))
+                           Az=kappa * t * w if shear else None, factors=(bending, 1.0, axial)))
     return out
 
 

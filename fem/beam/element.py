@@ -90,7 +90,7 @@ def axial_stiffness(model) -> np.ndarray:
     if quadratic.any():
         A_g, _, _ = sections(model, XI)
         mean = np.where(quadratic, 1.0 / (WXI / A_g).sum(axis=1), mean)
-    return model.material.E * mean / model.lengths
+    return model.material.E * model.section_table[:, 10] * mean / model.lengths
 
 
 class _Distinct:
@@ -160,7 +160,7 @@ def _local_stiffness(model) -> np.ndarray:
     if model.shear:
         G = mat.E / (2.0 * (1.0 + mat.nu))
         kGA = model.section_table[:, 7][:, None] * G * A
-    Kb = bending_stiffness(mat.E * I, kGA, model.lengths)
+    Kb = bending_stiffness(mat.E * model.section_table[:, 9:10] * I, kGA, model.lengths)
     K = np.zeros((model.n_elements, 6, 6))
     K[:, np.array(BEND)[:, None], np.array(BEND)[None, :]] = Kb
     ea = axial_stiffness(model)

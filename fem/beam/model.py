@@ -38,13 +38,19 @@ def dof_index(dof) -> int:
     raise ValueError(f"dof = {dof!r} must be 0/1/2 or one of 'x', 'y', 'theta'")
 
 
+SECTION_COLUMNS = 11  # Section.row()'s length: the model's section_table columns
+
+
 @dataclass(frozen=True)
 class Section:
     """Cross-section of one element. Rectangular: ``width`` (out of plane, m) and in-plane
     ``thickness`` (m) at the element's first node, ``thickness_end`` at its second (linear
     taper; default constant), ``thickness_mid`` at its middle (quadratic taper; default
     none); A = w t, I = w t^3 / 12, c = t / 2. General: area ``A`` (m^2), second moment
-    ``I`` (m^4) and outer-fibre distance ``c`` (m, None: no stress)."""
+    ``I`` (m^4) and outer-fibre distance ``c`` (m, None: no stress). ``shear_factor`` kappa
+    (shear area kappa A); ``bending_factor`` and ``axial_factor`` multiply E I and E A in
+    the stiffness only (1: beam theory; geometry/hinge_patch.py sets them on a notch from
+    its 2-D model), not in the mass or the stress."""
 
     width: float | None = None
     thickness: float | None = None
@@ -54,6 +60,8 @@ class Section:
     I: float | None = None
     c: float | None = None
     shear_factor: float = 5.0 / 6.0
+    bending_factor: float = 1.0
+    axial_factor: float = 1.0
 
     def __post_init__(self):
         rect = self.width is not None or self.thickness is not None
@@ -68,7 +76,8 @@ class Section:
             positive("A", self.A)
             positive("I", self.I)
             positive("c", self.c, allow_none=True)
-        positive("shear_factor", self.shear_factor)
+        for name in ("shear_factor", "bending_factor", "axial_factor"):
+            positive(name, getattr(self, name))
 
     @classmethod
     def rect(cls, width: float, thickness: float, thickness_end: float | None = None,
@@ -83,14 +92,17 @@ class Section:
         return self.width is not None
 
     def row(self) -> tuple:
-        """(is_rect, w, t0, t1, A, I, c, kappa, t_mid) with NaN for what does not apply."""
+        """(is_rect, w, t0, t1, A, I, c, kappa, t_mid, bending_factor, axial_factor) with NaN
+        for what does not apply (SECTION_COLUMNS)."""
         nan = math.nan
+        factors = (self.bending_factor, self.axial_factor)
         if self.is_rect:
             t1 = self.thickness if self.thickness_end is None else self.thickness_end
             tm = nan if self.thickness_mid is None else self.thickness_mid
-            return (1.0, self.width, self.thickness, t1, nan, nan, nan, self.shear_factor, tm)
+            return (1.0, self.width, self.thickness, t1, nan, nan, nan, self.shear_factor, tm,
+                    *factors)
         c = nan if self.c is None else self.c
-        return (0.0, nan, nan, nan, self.A, self.I, c, self.shear_factor, nan)
+        return (0.0, nan, nan, nan, self.A, self.I, c, self.shear_factor, nan, *factors)
 
 
 @dataclass(frozen=True)
@@ -207,7 +219,8 @@ def rect_sections(width: float, t0, t1, tm) -> list:
     for a, b, c in zip(np.asarray(t0).tolist(), np.asarray(t1).tolist(), np.asarray(tm).tolist()):
         sec = object.__new__(Section)  # frozen dataclass: its fields set as __init__ would
         sec.__dict__.update(width=width, thickness=a, thickness_end=b, thickness_mid=c, A=None,
-                            I=None, c=None, shear_factor=5.0 / 6.0)
+                            I=None, c=None, shear_factor=5.0 / 6.0, bending_factor=1.0,
+                            axial_factor=1.0)
         out.append(sec)
     return out
 
@@ -283,7 +296,8 @@ class BeamModel:
         if len(secs) != len(self.elements) or not all(isinstance(s, Section) for s in secs):
             raise ValueError(f"sections: need one Section or {len(self.elements)} Sections")
         self.sections = secs
-        self.section_table = np.array([s.row() for s in secs], dtype=float).reshape(-1, 9)
+        self.section_table = np.array([s.row() for s in secs],
+                                      dtype=float).reshape(-1, SECTION_COLUMNS)
         d = self.nodes[self.elements[:, 1]] - self.nodes[self.elements[:, 0]]
         self.lengths = np.hypot(d[:, 0], d[:, 1])
         if np.any(self.lengths <= 0):
@@ -332,7 +346,7 @@ class BeamModel:
     def section_at(self, xi):
         """(A m^2, I m^4, c m) of every element at fractions ``xi`` (k,) along it: (n_e, k)."""
         xi = np.atleast_1d(np.asarray(xi, dtype=float))
-        rect, w, t0, t1, A, I, c, _, tm = self.section_table.T
+        rect, w, t0, t1, A, I, c, _, tm = self.section_table.T[:9]
         t = t0[:, None] + (t1 - t0)[:, None] * xi[None, :]
         quadratic = np.isfinite(tm)
         if quadratic.any():

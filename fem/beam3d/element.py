@@ -21,13 +21,18 @@ AXIAL, TORSION = [0, 6], [3, 9]
 BASIC = [6, 3, 4, 5, 9, 10, 11]  # (u2, r1, r2): natural deformations about the chord
 
 
-def _bending(E, I, G, As, I_mid, rho, A, L):
+def _bending(E, I, G, As, I_mid, rho, A, A_mid, L, factors=(1.0, 1.0)):
     """(n_e, 4, 4) stiffness and mass of one bending plane (planar DOF order v, theta); I,
-    A (n_e, k) at the Gauss points; phi from the mid-length I_mid and the shear area As."""
+    A (n_e, k) at the Gauss points; phi from the mid-length I_mid and the shear area As (of
+    the mid-length section A_mid, following A along a tapered element, as the planar
+    model's kappa A); ``factors`` (bending, shear) multiply E I and G As in the stiffness."""
+    fb, fs = (np.broadcast_to(np.asarray(f, dtype=float), L.shape) for f in factors)
+    As = fs * As  # the planar model's shear factor, in the mass's shape functions too
     phi = np.where(np.isfinite(As), 12.0 * E * I_mid / (G * As * L**2), 0.0)
     Nw, _, Np, _ = bending_shape_functions(XI, L, phi)
     wdx = WXI[None, :] * L[:, None]
-    K = bending_stiffness(E * I, np.broadcast_to((G * As)[:, None], I.shape), L)  # inf: no shear
+    K = bending_stiffness(fb[:, None] * E * I, (G * As / A_mid)[:, None] * A,
+                          L)  # As inf: no shear
     M = (np.einsum("eg,egi,egj->eij", rho * A * wdx, Nw, Nw)
          + np.einsum("eg,egi,egj->eij", rho * I * wdx, Np, Np))
     return K, M
@@ -54,14 +59,17 @@ def local_matrices(model):
     bar = np.array([[1.0, -1.0], [-1.0, 1.0]])
     Nu = np.stack([1.0 - XI, XI], axis=-1)
     wdx = WXI[None, :] * L[:, None]
-    _put(K, AXIAL, (E / ((WXI / s["A"]).sum(axis=1) * L))[:, None, None] * bar)
+    factors = shear["factors"]
+    _put(K, AXIAL, (E * factors[:, 2] / ((WXI / s["A"]).sum(axis=1) * L))[:, None, None] * bar)
     _put(M, AXIAL, np.einsum("eg,gi,gj->eij", rho * s["A"] * wdx, Nu, Nu))
     _put(K, TORSION, (G / ((WXI / s["J"]).sum(axis=1) * L))[:, None, None] * bar)
     _put(M, TORSION, np.einsum("eg,gi,gj->eij", rho * s["Ip"] * wdx, Nu, Nu))
-    Kz, Mz = _bending(E, s["Iz"], G, shear["Ay"], mid["Iz"][:, 0], rho, s["A"], L)
+    A_mid = mid["A"][:, 0]
+    Kz, Mz = _bending(E, s["Iz"], G, shear["Ay"], mid["Iz"][:, 0], rho, s["A"], A_mid, L,
+                      (factors[:, 0], factors[:, 1]))
     _put(K, XY, Kz)
     _put(M, XY, Mz)
-    Ky, My = _bending(E, s["Iy"], G, shear["Az"], mid["Iy"][:, 0], rho, s["A"], L)
+    Ky, My = _bending(E, s["Iy"], G, shear["Az"], mid["Iy"][:, 0], rho, s["A"], A_mid, L)
     _put(K, XZ, Ky, XZ_SIGN)
     _put(M, XZ, My, XZ_SIGN)
     return K, M

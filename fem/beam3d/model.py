@@ -70,7 +70,10 @@ class Section:
     (m^4), optional shear areas ``Ay``, ``Az`` (m^2; None: no shear deformation in that
     direction, Euler-Bernoulli). Prismatic, or a rectangle tapered along local y
     (``Section.rect``; A, Iy, Iz, J are then those at the element's first node). A rectangle
-    keeps its depths along local y and z (m; None for a general section: no stress)."""
+    keeps its depths along local y and z (m; None for a general section: no stress).
+    ``factors`` (bending, shear, axial) multiply E Iz, G Ay and E A in the stiffness only
+    (bending in the local x-y plane: a planar model's notch correction or root extension,
+    carried into 3-D by geometry/spatial_beam.py), not the mass."""
 
     A: float
     Iy: float
@@ -81,6 +84,7 @@ class Section:
     taper: tuple | None = None  # (depth_y at node 1, at node 2, at mid or NaN, depth_z)
     depth_y: float | None = None
     depth_z: float | None = None
+    factors: tuple = (1.0, 1.0, 1.0)
 
     def __post_init__(self):
         for name in ("A", "Iy", "Iz", "J"):
@@ -93,8 +97,8 @@ class Section:
              depth_y_end: float | None = None, depth_y_mid: float | None = None):
         """Rectangle of ``depth_y`` along local y by ``depth_z`` along local z (m); depth_y
         tapered linearly to ``depth_y_end`` at the second node, or quadratically through
-        ``depth_y_mid`` too (the planar model's tapers); shear areas 5/6 A (of the mid-length
-        section) if ``shear``."""
+        ``depth_y_mid`` too (the planar model's tapers); shear areas 5/6 A if ``shear`` (given
+        for the mid-length section; the stiffness follows A along the taper)."""
         b, h = positive("depth_y", depth_y), positive("depth_z", depth_z)
         end = positive("depth_y_end", depth_y_end, allow_none=True)
         mid = positive("depth_y_mid", depth_y_mid, allow_none=True)
@@ -235,10 +239,12 @@ class Beam3DModel:
         return len(self.elements)
 
     def section_table(self) -> dict:
-        """Shear areas Ay, Az (m^2, inf where shear is off) as (n_e,) arrays."""
+        """Shear areas Ay, Az (m^2, inf where shear is off) as (n_e,) arrays, and the
+        stiffness factors (n_e, 3)."""
         shear = lambda name: np.array([math.inf if getattr(s, name) is None else getattr(s, name)
                                        for s in self.sections], dtype=float)
-        return {"Ay": shear("Ay"), "Az": shear("Az")}
+        return {"Ay": shear("Ay"), "Az": shear("Az"),
+                "factors": np.array([s.factors for s in self.sections], dtype=float)}
 
     def section_at(self, xi) -> dict:
         """A, Iy, Iz, J, Ip (m^2, m^4) and the rectangles' depth_y, depth_z (m; NaN for a

@@ -22,6 +22,7 @@ import numpy as np
 from ...fem.beam import BeamMesh, BeamModel, RigidLink, Section, beam_chain
 from ...fem.materials import Material
 from ..beam_layout import ROOT_EXTENSION, check_root_extension, profile_beam
+from ..hinge_patch import notch_factors
 from ..hinge_profiles import profile_thickness
 from ..spatial_beam import lifted_model
 from .drawing import DBMALayout, check_layout, quarter_rects
@@ -106,7 +107,8 @@ def _input_member(bld, links, p, layout, J, pad, sx, hinge_ends, root_extension)
 
 def dbma_beam_model(p: DBMAParams, layout: DBMALayout | None = None,
                     root_extension: float = ROOT_EXTENSION, arm_elements: int = 8,
-                    shear: bool = True, elements_per_hinge: int | None = None) -> tuple:
+                    shear: bool = True, elements_per_hinge: int | None = None,
+                    notch_correction: bool = True) -> tuple:
     """(BeamModel, info) of the DBMA. info: "input_a" / "input_b" (masters of the left /
     right input members, on their pads' faces), "output" (master of member 4, on its top
     face), "ground" (the bottom of member 11, its mounting face), "hinges" {label: (first,
@@ -122,8 +124,11 @@ def dbma_beam_model(p: DBMAParams, layout: DBMALayout | None = None,
     n_hinge = elements_per_hinge or (LEAF_ELEMENTS if layout.hinge_profile == "leaf"
                                      else PROFILE_ELEMENTS)
     blocks = (p.c, p.c)  # the height of the faces the hinges enter (arm ends; members, ~)
+    factors = None
+    if notch_correction and layout.hinge_profile == "circular":
+        factors = notch_factors("circular", p.l, p.b, layout.hinge_fillet_radius, p.nu)
     hinge = profile_beam((0.0, 0.0), (p.l, 0.0), fn, p.d, breaks, n_hinge, root_extension,
-                         blocks, vectorized=True)
+                         blocks, vectorized=True, factors=factors)
     x_out, x_in, l, h = p.ls / 2, p.ls / 2 + 2 * p.l + p.e, p.l, p.h
     bld, links = _Builder(), []
     slaves = {"input_a": [], "input_b": [], "output": []}

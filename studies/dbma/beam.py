@@ -8,7 +8,8 @@ along y with the pads held along x (and their rotation: the continuum holds ever
 x); modes with the pads held along x, the working mode the one of largest effective mass along
 y. The beam stress is |N|/A + |M|c/I: no stress concentration at the sharp hinge roots, where
 the continuum's von Mises peak is singular (mesh-dependent); with filleted hinges the peak is
-that nominal stress times the shoulder fillet's published K_t (:mod:`.beam_stress`). SI units.
+that nominal stress times the shoulder fillet's published K_t, with circular notches times the
+neck's K_t from the notch's 2-D model (:mod:`.beam_stress`). SI units.
 """
 import math
 
@@ -21,14 +22,14 @@ from ...geometry.dbma.beam import dbma_beam_model
 from ...geometry.dbma.drawing import DBMALayout
 from ...geometry.dbma.params import DBMAParams
 from .analysis import dbma_material, params_from_dict
-from .beam_stress import dbma_fillet_stress
+from .beam_stress import dbma_fillet_stress, dbma_notch_stress
 from .figures import analytical_metrics
 
 
 def beam_static(model, info, force: float, peak_stress=None) -> dict:
     """R_fem, R_fem_per_side, k_in (N/m), elongation and output displacement (m), max beam
     stress (Pa) under the actuator force pair ``force`` (N). ``peak_stress(model, state)``
-    (optional, e.g. the fillets' K_t) returns {"fillet_stress", ...}: max_von_mises is then
+    (optional, e.g. the fillets' K_t) returns {"peak_stress", ...}: max_von_mises is then
     its peak, the beam's own in "nominal_stress"."""
     a, b, top = info["input_a"], info["input_b"], info["output"]
     s = solve_beam_static(model, [Fixed(tuple(info["ground"]))],
@@ -42,7 +43,7 @@ def beam_static(model, info, force: float, peak_stress=None) -> dict:
            "k_in": force / elongation, "max_von_mises": s.max_stress}
     if peak_stress is not None:
         out.update(peak_stress(model, s), nominal_stress=s.max_stress)
-        out["max_von_mises"] = out["fillet_stress"]
+        out["max_von_mises"] = out["peak_stress"]
     return out
 
 
@@ -100,8 +101,9 @@ def analyze_dbma_beam(p: DBMAParams, layout: DBMALayout | None = None, force: fl
         raise ValueError(f"dim = {dim!r} must be 2 or 3")
     layout = layout or DBMALayout()
     model, info = dbma_beam_model(p, layout, root_extension)
-    peak = ((lambda m, s: dbma_fillet_stress(p, layout, m, s))
-            if layout.hinge_profile == "filleted" else None)
+    peak = {"filleted": lambda m, s: dbma_fillet_stress(p, layout, m, s),
+            "circular": lambda m, s: dbma_notch_stress(p, layout, m, info, s)
+            }.get(layout.hinge_profile)
     out = {**analytical_metrics(p), **beam_static(model, info, force, peak),
            "k_out": beam_output_stiffness(model, info), "dofs": int(model.n_dofs),
            "model": "beam", "root_extension": root_extension}

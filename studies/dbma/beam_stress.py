@@ -1,14 +1,16 @@
-"""Peak stress of a filleted hinge from the beam model: the nominal stress in the hinge's
-straight part times a published stress-concentration factor of the shoulder fillet where it
-meets the body (data/stress_concentration.toml: Roark's Table 17.1, case 17, fits to
-Peterson's charts; docs/beam.md, "DBMA: peak stress at the fillets").
+"""Peak stress of a filleted or notch hinge from the beam model: the nominal stress times a
+stress-concentration factor K_t. A filleted hinge's is the published factor of the shoulder
+fillet where its straight part meets the body (data/stress_concentration.toml: Roark's Table
+17.1, case 17, fits to Peterson's charts; docs/beam.md, "DBMA: peak stress at the fillets");
+a circular notch's is its neck's, from the notch's 2-D model
+(:func:`flexfem.geometry.hinge_patch.notch_factors`).
 
     sigma_peak = K_t,tension |N| / (w b) + K_t,bending 6 |M| / (w b^2)
 
 with N and M the beam's axial force and bending moment at the fillet's tangent point (where
 the straight part of thickness b begins; M is linear along a hinge, so its largest value on
-the straight part is there). The two peaks lie at the same point of the fillet's arc and add
-(linear elasticity). SI units.
+the straight part is there), or at a notch's neck. The two peaks lie at the same point (of
+the fillet's arc, of the neck's surface) and add (linear elasticity). SI units.
 """
 import math
 
@@ -77,14 +79,44 @@ def filleted_peak_stress(model, state, thickness: float, kt_tension: float,
     return float(sigma[e]), e
 
 
+def notch_peak_stress(model, state, elements, kt_tension: float, kt_bending: float) -> tuple:
+    """(peak stress (Pa), element) of notch hinges: K_t times the nominal stress |N| / (w t)
+    + 6 |M| / (w t^2) at both ends of each of ``elements`` (the notches' rectangular beam
+    elements), the largest: at a neck, where t is least and the K_t belongs."""
+    elements = np.asarray(elements)
+    table = model.section_table[elements]
+    w, t = table[:, 1:2], table[:, 2:4]  # the width; the thickness at both ends
+    N = np.abs(state.axial_force[elements])[:, None]
+    M = np.abs(state.end_moments[elements])
+    sigma = kt_tension * N / (w * t) + kt_bending * 6 * M / (w * t ** 2)
+    sigma = np.nan_to_num(sigma, nan=-np.inf)
+    k = int(np.argmax(sigma))
+    return float(sigma.flat[k]), int(elements[k // 2])
+
+
+def _located(model, peak: float, e: int, kt_t: float, kt_b: float) -> dict:
+    xy = model.nodes[model.elements[e]].mean(axis=0)
+    return {"peak_stress": peak, "kt_tension": kt_t, "kt_bending": kt_b,
+            "peak_stress_location": [float(xy[0]), float(xy[1])]}
+
+
 def dbma_fillet_stress(p, layout, model, state) -> dict:
     """The DBMA's filleted-hinge peak stress (Pa) from a beam state: K_t of both loads for
-    the hinge's shoulder (:func:`hinge_shoulder`), 'fillet_stress', 'kt_tension',
+    the hinge's shoulder (:func:`hinge_shoulder`), 'peak_stress', 'kt_tension',
     'kt_bending' and where (m)."""
     D, r = hinge_shoulder(p, layout), layout.hinge_fillet_radius
     kt_t = shoulder_fillet_kt(p.b, D, r, "tension")
     kt_b = shoulder_fillet_kt(p.b, D, r, "bending")
     peak, e = filleted_peak_stress(model, state, p.b, kt_t, kt_b)
-    xy = model.nodes[model.elements[e]].mean(axis=0)
-    return {"fillet_stress": peak, "kt_tension": kt_t, "kt_bending": kt_b,
-            "fillet_stress_location": [float(xy[0]), float(xy[1])]}
+    return _located(model, peak, e, kt_t, kt_b)
+
+
+def dbma_notch_stress(p, layout, model, info, state) -> dict:
+    """The DBMA's circular-notch peak stress (Pa) from a beam state: the neck's K_t of both
+    loads (:func:`flexfem.geometry.hinge_patch.notch_factors`); dbma_fillet_stress's keys."""
+    from ...geometry.hinge_patch import notch_factors
+
+    f = notch_factors("circular", p.l, p.b, layout.hinge_fillet_radius, p.nu)
+    peak, e = notch_peak_stress(model, state, info["hinge_elements"], f.kt_tension,
+                                f.kt_bending)
+    return _located(model, peak, e, f.kt_tension, f.kt_bending)

@@ -106,7 +106,8 @@ def test_block_height_is_the_blocks_chord_across_the_beam():
 
 def test_axial_root_compliance_where_the_block_is_declared():
     """The guide's leaves enter base and stage (31 mm across) end-on: each root extension
-    element carries the root's axial compliance (0.61 ln(H / t) - 0.24) / (E w)."""
+    element carries the root's axial compliance (0.61 ln(H / t) - 0.24) / (E w), by its
+    stiffness factor; its area, and so its mass, stay the root's own w t."""
     from flexfem.geometry.beam_layout import axial_root_compliance
     spec = load_spec(EXAMPLES / "parallel_guide" / "guide.toml")
     p = spec.constants
@@ -115,8 +116,10 @@ def test_axial_root_compliance_where_the_block_is_declared():
     roots = [e for e, sec in enumerate(model.sections) if not sec.is_rect]
     assert len(roots) == 4
     for e in roots:
-        compliance = model.lengths[e] / model.sections[e].A  # x E w
+        sec = model.sections[e]
+        compliance = model.lengths[e] / (sec.A * sec.axial_factor)  # x E w
         assert compliance * W_GUIDE == pytest.approx(axial_root_compliance(H, p["t"]))
+        assert sec.A == pytest.approx(W_GUIDE * p["t"])
 
 
 def test_root_offset_is_where_the_whole_section_has_left_the_face():

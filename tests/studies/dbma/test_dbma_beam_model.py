@@ -108,15 +108,47 @@ def test_dbma_beam_model_against_the_continuum(params, layout):
     assert beam["k_out"] == pytest.approx(cont["k_out"], rel=0.05)
 
 
-def test_the_notch_deficit_grows_with_t_over_r():
-    """A circular notch between two blocks: the beam model (Paros-Weisbord's plane-section
-    integral along the profile) is stiffer than the 2-D continuum, outside the 3 % band, and
-    more so for the thicker notch (t/R = 0.67 against 0.2): docs/beam.md."""
+@pytest.mark.slow
+@pytest.mark.parametrize("params", [{}, {"b": 0.3 * MM}, {"h": 1.2 * MM}])
+def test_dbma_with_circular_notches_against_the_continuum(params):
+    """Circular notch hinges (t/R = 0.27, 0.14, 0.27): with each notch's 2-D correction
+    the beam's R, k_in, k_out and working frequency are within 3 % of the 2-D continuum and
+    its peak stress (the neck's K_t times the nominal) within 10 % (measured: within 2.2 %,
+    stress 0.7-0.9 %); bare beam theory of the notch was 4.6-8.6 % stiff in k_in."""
+    from flexfem.fem import Force, solve_static
+    from flexfem.geometry.dbma.beam import dbma_beam_model
+    from flexfem.studies.dbma import analysis as fem
+    from flexfem.studies.dbma.beam import analyze_dbma_beam, beam_static
+
+    p = dataclasses.replace(paper_design(), **params)
+    lay = DBMALayout(hinge_profile="circular")
+    model = fem.build_model(p, lay, 2, 1.0)
+    static = fem.static_response(model, 100.0)
+    probe = solve_static(model, fem.modal_supports(), [Force("output", (0.0, 100.0))])
+    cont = {"R_fem": static["R_fem"], "k_in": static["k_in"],
+            "k_out": 100.0 / float(probe.mean_displacement("output")[1]),
+            "fn_working": fem.modal_response(model, 6)[0]["fn_working"]}
+    beam = analyze_dbma_beam(p, lay)
+    for key, value in cont.items():
+        assert beam[key] == pytest.approx(value, rel=0.03), key
+    assert beam["max_von_mises"] == pytest.approx(static["max_von_mises"], rel=0.10)
+    assert beam["kt_bending"] > 1.0 and beam["nominal_stress"] < beam["max_von_mises"]
+    bare = beam_static(*dbma_beam_model(p, lay, notch_correction=False), 100.0)
+    assert bare["k_in"] / cont["k_in"] - 1 > 0.04
+
+
+def test_the_notch_correction_brings_a_notch_between_blocks_into_the_band():
+    """A circular notch between two blocks (l/b = 10, t/R = 0.2): bare beam theory
+    (Paros-Weisbord's plane sections) is 7 % stiffer than the 2-D continuum in bending; with
+    the notch's own 2-D correction and the root extension, as the mechanisms build it, within
+    1 % (measured -0.03 %). Axially the junction with the much taller blocks is left: 18 %
+    stiff (docs/beam.md, "Notch hinges: the 2-D patch")."""
     from flexfem.studies.dbma.beam_slenderness import TRUST_LIMIT, slenderness_rows
 
-    rows = {r["l_over_b"]: r for r in slenderness_rows((3.0, 10.0), ("circular",))}
-    thick, thin = rows[3.0]["bending_error"], rows[10.0]["bending_error"]
-    assert thick < thin < -TRUST_LIMIT
+    row, = slenderness_rows((10.0,), ("circular",))
+    assert row["bending_error_bare"] < -2 * TRUST_LIMIT
+    assert abs(row["bending_error"]) < 0.01
+    assert -0.2 < row["axial_error"] < -0.15
 
 
 def _member_cells_away_from_roots(model, p, layout, margin):
