@@ -111,9 +111,14 @@ def reproduce(out_dir, quick: bool = False) -> dict:
         "beam stress is nominal (the continuum's sharp hinge corners are singular). Over the "
         "slenderness of one hinge, the beam model with the root extension stays within 3 % of "
         f"the continuum from l/b = {leaf_from:g} for a sharp-cornered leaf, in bending and "
-        "axially; without it, it is too stiff by ~b / l; a circular notch keeps its 2-D "
-        "deficit, which grows with t / R (the beam follows Paros-Weisbord's plane-section "
-        "integral): screen with the beam model, decide with the continuum."
+        "axially; without it, it is too stiff by ~b / l. A circular notch's beam is "
+        "corrected by the notch's own 2-D model (its stiffness and its neck's K_t, "
+        "geometry/hinge_patch.py)"
+        + ("" if quick else
+           f": in bending it stays within 3 % from l/b = {trusted_from(rows, 'circular'):g} "
+           "(t/R = 2 b / l), while axially the notch's junction with the specimen's blocks, "
+           "several times taller than its ends, leaves it 16-18 % stiff")
+        + ". Screen with the beam model, decide with the continuum."
         + ("" if quick else
            " Out of plane (3-D), the spatial beam model with the hinges' warping restraint "
            f"puts the lowest mode at {spatial[0].beam:.0f} Hz, next to its working mode "
