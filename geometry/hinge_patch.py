@@ -38,8 +38,7 @@ from ..fem.compliance import compliance_matrix
 from ..fem.gmsh_session import gmsh_session
 from ..fem.mesh import mesh_from_gmsh
 from .beam_layout import profile_beam
-from .hinge_profiles import (ARC_ELEMENTS, add_hinge_surface, check_hinge_profile, half_height,
-                             profile_thickness)
+from .hinge_profiles import ARC_ELEMENTS, add_hinge_surface, check_hinge_profile, profile_thickness
 
 NECK_ELEMENTS = 12  # P2 triangles across the local thickness: the factors to 0.3 % (24: table)
 NECK_REFINEMENT = 3  # at the neck's surface the triangles are b / (3 NECK_ELEMENTS): its K_t
@@ -49,6 +48,8 @@ BEAM_ELEMENTS = 80  # the reference beam of the profile (its own error < 1e-5)
 # is left at 1; from 8 % up it is the patch's; between, blended, so it is continuous in t/R
 SHEAR_SHARE = (0.02, 0.08)
 TABLE = "notch_factors.toml"
+PROFILE_SAMPLES = 257  # a general profile's outline: a spline through this many samples
+NOTCH_DEPTH = 1.5  # a notch's ends are at least this many times its least thickness
 
 
 @dataclass(frozen=True)
@@ -135,14 +136,84 @@ def _check(profile, l, b, fillet_radius, nu) -> None:
 @functools.lru_cache(maxsize=512)
 def _patch_factors(profile: str, l_over_b: float, r_over_b: float, nu: float,
                    neck_elements: int) -> NotchFactors:
-    b, w = 1e-3, 1e-3  # the factors are scale-free: any size gives the same
+    b = 1e-3  # the factors are scale-free: any size gives the same
     l, rf = l_over_b * b, (r_over_b * b if profile == "filleted" else b)
-    material = Material("notch_patch", E=200e9, nu=nu, rho=1.0)
     thickness = lambda s: profile_thickness(profile, l, b, rf, s)
-    patch = Model(_patch_mesh(profile, l, b, rf, thickness, neck_elements), material,
+    outline = lambda occ: add_hinge_surface(occ, 0.0, l, 0.0, b, profile, rf)
+    breaks = (rf, l - rf) if profile == "filleted" else ()
+    neck = l / 2 if profile == "circular" else None  # a fillet's peak is at its fillets
+    return _fit(thickness, l, breaks, nu, outline, neck, neck_elements)
+
+
+def profile_factors(thickness, length: float, nu: float,
+                    neck_elements: int = NECK_ELEMENTS) -> NotchFactors:
+    """NotchFactors of a straight flexure of ``length`` (m) whose in-plane thickness is
+    ``thickness(s)`` (m, s from its first end), symmetric about its centre line: its outline
+    a spline through 257 samples of the profile (a model file's notch, any shape); K_t at its
+    thinnest section. Computed once per shape in a process (the key: the samples)."""
+    if not (isinstance(length, (int, float)) and math.isfinite(length) and length > 0):
+        raise ValueError(f"profile_factors: length = {length!r} must be a finite number > 0 (m)")
+    s = np.linspace(0.0, length, PROFILE_SAMPLES)
+    t = np.array([float(thickness(x)) for x in s])
+    if not np.all(np.isfinite(t) & (t > 0)):
+        raise ValueError("profile_factors: the thickness must be finite and > 0 along the "
+                         "flexure")
+    if not (isinstance(nu, (int, float)) and math.isfinite(nu) and -1 < nu < 0.5):
+        raise ValueError(f"profile_factors: nu = {nu!r} must be a number in (-1, 0.5)")
+    b = t.min()
+    return _sampled_factors(round(length / b, 9), tuple(np.round(t / b, 9)), float(nu),
+                            int(neck_elements))
+
+
+def is_notch(thickness, length: float) -> bool:
+    """Whether the profile t(s) over ``length`` (m) is a notch: thinnest inside it (not at an
+    end), at least NOTCH_DEPTH times thicker at both ends, and within 1 % of its least
+    thickness over less than a quarter of its length (a circular notch: 0.1 sqrt(t/R); a
+    filleted leaf's straight part is longer; a leaf or a taper is not a notch)."""
+    t = np.array([float(thickness(x)) for x in np.linspace(0.0, length, PROFILE_SAMPLES)])
+    b = t.min()
+    return bool(min(t[0], t[-1]) >= NOTCH_DEPTH * b and np.mean(t <= 1.01 * b) < 0.25)
+
+
+@functools.lru_cache(maxsize=512)
+def _sampled_factors(l_over_b: float, t_over_b: tuple, nu: float,
+                     neck_elements: int) -> NotchFactors:
+    b = 1e-3
+    l = l_over_b * b
+    s = np.linspace(0.0, l, len(t_over_b))
+    t = np.asarray(t_over_b) * b
+    thickness = _spline(s, t)
+    k = int(np.argmin(t))
+
+    def outline(occ):
+        point = lambda x, y: occ.addPoint(x, y, 0.0)
+        top = [point(x, y / 2) for x, y in zip(s, t)]
+        bottom = [point(x, -y / 2) for x, y in zip(s, t)]
+        loop = [occ.addSpline(top), occ.addLine(top[-1], bottom[-1]),
+                occ.addSpline(bottom[::-1]), occ.addLine(bottom[0], top[0])]
+        return occ.addPlaneSurface([occ.addCurveLoop(loop)])
+
+    return _fit(thickness, l, (), nu, outline, s[k], neck_elements, arcs=False)
+
+
+def _spline(s, t):
+    """t(s) (vectorized) through the samples, as the outline's splines draw it."""
+    from scipy.interpolate import CubicSpline
+
+    spline = CubicSpline(s, t)
+    return lambda x: spline(np.clip(x, s[0], s[-1]))
+
+
+def _fit(thickness, l: float, breaks, nu: float, outline, neck, neck_elements: int,
+         arcs: bool = True):
+    """NotchFactors of the flexure ``outline(occ)`` draws along [0, l] (m) against its beam
+    of profile ``thickness`` (m); K_t at the section ``neck`` (m from the start; None: NaN)."""
+    w = 1e-3
+    b = float(thickness(neck if neck is not None else l / 2))
+    material = Material("notch_patch", E=200e9, nu=nu, rho=1.0)
+    patch = Model(_patch_mesh(outline, l, thickness, neck, neck_elements, arcs), material,
                   PlaneStress(w), order=2)
     C2 = compliance_matrix(patch, [Fixed("root")], "tip", point=(l, 0.0)).matrix
-    breaks = (rf, l - rf) if profile == "filleted" else ()
     beam = profile_beam((0.0, 0.0), (l, 0.0), thickness, w, breaks, BEAM_ELEMENTS, 0.0,
                         vectorized=True)
     C_shear, C_bend = (_beam_compliance(beam, material, shear) for shear in (True, False))
@@ -156,9 +227,9 @@ def _patch_factors(profile: str, l_over_b: float, r_over_b: float, nu: float,
     if weight > 0 and patch_shear > 0:
         shear = 1.0 + weight * (beam_shear / patch_shear - 1.0)
     kt_bending = kt_tension = math.nan
-    if profile == "circular":  # its peak is at the neck, mid-length
-        kt_bending = _neck_stress(patch, l, b, moment=1.0) / (6.0 / (w * b ** 2))
-        kt_tension = _neck_stress(patch, l, b, force=(1.0, 0.0)) / (1.0 / (w * b))
+    if neck is not None:
+        kt_bending = _neck_stress(patch, neck, b, moment=1.0) / (6.0 / (w * b ** 2))
+        kt_tension = _neck_stress(patch, neck, b, force=(1.0, 0.0)) / (1.0 / (w * b))
     return NotchFactors(float(bending), float(shear), float(axial), kt_bending, kt_tension)
 
 
@@ -168,33 +239,39 @@ def _beam_compliance(mesh, material, shear: bool) -> np.ndarray:
     return beam_compliance(model, [BeamFixed(first)], last)
 
 
-def _neck_stress(patch, l: float, b: float, moment: float = 0.0, force=(0.0, 0.0)) -> float:
-    """Largest von Mises stress (Pa) at the neck's two surface points under the tip face's
-    ``moment`` (N m) or ``force`` (N), the root clamped."""
+def _neck_stress(patch, x: float, b: float, moment: float = 0.0, force=(0.0, 0.0)) -> float:
+    """Largest von Mises stress (Pa) at the surface points (x, +-b / 2) of the neck under the
+    tip face's ``moment`` (N m) or ``force`` (N), the root clamped."""
     res = solve_static(patch, [Fixed("root")], [],
                        rigid_faces=[RigidFace("tip", moment=moment, force=force)])
     y = 0.5 * b * (1 - 1e-6)
-    s = res.stress_at(np.array([[l / 2, y], [l / 2, -y]]))
+    s = res.stress_at(np.array([[x, y], [x, -y]]))
     sxx, syy, sxy = s[:, 0, 0], s[:, 1, 1], s[:, 0, 1]
     return float(np.sqrt(sxx ** 2 - sxx * syy + syy ** 2 + 3 * sxy ** 2).max())
 
 
-def _patch_mesh(profile: str, l: float, b: float, rf: float, thickness, neck_elements: int):
-    """The hinge alone along [0, l] (m): triangles of about thickness(x) / ``neck_elements``,
-    down to b / (NECK_REFINEMENT neck_elements) at the neck's surface points (l / 2, +-b / 2);
-    boundary groups 'root' (x = 0) and 'tip' (x = l)."""
-    height = 2 * half_height(profile, l, b, rf)
+def _patch_mesh(outline, l: float, thickness, neck, neck_elements: int, arcs: bool = True):
+    """The flexure ``outline(occ)`` draws (its surface tag) along [0, l] (m): triangles of
+    about thickness(x) / ``neck_elements``, down to t / (NECK_REFINEMENT neck_elements) at
+    the neck's surface points (``neck``, +-t / 2; none if None); boundary groups 'root'
+    (x = 0) and 'tip' (x = l). ``arcs``: the outline's curves are arcs (curvature sizing on)."""
+    b = float(thickness(neck if neck is not None else l / 2))
     fine = b / (NECK_REFINEMENT * neck_elements)
+    xs = np.linspace(0.0, l, PROFILE_SAMPLES)
+    ts = np.asarray(thickness(xs), dtype=float)  # the size follows these (gmsh asks often)
 
     def size(dim, tag, x, y, z, lc):
-        local = float(thickness(min(max(x, 0.0), l))) / neck_elements
-        return min(lc, local, fine + 0.5 * math.hypot(x - l / 2, abs(y) - b / 2))
+        local = float(np.interp(x, xs, ts)) / neck_elements
+        if neck is not None:
+            local = min(local, fine + 0.5 * math.hypot(x - neck, abs(y) - b / 2))
+        return min(lc, local)
 
     with gmsh_session("notch_patch") as gmsh:
         occ = gmsh.model.occ
-        surface = add_hinge_surface(occ, 0.0, l, 0.0, b, profile, rf)
+        surface = outline(occ)
         occ.synchronize()
         gmsh.model.addPhysicalGroup(2, [surface], name="body")
+        height = max(float(thickness(0.0)), float(thickness(l)), b)
         eps = 1e-3 * min(l, b) + 1e-7  # OCC's bounding boxes are 1e-7 m larger
         for name, x in (("root", 0.0), ("tip", l)):
             ends = gmsh.model.getEntitiesInBoundingBox(x - eps, -height, -1.0, x + eps,
@@ -202,7 +279,9 @@ def _patch_mesh(profile: str, l: float, b: float, rf: float, thickness, neck_ele
             gmsh.model.addPhysicalGroup(1, [t for _, t in ends], name=name)
         for key in ("Mesh.MeshSizeExtendFromBoundary", "Mesh.MeshSizeFromPoints"):
             gmsh.option.setNumber(key, 0)
-        gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", ARC_ELEMENTS)
+        # curvature sizing resolves the exact profiles' arcs; on a sampled profile's splines
+        # it costs seconds and the thickness sizing alone gives the same factors (to 1e-4)
+        gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", ARC_ELEMENTS if arcs else 0)
         gmsh.option.setNumber("Mesh.MeshSizeMax", height / neck_elements)
         gmsh.model.mesh.setSizeCallback(size)
         gmsh.option.setNumber("Mesh.Algorithm", 6)

@@ -12,14 +12,18 @@ beam theory has not; docs/beam.md, "Joints and slenderness"), axially too where 
 declares the block it enters (its chord across the beam is the block height H). A beam
 leaving a declared block's face at an angle begins where its whole section has left the block,
 (t/2) cot(phi) along it (:mod:`.roots`), and is extended from there. Where two beams cross
-they are joined by a rigid joint (:mod:`.crossings`). Lengths in m.
+they are joined by a rigid joint (:mod:`.crossings`). A straight beam whose profile is a notch
+(:func:`flexfem.geometry.hinge_patch.is_notch`) is corrected by the notch's own 2-D model
+(:func:`flexfem.geometry.hinge_patch.profile_factors`: its stiffness in rotation, shear and
+extension), unless ``[beam_model] notch_correction = false``. Lengths in m.
 """
 import math
 
 import numpy as np
 
 from ...fem.beam import BeamMesh, BeamModel, RigidLink, beam_chain, beam_from_profile
-from ..beam_layout import root_section
+from ..beam_layout import corrected_sections, root_section
+from ..hinge_patch import is_notch, profile_factors
 from .crossings import crossings
 from .roots import root_offset
 
@@ -28,11 +32,26 @@ def _error(where: str, message: str) -> ValueError:
     return ValueError(f"{where}: {message}")
 
 
-def _line_mesh(line, tol, cuts=None, trim=(0.0, 0.0)) -> BeamMesh:
+def notch_factors_of(line, nu: float):
+    """The 2-D correction (NotchFactors) of a [[beam]] whose profile is a notch, None for any
+    other: a beam of one straight segment (collinear points) whose thickness is least inside
+    it and at least 1.5 times that at both ends (:func:`..hinge_patch.is_notch`)."""
+    points = np.asarray(line.points, float)
+    chord = points[-1] - points[0]
+    length = float(np.linalg.norm(chord))
+    d = chord / length
+    offsets = d[0] * (points[:, 1] - points[0, 1]) - d[1] * (points[:, 0] - points[0, 0])
+    if np.abs(offsets).max() > 1e-9 * length or not is_notch(line.thickness, line.thickness.length):
+        return None
+    return profile_factors(line.thickness, line.thickness.length, nu)
+
+
+def _line_mesh(line, tol, cuts=None, trim=(0.0, 0.0), factors=None) -> BeamMesh:
     """Each segment ``line.elements`` quadratically tapered elements through t(s); a segment
     split at ``cuts`` {segment: [arc lengths from its first point, m]} (a crossing's rigid
     stubs) shares them among its pieces by length, at least one each; ``trim`` (m): the
-    lengths left out at the first and last point (an oblique root's, :mod:`.roots`)."""
+    lengths left out at the first and last point (an oblique root's, :mod:`.roots`);
+    ``factors``: a notch's correction on every element."""
     mesh, profile, cuts = None, line.thickness, cuts or {}
     last = len(line.points) - 2
     for k in range(last + 1):
@@ -51,6 +70,9 @@ def _line_mesh(line, tol, cuts=None, trim=(0.0, 0.0)) -> BeamMesh:
                                      lambda s, s0=profile.arc[k] + s0: profile(s0 + s),
                                      line.depth, n)
             mesh = part if mesh is None else mesh.join(part, tol)
+    if factors is not None:
+        mesh = BeamMesh(mesh.nodes, mesh.elements, corrected_sections(mesh.sections, factors),
+                        mesh.point_nodes)
     return mesh
 
 
@@ -110,9 +132,10 @@ def _root_offsets(line, bodies_at, factor: float, tol: float) -> list:
     return out
 
 
-def _mesh(beams, tol) -> tuple:
+def _mesh(beams, tol, nu: float) -> tuple:
     """(BeamMesh of all beams, {joined beam end point: [the ends of its root extensions, or
-    its root node]}, [(crossing node, its rigid stubs' nodes)])."""
+    its root node]}, [(crossing node, its rigid stubs' nodes)]); ``nu``: Poisson's ratio (a
+    notch's correction)."""
     found = crossings(beams.beams, tol, beams.root_extension) if beams.crossings == "rigid" else []
     cuts = [{} for _ in beams.beams]
     for crossing in found:
@@ -125,7 +148,8 @@ def _mesh(beams, tol) -> tuple:
                      for end in (0, -1)]
         oblique = beams.root_extension if beams.roots == "acute_edge" else 0.0
         offsets = _root_offsets(line, bodies_at, oblique, tol)
-        part = _line_mesh(line, tol, line_cuts, offsets)
+        factors = notch_factors_of(line, nu) if beams.notch_correction else None
+        part = _line_mesh(line, tol, line_cuts, offsets, factors)
         mesh = part if mesh is None else mesh.join(part, tol)
         for end, bodies, offset in zip((0, -1), bodies_at, offsets):
             if bodies and (offset > 0 or beams.root_extension > 0):
@@ -201,7 +225,7 @@ def beam_model(spec) -> tuple:
     scale = max(math.dist(a, b) for line in beams.beams for a, b in zip(line.points,
                                                                       line.points[1:]))
     tol = 1e-9 * scale
-    mesh, ends, joints = _mesh(beams, tol)
+    mesh, ends, joints = _mesh(beams, tol, spec.material.nu)
     nodes = _Nodes(mesh.nodes, tol)
     supported = {s.group for s in spec.supports}
     groups, links, masses, owner, masters = {}, [], {}, {}, []

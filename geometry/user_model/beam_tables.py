@@ -17,7 +17,7 @@ from .tables import Locator, check_keys, is_number
 
 BEAM_KEYS = ("points", "thickness", "depth", "elements")
 RIGID_KEYS = ("joins", "groups", "blocks")
-OPTION_KEYS = ("elements", "shear", "root_extension", "crossings", "roots")
+OPTION_KEYS = ("elements", "shear", "root_extension", "crossings", "roots", "notch_correction")
 _FUNCTIONS = {"sqrt": math.sqrt, "sin": math.sin, "cos": math.cos, "tan": math.tan,
               "atan": math.atan, "atan2": math.atan2}
 _BINARY = {ast.Add: operator.add, ast.Sub: operator.sub, ast.Mult: operator.mul,
@@ -76,7 +76,8 @@ class BeamSpec:
     by default, Timoshenko shear, root extension x root thickness at joined ends, crossings
     "rigid" (the leaves' solid joint, geometry/user_model/crossings.py) or "weld", oblique roots
     at the "acute_edge" (geometry/user_model/roots.py) or the "centre_line"'s meeting with the
-    face)."""
+    face), and each straight notch corrected by its own 2-D model (geometry/hinge_patch.py)
+    unless ``notch_correction`` is false)."""
 
     beams: tuple
     rigid: tuple
@@ -85,6 +86,7 @@ class BeamSpec:
     root_extension: float = 0.38
     crossings: str = "rigid"
     roots: str = "acute_edge"
+    notch_correction: bool = True
     source: str = ""
     groups: dict = field(default_factory=dict)
 
@@ -245,12 +247,13 @@ def _options(raw, loc: Locator) -> dict:
             out["elements"] = _count(raw["elements"], "[beam_model] elements")
         except ValueError as error:
             raise loc.error(str(error), "beam_model", "elements") from None
-    if "shear" in raw:
-        shear = {"true": True, "false": False}.get(raw["shear"], raw["shear"])  # from --set
-        if not isinstance(shear, bool):
-            raise loc.error(f"[beam_model] shear = {raw['shear']!r} must be true or false",
-                            "beam_model", "shear")
-        out["shear"] = shear
+    for key in ("shear", "notch_correction"):
+        if key in raw:
+            value = {"true": True, "false": False}.get(raw[key], raw[key])  # from --set
+            if not isinstance(value, bool):
+                raise loc.error(f"[beam_model] {key} = {raw[key]!r} must be true or false",
+                                "beam_model", key)
+            out[key] = value
     if "root_extension" in raw:
         v = raw["root_extension"]
         if not (is_number(v) and 0 <= v <= 2):

@@ -11,7 +11,7 @@ from flexfem.fem.compliance import compliance_matrix
 from flexfem.geometry.beam_layout import profile_beam
 from flexfem.geometry.hinge_patch import (NotchFactors, _patch_mesh, notch_factors,
                                           patch_factors, tabulated)
-from flexfem.geometry.hinge_profiles import profile_thickness
+from flexfem.geometry.hinge_profiles import add_hinge_surface, profile_thickness
 
 STEEL = Material("steel", E=200e9, nu=0.3, rho=7800.0)
 
@@ -36,7 +36,8 @@ def test_the_corrected_beam_reproduces_the_notch_between_rigid_ends():
     b, l = 1e-3, 2e-3
     f = patch_factors("circular", l, b, 0.5e-3, 0.3)
     thickness = lambda s: profile_thickness("circular", l, b, b, s)
-    patch = Model(_patch_mesh("circular", l, b, b, thickness, 12), STEEL, PlaneStress(2e-3),
+    outline = lambda occ: add_hinge_surface(occ, 0.0, l, 0.0, b, "circular", b)
+    patch = Model(_patch_mesh(outline, l, thickness, l / 2, 12), STEEL, PlaneStress(2e-3),
                   order=2)
     C2 = compliance_matrix(patch, [FEFixed("root")], "tip", point=(l, 0.0)).matrix
     out = {}
@@ -102,3 +103,35 @@ def test_the_table_interpolates_between_its_points(t_over_r, nu):
         rel = 5e-3 if name == "shear" else 2e-3
         assert getattr(table, name) == pytest.approx(getattr(fine, name), rel=rel), name
         assert getattr(coarse, name) == pytest.approx(getattr(fine, name), rel=5e-3), name
+
+
+def test_a_sampled_profile_gives_the_exact_arcs_factors():
+    """profile_factors draws any profile through 257 samples (a model file's notch); for a
+    circular notch at t/R = 0.4 it gives the exact arcs' factors (patch_factors) within 3e-4
+    (measured 5e-5) and their K_t within 0.5 % (measured 0.24 %)."""
+    from flexfem.geometry.hinge_patch import is_notch, profile_factors
+
+    b, l = 1e-3, 5e-3
+    thickness = lambda s: float(profile_thickness("circular", l, b, b, s))
+    assert is_notch(thickness, l)
+    sampled = profile_factors(thickness, l, 0.3)
+    exact = patch_factors("circular", l, b, b, 0.3)
+    for name in ("bending", "shear", "axial"):
+        assert getattr(sampled, name) == pytest.approx(getattr(exact, name), rel=3e-4), name
+    for name in ("kt_bending", "kt_tension"):
+        assert getattr(sampled, name) == pytest.approx(getattr(exact, name), rel=5e-3), name
+    with pytest.raises(ValueError, match="finite and > 0"):
+        profile_factors(lambda s: b - s, l, 0.3)
+
+
+@pytest.mark.parametrize("profile, expected", [
+    (lambda s: 1e-3, False),                                         # a leaf
+    (lambda s: 1e-3 * (1 + s / 5e-3), False),                        # a taper
+    (lambda s: float(profile_thickness("filleted", 5e-3, 1e-3, 1e-3, s)), False),
+    (lambda s: float(profile_thickness("circular", 5e-3, 1e-3, 1e-3, s)), True),
+    (lambda s: 1e-3 * (1 + 4 * (s / 5e-3 - 0.5) ** 2), True),       # a parabolic notch
+])
+def test_what_is_a_notch(profile, expected):
+    from flexfem.geometry.hinge_patch import is_notch
+
+    assert is_notch(profile, 5e-3) is expected
