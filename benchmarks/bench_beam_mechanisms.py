@@ -76,6 +76,7 @@ def eightbar_linear_continuum(params):
 
 
 def linear_points(rows):
+    from flexfem.geometry.dbma.drawing import DBMALayout
     from flexfem.geometry.dbma.params import paper_design
     from flexfem.geometry.eightbar.flexure import EightBarFlexureParams
     from flexfem.studies.dbma.beam import analyze_dbma_beam
@@ -90,6 +91,11 @@ def linear_points(rows):
     keep = ("R_fem_per_side", "k_in", "k_out", "fn_working", "dofs")
     rows.append(("DBMA linear design point (2-D)", tb, tc, {k: b[k] for k in keep},
                  {k: c[k] for k in keep}))
+    notch = DBMALayout(hinge_profile="circular")  # each notch's 2-D correction: a table
+    tb, b = timed(lambda: analyze_dbma_beam(p, notch), BEAM_REPEAT)
+    tc, c = timed(lambda: continuum_metrics(p, 1.0, notch), 2)
+    rows.append(("DBMA linear design point, circular notches (2-D)", tb, tc,
+                 {k: b[k] for k in keep}, {k: c[k] for k in keep}))
     dbma_modes3d(rows, p)
 
 

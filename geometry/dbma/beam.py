@@ -30,9 +30,10 @@ from .params import DBMAParams
 
 QUARTERS = ((1, 1), (-1, 1), (1, -1), (-1, -1))
 # elements a hinge: a leaf is uniform (each element exact in statics) and light, so 8 give the
-# outputs of 48 to 1e-8 (tests/studies/dbma: the convergence test); a notch's or fillet's
-# profile needs more (docs/beam.md: 20-50 over a notch)
-LEAF_ELEMENTS, PROFILE_ELEMENTS = 8, 40
+# outputs of 48 to 1e-8; a notch's or fillet's profile, quadratic in each element (its
+# flexibility exact for that), needs more: 20 give the outputs of 80 to 1e-4
+# (tests/studies/dbma/test_dbma_beam_model.py: the convergence tests)
+LEAF_ELEMENTS, PROFILE_ELEMENTS = 8, 20
 
 
 def _hinge_fn(p: DBMAParams, layout: DBMALayout):

@@ -19,11 +19,12 @@ from .beam_slenderness import (dbma_slenderness_rows, plot_slenderness, slendern
 FORCE = 100.0  # N, the actuator force of the linear solves
 
 
-def continuum_metrics(p, size_factor: float) -> dict:
+def continuum_metrics(p, size_factor: float, layout=None) -> dict:
     """R_fem_per_side, k_in, k_out (N/m), fn_working (Hz), max_von_mises (Pa at FORCE) of
-    the 2-D FEM, and its wall time (s)."""
+    the 2-D FEM (``layout``: a DBMALayout, default the paper's leaf hinges), and its wall
+    time (s)."""
     start = time.perf_counter()
-    model = fem.build_model(p, None, 2, size_factor)
+    model = fem.build_model(p, layout, 2, size_factor)
     static = fem.static_response(model, FORCE)
     probe = solve_static(model, fem.modal_supports(), [Force("output", (0.0, FORCE))])
     modal, _ = fem.modal_response(model, 6)

@@ -202,6 +202,32 @@ def test_the_k_out_deficit_is_the_input_members(params):
         assert beam_output_stiffness(bm, info) / k["built"] - 1 < -0.03
 
 
+@pytest.mark.parametrize("profile", ["circular", "filleted"])
+def test_profile_hinges_are_converged_at_the_default_element_count(profile):
+    """PROFILE_ELEMENTS (20) a notch or filleted hinge give R, k_in, k_out, the peak stress
+    (the notch's or fillet's K_t times the nominal) and six frequencies of four times as many
+    to 2e-4 (measured 7e-5 and 4e-5)."""
+    p, layout = paper_design(), DBMALayout(hinge_profile=profile)
+    default = _analysis_with_elements(p, layout, gb.PROFILE_ELEMENTS)
+    fine = _analysis_with_elements(p, layout, 4 * gb.PROFILE_ELEMENTS)
+    assert fine["dofs"] > default["dofs"]
+    for key in ("R_fem", "k_in", "k_out", "max_von_mises"):
+        assert default[key] == pytest.approx(fine[key], rel=2e-4), key
+    assert default["frequencies_hz"] == pytest.approx(fine["frequencies_hz"], rel=2e-4)
+
+
+def _analysis_with_elements(p, layout, n):
+    """analyze_dbma_beam's outputs with ``n`` elements a hinge."""
+    from unittest import mock
+
+    from flexfem.studies.dbma import beam as study
+
+    build = gb.dbma_beam_model
+    with mock.patch.object(study, "dbma_beam_model",
+                           lambda *a, **k: build(*a, **k, elements_per_hinge=n)):
+        return study.analyze_dbma_beam(p, layout)
+
+
 @pytest.mark.parametrize("params", [{}, {"b": 0.3 * MM, "l": 6 * MM},
                                     {"e": 30 * MM, "b": 1.0 * MM}])
 def test_leaf_hinges_are_converged_at_the_default_element_count(params):
