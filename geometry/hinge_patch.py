@@ -2,6 +2,7 @@
 
     f = notch_factors("circular", l, b, fillet_radius, nu)    # NotchFactors
     hinge = profile_beam(a, b, thickness_fn, w, factors=f)    # its beam, corrected
+    f = profile_factors(thickness_fn, length, nu)             # any notch's profile t(s)
 
 Beam theory of a notch (Paros and Weisbord's integral of the profile) keeps plane sections
 through a thickness that changes quickly along the hinge; the notch's 2-D stress field does
@@ -16,7 +17,8 @@ elements, multiplying E I, kappa G A and E A, reproduce the patch's 3 x 3 end co
 profile has no other independent entry. The patch's neck stress under a moment and under a
 pull, over the beam's nominal 6 M / (w b^2) and N / (w b), gives the notch's
 stress-concentration factors. Where the notch enters the bodies it joins is left to the root
-extension of :mod:`.beam_layout`, as for every flexure.
+extension of :mod:`.beam_layout`, as for every flexure (made for a leaf, it misses part of a
+notch's junction with a body much taller than the notch's ends: docs/beam.md).
 
 The factors depend on the shape alone (t/R, r_f / b, nu: plane stress has no scale and the
 out-of-plane width divides out). A circular notch's are tabulated over t/R and nu in

@@ -1,7 +1,7 @@
 """Write data/notch_factors.toml: a circular notch's 2-D correction of its beam model
 (flexfem.geometry.hinge_patch.patch_factors) over t/R and Poisson's ratio.
 
-    .venv/bin/python scripts/notch_factor_table.py      # ~2 minutes on 2 cores
+    .venv/bin/python scripts/notch_factor_table.py      # about a minute
 
 The table is flexfem's own computation, not a published source: each entry is the notch
 alone between rigid ends in plane stress (P2, NECK_ELEMENTS_TABLE triangles across the local
@@ -50,7 +50,8 @@ def main() -> None:
         lines.append(f"{name} = [")
         lines += [f"    {fmt(row)}," for row in rows[name]]
         lines.append("]")
-    (Path(__file__).resolve().parent.parent / "data" / "notch_factors.toml").write_text("\n".join(lines) + "\n")
+    target = Path(__file__).resolve().parent.parent / "data" / "notch_factors.toml"
+    target.write_text("\n".join(lines) + "\n")
     print(f"wrote data/notch_factors.toml in {time.perf_counter() - start:.0f} s")
 
 
