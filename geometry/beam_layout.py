@@ -48,8 +48,8 @@ def root_section(out_of_plane: float, thickness: float, length: float,
     """Section of a root-extension element of ``length`` (m): the root's area and bending
     stiffness; its axial stiffness factor such that the element's axial compliance is the
     root's (axial_root_compliance) when ``block_height`` (m) is given (else the root's own);
-    no stress reported there (c = None: the root stress is the flexure's own end). Its mass
-    is the root's section's (the factor acts on the stiffness only)."""
+    no stress reported there (c = None: the root stress is the flexure's own end); no mass:
+    it lies inside the body it enters, whose own model carries that material."""
     I = out_of_plane * thickness ** 3 / 12
     area = out_of_plane * thickness
     factor = 1.0
@@ -57,7 +57,7 @@ def root_section(out_of_plane: float, thickness: float, length: float,
         alpha = axial_root_compliance(block_height, thickness)
         if alpha > 0:  # length / (E A factor) = alpha / (E w)
             factor = length / (thickness * alpha)
-    return Section(A=area, I=I, c=None, axial_factor=factor)
+    return Section(A=area, I=I, c=None, axial_factor=factor, mass_factor=0.0)
 
 
 def check_root_extension(value) -> float:

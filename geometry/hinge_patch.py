@@ -34,7 +34,7 @@ import numpy as np
 
 from ..data import shared_toml
 from ..fem import Fixed, Material, Model, PlaneStress, RigidFace, solve_static
-from ..fem.beam import BeamModel, Fixed as BeamFixed
+from ..fem.beam import BeamModel, Fixed as BeamFixed, Section, beam_chain
 from ..fem.beam.compliance import compliance as beam_compliance
 from ..fem.compliance import compliance_matrix
 from ..fem.gmsh_session import gmsh_session
@@ -52,6 +52,9 @@ SHEAR_SHARE = (0.02, 0.08)
 TABLE = "notch_factors.toml"
 PROFILE_SAMPLES = 257  # a general profile's outline: a spline through this many samples
 NOTCH_DEPTH = 1.5  # a notch's ends are at least this many times its least thickness
+# each end of the patch: a stub of the end's height, STUB times as long (the body the notch
+# enters is at least that tall; 1 and 1.5 give the same factors to 0.1 %), STUB_ELEMENTS beams
+STUB, STUB_ELEMENTS = 1.0, 4
 
 
 @dataclass(frozen=True)
@@ -208,37 +211,54 @@ def _spline(s, t):
 
 def _fit(thickness, l: float, breaks, nu: float, outline, neck, neck_elements: int,
          arcs: bool = True):
-    """NotchFactors of the flexure ``outline(occ)`` draws along [0, l] (m) against its beam
-    of profile ``thickness`` (m); K_t at the section ``neck`` (m from the start; None: NaN)."""
+    """NotchFactors of the flexure ``outline(occ)`` draws along [0, l] (m), with a stub of
+    its end's height, STUB times as long, at each end, against its beam of profile
+    ``thickness`` (m) with the stubs as beams; K_t at the section ``neck`` (m from the start;
+    None: NaN). The beam's compliance is linear in each factor's inverse, which four solves
+    separate (the notch's bending, shear and axial parts and the rest)."""
     w = 1e-3
     b = float(thickness(neck if neck is not None else l / 2))
+    h0, h1 = float(thickness(0.0)), float(thickness(l))
+    x0, x1 = -STUB * h0, l + STUB * h1
     material = Material("notch_patch", E=200e9, nu=nu, rho=1.0)
-    patch = Model(_patch_mesh(outline, l, thickness, neck, neck_elements, arcs), material,
-                  PlaneStress(w), order=2)
-    C2 = compliance_matrix(patch, [Fixed("root")], "tip", point=(l, 0.0)).matrix
-    beam = profile_beam((0.0, 0.0), (l, 0.0), thickness, w, breaks, BEAM_ELEMENTS, 0.0,
-                        vectorized=True)
-    C_shear, C_bend = (_beam_compliance(beam, material, shear) for shear in (True, False))
-    bending = C_shear[2, 2] / C2[2, 2]
-    axial = C_shear[0, 0] / C2[0, 0]
-    beam_shear = C_shear[1, 1] - C_bend[1, 1]  # the beam's shear deflection per unit force
-    patch_shear = C2[1, 1] - C_bend[1, 1] / bending
+
+    def drawn(occ):
+        stubs = [(2, occ.addRectangle(x0, -h0 / 2, 0.0, -x0, h0)),
+                 (2, occ.addRectangle(l, -h1 / 2, 0.0, x1 - l, h1))]
+        fused, _ = occ.fuse([(2, outline(occ))], stubs)
+        return [tag for _, tag in fused]
+
+    patch = Model(_patch_mesh(drawn, l, (x0, x1), thickness, neck, neck_elements, arcs),
+                  material, PlaneStress(w), order=2)
+    C2 = compliance_matrix(patch, [Fixed("root")], "tip", point=(x1, 0.0)).matrix
+
+    def beam(bending=1.0, shear=1.0, axial=1.0):
+        f = NotchFactors(bending, shear, axial, math.nan, math.nan)
+        notch = profile_beam((0.0, 0.0), (l, 0.0), thickness, w, breaks, BEAM_ELEMENTS, 0.0,
+                             vectorized=True, factors=f)
+        mesh = beam_chain([(x0, 0.0), (0.0, 0.0)], Section.rect(w, h0), STUB_ELEMENTS)
+        for part in (notch, beam_chain([(l, 0.0), (x1, 0.0)], Section.rect(w, h1),
+                                       STUB_ELEMENTS)):
+            mesh = mesh.join(part, tol=1e-9 * l)
+        model = BeamModel(mesh.nodes, mesh.elements, mesh.sections, material, shear=True)
+        return beam_compliance(model, [BeamFixed(mesh.node_at((x0, 0.0)))],
+                               mesh.node_at((x1, 0.0)))
+
+    C1 = beam()
+    B, S, A = (2 * (C1 - beam(**{name: 2.0})) for name in ("bending", "shear", "axial"))
+    bending = B[2, 2] / (C2[2, 2] - (C1[2, 2] - B[2, 2]))
+    axial = A[0, 0] / (C2[0, 0] - (C1[0, 0] - A[0, 0]))
+    patch_shear = C2[1, 1] - (C1[1, 1] - B[1, 1] - S[1, 1]) - B[1, 1] / bending
     lo, hi = SHEAR_SHARE
-    weight = min(1.0, max(0.0, (beam_shear / C_shear[1, 1] - lo) / (hi - lo)))
+    weight = min(1.0, max(0.0, (S[1, 1] / C1[1, 1] - lo) / (hi - lo)))
     shear = 1.0
     if weight > 0 and patch_shear > 0:
-        shear = 1.0 + weight * (beam_shear / patch_shear - 1.0)
+        shear = 1.0 + weight * (S[1, 1] / patch_shear - 1.0)
     kt_bending = kt_tension = math.nan
     if neck is not None:
         kt_bending = _neck_stress(patch, neck, b, moment=1.0) / (6.0 / (w * b ** 2))
         kt_tension = _neck_stress(patch, neck, b, force=(1.0, 0.0)) / (1.0 / (w * b))
     return NotchFactors(float(bending), float(shear), float(axial), kt_bending, kt_tension)
-
-
-def _beam_compliance(mesh, material, shear: bool) -> np.ndarray:
-    model = BeamModel(mesh.nodes, mesh.elements, mesh.sections, material, shear=shear)
-    first, last = mesh.point_nodes
-    return beam_compliance(model, [BeamFixed(first)], last)
 
 
 def _neck_stress(patch, x: float, b: float, moment: float = 0.0, force=(0.0, 0.0)) -> float:
@@ -252,11 +272,12 @@ def _neck_stress(patch, x: float, b: float, moment: float = 0.0, force=(0.0, 0.0
     return float(np.sqrt(sxx ** 2 - sxx * syy + syy ** 2 + 3 * sxy ** 2).max())
 
 
-def _patch_mesh(outline, l: float, thickness, neck, neck_elements: int, arcs: bool = True):
-    """The flexure ``outline(occ)`` draws (its surface tag) along [0, l] (m): triangles of
-    about thickness(x) / ``neck_elements``, down to t / (NECK_REFINEMENT neck_elements) at
-    the neck's surface points (``neck``, +-t / 2; none if None); boundary groups 'root'
-    (x = 0) and 'tip' (x = l). ``arcs``: the outline's curves are arcs (curvature sizing on)."""
+def _patch_mesh(drawn, l: float, span, thickness, neck, neck_elements: int, arcs: bool = True):
+    """The surfaces ``drawn(occ)`` draws (their tags) along ``span`` = (x0, x1) (m), a notch
+    along [0, l] with its stubs: triangles of about thickness(x) / ``neck_elements`` (x
+    clipped to the notch), down to t / (NECK_REFINEMENT neck_elements) at the neck's surface
+    points (``neck``, +-t / 2; none if None); boundary groups 'root' (x = x0) and 'tip' (x =
+    x1). ``arcs``: the outline's curves are arcs (curvature sizing on)."""
     b = float(thickness(neck if neck is not None else l / 2))
     fine = b / (NECK_REFINEMENT * neck_elements)
     xs = np.linspace(0.0, l, PROFILE_SAMPLES)
@@ -270,12 +291,12 @@ def _patch_mesh(outline, l: float, thickness, neck, neck_elements: int, arcs: bo
 
     with gmsh_session("notch_patch") as gmsh:
         occ = gmsh.model.occ
-        surface = outline(occ)
+        surfaces = drawn(occ)
         occ.synchronize()
-        gmsh.model.addPhysicalGroup(2, [surface], name="body")
-        height = max(float(thickness(0.0)), float(thickness(l)), b)
+        gmsh.model.addPhysicalGroup(2, surfaces, name="body")
+        height = max(ts[0], ts[-1], b)
         eps = 1e-3 * min(l, b) + 1e-7  # OCC's bounding boxes are 1e-7 m larger
-        for name, x in (("root", 0.0), ("tip", l)):
+        for name, x in zip(("root", "tip"), span):
             ends = gmsh.model.getEntitiesInBoundingBox(x - eps, -height, -1.0, x + eps,
                                                        height, 1.0, 1)
             gmsh.model.addPhysicalGroup(1, [t for _, t in ends], name=name)

@@ -196,7 +196,7 @@ def _local_mass(model) -> np.ndarray:
     M = np.zeros((model.n_elements, 6, 6))
     M[:, np.array(BEND)[:, None], np.array(BEND)[None, :]] = Mb
     M[:, np.array(AXIAL)[:, None], np.array(AXIAL)[None, :]] = Ma
-    return M
+    return M * model.section_table[:, 11, None, None]
 
 
 def rotation_to_global(angles) -> np.ndarray:

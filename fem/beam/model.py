@@ -38,7 +38,7 @@ def dof_index(dof) -> int:
     raise ValueError(f"dof = {dof!r} must be 0/1/2 or one of 'x', 'y', 'theta'")
 
 
-SECTION_COLUMNS = 11  # Section.row()'s length: the model's section_table columns
+SECTION_COLUMNS = 12  # Section.row()'s length: the model's section_table columns
 
 
 @dataclass(frozen=True)
@@ -50,7 +50,8 @@ class Section:
     ``I`` (m^4) and outer-fibre distance ``c`` (m, None: no stress). ``shear_factor`` kappa
     (shear area kappa A); ``bending_factor`` and ``axial_factor`` multiply E I and E A in
     the stiffness only (1: beam theory; geometry/hinge_patch.py sets them on a notch from
-    its 2-D model), not in the mass or the stress."""
+    its 2-D model), not in the mass or the stress; ``mass_factor`` multiplies the mass (0: a
+    root extension, inside a body whose own model carries that material)."""
 
     width: float | None = None
     thickness: float | None = None
@@ -62,6 +63,7 @@ class Section:
     shear_factor: float = 5.0 / 6.0
     bending_factor: float = 1.0
     axial_factor: float = 1.0
+    mass_factor: float = 1.0
 
     def __post_init__(self):
         rect = self.width is not None or self.thickness is not None
@@ -78,6 +80,8 @@ class Section:
             positive("c", self.c, allow_none=True)
         for name in ("shear_factor", "bending_factor", "axial_factor"):
             positive(name, getattr(self, name))
+        if not (isinstance(self.mass_factor, (int, float)) and 0 <= self.mass_factor < math.inf):
+            raise ValueError(f"mass_factor = {self.mass_factor!r} must be a finite number >= 0")
 
     @classmethod
     def rect(cls, width: float, thickness: float, thickness_end: float | None = None,
@@ -92,10 +96,10 @@ class Section:
         return self.width is not None
 
     def row(self) -> tuple:
-        """(is_rect, w, t0, t1, A, I, c, kappa, t_mid, bending_factor, axial_factor) with NaN
-        for what does not apply (SECTION_COLUMNS)."""
+        """(is_rect, w, t0, t1, A, I, c, kappa, t_mid, bending_factor, axial_factor,
+        mass_factor) with NaN for what does not apply (SECTION_COLUMNS)."""
         nan = math.nan
-        factors = (self.bending_factor, self.axial_factor)
+        factors = (self.bending_factor, self.axial_factor, self.mass_factor)
         if self.is_rect:
             t1 = self.thickness if self.thickness_end is None else self.thickness_end
             tm = nan if self.thickness_mid is None else self.thickness_mid
@@ -220,7 +224,7 @@ def rect_sections(width: float, t0, t1, tm) -> list:
         sec = object.__new__(Section)  # frozen dataclass: its fields set as __init__ would
         sec.__dict__.update(width=width, thickness=a, thickness_end=b, thickness_mid=c, A=None,
                             I=None, c=None, shear_factor=5.0 / 6.0, bending_factor=1.0,
-                            axial_factor=1.0)
+                            axial_factor=1.0, mass_factor=1.0)
         out.append(sec)
     return out
 

@@ -72,7 +72,7 @@ def local_matrices(model):
     Ky, My = _bending(E, s["Iy"], G, shear["Az"], mid["Iy"][:, 0], rho, s["A"], A_mid, L)
     _put(K, XZ, Ky, XZ_SIGN)
     _put(M, XZ, My, XZ_SIGN)
-    return K, M
+    return K, M * shear["mass_factor"][:, None, None]
 
 
 def basic_stiffness(model) -> np.ndarray:

@@ -73,7 +73,8 @@ class Section:
     keeps its depths along local y and z (m; None for a general section: no stress).
     ``factors`` (bending, shear, axial) multiply E Iz, G Ay and E A in the stiffness only
     (bending in the local x-y plane: a planar model's notch correction or root extension,
-    carried into 3-D by geometry/spatial_beam.py), not the mass."""
+    carried into 3-D by geometry/spatial_beam.py), not the mass; ``mass_factor`` multiplies
+    the mass (0: a root extension)."""
 
     A: float
     Iy: float
@@ -85,6 +86,7 @@ class Section:
     depth_y: float | None = None
     depth_z: float | None = None
     factors: tuple = (1.0, 1.0, 1.0)
+    mass_factor: float = 1.0
 
     def __post_init__(self):
         for name in ("A", "Iy", "Iz", "J"):
@@ -239,12 +241,13 @@ class Beam3DModel:
         return len(self.elements)
 
     def section_table(self) -> dict:
-        """Shear areas Ay, Az (m^2, inf where shear is off) as (n_e,) arrays, and the
-        stiffness factors (n_e, 3)."""
+        """Shear areas Ay, Az (m^2, inf where shear is off) as (n_e,) arrays, the stiffness
+        factors (n_e, 3) and the mass factors (n_e,)."""
         shear = lambda name: np.array([math.inf if getattr(s, name) is None else getattr(s, name)
                                        for s in self.sections], dtype=float)
         return {"Ay": shear("Ay"), "Az": shear("Az"),
-                "factors": np.array([s.factors for s in self.sections], dtype=float)}
+                "factors": np.array([s.factors for s in self.sections], dtype=float),
+                "mass_factor": np.array([s.mass_factor for s in self.sections], dtype=float)}
 
     def section_at(self, xi) -> dict:
         """A, Iy, Iz, J, Ip (m^2, m^4) and the rectangles' depth_y, depth_z (m; NaN for a

@@ -7,7 +7,8 @@
 Same reconstruction as the continuum mesh (:func:`flexfem.geometry.dbma.drawing.quarter_rects`,
 mirrored into four quarters): each of the 16 hinges is a beam following its profile t(s)
 (leaf, filleted or circular notch: :func:`flexfem.geometry.hinge_profiles.profile_thickness`
-through :func:`flexfem.fem.beam.beam_from_profile`), each inclined arm an elastic Timoshenko
+through :func:`flexfem.fem.beam.beam_from_profile`; a notch or filleted one corrected by its
+own 2-D model, :mod:`flexfem.geometry.hinge_patch`), each inclined arm an elastic Timoshenko
 beam of width c along its centre line, joined to its two hinges (offset +-h/2 across it) by
 rigid offsets; the input members (width a) and output members 4 and 11 (width ls) are elastic
 beams along their centre lines, member 11 clamped at its bottom (the mounting face); each pad
@@ -115,7 +116,9 @@ def dbma_beam_model(p: DBMAParams, layout: DBMALayout | None = None,
     face), "ground" (the bottom of member 11, its mounting face), "hinges" {label: (first,
     last element) of the hinge-arm-hinge chain}, "hinge_elements" (the 16 hinges' elements,
     their root extensions included). elements_per_hinge: default LEAF_ELEMENTS for a leaf,
-    PROFILE_ELEMENTS for a notch or filleted profile."""
+    PROFILE_ELEMENTS for a notch or filleted profile. ``notch_correction``: a notch or
+    filleted hinge's beam corrected by its own 2-D model
+    (:func:`flexfem.geometry.hinge_patch.notch_factors`; False: plain beam theory)."""
     layout = layout or DBMALayout()
     check_layout(p, layout)
     root_extension = check_root_extension(root_extension)
@@ -125,9 +128,10 @@ def dbma_beam_model(p: DBMAParams, layout: DBMALayout | None = None,
     n_hinge = elements_per_hinge or (LEAF_ELEMENTS if layout.hinge_profile == "leaf"
                                      else PROFILE_ELEMENTS)
     blocks = (p.c, p.c)  # the height of the faces the hinges enter (arm ends; members, ~)
-    factors = None
-    if notch_correction and layout.hinge_profile == "circular":
-        factors = notch_factors("circular", p.l, p.b, layout.hinge_fillet_radius, p.nu)
+    factors = None  # a notch or filleted profile: its own 2-D model's correction
+    if notch_correction and layout.hinge_profile != "leaf":
+        factors = notch_factors(layout.hinge_profile, p.l, p.b, layout.hinge_fillet_radius,
+                                p.nu)
     hinge = profile_beam((0.0, 0.0), (p.l, 0.0), fn, p.d, breaks, n_hinge, root_extension,
                          blocks, vectorized=True, factors=factors)
     x_out, x_in, l, h = p.ls / 2, p.ls / 2 + 2 * p.l + p.e, p.l, p.h

@@ -144,9 +144,9 @@ def plot_slenderness(rows: list, path, mechanism_rows: list | None = None) -> di
                 "(triangles) where computed. Grey: the 3 % band. Top axis: the notch's t / R. "
                 "Bare beam theory is too stiff by ~b / l (bending) and more axially: it leaves "
                 "the band below l/b ~ 20. As built, a sharp-cornered leaf stays in it down to "
-                "l/b ~ 2, a circular notch in bending down to l/b = 5 (t/R = 0.4); below, and "
-                "axially (16-18 %), the notch's junction with blocks much taller than its "
-                "ends remains, which the root extension, made for leaves, does not have.")
+                "l/b ~ 2, a circular notch in bending at every l/b; axially the notch keeps "
+                "part of its junction with blocks much taller than its ends (docs/beam.md, "
+                "\"Notch hinges: the 2-D patch\").")
 
 
 def dbma_slenderness_rows(ratios=(2.0, 5.0, 10.0, 20.0), size_factor: float = 1.0) -> list:

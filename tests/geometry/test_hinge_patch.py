@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from flexfem.fem import Fixed as FEFixed, Material, Model, PlaneStress
-from flexfem.fem.beam import BeamModel, Fixed
+from flexfem.fem.beam import BeamModel, Fixed, Section, beam_chain
 from flexfem.fem.beam.compliance import compliance
 from flexfem.fem.compliance import compliance_matrix
 from flexfem.geometry.beam_layout import profile_beam
@@ -29,28 +29,41 @@ def test_bad_input_names_the_problem(args, match):
         notch_factors(*args)
 
 
-def test_the_corrected_beam_reproduces_the_notch_between_rigid_ends():
-    """A notch at t/R = 1 (shear a quarter of its deflection: all three factors at work): its
-    beam with the factors has the 2-D patch's 3 x 3 end compliance (computed here again),
-    where the bare beam is 13 % stiff in rotation and 5 % in extension."""
+def test_the_corrected_beam_reproduces_the_notch_with_its_stubs():
+    """A notch at t/R = 1 with a stub of its end height at each end (the patch): its beam,
+    the stubs as beams, with the factors has the 2-D patch's end compliance (computed here
+    again) in rotation, extension and their coupling to 2e-4, sideways within 0.5 % (shear is
+    under 2 % of it: its factor stays 1), where the bare beam is 19 % stiff in rotation and
+    12 % in extension (with the stubs' own compliance)."""
     b, l = 1e-3, 2e-3
-    f = patch_factors("circular", l, b, 0.5e-3, 0.3)
+    h = b + l  # the notch's end height, b + 2 R
+    f = patch_factors("circular", l, b, b, 0.3)
     thickness = lambda s: profile_thickness("circular", l, b, b, s)
-    outline = lambda occ: add_hinge_surface(occ, 0.0, l, 0.0, b, "circular", b)
-    patch = Model(_patch_mesh(outline, l, thickness, l / 2, 12), STEEL, PlaneStress(2e-3),
-                  order=2)
-    C2 = compliance_matrix(patch, [FEFixed("root")], "tip", point=(l, 0.0)).matrix
+
+    def drawn(occ):
+        stubs = [(2, occ.addRectangle(-h, -h / 2, 0.0, h, h)),
+                 (2, occ.addRectangle(l, -h / 2, 0.0, h, h))]
+        fused, _ = occ.fuse([(2, add_hinge_surface(occ, 0.0, l, 0.0, b, "circular", b))],
+                            stubs)
+        return [tag for _, tag in fused]
+
+    patch = Model(_patch_mesh(drawn, l, (-h, l + h), thickness, l / 2, 12), STEEL,
+                  PlaneStress(2e-3), order=2)
+    C2 = compliance_matrix(patch, [FEFixed("root")], "tip", point=(l + h, 0.0)).matrix
     out = {}
     for name, factors in (("bare", None), ("corrected", f)):
-        beam = profile_beam((0, 0), (l, 0), thickness, 2e-3, (), 40, 0.0, vectorized=True,
-                            factors=factors)
-        model = BeamModel(beam.nodes, beam.elements, beam.sections, STEEL, shear=True)
-        out[name] = compliance(model, [Fixed(beam.point_nodes[0])], beam.point_nodes[1])
-    for i, j in ((0, 0), (1, 1), (2, 2), (1, 2)):
+        notch = profile_beam((0, 0), (l, 0), thickness, 2e-3, (), 40, 0.0, vectorized=True,
+                             factors=factors)
+        mesh = beam_chain([(-h, 0), (0, 0)], Section.rect(2e-3, h), 4).join(notch, 1e-12)
+        mesh = mesh.join(beam_chain([(l, 0), (l + h, 0)], Section.rect(2e-3, h), 4), 1e-12)
+        model = BeamModel(mesh.nodes, mesh.elements, mesh.sections, STEEL, shear=True)
+        out[name] = compliance(model, [Fixed(mesh.node_at((-h, 0)))], mesh.node_at((l + h, 0)))
+    for i, j in ((0, 0), (2, 2), (1, 2)):
         assert out["corrected"][i, j] == pytest.approx(C2[i, j], rel=2e-4), (i, j)
-    assert out["bare"][2, 2] / C2[2, 2] - 1 == pytest.approx(-0.13, abs=0.01)
-    assert out["bare"][0, 0] / C2[0, 0] - 1 == pytest.approx(-0.055, abs=0.01)
-    assert f.shear != 1.0 and f.kt_bending > 1.0 and f.kt_tension > f.kt_bending
+    assert out["corrected"][1, 1] == pytest.approx(C2[1, 1], rel=5e-3)
+    assert out["bare"][2, 2] / C2[2, 2] - 1 == pytest.approx(-0.19, abs=0.02)
+    assert out["bare"][0, 0] / C2[0, 0] - 1 == pytest.approx(-0.12, abs=0.02)
+    assert f.shear == 1.0 and f.kt_bending > 1.0 and f.kt_tension > f.kt_bending
 
 
 def test_thin_notches_tend_to_beam_theory():
@@ -71,9 +84,9 @@ def test_the_table_is_used_in_its_range_and_computed_outside():
     assert inside == tabulated(0.3, 0.3)
     assert tabulated(3.0, 0.3) is None and tabulated(0.3, 0.45) is None
     outside = notch_factors("circular", 2e-3 / 3.0, 1e-3, 0.5e-3, 0.3)  # t/R = 3: computed
-    assert isinstance(outside, NotchFactors) and 0.8 < outside.bending < 1.0
+    assert isinstance(outside, NotchFactors) and 0.6 < outside.bending < 0.8
     filleted = notch_factors("filleted", 4.41e-3, 0.6e-3, 0.3e-3, 0.3)
-    assert 0.97 < filleted.bending < 1.0 and math.isnan(filleted.kt_bending)
+    assert 0.95 < filleted.bending < 1.0 and math.isnan(filleted.kt_bending)
 
 
 @pytest.mark.slow
@@ -102,7 +115,8 @@ def test_the_table_interpolates_between_its_points(t_over_r, nu):
     for name in NotchFactors.__dataclass_fields__:
         rel = 5e-3 if name == "shear" else 2e-3
         assert getattr(table, name) == pytest.approx(getattr(fine, name), rel=rel), name
-        assert getattr(coarse, name) == pytest.approx(getattr(fine, name), rel=5e-3), name
+        rel = 1e-2 if name.startswith("kt") else 5e-3
+        assert getattr(coarse, name) == pytest.approx(getattr(fine, name), rel=rel), name
 
 
 def test_a_sampled_profile_gives_the_exact_arcs_factors():

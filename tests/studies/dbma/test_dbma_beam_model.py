@@ -138,17 +138,18 @@ def test_dbma_with_circular_notches_against_the_continuum(params):
 
 
 def test_the_notch_correction_brings_a_notch_between_blocks_into_the_band():
-    """A circular notch between two blocks (l/b = 10, t/R = 0.2): bare beam theory
-    (Paros-Weisbord's plane sections) is 7 % stiffer than the 2-D continuum in bending; with
-    the notch's own 2-D correction and the root extension, as the mechanisms build it, within
-    1 % (measured -0.03 %). Axially the junction with the much taller blocks is left: 18 %
-    stiff (docs/beam.md, "Notch hinges: the 2-D patch")."""
+    """A circular notch between two blocks (l/b = 3 and 10, t/R = 0.67 and 0.2): bare beam
+    theory (Paros-Weisbord's plane sections) is 7-20 % stiffer than the 2-D continuum in
+    bending; with the notch's own 2-D correction and the root extension, as the mechanisms
+    build it, within 1.5 % (measured +0.5, +0.6 %). Axially the blocks, three to six times
+    taller than the notch's ends, take a little more than the root rule gives: 9-10 % stiff
+    (docs/beam.md, "Notch hinges: the 2-D patch")."""
     from flexfem.studies.dbma.beam_slenderness import TRUST_LIMIT, slenderness_rows
 
-    row, = slenderness_rows((10.0,), ("circular",))
-    assert row["bending_error_bare"] < -2 * TRUST_LIMIT
-    assert abs(row["bending_error"]) < 0.01
-    assert -0.2 < row["axial_error"] < -0.15
+    for row in slenderness_rows((3.0, 10.0), ("circular",)):
+        assert row["bending_error_bare"] < -2 * TRUST_LIMIT
+        assert abs(row["bending_error"]) < 0.015
+        assert -0.12 < row["axial_error"] < -0.07
 
 
 def _member_cells_away_from_roots(model, p, layout, margin):
