@@ -51,7 +51,7 @@ BEAM_ELEMENTS = 80  # the reference beam of the profile (its own error < 1e-5)
 SHEAR_SHARE = (0.02, 0.08)
 TABLE = "notch_factors.toml"
 PROFILE_SAMPLES = 257  # a general profile's outline: a spline through this many samples
-NOTCH_DEPTH = 1.5  # a notch's ends are at least this many times its least thickness
+NOTCH_DEPTH = 1.5  # a notch's (fillets') ends are at least this many times its least thickness
 # each end of the patch: a stub of the end's height, STUB times as long (the body the notch
 # enters is at least that tall; 1 and 1.5 give the same factors to 0.1 %), STUB_ELEMENTS beams
 STUB, STUB_ELEMENTS = 1.0, 4
@@ -155,7 +155,8 @@ def profile_factors(thickness, length: float, nu: float,
     """NotchFactors of a straight flexure of ``length`` (m) whose in-plane thickness is
     ``thickness(s)`` (m, s from its first end), symmetric about its centre line: its outline
     a spline through 257 samples of the profile (a model file's notch, any shape); K_t at its
-    thinnest section. Computed once per shape in a process (the key: the samples)."""
+    thinnest section where that is a point (a notch; NaN for a filleted leaf's flat neck).
+    Computed once per shape in a process (the key: the samples)."""
     if not (isinstance(length, (int, float)) and math.isfinite(length) and length > 0):
         raise ValueError(f"profile_factors: length = {length!r} must be a finite number > 0 (m)")
     s = np.linspace(0.0, length, PROFILE_SAMPLES)
@@ -170,14 +171,13 @@ def profile_factors(thickness, length: float, nu: float,
                             int(neck_elements))
 
 
-def is_notch(thickness, length: float) -> bool:
-    """Whether the profile t(s) over ``length`` (m) is a notch: thinnest inside it (not at an
-    end), at least NOTCH_DEPTH times thicker at both ends, and within 1 % of its least
-    thickness over less than a quarter of its length (a circular notch: 0.1 sqrt(t/R); a
-    filleted leaf's straight part is longer; a leaf or a taper is not a notch)."""
+def has_notch(thickness, length: float) -> bool:
+    """Whether the profile t(s) over ``length`` (m) is a notch or filleted hinge: thinnest
+    inside it (not at an end) and at least NOTCH_DEPTH times thicker at both ends (a
+    circular, elliptic or parabolic notch, a leaf with root fillets; not a leaf or a
+    taper)."""
     t = np.array([float(thickness(x)) for x in np.linspace(0.0, length, PROFILE_SAMPLES)])
-    b = t.min()
-    return bool(min(t[0], t[-1]) >= NOTCH_DEPTH * b and np.mean(t <= 1.01 * b) < 0.25)
+    return bool(min(t[0], t[-1]) >= NOTCH_DEPTH * t.min())
 
 
 @functools.lru_cache(maxsize=512)
@@ -188,7 +188,9 @@ def _sampled_factors(l_over_b: float, t_over_b: tuple, nu: float,
     s = np.linspace(0.0, l, len(t_over_b))
     t = np.asarray(t_over_b) * b
     thickness = _spline(s, t)
-    k = int(np.argmin(t))
+    # a notch's neck is a point, where its K_t belongs; a filleted leaf's straight part is
+    # long, and its peak is at the fillets (no K_t here)
+    neck = s[int(np.argmin(t))] if np.mean(t <= 1.01 * t.min()) < 0.25 else None
 
     def outline(occ):
         point = lambda x, y: occ.addPoint(x, y, 0.0)
@@ -198,7 +200,7 @@ def _sampled_factors(l_over_b: float, t_over_b: tuple, nu: float,
                 occ.addSpline(bottom[::-1]), occ.addLine(bottom[0], top[0])]
         return occ.addPlaneSurface([occ.addCurveLoop(loop)])
 
-    return _fit(thickness, l, (), nu, outline, s[k], neck_elements, arcs=False)
+    return _fit(thickness, l, (), nu, outline, neck, neck_elements, arcs=False)
 
 
 def _spline(s, t):

@@ -13,9 +13,9 @@ declares the block it enters (its chord across the beam is the block height H). 
 leaving a declared block's face at an angle begins where its whole section has left the block,
 (t/2) cot(phi) along it (:mod:`.roots`), and is extended from there. Where two beams cross
 they are joined by a rigid joint (:mod:`.crossings`). A straight beam whose profile is a notch
-(:func:`flexfem.geometry.hinge_patch.is_notch`) is corrected by the notch's own 2-D model
-(:func:`flexfem.geometry.hinge_patch.profile_factors`: its stiffness in rotation, shear and
-extension), unless ``[beam_model] notch_correction = false``. Lengths in m.
+or a filleted leaf (:func:`flexfem.geometry.hinge_patch.has_notch`) is corrected by its own
+2-D model (:func:`flexfem.geometry.hinge_patch.profile_factors`: its stiffness in rotation,
+shear and extension), unless ``[beam_model] notch_correction = false``. Lengths in m.
 """
 import math
 
@@ -23,7 +23,7 @@ import numpy as np
 
 from ...fem.beam import BeamMesh, BeamModel, RigidLink, beam_chain, beam_from_profile
 from ..beam_layout import corrected_sections, root_section
-from ..hinge_patch import is_notch, profile_factors
+from ..hinge_patch import has_notch, profile_factors
 from .crossings import crossings
 from .roots import root_offset
 
@@ -33,15 +33,17 @@ def _error(where: str, message: str) -> ValueError:
 
 
 def notch_factors_of(line, nu: float):
-    """The 2-D correction (NotchFactors) of a [[beam]] whose profile is a notch, None for any
-    other: a beam of one straight segment (collinear points) whose thickness is least inside
-    it and at least 1.5 times that at both ends (:func:`..hinge_patch.is_notch`)."""
+    """The 2-D correction (NotchFactors) of a [[beam]] whose profile is a notch or a filleted
+    leaf, None for any other: a beam of one straight segment (collinear points) whose
+    thickness is least inside it and at least 1.5 times that at both ends
+    (:func:`..hinge_patch.has_notch`)."""
     points = np.asarray(line.points, float)
     chord = points[-1] - points[0]
     length = float(np.linalg.norm(chord))
     d = chord / length
     offsets = d[0] * (points[:, 1] - points[0, 1]) - d[1] * (points[:, 0] - points[0, 0])
-    if np.abs(offsets).max() > 1e-9 * length or not is_notch(line.thickness, line.thickness.length):
+    notch = has_notch(line.thickness, line.thickness.length)
+    if np.abs(offsets).max() > 1e-9 * length or not notch:
         return None
     return profile_factors(line.thickness, line.thickness.length, nu)
 

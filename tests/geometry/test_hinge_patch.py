@@ -122,12 +122,13 @@ def test_the_table_interpolates_between_its_points(t_over_r, nu):
 def test_a_sampled_profile_gives_the_exact_arcs_factors():
     """profile_factors draws any profile through 257 samples (a model file's notch); for a
     circular notch at t/R = 0.4 it gives the exact arcs' factors (patch_factors) within 3e-4
-    (measured 5e-5) and their K_t within 0.5 % (measured 0.24 %)."""
-    from flexfem.geometry.hinge_patch import is_notch, profile_factors
+    (measured 5e-5) and their K_t within 0.5 % (measured 0.24 %); for a filleted leaf its
+    stiffness factors."""
+    from flexfem.geometry.hinge_patch import has_notch, profile_factors
 
     b, l = 1e-3, 5e-3
     thickness = lambda s: float(profile_thickness("circular", l, b, b, s))
-    assert is_notch(thickness, l)
+    assert has_notch(thickness, l)
     sampled = profile_factors(thickness, l, 0.3)
     exact = patch_factors("circular", l, b, b, 0.3)
     for name in ("bending", "shear", "axial"):
@@ -136,16 +137,23 @@ def test_a_sampled_profile_gives_the_exact_arcs_factors():
         assert getattr(sampled, name) == pytest.approx(getattr(exact, name), rel=5e-3), name
     with pytest.raises(ValueError, match="finite and > 0"):
         profile_factors(lambda s: b - s, l, 0.3)
+    filleted = lambda s: float(profile_thickness("filleted", 4.41e-3, 0.6e-3, 0.5e-3, s))
+    sampled = profile_factors(filleted, 4.41e-3, 0.3)  # measured within 1.1e-4
+    exact = patch_factors("filleted", 4.41e-3, 0.6e-3, 0.5e-3, 0.3)
+    for name in ("bending", "shear", "axial"):
+        assert getattr(sampled, name) == pytest.approx(getattr(exact, name), rel=3e-4), name
+    assert math.isnan(sampled.kt_bending)  # a flat neck: the peak is at the fillets
 
 
 @pytest.mark.parametrize("profile, expected", [
     (lambda s: 1e-3, False),                                         # a leaf
     (lambda s: 1e-3 * (1 + s / 5e-3), False),                        # a taper
-    (lambda s: float(profile_thickness("filleted", 5e-3, 1e-3, 1e-3, s)), False),
+    (lambda s: float(profile_thickness("filleted", 5e-3, 1e-3, 1e-3, s)), True),   # fillets
+    (lambda s: float(profile_thickness("filleted", 5e-3, 1e-3, 0.2e-3, s)), False),  # shallow
     (lambda s: float(profile_thickness("circular", 5e-3, 1e-3, 1e-3, s)), True),
     (lambda s: 1e-3 * (1 + 4 * (s / 5e-3 - 0.5) ** 2), True),       # a parabolic notch
 ])
 def test_what_is_a_notch(profile, expected):
-    from flexfem.geometry.hinge_patch import is_notch
+    from flexfem.geometry.hinge_patch import has_notch
 
-    assert is_notch(profile, 5e-3) is expected
+    assert has_notch(profile, 5e-3) is expected
