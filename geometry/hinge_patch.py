@@ -1,22 +1,24 @@
-"""A notch hinge's beam model corrected by the notch's own 2-D model.
+"""A notch or filleted hinge's beam model corrected by the hinge's own 2-D model.
 
     f = notch_factors("circular", l, b, fillet_radius, nu)    # NotchFactors
     hinge = profile_beam(a, b, thickness_fn, w, factors=f)    # its beam, corrected
     f = profile_factors(thickness_fn, length, nu)             # any notch's profile t(s)
 
 Beam theory of a notch (Paros and Weisbord's integral of the profile) keeps plane sections
-through a thickness that changes quickly along the hinge; the notch's 2-D stress field does
-not, and the notch is softer than its beam: 2 % at t/R = 0.05, 6.5 % at 0.2, 13 % at 1 in
-rotation (docs/beam.md, "Notch hinges: the 2-D patch"). The correction is computed, not
-fitted to a mechanism: the notch alone between two rigid ends, in plane stress (flexfem's
-P2 continuum, ``NECK_ELEMENTS`` triangles across the local thickness, finer at the neck's
-surface), against the same notch as a beam (:func:`~flexfem.geometry.beam_layout.profile_beam`
-without root extension: the ends are rigid in both). Three factors on the profile's beam
-elements, multiplying E I, kappa G A and E A, reproduce the patch's 3 x 3 end compliance
-(rotation under a moment, deflection under a force, extension under a pull); a symmetric
-profile has no other independent entry. The patch's neck stress under a moment and under a
-pull, over the beam's nominal 6 M / (w b^2) and N / (w b), gives the notch's
-stress-concentration factors. Where the notch enters the bodies it joins is left to the root
+through a thickness that changes quickly along the hinge, and its end section, which a leaf
+loads across its thickness, carries its load near its middle; the 2-D stress field does
+neither, and the notch is softer than its beam: 2 % at t/R = 0.05, 8 % at 0.2, 29 % at 1 in
+rotation, 12-33 % in extension (docs/beam.md, "Notch hinges: the 2-D patch"). The correction
+is computed, not fitted to a mechanism: the hinge with a stub of its end height, as long as
+that height, at each end (the least body it can enter), rigid beyond the stubs, in plane
+stress (flexfem's P2 continuum, ``NECK_ELEMENTS`` triangles across the local thickness, finer
+at the neck's surface), against the same hinge and stubs as beams
+(:func:`~flexfem.geometry.beam_layout.profile_beam` without root extension). Three factors on
+the hinge's beam elements, multiplying E I, kappa G A and E A, reproduce the patch's end
+compliance (rotation under a moment, deflection under a force, extension under a pull; a
+symmetric profile has no other independent entry). The patch's neck stress under a moment and
+under a pull, over the beam's nominal 6 M / (w b^2) and N / (w b), gives a notch's
+stress-concentration factors. The rest of the body the hinge enters is left to the root
 extension of :mod:`.beam_layout`, as for every flexure (made for a leaf, it misses part of a
 notch's junction with a body much taller than the notch's ends: docs/beam.md).
 
@@ -87,8 +89,8 @@ def notch_factors(profile: str, l: float, b: float, fillet_radius: float,
 
 def patch_factors(profile: str, l: float, b: float, fillet_radius: float, nu: float,
                   neck_elements: int = NECK_ELEMENTS) -> NotchFactors:
-    """NotchFactors computed: the notch's plane-stress 2-D model between rigid ends against
-    its beam (see the module's text), ``neck_elements`` triangles across its thickness."""
+    """NotchFactors computed: the hinge's plane-stress 2-D model with its stubs against its
+    beam (see the module's text), ``neck_elements`` triangles across its thickness."""
     _check(profile, l, b, fillet_radius, nu)
     r_over_b = fillet_radius / b if profile == "filleted" else 0.0
     return _patch_factors(profile, round(l / b, 12), round(r_over_b, 12), float(nu),

@@ -3,10 +3,11 @@
 
     .venv/bin/python scripts/notch_factor_table.py      # about a minute
 
-The table is flexfem's own computation, not a published source: each entry is the notch
-alone between rigid ends in plane stress (P2, NECK_ELEMENTS_TABLE triangles across the local
-thickness) against its beam. tests/geometry/test_hinge_patch.py recomputes entries and checks
-the interpolation between them.
+The table is flexfem's own computation, not a published source: each entry is the notch with
+a stub of its end height at each end, rigid beyond, in plane stress (P2, NECK_ELEMENTS_TABLE
+triangles across the local thickness) against the same as beams.
+tests/geometry/test_hinge_patch.py recomputes entries and checks the interpolation between
+them.
 """
 from pathlib import Path
 import time
@@ -33,12 +34,13 @@ def main() -> None:
     lines = [
         "# A circular notch hinge's 2-D correction of its beam model, computed by flexfem:",
         "# scripts/notch_factor_table.py (flexfem.geometry.hinge_patch.patch_factors), not a",
-        "# published source. The notch alone between rigid ends in plane stress (P2 triangles,",
-        f"# {NECK_ELEMENTS_TABLE} across the local thickness, finer at the neck's surface) against "
-        "the same",
-        "# notch as a beam (Paros-Weisbord's plane sections): bending, shear and axial multiply",
-        "# E I, kappa G A and E A on the notch's beam elements; kt_bending and kt_tension are the",
-        "# neck's peak von Mises stress over the nominal 6 M / (w b^2) and N / (w b).",
+        "# published source. The notch with a stub of its end height (as long) at each end, rigid",
+        "# beyond, in plane stress (P2 triangles, "
+        f"{NECK_ELEMENTS_TABLE} across the local thickness, finer at",
+        "# the neck's surface) against the same as beams (Paros-Weisbord's plane sections):",
+        "# bending, shear and axial multiply E I, kappa G A and E A on the notch's beam",
+        "# elements; kt_bending and kt_tension are the neck's peak von Mises stress over the",
+        "# nominal 6 M / (w b^2) and N / (w b).",
         "# Rows: nu; columns: t_over_r = b / R (neck b, notch radius R = l / 2).",
         "",
         "[circular_notch]",
