@@ -133,11 +133,15 @@ def _check(profile, l, b, fillet_radius, nu) -> None:
     for name, value in (("l", l), ("b", b)):
         if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
             raise ValueError(f"notch_factors: {name} = {value!r} must be a finite number > 0 (m)")
-    if not (isinstance(nu, (int, float)) and math.isfinite(nu) and -1 < nu < 0.5):
-        raise ValueError(f"notch_factors: nu = {nu!r} must be a number in (-1, 0.5)")
+    _check_nu(nu, "notch_factors")
     if profile == "filleted" and not 2 * fillet_radius < l:
         raise ValueError(f"notch_factors: fillet_radius = {fillet_radius!r} m must be < l / 2 "
                          f"= {l / 2!r} m")
+
+
+def _check_nu(nu, owner: str) -> None:
+    if not (isinstance(nu, (int, float)) and math.isfinite(nu) and -1 < nu < 0.5):
+        raise ValueError(f"{owner}: nu = {nu!r} must be a number in (-1, 0.5)")
 
 
 @functools.lru_cache(maxsize=512)
@@ -166,8 +170,7 @@ def profile_factors(thickness, length: float, nu: float,
     if not np.all(np.isfinite(t) & (t > 0)):
         raise ValueError("profile_factors: the thickness must be finite and > 0 along the "
                          "flexure")
-    if not (isinstance(nu, (int, float)) and math.isfinite(nu) and -1 < nu < 0.5):
-        raise ValueError(f"profile_factors: nu = {nu!r} must be a number in (-1, 0.5)")
+    _check_nu(nu, "profile_factors")
     b = t.min()
     return _sampled_factors(round(length / b, 9), tuple(np.round(t / b, 9)), float(nu),
                             int(neck_elements))
@@ -232,7 +235,7 @@ def _fit(thickness, l: float, breaks, nu: float, outline, neck, neck_elements: i
         fused, _ = occ.fuse([(2, outline(occ))], stubs)
         return [tag for _, tag in fused]
 
-    patch = Model(_patch_mesh(drawn, l, (x0, x1), thickness, neck, neck_elements, arcs),
+    patch = Model(_patch_mesh(drawn, l, (x0, x1), thickness, neck, b, neck_elements, arcs),
                   material, PlaneStress(w), order=2)
     C2 = compliance_matrix(patch, [Fixed("root")], "tip", point=(x1, 0.0)).matrix
 
@@ -276,13 +279,13 @@ def _neck_stress(patch, x: float, b: float, moment: float = 0.0, force=(0.0, 0.0
     return float(np.sqrt(sxx ** 2 - sxx * syy + syy ** 2 + 3 * sxy ** 2).max())
 
 
-def _patch_mesh(drawn, l: float, span, thickness, neck, neck_elements: int, arcs: bool = True):
+def _patch_mesh(drawn, l: float, span, thickness, neck, b: float, neck_elements: int,
+                arcs: bool = True):
     """The surfaces ``drawn(occ)`` draws (their tags) along ``span`` = (x0, x1) (m), a notch
     along [0, l] with its stubs: triangles of about thickness(x) / ``neck_elements`` (x
-    clipped to the notch), down to t / (NECK_REFINEMENT neck_elements) at the neck's surface
-    points (``neck``, +-t / 2; none if None); boundary groups 'root' (x = x0) and 'tip' (x =
-    x1). ``arcs``: the outline's curves are arcs (curvature sizing on)."""
-    b = float(thickness(neck if neck is not None else l / 2))
+    clipped to the notch), down to b / (NECK_REFINEMENT neck_elements) at the neck's surface
+    points (``neck``, +-b / 2; none if None; b its thickness, m); boundary groups 'root' (x =
+    x0) and 'tip' (x = x1). ``arcs``: the outline's curves are arcs (curvature sizing on)."""
     fine = b / (NECK_REFINEMENT * neck_elements)
     xs = np.linspace(0.0, l, PROFILE_SAMPLES)
     ts = np.asarray(thickness(xs), dtype=float)  # the size follows these (gmsh asks often)

@@ -15,6 +15,8 @@ natural deformations (extension, end rotations relative to the chord).
 """
 import numpy as np
 
+from .model import AXIAL_FACTOR, BENDING_FACTOR, MASS_FACTOR
+
 GAUSS_X, GAUSS_W = np.polynomial.legendre.leggauss(6)
 XI = 0.5 * (GAUSS_X + 1.0)
 WXI = 0.5 * GAUSS_W
@@ -43,13 +45,6 @@ def bending_shape_functions(xi, L, phi):
                     -6 * f * (2 * x - 1) / L_**2,
                     f * (6 * x - 2 + p) / L_], axis=-1)
     return Nw, dNw, Np, dNp
-
-
-def gauss_shape_functions(model, phi):
-    """bending_shape_functions at the Gauss points XI, cached on the model (the stiffness
-    and the mass use the same)."""
-    return model.cached("gauss_shape_functions",
-                        lambda: bending_shape_functions(XI, model.lengths, phi))
 
 
 def _gram(weight, A, B) -> np.ndarray:
@@ -90,7 +85,7 @@ def axial_stiffness(model) -> np.ndarray:
     if quadratic.any():
         A_g, _, _ = sections(model, XI)
         mean = np.where(quadratic, 1.0 / (WXI / A_g).sum(axis=1), mean)
-    return model.material.E * model.section_table[:, 10] * mean / model.lengths
+    return model.material.E * model.section_table[:, AXIAL_FACTOR] * mean / model.lengths
 
 
 class _Distinct:
@@ -160,7 +155,8 @@ def _local_stiffness(model) -> np.ndarray:
     if model.shear:
         G = mat.E / (2.0 * (1.0 + mat.nu))
         kGA = model.section_table[:, 7][:, None] * G * A
-    Kb = bending_stiffness(mat.E * model.section_table[:, 9:10] * I, kGA, model.lengths)
+    EI = mat.E * model.section_table[:, BENDING_FACTOR, None] * I
+    Kb = bending_stiffness(EI, kGA, model.lengths)
     K = np.zeros((model.n_elements, 6, 6))
     K[:, np.array(BEND)[:, None], np.array(BEND)[None, :]] = Kb
     ea = axial_stiffness(model)
@@ -188,7 +184,7 @@ def _local_mass(model) -> np.ndarray:
     L, rho = model.lengths, model.material.rho
     phi = shear_parameter(model)
     A, I, _ = sections(model, XI)
-    Nw, _, Np, _ = gauss_shape_functions(model, phi)
+    Nw, _, Np, _ = bending_shape_functions(XI, L, phi)
     wdx = WXI[None, :] * L[:, None]
     Mb = _gram(rho * A * wdx, Nw, Nw) + _gram(rho * I * wdx, Np, Np)
     Nu = np.stack([1.0 - XI, XI], axis=-1)
@@ -196,7 +192,7 @@ def _local_mass(model) -> np.ndarray:
     M = np.zeros((model.n_elements, 6, 6))
     M[:, np.array(BEND)[:, None], np.array(BEND)[None, :]] = Mb
     M[:, np.array(AXIAL)[:, None], np.array(AXIAL)[None, :]] = Ma
-    return M * model.section_table[:, 11, None, None]
+    return M * model.section_table[:, MASS_FACTOR, None, None]
 
 
 def rotation_to_global(angles) -> np.ndarray:

@@ -39,6 +39,7 @@ def dof_index(dof) -> int:
 
 
 SECTION_COLUMNS = 12  # Section.row()'s length: the model's section_table columns
+BENDING_FACTOR, AXIAL_FACTOR, MASS_FACTOR = 9, 10, 11  # their columns in section_table
 
 
 @dataclass(frozen=True)

@@ -32,7 +32,7 @@ def _error(where: str, message: str) -> ValueError:
     return ValueError(f"{where}: {message}")
 
 
-def notch_factors_of(line, nu: float):
+def _notch_factors(line, nu: float):
     """The 2-D correction (NotchFactors) of a [[beam]] whose profile is a notch or a filleted
     leaf, None for any other: a beam of one straight segment (collinear points) whose
     thickness is least inside it and at least 1.5 times that at both ends
@@ -42,8 +42,9 @@ def notch_factors_of(line, nu: float):
     length = float(np.linalg.norm(chord))
     d = chord / length
     offsets = d[0] * (points[:, 1] - points[0, 1]) - d[1] * (points[:, 0] - points[0, 0])
-    notch = has_notch(line.thickness, line.thickness.length)
-    if np.abs(offsets).max() > 1e-9 * length or not notch:
+    if np.abs(offsets).max() > 1e-9 * length:
+        return None
+    if not has_notch(line.thickness, line.thickness.length):
         return None
     return profile_factors(line.thickness, line.thickness.length, nu)
 
@@ -150,7 +151,7 @@ def _mesh(beams, tol, nu: float) -> tuple:
                      for end in (0, -1)]
         oblique = beams.root_extension if beams.roots == "acute_edge" else 0.0
         offsets = _root_offsets(line, bodies_at, oblique, tol)
-        factors = notch_factors_of(line, nu) if beams.notch_correction else None
+        factors = _notch_factors(line, nu) if beams.notch_correction else None
         part = _line_mesh(line, tol, line_cuts, offsets, factors)
         mesh = part if mesh is None else mesh.join(part, tol)
         for end, bodies, offset in zip((0, -1), bodies_at, offsets):

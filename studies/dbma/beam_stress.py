@@ -63,26 +63,19 @@ def filleted_peak_stress(model, state, thickness: float, kt_tension: float,
                          kt_bending: float) -> tuple:
     """(peak stress (Pa), element) over the elements of in-plane thickness ``thickness`` (m:
     the hinges' straight parts), from the beam state's axial force and end moments."""
-    sec = model.sections
-    straight = np.array([s.thickness is not None and math.isclose(s.thickness, thickness,
-                                                                   rel_tol=1e-9)
-                         and (s.thickness_end is None
-                              or math.isclose(s.thickness_end, thickness, rel_tol=1e-9))
-                         for s in sec])
-    if not straight.any():
+    straight = [e for e, s in enumerate(model.sections)
+                if s.thickness is not None and math.isclose(s.thickness, thickness, rel_tol=1e-9)
+                and (s.thickness_end is None
+                     or math.isclose(s.thickness_end, thickness, rel_tol=1e-9))]
+    if not straight:
         raise ValueError(f"no element of thickness {thickness!r} m: not a filleted hinge model")
-    w = np.array([s.width if s.width is not None else np.nan for s in sec])
-    N, M = np.abs(state.axial_force), np.abs(state.end_moments).max(axis=1)
-    sigma = kt_tension * N / (w * thickness) + kt_bending * 6 * M / (w * thickness ** 2)
-    sigma = np.where(straight, sigma, -np.inf)
-    e = int(np.argmax(sigma))
-    return float(sigma[e]), e
+    return end_peak_stress(model, state, straight, kt_tension, kt_bending)
 
 
-def notch_peak_stress(model, state, elements, kt_tension: float, kt_bending: float) -> tuple:
-    """(peak stress (Pa), element) of notch hinges: K_t times the nominal stress |N| / (w t)
-    + 6 |M| / (w t^2) at both ends of each of ``elements`` (the notches' rectangular beam
-    elements), the largest: at a neck, where t is least and the K_t belongs."""
+def end_peak_stress(model, state, elements, kt_tension: float, kt_bending: float) -> tuple:
+    """(peak stress (Pa), element): K_t times the nominal stress |N| / (w t) + 6 |M| / (w t^2)
+    at both ends of each of ``elements`` (rectangular beam elements), the largest. For notch
+    hinges: at a neck, where t is least and the K_t belongs."""
     elements = np.asarray(elements)
     table = model.section_table[elements]
     w, t = table[:, 1:2], table[:, 2:4]  # the width; the thickness at both ends
@@ -117,6 +110,6 @@ def dbma_notch_stress(p, layout, model, info, state) -> dict:
     from ...geometry.hinge_patch import notch_factors
 
     f = notch_factors("circular", p.l, p.b, layout.hinge_fillet_radius, p.nu)
-    peak, e = notch_peak_stress(model, state, info["hinge_elements"], f.kt_tension,
-                                f.kt_bending)
+    peak, e = end_peak_stress(model, state, info["hinge_elements"], f.kt_tension,
+                              f.kt_bending)
     return _located(model, peak, e, f.kt_tension, f.kt_bending)

@@ -47,7 +47,7 @@ def test_the_corrected_beam_reproduces_the_notch_with_its_stubs():
                             stubs)
         return [tag for _, tag in fused]
 
-    patch = Model(_patch_mesh(drawn, l, (-h, l + h), thickness, l / 2, 12), STEEL,
+    patch = Model(_patch_mesh(drawn, l, (-h, l + h), thickness, l / 2, b, 12), STEEL,
                   PlaneStress(2e-3), order=2)
     C2 = compliance_matrix(patch, [FEFixed("root")], "tip", point=(l + h, 0.0)).matrix
     out = {}
