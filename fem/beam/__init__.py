@@ -14,11 +14,12 @@ from .model import (BeamMesh, BeamModel, Fixed, NodalLoad, Prescribed, RigidLink
                     beam_chain, beam_from_profile)
 from .nonlinear import BeamNonlinearResult, NonConvergenceError, solve_beam_nonlinear
 from .static import BeamState, BeamStaticResult, solve_beam_displacements, solve_beam_static
+from .superelement import Superelement
 
 __all__ = [
     "BeamMesh", "BeamModel", "BeamModes", "BeamNonlinearResult", "BeamState",
     "BeamStaticResult", "Fixed", "NodalLoad", "NonConvergenceError", "Prescribed", "RigidLink",
-    "Section", "SingularBeamError", "beam_chain", "beam_from_profile", "compliance",
-    "solve_beam_displacements", "solve_beam_modes", "solve_beam_nonlinear",
+    "Section", "SingularBeamError", "Superelement", "beam_chain", "beam_from_profile",
+    "compliance", "solve_beam_displacements", "solve_beam_modes", "solve_beam_nonlinear",
     "solve_beam_static",
 ]

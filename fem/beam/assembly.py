@@ -27,8 +27,8 @@ class SingularBeamError(ValueError):
 
 
 def element_dofs(model: BeamModel) -> np.ndarray:
-    """(n_e, 6) global DOFs of each element."""
-    return model.cached("element_dofs", lambda: block_dofs(model.elements))
+    """(n_e + n_pairs, 6) global DOFs of each element, then of each superelement pair."""
+    return model.cached("element_dofs", lambda: block_dofs(model.connectivity))
 
 
 def gather(model: BeamModel, fe: np.ndarray) -> np.ndarray:
@@ -37,10 +37,12 @@ def gather(model: BeamModel, fe: np.ndarray) -> np.ndarray:
 
 
 def element_mass(model: BeamModel) -> np.ndarray:
-    """(n_e, 6, 6) consistent element mass matrices in global DOF order (cached)."""
+    """(n_e + n_pairs, 6, 6) consistent element mass matrices in global DOF order, then the
+    superelements' pairs' (cached)."""
     def compute():
         T = rotation_to_global(model.angles)
-        return np.matmul(T.transpose(0, 2, 1), local_mass(model) @ T)
+        return np.concatenate([np.matmul(T.transpose(0, 2, 1), local_mass(model) @ T),
+                               model.pair_mass])
     return model.cached("element_mass", compute)
 
 
@@ -101,12 +103,24 @@ class Assembler:
         self.Kb = model.cached("basic_stiffness", lambda: basic_stiffness(model))
 
     def elements(self, q, tangent=True) -> tuple:
-        """corotational(model, Kb, q, tangent); the undeformed state's is cached (the linear
-        solves of a design point all start there)."""
+        """corotational(model, Kb, q, tangent), the superelements' pairs (linear) appended
+        to the forces and tangents; the undeformed state's is cached (the linear solves of
+        a design point all start there)."""
         if not q.any():
-            return self.model.cached("undeformed", lambda: corotational(
-                self.model, self.Kb, np.zeros((self.model.n_nodes, 3)), True))
-        return corotational(self.model, self.Kb, q, tangent)
+            return self.model.cached("undeformed", lambda: self._with_pairs(corotational(
+                self.model, self.Kb, np.zeros((self.model.n_nodes, 3)), True), q))
+        return self._with_pairs(corotational(self.model, self.Kb, q, tangent), q)
+
+    def _with_pairs(self, out, q) -> tuple:
+        model = self.model
+        if not len(model.pairs):
+            return out
+        fe, ke, basic = out
+        qp = q.reshape(-1)[block_dofs(model.pairs)]
+        fe = np.concatenate([fe, np.einsum("eij,ej->ei", model.pair_stiffness, qp)])
+        if ke is not None:
+            ke = np.concatenate([ke, model.pair_stiffness])
+        return fe, ke, basic
 
     def evaluate(self, z, lam, tangent=True) -> Evaluation:
         """The state at unknowns z and load factor lam (r = f_int - lam f_ext, N, N m)."""

@@ -73,9 +73,10 @@ def dense_lowest_modes(K: np.ndarray, M: np.ndarray, n: int) -> tuple:
 def _mass_translations(model: BeamModel) -> np.ndarray:
     """M [1_x 1_y] (n_dofs, 2): the consistent mass times the unit translations along x and
     y, summed element by element (no global mass matrix)."""
-    me = element_mass(model)  # (n_e, 6, 6) global DOF order: u, v, theta at each end
+    me = element_mass(model)  # (n_e + n_pairs, 6, 6) global order: u, v, theta at each end
     cols = np.stack([me[:, :, 0] + me[:, :, 3], me[:, :, 1] + me[:, :, 4]], axis=-1)
-    dofs = (3 * model.elements[:, [0, 0, 0, 1, 1, 1]] + np.array([0, 1, 2, 0, 1, 2])).ravel()
+    dofs = (3 * model.connectivity[:, [0, 0, 0, 1, 1, 1]]
+            + np.array([0, 1, 2, 0, 1, 2])).ravel()
     diag = point_mass_diagonal(model)
     out = np.column_stack([np.bincount(dofs, cols[:, :, k].ravel(), model.n_dofs)
                            for k in (0, 1)])

@@ -12,6 +12,7 @@ import numbers
 import numpy as np
 
 from ..materials import Material
+from .superelement import Superelement
 
 DOF_NAMES = {"x": 0, "u": 0, "y": 1, "v": 1, "theta": 2, "t": 2, "rz": 2}
 
@@ -283,10 +284,12 @@ class BeamModel:
     """Planar beam model. nodes (n, 2) m; elements (n_e, 2) node indices; sections: one
     Section or one per element; material: Material (E, nu, rho); shear: Timoshenko shear
     deformation (default off: Euler-Bernoulli); rigid_links: RigidLink sequence;
-    point_masses: {node: (mass kg, rotary inertia kg m^2)}."""
+    point_masses: {node: (mass kg, rotary inertia kg m^2)}; superelements: Superelement
+    sequence (linear parts condensed onto nodes; assembled as pairs of nodes, ``pairs``,
+    after the elements: ``connectivity``)."""
 
     def __init__(self, nodes, elements, sections, material: Material, shear: bool = False,
-                 rigid_links=(), point_masses=None):
+                 rigid_links=(), point_masses=None, superelements=()):
         self.nodes = np.asarray(nodes, dtype=float)
         if self.nodes.ndim != 2 or self.nodes.shape[1] != 2 or not np.all(np.isfinite(self.nodes)):
             raise ValueError(f"nodes must be a finite (n, 2) array, got shape {self.nodes.shape}")
@@ -311,6 +314,22 @@ class BeamModel:
         self.rigid_links = tuple(rigid_links)
         self.point_masses = dict(point_masses or {})
         self._check_links()
+        self.superelements = tuple(superelements)
+        self._pairs()
+
+    def _pairs(self):
+        parts = []
+        for sup in self.superelements:
+            if not isinstance(sup, Superelement):
+                raise ValueError(f"superelements: {sup!r} is not a Superelement")
+            if max(sup.nodes) >= self.n_nodes or min(sup.nodes) < 0:
+                raise ValueError(f"superelements: nodes {sup.nodes} outside "
+                                 f"0..{self.n_nodes - 1}")
+            parts.append(sup.pairs())
+        empty = (np.zeros((0, 2), dtype=int), np.zeros((0, 6, 6)), np.zeros((0, 6, 6)))
+        self.pairs, self.pair_stiffness, self.pair_mass = (
+            np.concatenate([p[k] for p in parts]) if parts else empty[k] for k in range(3))
+        self.connectivity = np.vstack([self.elements, self.pairs]).astype(int)
 
     def _check_links(self):
         n = len(self.nodes)

@@ -132,6 +132,9 @@ def solve_beam_nonlinear(model: BeamModel, supports, loads=(), steps: int = 10,
     increment |dz| <= sqrt(tol) |z|. Raises NonConvergenceError when a step cannot be cut
     below ``min_step`` (a fraction of the total)."""
     check_step_arguments(steps, max_iterations, tol, min_step)
+    if model.superelements:
+        raise ValueError("solve_beam_nonlinear: the model has superelements, which are "
+                         "linear (small rotations only); use the linear solves")
     asm = Assembler(model, supports, loads)
     stepper = _Stepper(asm, control, tol, max_iterations)
     z, lam, t = np.zeros(asm.space.n), 0.0, 0.0

@@ -66,19 +66,20 @@ def global_pattern(model) -> Pattern:
     """The global matrix pattern of a model (cached): every element entry, then every
     diagonal entry (nodes without elements, such as rigid-link masters, included)."""
     def build():
-        dofs = block_dofs(model.elements)
+        dofs = block_dofs(model.connectivity)
         m, n = len(dofs), model.n_dofs
         rows = np.concatenate([np.broadcast_to(dofs[:, :, None], (m, 6, 6)).ravel(),
                                np.arange(n)])
         cols = np.concatenate([np.broadcast_to(dofs[:, None, :], (m, 6, 6)).ravel(),
                                np.arange(n)])
         return Pattern(rows, cols, (n, n))
-    key = ("global", model.n_dofs, model.elements.tobytes())
+    key = ("global", model.n_dofs, model.connectivity.tobytes())
     return model.cached("global_pattern", lambda: shared(key, build))
 
 
 def global_matrix(model, ke, diagonal=None) -> sp.csr_matrix:
-    """Global CSR matrix of element matrices ``ke`` (n_e, 6, 6) plus ``diagonal`` (n_dofs,)."""
+    """Global CSR matrix of element matrices ``ke`` (n_e + n_pairs, 6, 6: the elements',
+    then the superelements' pairs') plus ``diagonal`` (n_dofs,)."""
     diagonal = np.zeros(model.n_dofs) if diagonal is None else diagonal
     return global_pattern(model).matrix(np.concatenate([ke.ravel(), diagonal]))
 

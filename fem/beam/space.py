@@ -175,7 +175,8 @@ class Space:
         """The reduced matrix's fixed pattern (Condensed) of this Space's elements, shared
         between the models of one topology and held DOFs (a sweep's designs)."""
         if self._stiffness is None:
-            key = ("condensed", self.n, self.col.tobytes(), self.model.elements.tobytes())
+            blocks = self.model.connectivity
+            key = ("condensed", self.n, self.col.tobytes(), blocks.tobytes())
             self._stiffness = shared(key, lambda: Condensed(self.col, self.n,
-                                                            block_dofs(self.model.elements)))
+                                                            block_dofs(blocks)))
         return self._stiffness

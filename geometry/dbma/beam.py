@@ -27,6 +27,7 @@ from ..hinge_patch import notch_factors
 from ..hinge_profiles import profile_thickness
 from ..spatial_beam import lifted_model
 from .drawing import DBMALayout, check_layout, quarter_rects
+from .member_patch import member_cut, member_superelement
 from .params import DBMAParams
 
 QUARTERS = ((1, 1), (-1, 1), (1, -1), (-1, -1))
@@ -85,23 +86,39 @@ def _column(bld, links, xc, ys, width, depth, hinge_ends, per_length) -> dict:
     return at
 
 
-def _input_member(bld, links, p, layout, J, pad, sx, hinge_ends, root_extension) -> int:
-    """An input member (arms 2 + 13 or 6 + 9) as an elastic beam of width a along its centre
-    line, the hinges' ends joined to it by rigid offsets; returns the master node on its pad's
-    face, where the actuator pushes.
+def _input_member(bld, links, supers, p, layout, J, pad, sx, hinge_ends, root_extension,
+                  member_patch) -> int:
+    """An input member (arms 2 + 13 or 6 + 9) as elastic beams of width a along its centre
+    line, the hinges' ends joined to them by rigid offsets; returns the master node on its
+    pad's face, where the actuator pushes.
 
-    Over the pad's height the member is a block (pad_height tall, a deep: as tall as it is
-    deep, not a beam) on which the pad, held along x by the actuator over its whole face,
-    bears: a rigid body, carried by the pad, a short beam (pad_height thick) from its face to
-    the member's face. The member's halves enter the block as every flexure enters a body
-    here, with the common root extension: root_extension x a into it, at most to its middle
-    (a pad lower than 2 x 0.38 a: a point support)."""
+    Where the pad bears on it, the member is as deep as its span to the first hinges and no
+    beam: with ``member_patch`` it is a 2-D patch there, with its pad, condensed onto the
+    beams' ends at the cuts and the pad face's node (:mod:`.member_patch`, appended to
+    ``supers``). Without (the spatial model's planar part): over the pad's height the member
+    is a rigid block carried by the pad, a short beam (pad_height thick) from its face to the
+    member's face, which the member's halves enter with the common root extension,
+    root_extension x a into it, at most to its middle (a pad lower than 2 x 0.38 a: a point
+    support; docs/beam.md, "DBMA: the pad block")."""
+    xc, face = sx * (J.x0 + J.x1) / 2, (sx * min(abs(pad.x0), abs(pad.x1)), 0.0)
+    if member_patch:
+        y0 = member_cut(p, layout)
+        if any(abs(y) <= y0 for _, y in hinge_ends):
+            raise ValueError(f"DBMA: the input member's patch (|y| <= {y0!r} m) reaches a "
+                             "hinge")
+        ends = []
+        for ys in ((-p.ll, -y0), (y0, p.ll)):
+            at = _column(bld, links, xc, ys, p.a, p.d,
+                         [(n, y) for n, y in hinge_ends if ys[0] <= y <= ys[1]], 6 / p.ll)
+            ends.append(at[ys[1] if ys[0] < 0 else ys[0]])
+        master = bld.point(face)
+        supers.append(member_superelement(p, layout, sx, (*ends, master)))
+        return master
     half = layout.pad_height / 2
     y0 = max(half - root_extension * p.a, 0.0)  # the member is rigid for |y| <= y0
-    at = _column(bld, links, sx * (J.x0 + J.x1) / 2, (-p.ll, p.ll, -y0, y0), p.a, p.d,
-                 hinge_ends, 6 / p.ll)
-    face, root = (sx * min(abs(pad.x0), abs(pad.x1)), 0.0), (sx * J.x0, 0.0)
-    chain = bld.add(beam_chain([face, root], Section.rect(p.d, layout.pad_height), 2))
+    at = _column(bld, links, xc, (-p.ll, p.ll, -y0, y0), p.a, p.d, hinge_ends, 6 / p.ll)
+    chain = bld.add(beam_chain([face, (sx * J.x0, 0.0)], Section.rect(p.d, layout.pad_height),
+                               2))
     block = [n for y, n in at.items() if abs(y) <= y0 * (1 + 1e-9)]
     links.append(RigidLink(chain[1], tuple(block)))
     return chain[0]
@@ -110,7 +127,7 @@ def _input_member(bld, links, p, layout, J, pad, sx, hinge_ends, root_extension)
 def dbma_beam_model(p: DBMAParams, layout: DBMALayout | None = None,
                     root_extension: float = ROOT_EXTENSION, arm_elements: int = 8,
                     shear: bool = True, elements_per_hinge: int | None = None,
-                    notch_correction: bool = True) -> tuple:
+                    notch_correction: bool = True, member_patch: bool = True) -> tuple:
     """(BeamModel, info) of the DBMA. info: "input_a" / "input_b" (masters of the left /
     right input members, on their pads' faces), "output" (master of member 4, on its top
     face), "ground" (the bottom of member 11, its mounting face), "hinges" {label: (first,
@@ -118,7 +135,10 @@ def dbma_beam_model(p: DBMAParams, layout: DBMALayout | None = None,
     their root extensions included). elements_per_hinge: default LEAF_ELEMENTS for a leaf,
     PROFILE_ELEMENTS for a notch or filleted profile. ``notch_correction``: a notch or
     filleted hinge's beam corrected by its own 2-D model
-    (:func:`flexfem.geometry.hinge_patch.notch_factors`; False: plain beam theory)."""
+    (:func:`flexfem.geometry.hinge_patch.notch_factors`; False: plain beam theory).
+    ``member_patch``: the input members where their pads bear on them as 2-D patches
+    (:mod:`.member_patch`; a linear superelement each); False: as rigid blocks on short pad
+    beams (the model the spatial beam lifts)."""
     layout = layout or DBMALayout()
     check_layout(p, layout)
     root_extension = check_root_extension(root_extension)
@@ -135,7 +155,7 @@ def dbma_beam_model(p: DBMAParams, layout: DBMALayout | None = None,
     hinge = profile_beam((0.0, 0.0), (p.l, 0.0), fn, p.d, breaks, n_hinge, root_extension,
                          blocks, vectorized=True, factors=factors)
     x_out, x_in, l, h = p.ls / 2, p.ls / 2 + 2 * p.l + p.e, p.l, p.h
-    bld, links = _Builder(), []
+    bld, links, supers = _Builder(), [], []
     slaves = {"input_a": [], "input_b": [], "output": []}
     ground, spans, in_hinges = [], {}, []
     for sx, sy in QUARTERS:
@@ -154,15 +174,16 @@ def dbma_beam_model(p: DBMAParams, layout: DBMALayout | None = None,
             (slaves["output"] if sy > 0 else ground).append((ha[0], ya))
             slaves["input_b" if sx > 0 else "input_a"].append((hb[1], yb))
     for name, sx in (("input_a", -1), ("input_b", 1)):
-        master = _input_member(bld, links, p, layout, J, pad, sx, slaves[name],
-                               root_extension)
+        master = _input_member(bld, links, supers, p, layout, J, pad, sx, slaves[name],
+                               root_extension, member_patch)
         slaves[name] = master
     top = _column(bld, links, 0.0, (out4.y0, out4.y1), p.ls, p.d, slaves["output"],
                   6 / p.ll)
     base = _column(bld, links, 0.0, (-out4.y1, -out4.y0), p.ls, p.d, ground, 6 / p.ll)
     master, ground = top[out4.y1], [base[-out4.y1]]
     model = BeamModel(np.vstack(bld.nodes), np.vstack(bld.elements), bld.sections,
-                      Material("dbma_steel", p.E, p.nu, p.rho), shear=shear, rigid_links=links)
+                      Material("dbma_steel", p.E, p.nu, p.rho), shear=shear, rigid_links=links,
+                      superelements=supers)
     return model, {"input_a": slaves["input_a"], "input_b": slaves["input_b"],
                    "output": master, "ground": ground, "hinges": spans,
                    "hinge_elements": np.array(in_hinges)}
@@ -173,5 +194,5 @@ def dbma_beam3d_model(p: DBMAParams, layout: DBMALayout | None = None,
     """(Beam3DModel, info) of the DBMA for its out-of-plane modes: the planar model
     (:func:`dbma_beam_model`, same info) lifted into 3-D, every section the rectangle of its
     in-plane depth and the plate thickness d (:func:`..spatial_beam.lifted_model`)."""
-    planar, info = dbma_beam_model(p, layout, root_extension)
+    planar, info = dbma_beam_model(p, layout, root_extension, member_patch=False)
     return lifted_model(planar, p.d), info

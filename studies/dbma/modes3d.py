@@ -21,19 +21,24 @@ from ...geometry.beam_layout import ROOT_EXTENSION
 from ...geometry.dbma.beam import dbma_beam3d_model
 from ...geometry.dbma.drawing import DBMALayout
 from ...geometry.dbma.params import DBMAParams, paper_design
-from ..modes3d import TorsionScaled, mirror_vertices, out_of_plane_share, pair_modes, vlasov_factor
+from ..modes3d import (SPLIT, TorsionScaled, mirror_vertices, out_of_plane_share, pair_modes,
+                       vlasov_factor)
 from .analysis import build_model, modal_supports
 
 PAD_DOFS = ("x", "ry", "rz")  # what the actuator holds on a pad face
 
 
 def beam_modes3d(p: DBMAParams, layout: DBMALayout | None = None, n_modes: int = 10,
-                 warping: bool = True, root_extension: float = ROOT_EXTENSION) -> dict:
+                 warping: bool = True, root_extension: float = ROOT_EXTENSION,
+                 member_patch: bool = True) -> dict:
     """The spatial beam model's first ``n_modes``: {"f_hz", "mass_fraction" (n, 3),
     "out_of_plane_share" (of the nodes' translations), "total_mass_kg"}. ``warping``: each
     hinge's J times :func:`~flexfem.studies.modes3d.vlasov_factor` for its l x b x d strip
     (the arms and members it enters hold its ends against warping, which Saint-Venant
-    torsion leaves out); leaf hinges only."""
+    torsion leaves out); leaf hinges only. The spatial model lifts the planar one with block
+    input members; its in-plane and out-of-plane modes do not couple (a plate symmetric about
+    its mid-plane), so with ``member_patch`` its in-plane family is the planar model's with
+    the input members' 2-D patches (:func:`_planar_family`)."""
     layout = layout or DBMALayout()
     if warping and layout.hinge_profile != "leaf":
         raise ValueError(f"warping = True needs leaf hinges (a uniform strip); the layout's "
@@ -48,9 +53,32 @@ def beam_modes3d(p: DBMAParams, layout: DBMALayout | None = None, n_modes: int =
     modes = solve_beam3d_modes(model, supports, n=n_modes)
     u = modes.shapes[:, :, :3]
     share = np.sum(u[:, :, 2] ** 2, axis=1) / np.sum(u ** 2, axis=(1, 2))
-    return {"f_hz": modes.frequencies_hz.tolist(),
-            "mass_fraction": modes.effective_mass_fraction.tolist(),
-            "out_of_plane_share": share.tolist(), "total_mass_kg": float(modes.total_mass)}
+    out = {"f_hz": modes.frequencies_hz.tolist(),
+           "mass_fraction": modes.effective_mass_fraction.tolist(),
+           "out_of_plane_share": share.tolist(), "total_mass_kg": float(modes.total_mass)}
+    return _planar_family(out, p, layout, root_extension, n_modes) if member_patch else out
+
+
+def _planar_family(out: dict, p, layout, root_extension, n_modes: int) -> dict:
+    """``out`` with its in-plane modes replaced by the planar beam model's (member patches
+    on), merged by frequency, the first ``n_modes`` kept."""
+    from ...fem.beam import Fixed as PlanarFixed, Prescribed as PlanarPrescribed
+    from ...fem.beam import solve_beam_modes
+    from ...geometry.dbma.beam import dbma_beam_model
+
+    model, info = dbma_beam_model(p, layout, root_extension)
+    held = [PlanarFixed(tuple(info["ground"]))] + [
+        PlanarPrescribed(info[pad], dof, 0.0) for pad in ("input_a", "input_b")
+        for dof in ("x", "theta")]
+    planar = solve_beam_modes(model, held, n=n_modes)
+    fraction = np.column_stack([planar.effective_mass / out["total_mass_kg"],
+                                np.zeros(n_modes)])
+    rows = [(f, m, 0.0) for f, m in zip(planar.frequencies_hz, fraction.tolist())]
+    rows += [row for row in zip(out["f_hz"], out["mass_fraction"], out["out_of_plane_share"])
+             if row[2] > SPLIT]
+    rows = sorted(rows, key=lambda row: row[0])[:n_modes]
+    return {**out, "f_hz": [float(r[0]) for r in rows], "mass_fraction": [r[1] for r in rows],
+            "out_of_plane_share": [r[2] for r in rows]}
 
 
 def continuum_modes3d(p: DBMAParams, layout: DBMALayout | None = None, n_modes: int = 10,

@@ -1,0 +1,55 @@
+"""Plane-stress patches condensed onto beam nodes (flexfem.fem.patch2d): a prismatic strip
+condenses to the Timoshenko beam, a held face carries a pure moment and a pull as plane
+sections do, and bad input names the problem."""
+import numpy as np
+import pytest
+from flexfem.fem.beam import BeamModel, Fixed, Section, beam_chain
+from flexfem.fem.beam.compliance import compliance
+from flexfem.fem.materials import Material
+from flexfem.fem.patch2d import TensorPatch, cell_edges, held_face, section
+
+NU = 0.3
+
+
+def _beam_compliance(a, L):
+    """Tip compliance (x, y, theta) of a Timoshenko cantilever along y (E = 1, unit width,
+    depth a, kappa 5/6), clamped at y = 0."""
+    mesh = beam_chain([(a / 2, 0.0), (a / 2, L)], Section.rect(1.0, a), 4)
+    model = BeamModel(mesh.nodes, mesh.elements, mesh.sections, Material("unit", 1.0, NU, 1.0),
+                      shear=True)
+    return compliance(model, [Fixed(0)], 4)
+
+
+@pytest.mark.parametrize("cells", [4, 8])
+def test_a_strip_between_two_sections_is_the_timoshenko_beam(cells):
+    """With beam theory's tractions on its cuts the plane-stress strip is the Timoshenko
+    beam (kappa = 5/6): its condensed compliance equals the beam's, axial and bending
+    exactly, the shear deflection to the mesh error (4e-5 with 4 cells across)."""
+    a, L = 1.0, 3.0
+    patch = TensorPatch(cell_edges([0, a], a / cells), cell_edges([0, L], a / cells), NU)
+    K, M = patch.condensed([section((0.0, 0.0), (a, 0.0)), section((0.0, L), (a, L))])
+    assert np.linalg.eigvalsh(K)[:3] == pytest.approx(0.0, abs=1e-12)  # three rigid motions
+    C, Cb = np.linalg.inv(K[3:, 3:]), _beam_compliance(a, L)
+    assert C == pytest.approx(Cb, rel=1e-4, abs=1e-12 * np.abs(Cb).max())
+    assert C[1, 1] == pytest.approx(Cb[1, 1], rel=1e-10)  # the pull
+    assert C[2, 2] == pytest.approx(Cb[2, 2], rel=1e-10)  # the moment
+    ones = np.tile([0.0, 1.0, 0.0], 2)  # the whole strip moved along y: its mass
+    assert ones @ M @ ones == pytest.approx(a * L, rel=1e-12)
+
+
+def test_a_held_face_carries_a_moment_and_a_pull_as_plane_sections():
+    """A strip held on its end face along the normal (the tangential motion free) under a
+    moment or a pull at its other end: plane sections stay plane and the lateral contraction
+    is free, so the compliance is beam theory's, L / (E I) and L / (E A)."""
+    a, L = 2.0, 5.0
+    patch = TensorPatch(cell_edges([0, L], 0.5), cell_edges([0, a], 0.5), NU)
+    K, _ = patch.condensed([held_face((0.0, 0.0), (0.0, a)), section((L, 0.0), (L, a))])
+    C = np.linalg.inv(K[3:, 3:])  # the face's node held
+    assert C[0, 0] == pytest.approx(L / a, rel=1e-10)
+    assert C[2, 2] == pytest.approx(L / (a ** 3 / 12), rel=1e-10)
+
+
+def test_a_segment_off_the_cell_boundaries_is_refused():
+    patch = TensorPatch(cell_edges([0, 1], 0.5), cell_edges([0, 1], 0.5), NU)
+    with pytest.raises(ValueError, match="not a boundary of whole cells"):
+        patch.condensed([section((0.0, 0.1), (1.0, 0.1)), section((0.0, 1.0), (1.0, 1.0))])
