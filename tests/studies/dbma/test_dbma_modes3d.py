@@ -58,9 +58,10 @@ def test_warping_needs_leaf_hinges():
 @pytest.mark.slow
 def test_beside_the_3d_continuum():
     """The paper's design beside its solid (size_factor 1, ~100k DOFs): the paired modes have
-    the same effective mass fractions (the pairing is right); in plane the beam is within 5 %
-    (its hinges bend as plane stress, the solid's 10 mm wide hinges a little stiffer, and the
-    2-D comparison's pad rocking, +4.9 % on mode 4); the two lowest out-of-plane modes lie
+    the same effective mass fractions (the pairing is right); in plane the beam is 0-6 % below
+    the solid (the planar model with the members' patches, within 1 % of the 2-D FEM; the
+    solid's 10 mm wide hinges bend as plates, +4.8 % in frequency, and this coarse solid is
+    stiff: measured -4.4, -4.3, -4.9, -3.3 %); the two lowest out-of-plane modes lie
     between the beam with Saint-Venant torsion (warping free) and with Vlasov's factor
     (warping held at the hinges' ends): the solid's blocks hold it, but not rigidly."""
     out = compare_modes3d(paper_design(), n_modes=12)
@@ -68,7 +69,7 @@ def test_beside_the_3d_continuum():
         assert np.allclose(row["beam_mass_fraction"], row["continuum_mass_fraction"], atol=0.05)
     rows = {(r["family"], r["k"]): r for r in out["rows"]}
     for k in (1, 2, 3, 4):
-        assert abs(rows["in plane", k]["diff_pct"]) < 5
+        assert -6 < rows["in plane", k]["diff_pct"] < 0
     plain = {(r["family"], r["k"]): r for r in out["saint_venant_rows"]}
     for k in (1, 2):
         key = ("out of plane", k)
@@ -81,10 +82,12 @@ def test_beside_the_3d_continuum():
 def test_slender_hinges_out_of_plane_within_3_percent():
     """Slender hinges (b = 0.3, l = 6 mm: l/b = 20): with Vlasov's factor the four lowest
     out-of-plane modes are within 3 % of the solid (measured -1.7 to +0.3 % at size_factor 1,
-    whose solid is a little stiff), Saint-Venant's over 30 % low; in plane modes 1-3 within
-    5 % (modes 4-6 are the thin hinges' own bending, 6 % low: plane stress against the
-    solid's wide strips)."""
+    whose solid is a little stiff), Saint-Venant's over 30 % low. In plane the reference is
+    the 2-D FEM: modes 1-3 within 3 % of it (measured -0.4 %); the solid's are 4-6 % higher
+    (its 10 mm wide hinges bend as plates, E / (1 - nu^2): +4.8 % in frequency)."""
     import dataclasses
+
+    from flexfem.studies.dbma import analysis as fem
 
     p = dataclasses.replace(paper_design(), b=0.3e-3, l=6e-3)
     out = compare_modes3d(p, n_modes=12)
@@ -93,8 +96,10 @@ def test_slender_hinges_out_of_plane_within_3_percent():
     for k in (1, 2, 3, 4):
         assert abs(rows["out of plane", k]["diff_pct"]) < 3
         assert plain["out of plane", k]["diff_pct"] < -30
+    planar = fem.modal_response(fem.build_model(p, None, 2, 1.0), 3)[0]["frequencies_hz"]
     for k in (1, 2, 3):
-        assert abs(rows["in plane", k]["diff_pct"]) < 5
+        assert rows["in plane", k]["beam_hz"] == pytest.approx(planar[k - 1], rel=0.03)
+        assert -7 < rows["in plane", k]["diff_pct"] < 0
 
 
 def test_cli_beam_model_modes_follow_dim(capsys):
