@@ -29,12 +29,12 @@ Condensation: the static mode of each joint DOF (the others held, Lagrange multi
 the stiffness as the multipliers' work; the mass is Guyan's, the patch's consistent mass on
 the static modes (exact for the rigid motions, good far below the patch's own modes).
 """
-from dataclasses import dataclass
 import functools
 
 import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
+from scipy.linalg import block_diag
 
 _GAUSS = (np.array([-np.sqrt(0.6), 0.0, np.sqrt(0.6)]), np.array([5.0, 8.0, 5.0]) / 9.0)
 
@@ -72,32 +72,30 @@ def _reference(nu: float) -> tuple:
     return A, B, C, M
 
 
-def cell_edges(breaks, size: float) -> np.ndarray:
-    """Cell edges (m) splitting each interval of the sorted ``breaks`` into equal cells of
-    at most ``size``."""
+def cell_edges(breaks, size: float, refine_at=(), levels: int = 0) -> np.ndarray:
+    """Cell edges (m) splitting each interval of the sorted ``breaks`` into cells of at most
+    ``size``, graded towards the points ``refine_at`` (re-entrant corners, where the stress
+    is singular): cells of size / 2^levels next to them, doubling outwards."""
     breaks = np.asarray(breaks, dtype=float)
     out = [breaks[:1]]
     for a, b in zip(breaks[:-1], breaks[1:]):
-        n = max(1, int(np.ceil((b - a) / size - 1e-9)))
-        out.append(np.linspace(a, b, n + 1)[1:])
+        points = {a, b}
+        for c in refine_at:
+            if a <= c <= b:
+                points |= {q for k in range(1, levels + 1)
+                           for q in (c - size / 2 ** k, c + size / 2 ** k) if a < q < b}
+        points = sorted(points)
+        for p, q in zip(points[:-1], points[1:]):
+            n = max(1, int(np.ceil((q - p) / size - 1e-9)))
+            out.append(np.linspace(p, q, n + 1)[1:])
     return np.concatenate(out)
-
-
-@dataclass(frozen=True)
-class Joint:
-    """A beam node's coupling to the patch: constraint rows on the patch's DOFs (dict
-    DOF -> coefficient, one per row) and on the node's own (3,) DOFs (x, y, theta)."""
-
-    rows: tuple
-    node_rows: np.ndarray
 
 
 class TensorPatch:
     """Q2 cells on the tensor grid of cell edges ``xs``, ``ys`` (m), those whose centres
     ``keep(x, y)`` accepts (arrays in, a boolean array out; default all); Poisson's ratio
-    ``nu``. ``K``, ``M``: the patch's
-    stiffness and mass per unit E, width and density (CSC, DOFs (u, v) node by node);
-    ``xy`` the nodes (m)."""
+    ``nu``. ``K``: the patch's stiffness per unit E and width (CSC, DOFs (u, v) node by
+    node); ``xy`` the nodes (m)."""
 
     def __init__(self, xs, ys, nu: float, keep=None):
         xs, ys = np.asarray(xs, float), np.asarray(ys, float)
@@ -111,87 +109,79 @@ class TensorPatch:
         a, b = np.meshgrid(np.arange(3), np.arange(3))
         grid = (2 * cy[:, None] + b.ravel()) * len(X) + 2 * cx[:, None] + a.ravel()
         used, cells = np.unique(grid, return_inverse=True)
-        self.cells = cells.reshape(grid.shape)
         self.xy = np.column_stack([X[used % len(X)], Y[used // len(X)]])
         self.n = 2 * len(self.xy)
-        hx, hy = (xs[cx + 1] - xs[cx])[:, None, None], (ys[cy + 1] - ys[cy])[:, None, None]
-        A, B, C, M = _reference(float(nu))
-        dofs = (2 * self.cells[:, :, None] + np.arange(2)).reshape(len(cx), 18)
-        rows = np.broadcast_to(dofs[:, :, None], (len(cx), 18, 18)).ravel()
-        cols = np.broadcast_to(dofs[:, None, :], (len(cx), 18, 18)).ravel()
-        matrix = lambda e: sp.csc_matrix((e.ravel(), (rows, cols)), shape=(self.n, self.n))
-        self.K = matrix(hy / hx * A + hx / hy * B + C)
-        self.M = matrix(hx * hy / 4 * M)
+        self.dofs = (2 * cells.reshape(grid.shape)[:, :, None] + np.arange(2)).reshape(-1, 18)
+        self.hx, self.hy = xs[cx + 1] - xs[cx], ys[cy + 1] - ys[cy]
+        A, B, C, self._mass = _reference(float(nu))
+        Ke = (self.hy / self.hx)[:, None, None] * A + (self.hx / self.hy)[:, None, None] * B + C
+        rows = np.broadcast_to(self.dofs[:, :, None], Ke.shape).ravel()
+        cols = np.broadcast_to(self.dofs[:, None, :], Ke.shape).ravel()
+        self.K = sp.csc_matrix((Ke.ravel(), (rows, cols)), shape=(self.n, self.n))
+
+    def mass_of(self, U) -> np.ndarray:
+        """U^T M U (k, k) for displacement fields U (n, k): the consistent mass per unit
+        width and density, cell by cell."""
+        Ue = U[self.dofs]  # (cells, 18, k)
+        MU = (self.hx * self.hy / 4)[:, None, None] * (self._mass @ Ue)
+        return Ue.reshape(-1, U.shape[1]).T @ MU.reshape(-1, U.shape[1])
 
     def boundary(self, p0, p1) -> tuple:
         """(nodes, s) on the straight segment p0 -> p1 (an axis-aligned cell boundary), in
         order, s their distance from its middle (m)."""
-        p0, p1 = np.asarray(p0, float), np.asarray(p1, float)
-        length = float(np.linalg.norm(p1 - p0))
-        t = (p1 - p0) / length
-        r = self.xy - (p0 + p1) / 2
-        s, off = r @ t, r @ np.array([-t[1], t[0]])
+        length, t, n, middle = _frame(p0, p1)
+        r = self.xy - middle
+        s, off = r @ t, r @ n
         tol = 1e-9 * length
         on = np.flatnonzero((np.abs(off) < tol) & (np.abs(s) <= length / 2 + tol))
         on = on[np.argsort(s[on])]
         if len(on) < 3 or len(on) % 2 == 0:
-            raise ValueError(f"patch: the segment {p0.tolist()} -> {p1.tolist()} is not a "
-                             "boundary of whole cells")
+            raise ValueError(f"patch: the segment {list(p0)} -> {list(p1)} is not a boundary "
+                             "of whole cells")
         return on, s[on]
 
     def condensed(self, joints) -> tuple:
         """(K, M) on the joints' DOFs (3 a joint, (x, y, theta), in order), per unit E, width
-        and density: the static modes of each joint DOF, the others held."""
-        Cu, Cg = _constraints(self, joints)
+        and density: the static modes of each joint DOF, the others held (constraint rows
+        Cu u + Cg g = 0, Lagrange multipliers lam: K = Cg^T lam)."""
+        rows = [joint(self) for joint in joints]
+        Cu = sp.csc_matrix(np.vstack([C for C, _ in rows]))
+        Cg = block_diag(*[G for _, G in rows])
         S = sp.bmat([[self.K, Cu.T], [Cu, None]], format="csc")
         rhs = np.vstack([np.zeros((self.n, Cg.shape[1])), -Cg])
         # the saddle matrix's pattern is symmetric: a symmetric ordering halves the fill
         solution = spla.splu(S, permc_spec="MMD_AT_PLUS_A").solve(rhs)
         U, lam = solution[:self.n], solution[self.n:]
-        K, M = Cg.T @ lam, U.T @ (self.M @ U)
+        K, M = Cg.T @ lam, self.mass_of(U)
         return (K + K.T) / 2, (M + M.T) / 2
-
-
-def _constraints(patch: TensorPatch, joints) -> tuple:
-    """(Cu (m, n) sparse, Cg (m, 3 k)): the joints' rows Cu u + Cg g = 0."""
-    data, rows, cols, G = [], [], [], []
-    for j, joint in enumerate(joints):
-        for coeffs, g in joint(patch):
-            for dof, c in coeffs.items():
-                rows.append(len(G))
-                cols.append(dof)
-                data.append(c)
-            row = np.zeros(3 * len(joints))
-            row[3 * j:3 * j + 3] = g
-            G.append(row)
-    Cu = sp.csc_matrix((data, (rows, cols)), shape=(len(G), patch.n))
-    return Cu, np.array(G)
 
 
 def _weights(s, f) -> np.ndarray:
     """W_i = int f(s) N_i(s) ds over the quadratic edges through the points s (sorted, an
     odd count: each edge's ends and middle)."""
     t, w = _GAUSS
+    a, b = s[:-2:2, None], s[2::2, None]
+    x = (a + b) / 2 + t * (b - a) / 2  # (edges, 3 Gauss points)
+    local = (w * (b - a) / 2 * f(x)) @ _shape(t).T  # (edges, 3 nodes)
     W = np.zeros(len(s))
-    for k in range(0, len(s) - 2, 2):
-        a, b = s[k], s[k + 2]
-        x = (a + b) / 2 + t * (b - a) / 2
-        W[k:k + 3] += _shape(t) @ (w * (b - a) / 2 * f(x))
+    np.add.at(W, 2 * np.arange(len(local))[:, None] + np.arange(3), local)
     return W
 
 
 def _frame(p0, p1) -> tuple:
-    """(length, tangent t, its normal z x t, middle) of the segment p0 -> p1."""
+    """(length, tangent t, its normal n = z x t, middle) of the segment p0 -> p1."""
     p0, p1 = np.asarray(p0, float), np.asarray(p1, float)
     length = float(np.linalg.norm(p1 - p0))
     t = (p1 - p0) / length
     return length, t, np.array([-t[1], t[0]]), (p0 + p1) / 2
 
 
-def _mean(nodes, W, d) -> dict:
-    """Row of sum_i W_i u_i . d (d a direction) on the patch's DOFs."""
-    return {**{2 * int(i): w * d[0] for i, w in zip(nodes, W)},
-            **{2 * int(i) + 1: w * d[1] for i, w in zip(nodes, W)}}
+def _rows(patch, nodes, weights, directions) -> np.ndarray:
+    """Constraint rows (m, patch DOFs): row r is sum_i weights[r, i] u_i . directions[r]."""
+    C = np.zeros((len(weights), patch.n))
+    C[:, 2 * nodes] = weights * directions[:, :1]
+    C[:, 2 * nodes + 1] = weights * directions[:, 1:]
+    return C
 
 
 def section(p0, p1):
@@ -201,12 +191,11 @@ def section(p0, p1):
     def rows(patch):
         a, t, n, _ = _frame(p0, p1)
         nodes, s = patch.boundary(p0, p1)
-        shear = _weights(s, lambda x: 1.5 / a * (1 - 4 * x ** 2 / a ** 2))
-        mean = _weights(s, lambda x: np.full_like(x, 1.0 / a))
-        moment = _weights(s, lambda x: 12.0 * x / a ** 3)
-        return [(_mean(nodes, shear, t), -np.array([t[0], t[1], 0.0])),
-                (_mean(nodes, mean, n), -np.array([n[0], n[1], 0.0])),
-                (_mean(nodes, moment, n), -np.array([0.0, 0.0, 1.0]))]
+        W = np.array([_weights(s, lambda x: 1.5 / a * (1 - 4 * x ** 2 / a ** 2)),
+                      _weights(s, lambda x: np.full_like(x, 1.0 / a)),
+                      _weights(s, lambda x: 12.0 * x / a ** 3)])
+        G = -np.array([[t[0], t[1], 0.0], [n[0], n[1], 0.0], [0.0, 0.0, 1.0]])
+        return _rows(patch, nodes, W, np.array([t, n, n])), G
     return rows
 
 
@@ -217,8 +206,8 @@ def held_face(p0, p1):
         a, t, n, _ = _frame(p0, p1)
         nodes, s = patch.boundary(p0, p1)
         # each point's normal motion is the body's there: u . n = u_node . n + theta s
-        held = [({2 * int(i): n[0], 2 * int(i) + 1: n[1]}, -np.array([n[0], n[1], si]))
-                for i, si in zip(nodes, s)]
-        mean = _weights(s, lambda x: np.full_like(x, 1.0 / a))
-        return held + [(_mean(nodes, mean, t), -np.array([t[0], t[1], 0.0]))]
+        normal = np.tile(n, (len(nodes), 1))
+        W = np.vstack([np.eye(len(nodes)), _weights(s, lambda x: np.full_like(x, 1.0 / a))])
+        G = -np.vstack([np.column_stack([normal, s]), [t[0], t[1], 0.0]])
+        return _rows(patch, nodes, W, np.vstack([normal, t])), G
     return rows

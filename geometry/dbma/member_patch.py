@@ -8,10 +8,11 @@ bears on part of its inner face: a 2-D elasticity problem, which no beam rule re
 are a plane-stress patch (:mod:`flexfem.fem.patch2d`), joined to the member's beams at the two
 cuts by beam sections and to the actuator's end cap at the pad's face (held along x over the
 face, as the continuum holds it), and condensed onto those three nodes. The cuts lie half a
-member depth beyond the pad's edges (or halfway to the first hinge row, where that is nearer):
-there the member is a beam again, and a cut adds no stiffness of its own (the outputs move by
-less than 1e-4 for cuts from 0.3 a to 0.9 a beyond the edges). The condensed matrices are
-computed once per member shape in a process (a few ms) and scale with E, d and rho.
+member depth beyond the pad's edges (or halfway to the inner arms' centre lines, where that
+is nearer): there the member is a beam again, and a cut adds no stiffness of its own (the
+outputs move by less than 1e-3 for cuts from 0.3 a beyond the edges to near the first
+hinges). The condensed matrices are computed once per member shape in a process (~3 ms) and
+scale with E, d and rho: a sweep of the hinges or the arms' length reuses them.
 """
 import functools
 
@@ -22,18 +23,20 @@ from ...fem.patch2d import TensorPatch, cell_edges, held_face, section
 from .drawing import DBMALayout
 from .params import DBMAParams
 
-# Q2 cells across the member's depth (and as tall): the DBMA's outputs to 1e-3 of 16 cells
-# (tests/studies/dbma/test_member_patch.py)
-MEMBER_CELLS = 8
+# Q2 cells across the member's depth (and as tall), halved GRADING times towards the pad's
+# re-entrant corners (x = 0, y = +-pad_height / 2), where the stress is singular: ~700 DOFs,
+# the DBMA's outputs within 2.5e-3 of the converged patch, 8 uniform cells' within 3.4e-3
+# (tests/studies/dbma/test_dbma_beam_model.py)
+MEMBER_CELLS, GRADING = 3, 2
 MIRROR = np.tile([-1.0, 1.0, -1.0], 3)  # x -> -x: u and theta change sign, v does not
 
 
 def member_cut(p: DBMAParams, layout: DBMALayout) -> float:
     """|y| (m) of the cuts where the member's beams begin: half a member depth beyond the
-    pad's edges, or halfway to the first hinge on the member where that is nearer."""
+    pad's edges, or halfway to the inner arms' centre lines where that is nearer (the first
+    hinge lies h / 2 beyond them: a sweep of the hinges keeps the cut, and the patch)."""
     edge = layout.pad_height / 2
-    first_hinge = layout.arm_gap + p.c / 2 + p.h / 2
-    return edge + min(p.a / 2, (first_hinge - edge) / 2)
+    return edge + min(p.a / 2, (layout.arm_gap + p.c / 2 - edge) / 2)
 
 
 def member_superelement(p: DBMAParams, layout: DBMALayout, sx: int, nodes) -> Superelement:
@@ -41,7 +44,7 @@ def member_superelement(p: DBMAParams, layout: DBMALayout, sx: int, nodes) -> Su
     lower cut's, the upper cut's, the pad face's) beam nodes, at (x_c, -+member_cut) on the
     member's centre line and on the pad's face at y = 0."""
     K, M = _unit_patch(p.a, member_cut(p, layout), layout.pad_height, layout.pad_depth,
-                       p.nu, MEMBER_CELLS)
+                       p.nu, MEMBER_CELLS, GRADING)
     if sx < 0:
         K, M = (MIRROR[:, None] * X * MIRROR[None, :] for X in (K, M))
     return Superelement(tuple(nodes), K * p.E * p.d, M * p.rho * p.d)
@@ -49,12 +52,12 @@ def member_superelement(p: DBMAParams, layout: DBMALayout, sx: int, nodes) -> Su
 
 @functools.lru_cache(maxsize=256)
 def _unit_patch(a: float, y_cut: float, pad_height: float, pad_depth: float, nu: float,
-                cells: int) -> tuple:
+                cells: int, grading: int) -> tuple:
     """(K, M) of the right member's patch per unit E, width and density: the member's inner
     face at x = 0, its pad in -pad_depth <= x <= 0, |y| <= pad_height / 2."""
     h = pad_height / 2
-    xs = cell_edges([-pad_depth, 0.0, a], a / cells)
-    ys = cell_edges([-y_cut, -h, h, y_cut], a / cells)
+    xs = cell_edges([-pad_depth, 0.0, a], a / cells, (0.0,), grading)
+    ys = cell_edges([-y_cut, -h, h, y_cut], a / cells, (-h, h), grading)
     patch = TensorPatch(xs, ys, nu, keep=lambda x, y: (x > 0) | (np.abs(y) < h))
     joints = [section((0.0, -y_cut), (a, -y_cut)), section((0.0, y_cut), (a, y_cut)),
               held_face((-pad_depth, -h), (-pad_depth, h))]
