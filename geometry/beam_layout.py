@@ -15,8 +15,9 @@ theory does not have; the beam model is then too stiff by about b / l. Extending
 by 0.38 times its root thickness into the block at both roots (at the root's thickness)
 reproduces a 2-D plane-stress model of a sharp-cornered leaf within 0.15 % for l/b = 5-20
 (docs/beam.md, "Joints and slenderness"). That is the bending side; the same spreading makes
-a root axially compliant too, by about 0.61 ln(H / t) - 0.24 over E w per root (H the height of
-the block the root enters: 1.6 / (E w) for H = 20 t, as much as 1.6 t of extra neck), which
+a root axially compliant too, by about 0.38 t / H + 0.67 ln(H / t) - 0.45 (1 - t / H) over E w
+per root (H the height of the block the root enters: 1.6 / (E w) for H = 20 t, as much as 1.6 t
+of extra neck; 0.38 at H = t, where the extension only replaces the block it lies in), which
 matters where flexures carry axial load (the DBMA with its input blocked, k_y of a guide): the
 extension elements carry that axial compliance too (:func:`root_section`). Every generated
 model here applies the same rule to every root, so the beam models of all mechanisms share one
@@ -32,15 +33,18 @@ from ..fem.beam import BeamMesh, BeamModel, RigidLink, Section, beam_from_profil
 
 ROOT_EXTENSION = 0.38  # x root thickness, per root (docs/beam.md: l/b 5-20 within 0.15 %)
 # axial compliance of a root, per root, in units of 1 / (E w): the load in a neck of thickness
-# t spreads into a block of height H; a 2-D plane-stress fit (nu = 0.3, sharp corners, l/t 2-20,
-# H/t 5-40, within 0.02): 0.61 ln(H / t) - 0.24 (about 2/pi ln(H/t), a strip's spreading)
-AXIAL_ROOT = (0.61, -0.24)
+# t spreads into a block of height H. A 2-D plane-stress fit (nu = 0.3, a sharp-cornered leaf,
+# l/t = 10, blocks at least 2 H long, H/t = 1.1-40, within 0.03; docs/beam.md): ROOT_EXTENSION
+# t / H + 0.67 ln(H / t) - 0.45 (1 - t / H); the log is a strip's spreading (about 2/pi ln H/t)
+AXIAL_ROOT = (0.67, -0.45)
 
 
 def axial_root_compliance(block_height: float, thickness: float) -> float:
-    """Extra axial compliance of one root x E w (-): 0.61 ln(H / t) - 0.24, at least 0."""
+    """Extra axial compliance of one root x E w (-): 0.38 t / H + 0.67 ln(H / t) - 0.45
+    (1 - t / H), H at least t (a block no taller than the root: the extension's own)."""
     a, c = AXIAL_ROOT
-    return max(0.0, a * math.log(block_height / thickness) + c)
+    r = max(1.0, block_height / thickness)
+    return ROOT_EXTENSION / r + a * math.log(r) + c * (1 - 1 / r)
 
 
 def root_section(out_of_plane: float, thickness: float, length: float,
@@ -53,10 +57,8 @@ def root_section(out_of_plane: float, thickness: float, length: float,
     I = out_of_plane * thickness ** 3 / 12
     area = out_of_plane * thickness
     factor = 1.0
-    if block_height is not None:
-        alpha = axial_root_compliance(block_height, thickness)
-        if alpha > 0:  # length / (E A factor) = alpha / (E w)
-            factor = length / (thickness * alpha)
+    if block_height is not None:  # length / (E A factor) = alpha / (E w)
+        factor = length / (thickness * axial_root_compliance(block_height, thickness))
     return Section(A=area, I=I, c=None, axial_factor=factor, mass_factor=0.0)
 
 

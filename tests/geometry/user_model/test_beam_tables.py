@@ -106,7 +106,7 @@ def test_block_height_is_the_blocks_chord_across_the_beam():
 
 def test_axial_root_compliance_where_the_block_is_declared():
     """The guide's leaves enter base and stage (31 mm across) end-on: each root extension
-    element carries the root's axial compliance (0.61 ln(H / t) - 0.24) / (E w), by its
+    element carries the root's axial compliance (axial_root_compliance) / (E w), by its
     stiffness factor; its area, and so its mass, stay the root's own w t."""
     from flexfem.geometry.beam_layout import axial_root_compliance
     spec = load_spec(EXAMPLES / "parallel_guide" / "guide.toml")

@@ -109,11 +109,11 @@ def test_dbma_beam_model_against_the_continuum(params, layout):
 @pytest.mark.parametrize("params", [{}, {"b": 0.3 * MM}, {"h": 1.2 * MM}])
 def test_dbma_with_circular_notches_against_the_continuum(params):
     """Circular notch hinges (t/R = 0.27, 0.14, 0.27): with each notch's 2-D correction
-    the beam's R, k_in and working frequency are within 3 % of the 2-D continuum (measured:
-    within 2.8 %), its peak stress (the neck's K_t times the nominal) within 10 % (0.5-0.9
-    %); k_out within 4 %, above the target (+2.3 to +3.4 %: the notch's axial junction with
-    the blocks it enters, too stiff in the beam, docs/beam.md); bare beam theory of the notch
-    was 4.6-8.6 % stiff in k_in."""
+    the beam's R, k_in, k_out and working frequency are within 3 % of the 2-D continuum
+    (measured: within 0.94 %; k_out was +2.3 to +3.3 % before the roots' axial compliance was
+    fitted down to H/t = 1.1, a notch's end being half the arm's height), its peak stress (the
+    neck's K_t times the nominal) within 10 % (0.4-0.6 %); bare beam theory of the notch was
+    4.6-8.6 % stiff in k_in."""
     from flexfem.geometry.dbma.beam import dbma_beam_model
     from flexfem.studies.dbma.beam import analyze_dbma_beam, beam_static
     from flexfem.studies.dbma.beam_report import continuum_metrics
@@ -122,9 +122,8 @@ def test_dbma_with_circular_notches_against_the_continuum(params):
     lay = DBMALayout(hinge_profile="circular")
     cont = continuum_metrics(p, 1.0, lay)
     beam = analyze_dbma_beam(p, lay)
-    for key in ("R_fem_per_side", "k_in", "fn_working"):
+    for key in ("R_fem_per_side", "k_in", "k_out", "fn_working"):
         assert beam[key] == pytest.approx(cont[key], rel=0.03), key
-    assert beam["k_out"] == pytest.approx(cont["k_out"], rel=0.04)
     assert beam["max_von_mises"] == pytest.approx(cont["max_von_mises"], rel=0.10)
     assert beam["kt_bending"] > 1.0 and beam["nominal_stress"] < beam["max_von_mises"]
     bare = beam_static(*dbma_beam_model(p, lay, notch_correction=False), 100.0)
@@ -136,14 +135,15 @@ def test_the_notch_correction_brings_a_notch_between_blocks_into_the_band():
     theory (Paros-Weisbord's plane sections) is 7-20 % stiffer than the 2-D continuum in
     bending; with the notch's own 2-D correction and the root extension, as the mechanisms
     build it, within 1.5 % (measured +0.5, +0.6 %). Axially the blocks, 1.8 to 5 times
-    taller than the notch's ends, take a little more than the root rule gives: 9-10.5 %
-    stiff (docs/beam.md, "Notch hinges: the 2-D patch")."""
+    taller than the notch's ends, take a little more than the root rule gives: 3-7 % stiff
+    (measured -6.9 % at l/b = 3, -3.0 % at 10; 9-10.5 % before the root rule was fitted down
+    to H/t = 1.1; docs/beam.md, "Notch hinges: the 2-D patch")."""
     from flexfem.studies.dbma.beam_slenderness import TRUST_LIMIT, slenderness_rows
 
     for row in slenderness_rows((3.0, 10.0), ("circular",)):
         assert row["bending_error_bare"] < -2 * TRUST_LIMIT
         assert abs(row["bending_error"]) < 0.015
-        assert -0.12 < row["axial_error"] < -0.07
+        assert -0.08 < row["axial_error"] < -0.02
 
 
 @pytest.mark.parametrize("profile", ["circular", "filleted"])
