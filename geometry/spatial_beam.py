@@ -41,6 +41,9 @@ def lifted_model(planar, out_of_plane: float, point_masses=None) -> Beam3DModel:
     """The spatial model of ``planar`` (a BeamModel) extruded by ``out_of_plane`` (m): its
     nodes at z = 0, its rigid links as spatial ones, :func:`spatial_sections`, and
     ``point_masses`` {node: (m, J_x, J_y, J_z)} (default none)."""
+    if planar.superelements:
+        raise ValueError("lifted_model: the planar model has superelements, which have no "
+                         "out-of-plane part; lift a model without them")
     nodes = np.column_stack([planar.nodes, np.zeros(planar.n_nodes)])
     rigid = [RigidLink(k.master, k.slaves) for k in planar.rigid_links]
     return Beam3DModel(nodes, planar.elements, spatial_sections(planar, out_of_plane),

@@ -194,8 +194,9 @@ def dbma_beam_model(p: DBMAParams, layout: DBMALayout | None = None,
 
 def dbma_beam3d_model(p: DBMAParams, layout: DBMALayout | None = None,
                       root_extension: float = ROOT_EXTENSION) -> tuple:
-    """(Beam3DModel, info) of the DBMA for its out-of-plane modes: the planar model
-    (:func:`dbma_beam_model`, same info) lifted into 3-D, every section the rectangle of its
-    in-plane depth and the plate thickness d (:func:`..spatial_beam.lifted_model`)."""
+    """(Beam3DModel, info) of the DBMA for its out-of-plane modes: the planar model with block
+    input members (:func:`dbma_beam_model`, member_patch=False, same info; a superelement has
+    no out-of-plane part) lifted into 3-D, every section the rectangle of its in-plane depth
+    and the plate thickness d (:func:`..spatial_beam.lifted_model`)."""
     planar, info = dbma_beam_model(p, layout, root_extension, member_patch=False)
     return lifted_model(planar, p.d), info

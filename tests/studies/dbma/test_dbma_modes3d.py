@@ -153,3 +153,10 @@ def test_filleted_hinges_compare_with_saint_venant_torsion():
     assert out["rows"] == out["saint_venant_rows"]
     first = next(r for r in out["rows"] if r["family"] == "out of plane")
     assert first["beam_hz"] < first["continuum_hz"]
+
+
+def test_a_model_with_superelements_is_not_lifted():
+    from flexfem.geometry.spatial_beam import lifted_model
+
+    with pytest.raises(ValueError, match="no out-of-plane part"):
+        lifted_model(dbma_beam_model(paper_design())[0], 0.01)
