@@ -94,8 +94,7 @@ def cell_edges(breaks, size: float, refine_at=(), levels: int = 0) -> np.ndarray
 class TensorPatch:
     """Q2 cells on the tensor grid of cell edges ``xs``, ``ys`` (m), those whose centres
     ``keep(x, y)`` accepts (arrays in, a boolean array out; default all); Poisson's ratio
-    ``nu``. ``K``: the patch's stiffness per unit E and width (CSC, DOFs (u, v) node by
-    node); ``xy`` the nodes (m)."""
+    ``nu``. ``K``: the patch's stiffness per unit E and width; ``xy`` the nodes (m)."""
 
     def __init__(self, xs, ys, nu: float, keep=None):
         xs, ys = np.asarray(xs, float), np.asarray(ys, float)
@@ -117,7 +116,13 @@ class TensorPatch:
         Ke = (self.hy / self.hx)[:, None, None] * A + (self.hx / self.hy)[:, None, None] * B + C
         rows = np.broadcast_to(self.dofs[:, :, None], Ke.shape).ravel()
         cols = np.broadcast_to(self.dofs[:, None, :], Ke.shape).ravel()
-        self.K = sp.csc_matrix((Ke.ravel(), (rows, cols)), shape=(self.n, self.n))
+        self._entries = (rows, cols, Ke.ravel())
+
+    @property
+    def K(self) -> sp.csc_matrix:
+        """The stiffness per unit E and width (CSC, DOFs (u, v) node by node)."""
+        rows, cols, values = self._entries
+        return sp.csc_matrix((values, (rows, cols)), shape=(self.n, self.n))
 
     def mass_of(self, U) -> np.ndarray:
         """U^T M U (k, k) for displacement fields U (n, k): the consistent mass per unit
@@ -145,15 +150,25 @@ class TensorPatch:
         and density: the static modes of each joint DOF, the others held (constraint rows
         Cu u + Cg g = 0, Lagrange multipliers lam: K = Cg^T lam)."""
         rows = [joint(self) for joint in joints]
-        Cu = sp.csc_matrix(np.vstack([C for C, _ in rows]))
+        Cu = np.vstack([C for C, _ in rows])
         Cg = block_diag(*[G for _, G in rows])
-        S = sp.bmat([[self.K, Cu.T], [Cu, None]], format="csc")
+        S = self._saddle(Cu)
         rhs = np.vstack([np.zeros((self.n, Cg.shape[1])), -Cg])
         # the saddle matrix's pattern is symmetric: a symmetric ordering halves the fill
         solution = spla.splu(S, permc_spec="MMD_AT_PLUS_A").solve(rhs)
         U, lam = solution[:self.n], solution[self.n:]
         K, M = Cg.T @ lam, self.mass_of(U)
         return (K + K.T) / 2, (M + M.T) / 2
+
+
+    def _saddle(self, Cu) -> sp.csc_matrix:
+        """[[K, Cu^T], [Cu, 0]] (CSC) for the dense constraint rows Cu (m, n)."""
+        r, c = np.nonzero(Cu)
+        rows, cols, values = self._entries
+        size = self.n + len(Cu)
+        return sp.csc_matrix((np.concatenate([values, Cu[r, c], Cu[r, c]]),
+                              (np.concatenate([rows, r + self.n, c]),
+                               np.concatenate([cols, c, r + self.n]))), shape=(size, size))
 
 
 def _weights(s, f) -> np.ndarray:
