@@ -160,7 +160,6 @@ class TensorPatch:
         K, M = Cg.T @ lam, self.mass_of(U)
         return (K + K.T) / 2, (M + M.T) / 2
 
-
     def _saddle(self, Cu) -> sp.csc_matrix:
         """[[K, Cu^T], [Cu, 0]] (CSC) for the dense constraint rows Cu (m, n)."""
         r, c = np.nonzero(Cu)

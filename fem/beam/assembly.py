@@ -116,7 +116,7 @@ class Assembler:
         if not len(model.pairs):
             return out
         fe, ke, basic = out
-        qp = q.reshape(-1)[block_dofs(model.pairs)]
+        qp = q.reshape(-1)[element_dofs(model)[model.n_elements:]]
         fe = np.concatenate([fe, np.einsum("eij,ej->ei", model.pair_stiffness, qp)])
         if ke is not None:
             ke = np.concatenate([ke, model.pair_stiffness])

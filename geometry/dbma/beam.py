@@ -23,7 +23,8 @@ width; the members' faces around a hinge are about as tall). Lengths in m.
 """
 import numpy as np
 
-from ...fem.beam import BeamMesh, BeamModel, RigidLink, Section, beam_chain
+from ...fem.beam import (BeamMesh, BeamModel, Fixed, Prescribed, RigidLink, Section,
+                         beam_chain)
 from ...fem.materials import Material
 from ..beam_layout import ROOT_EXTENSION, check_root_extension, profile_beam
 from ..hinge_patch import notch_factors
@@ -190,6 +191,14 @@ def dbma_beam_model(p: DBMAParams, layout: DBMALayout | None = None,
     return model, {"input_a": slaves["input_a"], "input_b": slaves["input_b"],
                    "output": master, "ground": ground, "hinges": spans,
                    "hinge_elements": np.array(in_hinges)}
+
+
+def pads_held(info) -> list:
+    """Supports of a dbma_beam_model for k_out and the modes: the mounting face clamped, each
+    pad face's x and rotation held (the actuator holding its stroke)."""
+    return [Fixed(tuple(info["ground"]))] + [Prescribed(n, d, 0.0) for n in
+                                             (info["input_a"], info["input_b"])
+                                             for d in ("x", "theta")]
 
 
 def dbma_beam3d_model(p: DBMAParams, layout: DBMALayout | None = None,

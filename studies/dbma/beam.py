@@ -15,10 +15,10 @@ import math
 
 import numpy as np
 
-from ...fem.beam import (Fixed, NodalLoad, Prescribed, solve_beam_displacements,
+from ...fem.beam import (Fixed, NodalLoad, solve_beam_displacements,
                          solve_beam_modes, solve_beam_static)
 from ...geometry.beam_layout import ROOT_EXTENSION
-from ...geometry.dbma.beam import dbma_beam_model
+from ...geometry.dbma.beam import dbma_beam_model, pads_held
 from ...geometry.dbma.drawing import DBMALayout
 from ...geometry.dbma.params import DBMAParams
 from .analysis import dbma_material, params_from_dict
@@ -47,21 +47,15 @@ def beam_static(model, info, force: float, peak_stress=None) -> dict:
     return out
 
 
-def _pads_held(info) -> list:
-    return [Fixed(tuple(info["ground"]))] + [Prescribed(n, d, 0.0) for n in
-                                             (info["input_a"], info["input_b"])
-                                             for d in ("x", "theta")]
-
-
 def beam_output_stiffness(model, info, force: float = 100.0) -> float:
     """k_out = F / u_out (N/m): output pushed along y, pads held (actuator rigid)."""
-    q = solve_beam_displacements(model, _pads_held(info), [NodalLoad(info["output"], fy=force)])
+    q = solve_beam_displacements(model, pads_held(info), [NodalLoad(info["output"], fy=force)])
     return force / float(q[info["output"], 1])
 
 
 def beam_modal(model, info, n_modes: int = 6) -> dict:
     """frequencies_hz, effective_mass (n x 2, kg), working_mode (1-based), fn_working (Hz)."""
-    modes = solve_beam_modes(model, _pads_held(info), n=n_modes)
+    modes = solve_beam_modes(model, pads_held(info), n=n_modes)
     k = int(np.argmax(modes.effective_mass[:, 1])) + 1
     return {"frequencies_hz": [float(f) for f in modes.frequencies_hz],
             "effective_mass": modes.effective_mass.tolist(), "working_mode": k,
