@@ -53,3 +53,47 @@ def test_a_segment_off_the_cell_boundaries_is_refused():
     patch = TensorPatch(cell_edges([0, 1], 0.5), cell_edges([0, 1], 0.5), NU)
     with pytest.raises(ValueError, match="not a boundary of whole cells"):
         patch.condensed([section((0.0, 0.1), (1.0, 0.1)), section((0.0, 1.0), (1.0, 1.0))])
+
+
+def _saddle_condensed(patch, joints):
+    """K on the joints from the whole saddle system [[K, Cu^T], [Cu, 0]] solved densely: an
+    independent check of the patch's banded flexibility route."""
+    rows = [joint(patch) for joint in joints]
+    Cu = np.vstack([C for C, _ in rows])
+    Cg = np.zeros((len(Cu), 3 * len(rows)))
+    r = 0
+    for k, (C, G) in enumerate(rows):
+        Cg[r:r + len(C), 3 * k:3 * k + 3] = G
+        r += len(C)
+    n, m = patch.n, len(Cu)
+    S = np.block([[patch.K.toarray(), Cu.T], [Cu, np.zeros((m, m))]])
+    lam = np.linalg.solve(S, np.vstack([np.zeros((n, Cg.shape[1])), -Cg]))[n:]
+    return Cg.T @ lam
+
+
+def test_a_stepped_patch_condenses_as_its_whole_saddle_system():
+    """A member with a pad on part of one face (the DBMA's shape, off the origin), joined at
+    two cuts and the pad's face: the stiffness from the patch held statically determinate
+    equals the full saddle system's, and its mass keeps the three rigid motions' mass."""
+    a, h, depth, cut = 1.0, 0.4, 0.3, 1.2
+    xs = cell_edges([-depth, 0.0, a], a / 3, (0.0,), 1) + 2.0
+    ys = cell_edges([-cut, -h, h, cut], a / 3, (-h, h), 1) - 1.0
+    patch = TensorPatch(xs, ys, NU, keep=lambda x, y: (x > 2.0) | (np.abs(y + 1.0) < h))
+    joints = [section((2.0, -1.0 - cut), (2.0 + a, -1.0 - cut)),
+              section((2.0, cut - 1.0), (2.0 + a, cut - 1.0)),
+              held_face((2.0 - depth, -1.0 - h), (2.0 - depth, h - 1.0))]
+    K, M = patch.condensed(joints)
+    reference = _saddle_condensed(patch, joints)
+    assert K == pytest.approx(reference, abs=1e-10 * np.abs(reference).max())
+    area = a * 2 * cut + depth * 2 * h
+    for direction in ([1.0, 0.0, 0.0], [0.0, 1.0, 0.0]):
+        move = np.tile(direction, 3)
+        assert move @ K @ move == pytest.approx(0.0, abs=1e-12 * np.abs(K).max())
+        assert move @ M @ move == pytest.approx(area, rel=1e-12)
+
+
+def test_a_patch_in_two_pieces_is_refused():
+    patch = TensorPatch(cell_edges([0, 1], 0.25), cell_edges([0, 1], 0.25), NU,
+                        keep=lambda x, y: np.abs(x - 0.5) > 0.25)
+    with pytest.raises(ValueError, match="not all connected"):
+        patch.condensed([section((0.0, 0.0), (0.25, 0.0)), section((0.0, 1.0), (0.25, 1.0))])
