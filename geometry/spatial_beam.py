@@ -17,8 +17,11 @@ def spatial_sections(planar_model, out_of_plane: float) -> list:
     A and I_z = I, with t = (12 I / w)^(1/3) for I_y = t w^3 / 12 and the Saint-Venant J.
     Shear areas kappa A (the planar model's, mid-length) in y and kappa w t in z if the
     planar model has shear. The planar stiffness factors (a notch's 2-D correction, a root's
-    axial compliance) act on the in-plane bending, shear and axial stiffness; the mass
-    factors (0 on a root extension) on the mass."""
+    axial compliance) act on the in-plane bending, shear and axial stiffness, and the axial
+    one on the bending about the local y axis too: there each slice of the width is pulled
+    or pushed along the axis, and a slice enters its block as the planar section does
+    (docs/beam.md, "The strong axis's roots"); the mass factors (0 on a root extension) on
+    the mass."""
     shear, w = planar_model.shear, out_of_plane
     out = []
     for (rect, _, t0, t1, A, I, _, kappa, tm, bending, axial,
@@ -26,13 +29,13 @@ def spatial_sections(planar_model, out_of_plane: float) -> list:
         if rect:  # Section.rect's shear area is 5/6 of the rectangle's
             sec = Section.rect(t0, w, shear=shear, depth_y_end=t1,
                                depth_y_mid=None if np.isnan(tm) else tm)
-            out.append(replace(sec, factors=(bending, kappa / (5.0 / 6.0), axial),
+            out.append(replace(sec, factors=(bending, kappa / (5.0 / 6.0), axial, axial),
                                mass_factor=mass))
             continue
         t = (12.0 * I / w) ** (1.0 / 3.0)
         out.append(Section(A=A, Iy=t * w**3 / 12.0, Iz=I, J=rect_torsion_constant(t, w),
                            Ay=kappa * A if shear else None,
-                           Az=kappa * t * w if shear else None, factors=(bending, 1.0, axial),
+                           Az=kappa * t * w if shear else None, factors=(bending, 1.0, axial, axial),
                            mass_factor=mass))
     return out
 

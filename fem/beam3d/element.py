@@ -69,7 +69,8 @@ def local_matrices(model):
                       (factors[:, 0], factors[:, 1]))
     _put(K, XY, Kz)
     _put(M, XY, Mz)
-    Ky, My = _bending(E, s["Iy"], G, shear["Az"], mid["Iy"][:, 0], rho, s["A"], A_mid, L)
+    Ky, My = _bending(E, s["Iy"], G, shear["Az"], mid["Iy"][:, 0], rho, s["A"], A_mid, L,
+                      (factors[:, 3], 1.0))
     _put(K, XZ, Ky, XZ_SIGN)
     _put(M, XZ, My, XZ_SIGN)
     return K, M * shear["mass_factor"][:, None, None]

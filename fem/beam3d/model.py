@@ -71,9 +71,9 @@ class Section:
     direction, Euler-Bernoulli). Prismatic, or a rectangle tapered along local y
     (``Section.rect``; A, Iy, Iz, J are then those at the element's first node). A rectangle
     keeps its depths along local y and z (m; None for a general section: no stress).
-    ``factors`` (bending, shear, axial) multiply E Iz, G Ay and E A in the stiffness only
-    (bending in the local x-y plane: a planar model's notch correction or root extension,
-    carried into 3-D by geometry/spatial_beam.py), not the mass; ``mass_factor`` multiplies
+    ``factors`` (bending, shear, axial, bending_y) multiply E Iz, G Ay, E A and E Iy in the
+    stiffness only (a planar model's notch correction or root extension, carried into 3-D by
+    geometry/spatial_beam.py), not the mass; ``mass_factor`` multiplies
     the mass (0: a root extension)."""
 
     A: float
@@ -85,12 +85,15 @@ class Section:
     taper: tuple | None = None  # (depth_y at node 1, at node 2, at mid or NaN, depth_z)
     depth_y: float | None = None
     depth_z: float | None = None
-    factors: tuple = (1.0, 1.0, 1.0)
+    factors: tuple = (1.0, 1.0, 1.0, 1.0)
     mass_factor: float = 1.0
 
     def __post_init__(self):
         for name in ("A", "Iy", "Iz", "J"):
             positive(name, getattr(self, name))
+        if len(self.factors) != 4 or not all(f > 0 for f in self.factors):
+            raise ValueError(f"Section: factors = {self.factors!r} must be four positive "
+                             "numbers (bending, shear, axial, bending_y)")
         positive("Ay", self.Ay, allow_none=True)
         positive("Az", self.Az, allow_none=True)
 
@@ -242,7 +245,7 @@ class Beam3DModel:
 
     def section_table(self) -> dict:
         """Shear areas Ay, Az (m^2, inf where shear is off) as (n_e,) arrays, the stiffness
-        factors (n_e, 3) and the mass factors (n_e,)."""
+        factors (n_e, 4) and the mass factors (n_e,)."""
         shear = lambda name: np.array([math.inf if getattr(s, name) is None else getattr(s, name)
                                        for s in self.sections], dtype=float)
         return {"Ay": shear("Ay"), "Az": shear("Az"),

@@ -61,9 +61,9 @@ def test_beside_the_3d_continuum():
     the same effective mass fractions (the pairing is right); in plane the beam is 0-6 % below
     the solid (the planar model with the members' patches, within 1 % of the 2-D FEM; the
     solid's 10 mm wide hinges bend as plates, +4.8 % in frequency, and this coarse solid is
-    stiff: measured -4.4, -4.3, -4.9, -3.3 %); the two lowest out-of-plane modes lie
-    between the beam with Saint-Venant torsion (warping free) and with Vlasov's factor
-    (warping held at the hinges' ends): the solid's blocks hold it, but not rigidly."""
+    stiff: measured -4.4, -4.3, -4.9, -3.3 %); the four lowest out-of-plane modes within
+    3 % (the hinges' roots compliant about the strong axis, Vlasov's factor on their
+    torsion: measured +0.8, -0.5, -0.2, -0.9 %), Saint-Venant's torsion over 10 % low."""
     out = compare_modes3d(paper_design(), n_modes=12)
     for row in out["rows"]:
         assert np.allclose(row["beam_mass_fraction"], row["continuum_mass_fraction"], atol=0.05)
@@ -71,9 +71,10 @@ def test_beside_the_3d_continuum():
     for k in (1, 2, 3, 4):
         assert -6 < rows["in plane", k]["diff_pct"] < 0
     plain = {(r["family"], r["k"]): r for r in out["saint_venant_rows"]}
+    for k in (1, 2, 3, 4):
+        assert abs(rows["out of plane", k]["diff_pct"]) < 3
     for k in (1, 2):
-        key = ("out of plane", k)
-        assert plain[key]["beam_hz"] < rows[key]["continuum_hz"] < rows[key]["beam_hz"]
+        assert plain["out of plane", k]["diff_pct"] < -10
     # the solid's lowest out-of-plane mode lies just below its working mode (in plane 2)
     assert rows["out of plane", 1]["continuum_hz"] < rows["in plane", 2]["continuum_hz"]
 
@@ -81,7 +82,7 @@ def test_beside_the_3d_continuum():
 @pytest.mark.slow
 def test_slender_hinges_out_of_plane_within_3_percent():
     """Slender hinges (b = 0.3, l = 6 mm: l/b = 20): with Vlasov's factor the four lowest
-    out-of-plane modes are within 3 % of the solid (measured -1.7 to +0.3 % at size_factor 1,
+    out-of-plane modes are within 3 % of the solid (measured -2.2 to -1.5 % at size_factor 1,
     whose solid is a little stiff), Saint-Venant's over 30 % low. In plane the reference is
     the 2-D FEM: modes 1-3 within 3 % of it (measured -0.4 %); the solid's are 4-6 % higher
     (its 10 mm wide hinges bend as plates, E / (1 - nu^2): +4.8 % in frequency)."""
@@ -133,15 +134,15 @@ def test_beam_analysis_refuses_a_bad_dim():
 
 @pytest.mark.slow
 def test_report_row_of_the_lowest_out_of_plane_mode():
-    """The DBMA beam section's 3-D row: the spatial beam (Vlasov) above the solid, and the
-    solid's out-of-plane mode below its working mode."""
+    """The DBMA beam section's 3-D row: the spatial beam within 3 % of the solid (measured
+    +0.8 %), and the solid's out-of-plane mode below its working mode."""
     import math
 
     from flexfem.studies.dbma.beam_report import out_of_plane_metric
 
     metric, solid_working = out_of_plane_metric(paper_design())
     assert math.isnan(metric.prbm) and metric.unit == "Hz"
-    assert metric.continuum < metric.beam < 1.1 * metric.continuum
+    assert metric.beam == pytest.approx(metric.continuum, rel=0.03)
     assert metric.continuum < solid_working
 
 
