@@ -74,9 +74,10 @@ def beam_modal3d(p: DBMAParams, layout: DBMALayout, n_modes: int,
     modes = beam_modes3d(p, layout, n_modes, warping=leaf, root_extension=root_extension)
     fraction = np.array(modes["mass_fraction"])
     k = working_index(modes) + 1
-    note = ("out-of-plane modes from the spatial beam model, screening grade: with Vlasov's "
-            "warping restraint on the hinges it reads above the 3-D solid, without it below "
-            "(+5 to +7 % and -10 to -16 % on the paper's design, docs/beam.md); decide with "
+    note = ("out-of-plane modes from the spatial beam model: with Vlasov's warping restraint "
+            "on leaf hinges the four lowest within about 2 % of the 3-D solid on the paper's "
+            "design, the torsion modes above them up to 4-5 % high; Saint-Venant torsion (notch "
+            "and filleted hinges) reads 10-20 % low (docs/beam.md); decide with "
             "--model continuum")
     return {"frequencies_hz": modes["f_hz"],
             "effective_mass": (fraction * modes["total_mass_kg"]).tolist(), "working_mode": k,

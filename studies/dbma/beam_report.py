@@ -129,11 +129,12 @@ def reproduce(out_dir, quick: bool = False) -> dict:
            "stiff")
         + ". Screen with the beam model, decide with the continuum."
         + ("" if quick else
-           " Out of plane (3-D), the spatial beam model with the hinges' warping restraint "
+           " Out of plane (3-D), the spatial beam model (the hinges' warping restraint, their "
+           "roots compliant about the strong axis as the planar roots are axially) "
            f"puts the lowest mode at {spatial[0].beam:.0f} Hz, next to its working mode "
            f"({beam['fn_working']:.0f} Hz); the 3-D solid has it at "
            f"{spatial[0].continuum:.0f} Hz, next to its own ({solid_working:.0f} Hz): the "
-           "two are closer than the beam's error, so only the solid tells their order."))
+           "two lie about as close as the beam's error, so only the solid tells their order."))
     comparisons = (beam_comparisons(metrics)
                    + beam_comparisons(spatial, "continuum FEM (3-D solid, same design)"))
     return {"paragraph": paragraph, "comparisons": comparisons,
