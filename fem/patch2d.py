@@ -153,21 +153,26 @@ class TensorPatch:
         Cu u + Cg g = 0, Lagrange multipliers lam: K = Cg^T lam).
 
         The multipliers come from the patch's flexibility: held statically determinate, the
-        patch's K is positive definite and a narrow band (nodes row by row), so its banded
-        Cholesky factor gives Y = K^-1 Cu^T; the joints' tractions are self-equilibrated, so
-        u = -Y lam + R alpha with R the rigid motions, and [[-Cu Y, Cu R], [(Cu R)^T, 0]]
-        [lam; alpha] = [-Cg; 0] is a small dense system (joint rows + 3)."""
+        patch's K is positive definite and a narrow band (nodes row by row), K = U^T U with
+        U its banded Cholesky factor. The joints' tractions are self-equilibrated, so
+        u = -K^-1 Cu^T lam + R alpha with R the rigid motions: with W = U^-T Cu^T,
+        [[-W^T W, Cu R], [(Cu R)^T, 0]] [lam; alpha] = [-Cg; 0] is a small dense system
+        (joint rows + 3), and u = R alpha - U^-1 W lam."""
         rows = [joint(self) for joint in joints]
         Cu = np.vstack([C for C, _ in rows])
         Cg = block_diag(*[G for _, G in rows])
-        Y = self._held_solve(Cu.T)
+        factor, held = self._held_factor()
+        Ct = np.array(Cu.T, order="F")
+        Ct[held] = 0.0  # the holds carry no load: self-equilibrated forces have no reactions
+        W = lapack.dtbtrs(factor, Ct, trans="T", overwrite_b=True)[0]
         R = self.rigid_motions()
         CR = Cu @ R
-        small = np.block([[-Cu @ Y, CR], [CR.T, np.zeros((3, 3))]])
+        small = np.block([[-W.T @ W, CR], [CR.T, np.zeros((3, 3))]])
         rhs = np.vstack([-Cg, np.zeros((3, Cg.shape[1]))])
         solution = np.linalg.solve(small, rhs)
         lam, alpha = solution[:len(Cu)], solution[len(Cu):]
-        K, M = Cg.T @ lam, self.mass_of(R @ alpha - Y @ lam)
+        U = R @ alpha - lapack.dtbtrs(factor, np.asfortranarray(W @ lam), overwrite_b=True)[0]
+        K, M = Cg.T @ lam, self.mass_of(U)
         return (K + K.T) / 2, (M + M.T) / 2
 
     def rigid_motions(self) -> np.ndarray:
@@ -177,10 +182,10 @@ class TensorPatch:
         R[0::2, 2], R[1::2, 2] = -self.xy[:, 1], self.xy[:, 0]
         return R
 
-    def _held_solve(self, F) -> np.ndarray:
-        """K^-1 F (n, k) for the patch held statically determinate (its first node, and the
-        farthest node across the line to it): the displacement, zero at the holds, under
-        self-equilibrated forces F, whose reactions there are nil."""
+    def _held_factor(self) -> tuple:
+        """(U, held): the upper banded Cholesky factor (LAPACK's band storage) of K with the
+        patch held statically determinate at the DOFs ``held`` (its first node, and the
+        farthest node across the line to it), their rows and columns the identity's."""
         d = self.xy - self.xy[0]
         far = int(np.argmax(np.hypot(*d.T)))
         held = [0, 1, 2 * far + int(abs(d[far, 0]) > abs(d[far, 1]))]
@@ -201,9 +206,7 @@ class TensorPatch:
         if info != 0 or np.min(factor[bw] ** 2 / diagonal) < 1e-10:
             raise ValueError("patch: its cells are not all connected (a part of it would "
                              "move freely)")
-        F = np.array(F, dtype=float, order="F")
-        F[held] = 0.0
-        return lapack.dpbtrs(factor, F, lower=0, overwrite_b=True)[0]
+        return factor, held
 
 
 def _weights(s, f) -> np.ndarray:
