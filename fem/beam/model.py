@@ -207,7 +207,7 @@ def beam_chain(points, sections, n_per_segment) -> BeamMesh:
     for j in range(n_seg):
         if same[j]:
             raise ValueError(f"points {j} and {j + 1} coincide")
-        s = np.linspace(0.0, 1.0, int(counts[j]) + 1)[1:, None]
+        s = (np.arange(1, int(counts[j]) + 1) / int(counts[j]))[:, None]
         nodes.extend(pts[j] + s * (pts[j + 1] - pts[j]))
         nodes[-1] = pts[j + 1]  # exactly the given point
         sec_list += [secs[j]] * int(counts[j])

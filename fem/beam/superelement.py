@@ -46,8 +46,8 @@ class Superelement:
 
 def _pair_block(M, i, j, k) -> np.ndarray:
     """6 x 6 block of nodes i, j of M: their coupling and 1 / (k - 1) of each one's own."""
-    dofs = np.r_[3 * i:3 * i + 3, 3 * j:3 * j + 3]
-    out = M[np.ix_(dofs, dofs)]
+    dofs = [3 * i, 3 * i + 1, 3 * i + 2, 3 * j, 3 * j + 1, 3 * j + 2]
+    out = M[dofs][:, dofs]
     out[:3, :3] /= k - 1
     out[3:, 3:] /= k - 1
     return out

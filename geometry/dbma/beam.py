@@ -63,17 +63,17 @@ class _Builder:
     """Accumulates nodes, elements and sections; nodes are appended, never merged."""
 
     def __init__(self):
-        self.nodes, self.elements, self.sections = [], [], []
+        self.nodes, self.elements, self.sections, self.n = [], [], [], 0
 
     def add(self, mesh: BeamMesh) -> list:
-        n0 = sum(len(x) for x in self.nodes)
+        n0, self.n = self.n, self.n + len(mesh.nodes)
         self.nodes.append(mesh.nodes)
         self.elements.append(mesh.elements + n0)
         self.sections += list(mesh.sections)
         return [n0 + k for k in mesh.point_nodes]
 
     def point(self, xy) -> int:
-        n0 = sum(len(x) for x in self.nodes)
+        n0, self.n = self.n, self.n + 1
         self.nodes.append(np.asarray(xy, float)[None, :])
         return n0
 
