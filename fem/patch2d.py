@@ -30,7 +30,7 @@ the stiffness as the multipliers' work; the mass is Guyan's, the patch's consist
 the static modes (exact for the rigid motions, good far below the patch's own modes). The
 multipliers come from the patch's flexibility, held statically determinate: its K is then
 positive definite with a narrow band (nodes row by row), which LAPACK's banded Cholesky
-factors (the DBMA's member patch: ~1 ms, half the cost of a sparse LU of the saddle system).
+factors (the DBMA's member patch: ~1.4 ms, half the cost of a sparse LU of its saddle system).
 """
 import functools
 

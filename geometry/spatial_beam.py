@@ -35,8 +35,8 @@ def spatial_sections(planar_model, out_of_plane: float) -> list:
         t = (12.0 * I / w) ** (1.0 / 3.0)
         out.append(Section(A=A, Iy=t * w**3 / 12.0, Iz=I, J=rect_torsion_constant(t, w),
                            Ay=kappa * A if shear else None,
-                           Az=kappa * t * w if shear else None, factors=(bending, 1.0, axial, axial),
-                           mass_factor=mass))
+                           Az=kappa * t * w if shear else None,
+                           factors=(bending, 1.0, axial, axial), mass_factor=mass))
     return out
 
 

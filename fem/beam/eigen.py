@@ -12,7 +12,8 @@ from functools import lru_cache
 
 import numpy as np
 
-TOL = 1e-8  # residual of the Ritz pairs, relative: frequencies to ~1e-16, shapes to ~1e-8 (well separated)
+# residual of the Ritz pairs, relative: frequencies to ~1e-16, shapes to ~1e-8 (well separated)
+TOL = 1e-8
 SEED = 20261123  # the start block: fixed, for results that repeat bit for bit
 # the residual test (needs the Ritz vectors) once the wanted Ritz values moved by less than
 # this (relative) since the previous step: a residual of tol moves them by ~tol^2 / gap
