@@ -75,10 +75,10 @@ def beam_modal3d(p: DBMAParams, layout: DBMALayout, n_modes: int,
     fraction = np.array(modes["mass_fraction"])
     k = working_index(modes) + 1
     note = ("out-of-plane modes from the spatial beam model: with Vlasov's warping restraint "
-            "on leaf hinges the four lowest within about 2 % of the 3-D solid on the paper's "
-            "design, the torsion modes above them up to 4-5 % high; Saint-Venant torsion (notch "
-            "and filleted hinges) reads 10-20 % low (docs/beam.md); decide with "
-            "--model continuum")
+            "on leaf hinges the four lowest within about 3 % of the 3-D solid on the paper's "
+            "design, the torsion modes above them up to about 5.5 % high; Saint-Venant torsion "
+            "(notch and filleted hinges) reads 12-18 % low on the two lowest and 30-48 % above "
+            "(docs/beam.md); decide with --model continuum")
     return {"frequencies_hz": modes["f_hz"],
             "effective_mass": (fraction * modes["total_mass_kg"]).tolist(), "working_mode": k,
             "fn_working": modes["f_hz"][k - 1], "torsion": "Vlasov" if leaf else "Saint-Venant",
@@ -90,8 +90,8 @@ def analyze_dbma_beam(p: DBMAParams, layout: DBMALayout | None = None, force: fl
                       dim: int = 2) -> dict:
     """Static, output stiffness and modal results of the beam model beside the analytical
     models (the keys of the continuum analyze_dbma where they mean the same). ``dim`` 3: the
-    modes of the spatial beam model (:func:`beam_modal3d`: out-of-plane modes too, screening
-    grade, docs/beam.md); the statics are in-plane either way."""
+    modes of the spatial beam model (:func:`beam_modal3d`: out-of-plane modes too, their
+    accuracy in its note and docs/beam.md); the statics are in-plane either way."""
     if dim not in (2, 3):
         raise ValueError(f"dim = {dim!r} must be 2 or 3")
     layout = layout or DBMALayout()

@@ -56,8 +56,9 @@ def test_a_segment_off_the_cell_boundaries_is_refused():
 
 
 def _saddle_condensed(patch, joints):
-    """K on the joints from the whole saddle system [[K, Cu^T], [Cu, 0]] solved densely: an
-    independent check of the patch's banded flexibility route."""
+    """(K, M) on the joints from the whole saddle system [[K, Cu^T], [Cu, 0]] solved densely
+    (M the consistent mass on its static modes): an independent check of the patch's banded
+    flexibility route."""
     rows = [joint(patch) for joint in joints]
     Cu = np.vstack([C for C, _ in rows])
     Cg = np.zeros((len(Cu), 3 * len(rows)))
@@ -67,14 +68,15 @@ def _saddle_condensed(patch, joints):
         r += len(C)
     n, m = patch.n, len(Cu)
     S = np.block([[patch.K.toarray(), Cu.T], [Cu, np.zeros((m, m))]])
-    lam = np.linalg.solve(S, np.vstack([np.zeros((n, Cg.shape[1])), -Cg]))[n:]
-    return Cg.T @ lam
+    solution = np.linalg.solve(S, np.vstack([np.zeros((n, Cg.shape[1])), -Cg]))
+    return Cg.T @ solution[n:], patch.mass_of(solution[:n])
 
 
 def test_a_stepped_patch_condenses_as_its_whole_saddle_system():
     """A member with a pad on part of one face (the DBMA's shape, off the origin), joined at
     two cuts and the pad's face: the stiffness from the patch held statically determinate
-    equals the full saddle system's, and its mass keeps the three rigid motions' mass."""
+    and its mass equal the full saddle system's, and they keep the three rigid motions
+    (no stiffness; the patch's mass and its polar moment about the origin)."""
     a, h, depth, cut = 1.0, 0.4, 0.3, 1.2
     xs = cell_edges([-depth, 0.0, a], a / 3, (0.0,), 1) + 2.0
     ys = cell_edges([-cut, -h, h, cut], a / 3, (-h, h), 1) - 1.0
@@ -83,13 +85,19 @@ def test_a_stepped_patch_condenses_as_its_whole_saddle_system():
               section((2.0, cut - 1.0), (2.0 + a, cut - 1.0)),
               held_face((2.0 - depth, -1.0 - h), (2.0 - depth, h - 1.0))]
     K, M = patch.condensed(joints)
-    reference = _saddle_condensed(patch, joints)
-    assert K == pytest.approx(reference, abs=1e-10 * np.abs(reference).max())
+    K_ref, M_ref = _saddle_condensed(patch, joints)
+    assert K == pytest.approx(K_ref, abs=1e-10 * np.abs(K_ref).max())
+    assert M == pytest.approx(M_ref, abs=1e-10 * np.abs(M_ref).max())
+    nodes = np.array([[2.0 + a / 2, -1.0 - cut], [2.0 + a / 2, cut - 1.0], [2.0 - depth, -1.0]])
+    turn = np.column_stack([-nodes[:, 1], nodes[:, 0], np.ones(3)]).ravel()
     area = a * 2 * cut + depth * 2 * h
-    for direction in ([1.0, 0.0, 0.0], [0.0, 1.0, 0.0]):
-        move = np.tile(direction, 3)
-        assert move @ K @ move == pytest.approx(0.0, abs=1e-12 * np.abs(K).max())
-        assert move @ M @ move == pytest.approx(area, rel=1e-12)
+    second = lambda u0, u1, v0, v1: (u1 ** 3 - u0 ** 3) / 3 * (v1 - v0)  # int u^2 over a box
+    polar = sum(second(x0, x1, y0, y1) + second(y0, y1, x0, x1) for x0, x1, y0, y1 in
+                ((2.0, 2.0 + a, -1.0 - cut, cut - 1.0), (2.0 - depth, 2.0, -1.0 - h, h - 1.0)))
+    for move, mass in ((np.tile([1.0, 0.0, 0.0], 3), area), (np.tile([0.0, 1.0, 0.0], 3), area),
+                       (turn, polar)):
+        assert np.abs(K @ move).max() < 1e-10 * np.abs(K).max()
+        assert move @ M @ move == pytest.approx(mass, rel=1e-10)
 
 
 def test_a_patch_in_two_pieces_is_refused():

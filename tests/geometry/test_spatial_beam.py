@@ -91,8 +91,8 @@ def test_the_strong_axis_roots_beside_the_3d_continuum():
     3-D continuum: about the strong axis (the far block's rotation about y, its deflection
     along z) the beam whose roots carry the planar axial compliance slice by slice is within
     4 % of the solid, more compliant (a bound from above: the slices shear on each other
-    through the block; measured +2.5 and +2.7 % here, +2.1 and +2.4 % on a graded mesh of
-    0.76 M DOFs), the bending extension alone over 10 % too stiff (-11 and -13 %)."""
+    through the block; measured +2.7 and +2.5 % here, +2.4 and +2.1 % on a graded mesh of
+    0.76 M DOFs), the bending extension alone over 10 % too stiff (-13 and -11 %)."""
     t, l, w, H, Lb = 0.6e-3, 4.41e-3, 10e-3, 10e-3, 20e-3
     solid = np.diag(_specimen_solid(t, l, w, H, Lb))
     rule = np.diag(_specimen_beam(t, l, w, H, Lb)) / solid - 1
