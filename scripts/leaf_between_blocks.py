@@ -62,30 +62,18 @@ def solid(t, l, w, H, Lb) -> np.ndarray:
 
 
 def beam(t, l, w, H, Lb, j_factor: float) -> np.ndarray:
-    """The lifted beam model (the blocks as beams, the leaf with its root extensions joined
-    to their ends by rigid offsets), the leaf's J times ``j_factor``."""
-    from flexfem.fem.beam import BeamModel, RigidLink, Section, beam_chain
+    """The lifted beam model of the specimen (``leaf_between_blocks``), the leaf's J times
+    ``j_factor``."""
     from flexfem.fem.beam3d import Fixed, compliance3d
-    from flexfem.fem.materials import Material
-    from flexfem.geometry.beam_layout import profile_beam
     from flexfem.geometry.spatial_beam import lifted_model
+    from flexfem.studies.dbma.beam_slenderness import leaf_between_blocks
     from flexfem.studies.modes3d import TorsionScaled
 
-    leaf = profile_beam((0.0, 0.0), (l, 0.0), lambda s: np.full_like(s, t), w, (), 8,
-                        blocks=(H, H), vectorized=True)
-    near = beam_chain([(-Lb, 0.0), (0.0, 0.0)], Section.rect(w, H), 12)
-    far = beam_chain([(l, 0.0), (l + Lb, 0.0)], Section.rect(w, H), 12)
-    a, b = len(near.nodes), len(near.nodes) + len(leaf.nodes)
-    links = [RigidLink(a - 1, (a + leaf.point_nodes[0],)),
-             RigidLink(b, (a + leaf.point_nodes[1],))]
-    planar = BeamModel(np.vstack([near.nodes, leaf.nodes, far.nodes]),
-                       np.vstack([near.elements, leaf.elements + a, far.elements + b]),
-                       [*near.sections, *leaf.sections, *far.sections],
-                       Material("steel", 200e9, 0.3, 7800.0), shear=True, rigid_links=links)
+    planar, root, tip, leaf = leaf_between_blocks(t, l, w, H, Lb)
     factors = np.ones(len(planar.elements))
-    factors[len(near.elements):len(near.elements) + len(leaf.elements)] = j_factor
+    factors[leaf] = j_factor
     model = TorsionScaled(lifted_model(planar, w), factors)
-    return compliance3d(model, [Fixed(0)], b + len(far.nodes) - 1)
+    return compliance3d(model, [Fixed(root)], tip)
 
 
 def main(argv) -> None:

@@ -16,7 +16,8 @@ import math
 import numpy as np
 
 from ...fem import Fixed as FEFixed, Force, Material, Model, PlaneStress, solve_static
-from ...fem.beam import BeamModel, Fixed, NodalLoad, Section, beam_chain, solve_beam_static
+from ...fem.beam import (BeamModel, Fixed, NodalLoad, RigidLink, Section, beam_chain,
+                         solve_beam_static)
 from ...geometry.beam_layout import ROOT_EXTENSION, profile_beam
 from ...geometry.hinge_patch import notch_factors
 from ...geometry.hinge_profiles import mesh_hinge_specimen, profile_thickness
@@ -50,6 +51,26 @@ def beam_specimen(profile: str, l: float, root_extension: float,
         q = solve_beam_static(model, [Fixed(root)], [load]).q
         out.append(float(q[tip, 1] if load.fy else q[tip, 0]))
     return tuple(out)
+
+
+def leaf_between_blocks(t, l, w, H, Lb, material=STEEL) -> tuple:
+    """(BeamModel, the near block's end node, the far block's end node, the leaf's element
+    slice) of a leaf t x l, w wide, between two H x Lb blocks, joined as the DBMA's hinges to
+    its arms: the blocks as beams, the leaf with its root extensions (into blocks H tall) tied
+    to their ends by rigid offsets. Lengths in m."""
+    leaf = profile_beam((0.0, 0.0), (l, 0.0), lambda s: np.full_like(s, t), w, (), 8,
+                        blocks=(H, H), vectorized=True)
+    near = beam_chain([(-Lb, 0.0), (0.0, 0.0)], Section.rect(w, H), 12)
+    far = beam_chain([(l, 0.0), (l + Lb, 0.0)], Section.rect(w, H), 12)
+    a, b = len(near.nodes), len(near.nodes) + len(leaf.nodes)
+    links = [RigidLink(a - 1, (a + leaf.point_nodes[0],)),
+             RigidLink(b, (a + leaf.point_nodes[1],))]
+    model = BeamModel(np.vstack([near.nodes, leaf.nodes, far.nodes]),
+                      np.vstack([near.elements, leaf.elements + a, far.elements + b]),
+                      [*near.sections, *leaf.sections, *far.sections], material, shear=True,
+                      rigid_links=links)
+    first = len(near.elements)
+    return model, 0, b + len(far.nodes) - 1, slice(first, first + len(leaf.elements))
 
 
 def continuum_specimen(profile: str, l: float) -> tuple:

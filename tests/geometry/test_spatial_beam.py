@@ -59,30 +59,20 @@ def _specimen_solid(t, l, w, H, Lb):
 
 
 def _specimen_beam(t, l, w, H, Lb, slices=True):
-    """The same specimen as a lifted beam model: the blocks as beams, the leaf with its root
-    extensions joined to their ends by rigid offsets (as the DBMA's hinges to its arms);
-    ``slices`` False: the roots' strong-axis bending without the axial compliance."""
+    """The same specimen as a lifted beam model (``leaf_between_blocks``); ``slices`` False:
+    the roots' strong-axis bending without the axial compliance."""
     from dataclasses import replace
 
-    from flexfem.fem.beam import RigidLink, Section, beam_chain
     from flexfem.fem.beam3d import Beam3DModel
+    from flexfem.studies.dbma.beam_slenderness import leaf_between_blocks
 
-    leaf = profile_beam((0.0, 0.0), (l, 0.0), lambda s: np.full_like(s, t), w, (), 8,
-                        blocks=(H, H), vectorized=True)
-    near = beam_chain([(-Lb, 0.0), (0.0, 0.0)], Section.rect(w, H), 12)
-    far = beam_chain([(l, 0.0), (l + Lb, 0.0)], Section.rect(w, H), 12)
-    a, b = len(near.nodes), len(near.nodes) + len(leaf.nodes)
-    links = [RigidLink(a - 1, (a + leaf.point_nodes[0],)), RigidLink(b, (a + leaf.point_nodes[1],))]
-    planar = BeamModel(np.vstack([near.nodes, leaf.nodes, far.nodes]),
-                       np.vstack([near.elements, leaf.elements + a, far.elements + b]),
-                       [*near.sections, *leaf.sections, *far.sections],
-                       Material("steel", E, 0.3, 7800.0), shear=True, rigid_links=links)
+    planar, root, tip, _ = leaf_between_blocks(t, l, w, H, Lb)
     model = lifted_model(planar, w)
     if not slices:
         model = Beam3DModel(model.nodes, model.elements,
                             [replace(s, factors=(*s.factors[:3], 1.0)) for s in model.sections],
                             model.material, rigid_links=model.rigid_links)
-    return compliance3d(model, [Fixed(0)], b + len(far.nodes) - 1)
+    return compliance3d(model, [Fixed(root)], tip)
 
 
 @pytest.mark.slow
