@@ -149,13 +149,22 @@ def plugin_mechanisms() -> dict:
     return {ep.name: ep for ep in points if ep.name not in MECHANISMS}
 
 
-def model_mechanism(path, base_dir=None) -> str:
+def model_mechanism(path, base_dir=None, allow_code: bool = False) -> str:
     """The mechanism name of a model file: "model:<absolute path>@<digest>", the digest over
     the model file and the geometry file it names, so that a study's stored cases are not
-    reused once either file changes. ``path`` is relative to ``base_dir`` (default: cwd)."""
+    reused once either file changes. ``path`` is relative to ``base_dir`` (default: cwd); a
+    study (``base_dir`` given) names only model files inside its own folder unless
+    ``allow_code``."""
     if not isinstance(path, (str, Path)) or not str(path):
         raise ValueError(f"mechanism.model = {path!r} must be the path of a model file")
     path = Path(base_dir or ".") / path
+    if base_dir is not None and not allow_code:
+        try:
+            path.resolve().relative_to(Path(base_dir).resolve())
+        except ValueError:
+            raise ValueError(f"mechanism.model = {str(path)!r} lies outside the study's folder "
+                             f"{Path(base_dir).resolve()}; a study reads only its own folder "
+                             "(pass --allow-code to lift this)") from None
     if not path.is_file():
         raise ValueError(f"mechanism.model = {str(path)!r}: no such model file")
     digest = hashlib.sha256(path.read_bytes())
@@ -220,7 +229,8 @@ def get_evaluator(name: str, allow_code: bool = False):
     check_mechanism(name, allow_code=allow_code)
     if _model_path(name):
         model = MECHANISMS["model"]
-        return functools.partial(model.load(model.evaluate), file=_model_path(name))
+        return functools.partial(model.load(model.evaluate), file=_model_path(name),
+                                 allow_code=allow_code)
     if name in MECHANISMS:
         return MECHANISMS[name].load(MECHANISMS[name].evaluate)
     target = plugin_mechanisms()[name].value if name in plugin_mechanisms() else name

@@ -30,7 +30,7 @@ def study_from_dict(data: dict, base_dir=None, allow_code: bool = False) -> Stud
     if isinstance(mechanism, dict):
         if set(mechanism) != {"model"}:
             raise ValueError(f"mechanism = {mechanism!r}: a table must be {{ model = \"FILE.toml\" }}")
-        data = {**data, "mechanism": model_mechanism(mechanism["model"], base_dir)}
+        data = {**data, "mechanism": model_mechanism(mechanism["model"], base_dir, allow_code)}
     try:
         study = engine.study_from_dict(data)
     except (TypeError, AttributeError) as error:  # a value of the wrong shape (cases = 3, ...)
@@ -89,11 +89,11 @@ def sweep(study, out_dir=None, workers: int | None = None, scheduler: str | None
 
 def run_convergence(mechanism: str, metric: str, tol="0.5%", n_levels: int = 4, ratio: float = 2.0,
                     params: dict | None = None, out_dir=None, dim: int = 2,
-                    start: float | None = None) -> dict:
+                    start: float | None = None, allow_code: bool = False) -> dict:
     """A convergence study of a registered mechanism on ``n_levels`` levels of size_factor
     start, start/ratio, ... (``start`` defaults to the mechanism's coarsest level, see
     the registry's coarsest_size_factor); writes convergence_<metric>.png into ``out_dir`` when
-    given. JSON-able."""
+    given. JSON-able. ``allow_code``: a model file's .geo may run code (geo_guard.py)."""
     tolerance = parse_tolerance(tol)
     if str(mechanism).endswith(".toml"):  # a model file
         mechanism = model_mechanism(mechanism)
@@ -102,7 +102,7 @@ def run_convergence(mechanism: str, metric: str, tol="0.5%", n_levels: int = 4, 
     if not (math.isfinite(start) and start > 0):
         raise ValueError(f"start = {start!r} must be a finite size_factor > 0")
     levels = default_levels(n_levels, ratio, start=start)
-    result = converge(get_evaluator(mechanism), metric, levels, params=params, tol=tolerance, dim=dim)
+    result = converge(get_evaluator(mechanism, allow_code=allow_code), metric, levels, params=params, tol=tolerance, dim=dim)
     summary = {"mechanism": mechanism, **result.to_dict(), "figures": []}
     if out_dir is not None:
         Path(out_dir).mkdir(parents=True, exist_ok=True)

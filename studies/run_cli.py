@@ -12,8 +12,9 @@ def register(subparsers):
     p.add_argument("--scheduler", help="Dask scheduler tcp://HOST:PORT (default: $FLEXFEM_SCHEDULER)")
     p.add_argument("--retry-failed", action="store_true", help="re-run cases stored as failed")
     p.add_argument("--allow-code", action="store_true",
-                   help="let the study name a Python 'module:function' as its mechanism: "
-                        "that code runs with the study's values; only for study files you trust")
+                   help="let the study name a Python 'module:function' as its mechanism, and "
+                        "its model files' .geo run programs or read outside their folders: "
+                        "that code runs with the study's values; only for files you trust")
     p.add_argument("--max-cases", type=count, default=MAX_CASES,
                    help=f"refuse a study of more cases than this (default {MAX_CASES:,})")
     p.add_argument("--json", action="store_true", help="print the summary as one JSON object")
@@ -32,6 +33,9 @@ def register(subparsers):
     c.add_argument("--params", type=json_object, default=None,
                    help='design parameters as JSON, e.g. \'{"length_m": 0.05}\' (default: the base design)')
     c.add_argument("--out", help="folder for the log-log plot")
+    c.add_argument("--allow-code", action="store_true",
+                   help="trust the model file: its .geo may run programs and read outside "
+                        "its folder")
     c.add_argument("--json", action="store_true", help="print the result as one JSON object")
     c.set_defaults(run=_run_converge, summarize=summarize_convergence)
 
@@ -45,7 +49,7 @@ def _run_sweep(args) -> dict:
 def _run_converge(args) -> dict:
     return run_convergence(args.mechanism, args.metric, tol=args.tol, n_levels=args.levels,
                            ratio=args.ratio, params=args.params, out_dir=args.out,
-                           start=args.start)
+                           start=args.start, allow_code=args.allow_code)
 
 
 def summarize_sweep(result: dict) -> str:

@@ -11,6 +11,7 @@ from pathlib import Path
 import re
 
 from ...fem import FEMesh, gmsh_session, mesh_from_gmsh, read_mesh
+from .geo_guard import check_geo
 from .selection import compile_rule, entity_values
 
 GEO_SUFFIXES = (".geo",)
@@ -67,7 +68,10 @@ def _gmsh_error(path: Path, error: Exception) -> ValueError:
     return ValueError(f"{path}: gmsh cannot read this geometry file: {error}")
 
 
-def _load_geo(gmsh, path: Path, parameters: dict) -> None:
+def _load_geo(gmsh, path: Path, parameters: dict, root=None, allow_code=False) -> None:
+    """Merge the .geo ``path`` with its DefineConstant overrides, after :func:`check_geo`
+    (nothing that reaches the OS, reads only inside ``root``, unless ``allow_code``)."""
+    check_geo(path, root, allow_code)
     for name, value in parameters.items():
         gmsh.parser.setNumber(name, [float(value)])
     try:
@@ -112,8 +116,10 @@ def _physical_groups(gmsh) -> dict:
             for d, t in gmsh.model.getPhysicalGroups()}
 
 
-def inspect_geometry(path: Path, parameters: dict | None = None, selects=()) -> GeometryInfo:
-    """Read ``path`` (no meshing) and list its groups and DefineConstant values."""
+def inspect_geometry(path: Path, parameters: dict | None = None, selects=(), root=None,
+                     allow_code: bool = False) -> GeometryInfo:
+    """Read ``path`` (no meshing) and list its groups and DefineConstant values; a .geo is
+    checked first (:func:`check_geo`, reads only inside ``root``, default its folder)."""
     path = Path(path)
     if path.suffix.lower() not in SUFFIXES:
         raise ValueError(f"{path}: unknown geometry file type {path.suffix!r}; use one of "
@@ -124,7 +130,8 @@ def inspect_geometry(path: Path, parameters: dict | None = None, selects=()) -> 
     with gmsh_session("inspect") as gmsh:
         if suffix in GEO_SUFFIXES:
             names = define_constant_names(path)
-            _load_geo(gmsh, path, {k: v for k, v in (parameters or {}).items() if k in names})
+            _load_geo(gmsh, path, {k: v for k, v in (parameters or {}).items() if k in names},
+                      root, allow_code)
             constants = {n: float(gmsh.parser.getNumber(n)[0]) for n in names
                          if len(gmsh.parser.getNumber(n)) == 1}
             return GeometryInfo(_physical_groups(gmsh), constants, gmsh.model.getDimension())
@@ -175,7 +182,7 @@ def mesh_geometry(spec, size_factor: float = 1.0) -> FEMesh:
         return _check_dim(read_mesh(spec.geometry), spec)
     with gmsh_session("model") as gmsh:
         if suffix in GEO_SUFFIXES:
-            _load_geo(gmsh, spec.geometry, spec.parameters)
+            _load_geo(gmsh, spec.geometry, spec.parameters, spec.path.parent, spec.allow_code)
         else:
             _load_cad(gmsh, spec.geometry, spec.selects)
         gmsh.option.setNumber("Mesh.ElementOrder", 1)

@@ -7,6 +7,7 @@ import tomllib
 
 from ...fem.materials import Material
 from .beam_tables import BeamSpec, parse_beams
+from .geo_guard import check_inside
 from .geometry import CAD_SUFFIXES, GEO_SUFFIXES, SUFFIXES, inspect_geometry
 from .tables import (Analysis, Locator, MeshOptions, Section, is_number, parse_analysis,
                      parse_loads, parse_material, parse_mesh, parse_section, parse_selects,
@@ -23,7 +24,8 @@ class ModelSpec:
     resolved from the model file's folder); parameters: {DefineConstant name: value (SI)}
     overriding the .geo; groups: {group name: dimension} offered by the geometry;
     constants: the .geo's DefineConstant values after the overrides; beams: the declared
-    beam model (BeamSpec, [[beam]] and [[rigid]]) or None."""
+    beam model (BeamSpec, [[beam]] and [[rigid]]) or None; allow_code: the user trusts the
+    file (its .geo may run code and read outside its folder)."""
 
     path: Path
     geometry: Path
@@ -40,6 +42,7 @@ class ModelSpec:
     constants: dict = field(default_factory=dict)
     description: str = ""
     beams: BeamSpec | None = None
+    allow_code: bool = False
 
     @property
     def source(self) -> str:
@@ -86,12 +89,16 @@ def _parameters(raw, loc: Locator, overridden: set) -> dict:
     return {k: float(v) for k, v in raw.items()}
 
 
-def _geometry_path(raw, loc: Locator) -> Path:
+def _geometry_path(raw, loc: Locator, allow_code: bool = False) -> Path:
     value = raw.get("geometry")
     if not isinstance(value, str) or not value:
         raise loc.error('geometry = "FILE" (a .geo, .step/.stp/.brep or .msh file, relative to '
                         "the model file) is required", None, "geometry")
-    path = (loc.path.parent / value).resolve()
+    path = loc.path.parent / value
+    try:
+        path = check_inside(path, loc.path.parent, allow_code)
+    except ValueError as error:
+        raise loc.error(f"geometry = {value!r}: {error}", None, "geometry") from None
     if path.suffix.lower() not in SUFFIXES:
         raise loc.error(f"geometry = {value!r}: unknown file type; use one of "
                         f"{', '.join(SUFFIXES)}", None, "geometry")
@@ -154,9 +161,11 @@ def _check_groups(spec_parts: dict, groups: dict, geometry: Path, dim: int, loc:
                             f"{geometry.name}; groups: {listed or 'none'}", "mesh", "refine")
 
 
-def load_spec(path, overrides: dict | None = None) -> ModelSpec:
+def load_spec(path, overrides: dict | None = None, allow_code: bool = False) -> ModelSpec:
     """Read and validate the model file ``path``; ``overrides`` {NAME: value} replace
-    [parameters] entries (or 'material.E'-style keys) before validation."""
+    [parameters] entries (or 'material.E'-style keys) before validation. Files are data:
+    the geometry must lie in the model file's folder and a .geo may not reach the OS
+    (geo_guard.py) unless ``allow_code``."""
     path = Path(path)
     text, raw = _read(path)
     loc = Locator(path, text)
@@ -170,7 +179,7 @@ def load_spec(path, overrides: dict | None = None) -> ModelSpec:
         raise loc.error(f"unknown {'table' if is_table else 'key'} {name!r}{more}; "
                         f"allowed: {', '.join(TOP_KEYS)}",
                         name if is_table else None, None if is_table else name)
-    geometry = _geometry_path(raw, loc)
+    geometry = _geometry_path(raw, loc, allow_code)
     dim = _dim(raw, loc)
     for table in ("material", "section"):
         if table not in raw:
@@ -194,7 +203,7 @@ def load_spec(path, overrides: dict | None = None) -> ModelSpec:
     if not parts["supports"]:
         raise loc.error("at least one [[supports]] is needed (group = \"NAME\")", None)
     parameters = _parameters(raw.get("parameters", {}), loc, overridden)
-    info = inspect_geometry(geometry, parameters, parts["selects"])
+    info = inspect_geometry(geometry, parameters, parts["selects"], path.parent, allow_code)
     _check_parameters(parameters, geometry, info.constants, loc, overridden)
     if info.dim != dim:
         raise loc.error(f"dim = {dim} but {geometry.name} is {info.dim}-D", None,
@@ -207,4 +216,5 @@ def load_spec(path, overrides: dict | None = None) -> ModelSpec:
         raise loc.error("[[beam]]: the beam model is planar (dim = 2)", "beam")
     return ModelSpec(path=path, geometry=geometry, dim=dim, parameters=parameters,
                      groups=info.groups, constants=info.constants,
-                     description=str(description), beams=beams, **parts)
+                     description=str(description), beams=beams, allow_code=allow_code,
+                     **parts)

@@ -173,13 +173,15 @@ def flat_metrics(result: dict) -> dict[str, float]:
 
 
 def evaluate(params: dict | None = None, *, model: Literal["continuum", "beam"] = "continuum",
-             file: str | None = None, size_factor: float = 1.0, **options) -> dict[str, float]:
+             file: str | None = None, size_factor: float = 1.0, allow_code: bool = False,
+             **options) -> dict[str, float]:
     """Metrics of the model file ``file`` with ``params`` overriding its [parameters]
     (SI) and ``options`` its other tables ('material.E': 210e9, 'analysis.modes': 3, ...),
     by the continuum FEM or (``model="beam"``) its declared beam model. Keys: dofs, h (m),
     max_von_mises (Pa), mean_displacement_<group>_<axis> (m), reaction_<group>_<axis> (N),
     stiffness_<group>_<axis> (N/m, single force load), f1_hz, f2_hz, ... (Hz). A path given
-    as ``model`` (``evaluate(model="guide.toml")``) is the file, analysed by the continuum."""
+    as ``model`` (``evaluate(model="guide.toml")``) is the file, analysed by the continuum.
+    ``allow_code``: the file's .geo may run code (geometry/user_model/geo_guard.py)."""
     if file is None and model not in MODELS:
         file, model = model, "continuum"
     if file is None:
@@ -188,5 +190,5 @@ def evaluate(params: dict | None = None, *, model: Literal["continuum", "beam"] 
     if unknown:
         raise ValueError(f"evaluate: unknown option(s) {unknown}; give parameters in params and "
                          "other model-file keys as 'table.key' (e.g. 'material.E')")
-    spec = load_spec(file, {**(params or {}), **options})
+    spec = load_spec(file, {**(params or {}), **options}, allow_code=allow_code)
     return flat_metrics(analyze_model(spec, size_factor, model))

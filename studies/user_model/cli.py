@@ -26,7 +26,8 @@ def parse_sets(items) -> dict:
 
 def run(args) -> dict:
     """analyze_model of ``args.model`` with the ``--set`` overrides."""
-    return analyze_model(load_spec(args.model, parse_sets(args.set)), model=args.reduced)
+    spec = load_spec(args.model, parse_sets(args.set), allow_code=args.allow_code)
+    return analyze_model(spec, model=args.reduced)
 
 
 def _vector(v, unit: str) -> str:
@@ -84,5 +85,8 @@ def register(subparsers):
                         default="continuum",
                         help="continuum: the FEM of the geometry (default); beam: the beam "
                              "model the file declares ([[beam]], [[rigid]])")
+    parser.add_argument("--allow-code", action="store_true",
+                        help="trust the model file: its .geo may run programs, write files "
+                             "and read outside its folder (refused by default)")
     parser.add_argument("--json", action="store_true", help="print one JSON object")
     parser.set_defaults(run=run, summarize=summarize)

@@ -4,6 +4,7 @@ run: the toy with its test hooks, and the real mechanisms, which mesh with gmsh 
 worker threads."""
 import contextlib
 import os
+import shutil
 import socket
 import subprocess
 import sys
@@ -155,3 +156,21 @@ def test_a_lost_worker_is_an_error_not_a_failed_design(tmp_path):
         again = run_study(study, tmp_path / "r.sqlite", scheduler=address, progress=False,
                           allow_code=True)
         assert (again.computed, again.reused) == (1, 2)  # the lost case only, no retry asked
+
+
+def test_a_model_file_geo_runs_no_code_on_dask_workers(tmp_path, dask_cluster):
+    """A study naming a model file whose .geo calls System: every case fails with the refusal
+    on the workers, and the command never runs (tests/studies/user_model/test_geo_is_data.py
+    covers analyze and the local executors)."""
+    from flexfem.studies.run import sweep
+
+    folder = tmp_path / "model"
+    shutil.copytree(Path(__file__).parents[3] / "examples" / "parallel_guide", folder)
+    marker = tmp_path / "MARKER"
+    geo = folder / "guide.geo"
+    geo.write_text(geo.read_text() + f'\nSystem "touch {marker}";\n')
+    study = folder / "study.toml"
+    study.write_text('mechanism = { model = "guide.toml" }\n[grid]\nL = [0.04, 0.05]\n')
+    summary = sweep(study, tmp_path / "out", scheduler=dask_cluster, progress=False)
+    assert summary["failed"] == 2 and not marker.exists()
+    assert all("'System' runs a shell command" in f["error"] for f in summary["failures"])

@@ -155,7 +155,8 @@ def test_beam_follows_the_parameters_in_evaluate_and_a_study():
 
 
 def test_cli_model_beam_json_keys(capsys):
-    args = argparse.Namespace(model=str(GUIDE), set=["L=0.05"], reduced="beam")
+    args = argparse.Namespace(model=str(GUIDE), set=["L=0.05"], reduced="beam",
+                              allow_code=False)
     out = json.loads(json.dumps(cli.run(args)))
     assert out["solver"] == "beam" and out["parameters"]["L"] == 0.05
     assert "stiffness of 'stage' along x" in cli.summarize(out)
