@@ -11,6 +11,7 @@ from pathlib import Path
 import re
 
 from ...fem import FEMesh, gmsh_session, mesh_from_gmsh, read_mesh
+from ..mechanism import mesh_mechanism
 from .geo_guard import check_geo
 from .selection import compile_rule, entity_values
 
@@ -174,6 +175,8 @@ def mesh_geometry(spec, size_factor: float = 1.0) -> FEMesh:
     every element size (a .msh cannot be remeshed: only 1 is accepted)."""
     if not size_factor > 0:
         raise ValueError(f"size_factor = {size_factor!r} must be > 0")
+    if spec.mechanism is not None:
+        return mesh_mechanism(spec.mechanism, spec.dim, size_factor, spec.mesh.size)
     suffix = spec.geometry.suffix.lower()
     if suffix in MESH_SUFFIXES:
         if size_factor != 1.0:

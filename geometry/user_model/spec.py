@@ -6,15 +6,19 @@ from pathlib import Path
 import tomllib
 
 from ...fem.materials import Material
-from .beam_tables import BeamSpec, parse_beams
+from ..mechanism import Mechanism
+from ..mechanism.beams import beam_spec
+from .beam_tables import BeamSpec, _options as beam_options, parse_beams
 from .geo_guard import check_inside
+from .mechanism_tables import parse_mechanism
 from .geometry import CAD_SUFFIXES, GEO_SUFFIXES, SUFFIXES, inspect_geometry
 from .tables import (Analysis, Locator, MeshOptions, Section, is_number, parse_analysis,
                      parse_loads, parse_material, parse_mesh, parse_section, parse_selects,
                      parse_supports)
 
 TOP_KEYS = ("geometry", "dim", "description", "parameters", "material", "section", "mesh",
-            "supports", "loads", "select", "analysis", "beam", "rigid", "beam_model")
+            "supports", "loads", "select", "analysis", "beam", "rigid", "beam_model", "body",
+            "flexure")
 OVERRIDE_TABLES = ("material", "section", "mesh", "analysis", "beam_model")
 
 
@@ -25,7 +29,9 @@ class ModelSpec:
     overriding the .geo; groups: {group name: dimension} offered by the geometry;
     constants: the .geo's DefineConstant values after the overrides; beams: the declared
     beam model (BeamSpec, [[beam]] and [[rigid]]) or None; allow_code: the user trusts the
-    file (its .geo may run code and read outside its folder)."""
+    file (its .geo may run code and read outside its folder); mechanism: the bodies and
+    flexures of a file that describes its mechanism so (then ``geometry`` is the model file
+    itself, and both the continuum and the beam model are derived from it)."""
 
     path: Path
     geometry: Path
@@ -43,6 +49,7 @@ class ModelSpec:
     description: str = ""
     beams: BeamSpec | None = None
     allow_code: bool = False
+    mechanism: Mechanism | None = None
 
     @property
     def source(self) -> str:
@@ -161,11 +168,63 @@ def _check_groups(spec_parts: dict, groups: dict, geometry: Path, dim: int, loc:
                             f"{geometry.name}; groups: {listed or 'none'}", "mesh", "refine")
 
 
-def load_spec(path, overrides: dict | None = None, allow_code: bool = False) -> ModelSpec:
+def _mechanism_spec(path: Path, raw: dict, loc: Locator, overridden: set, dim: int | None,
+                    allow_code: bool) -> ModelSpec:
+    """A model file of ``[[body]]`` and ``[[flexure]]`` tables: its continuum (2-D, or with
+    ``dim`` 3 extruded by the [section] thickness) and its planar beam model, one
+    description."""
+    for key in ("geometry", "select", "beam", "rigid"):
+        if key in raw:
+            raise loc.error(f"{'[[' + key + ']]' if key != 'geometry' else 'geometry'} with "
+                            "[[body]]/[[flexure]]: the bodies and flexures describe the whole "
+                            "mechanism, its continuum and its beam model; give one or the other",
+                            None if key == "geometry" else key, key if key == "geometry" else None)
+    dim = dim or raw.get("dim", 2)
+    if dim not in (2, 3) or isinstance(dim, bool):
+        raise loc.error(f"dim = {dim!r} must be 2 or 3", None, "dim")
+    for table in ("material", "section"):
+        if table not in raw:
+            raise loc.error(f"[{table}] is required", None)
+    section_raw = dict(raw["section"]) if isinstance(raw["section"], dict) else raw["section"]
+    if isinstance(section_raw, dict):
+        section_raw.setdefault("kind", "plane_stress")
+    section = parse_section(section_raw, 2, loc)
+    if section.kind != "plane_stress" or "thickness" not in section_raw:
+        raise loc.error("[section] of bodies and flexures: thickness = the out-of-plane depth "
+                        "(m; kind plane_stress, the default)", "section")
+    parts = {
+        "material": parse_material(raw["material"], loc),
+        "section": section if dim == 2 else Section("solid"),
+        "mesh": parse_mesh(raw.get("mesh", {}), loc),
+        "supports": parse_supports(raw.get("supports", []), dim, loc),
+        "loads": parse_loads(raw.get("loads", []), dim, loc),
+        "analysis": parse_analysis(raw.get("analysis", {}), loc),
+    }
+    if parts["mesh"].refine:
+        raise loc.error("[mesh] refine: every flexure of bodies and flexures is refined "
+                        "already (its thickness sets its element size)", "mesh", "refine")
+    if not parts["supports"]:
+        raise loc.error("the mechanism has no support: hold a body with [[supports]] group = "
+                        "'NAME'", None)
+    parameters = _parameters(raw.get("parameters", {}), loc, overridden)
+    mechanism = parse_mechanism(raw, parameters, section.thickness, loc,
+                                {s.group for s in parts["supports"]})
+    groups = {b.name: dim - 1 for b in mechanism.bodies} | {"solid": dim}
+    _check_groups(parts, groups, path, dim, loc)
+    options = beam_options(raw.get("beam_model", {}), loc)
+    return ModelSpec(path=path, geometry=path, dim=dim, parameters=parameters, groups=groups,
+                     constants=dict(parameters), description=str(raw.get("description", "")),
+                     beams=beam_spec(mechanism, **options), allow_code=allow_code,
+                     mechanism=mechanism, selects=(), **parts)
+
+
+def load_spec(path, overrides: dict | None = None, allow_code: bool = False,
+              dim: int | None = None) -> ModelSpec:
     """Read and validate the model file ``path``; ``overrides`` {NAME: value} replace
     [parameters] entries (or 'material.E'-style keys) before validation. Files are data:
     the geometry must lie in the model file's folder and a .geo may not reach the OS
-    (geo_guard.py) unless ``allow_code``."""
+    (geo_guard.py) unless ``allow_code``. ``dim``: 3 extrudes a file of bodies and
+    flexures to a solid (a geometry file has its own dimension)."""
     path = Path(path)
     text, raw = _read(path)
     loc = Locator(path, text)
@@ -179,8 +238,13 @@ def load_spec(path, overrides: dict | None = None, allow_code: bool = False) -> 
         raise loc.error(f"unknown {'table' if is_table else 'key'} {name!r}{more}; "
                         f"allowed: {', '.join(TOP_KEYS)}",
                         name if is_table else None, None if is_table else name)
+    if "body" in raw or "flexure" in raw:
+        return _mechanism_spec(path, raw, loc, overridden, dim, allow_code)
     geometry = _geometry_path(raw, loc, allow_code)
-    dim = _dim(raw, loc)
+    asked, dim = dim, _dim(raw, loc)
+    if asked is not None and asked != dim:
+        raise loc.error(f"--dim {asked}: this model's geometry file is {dim}-D; only bodies "
+                        "and flexures ([[body]], [[flexure]]) are extruded", None, "dim")
     for table in ("material", "section"):
         if table not in raw:
             raise loc.error(f"[{table}] is required", None)

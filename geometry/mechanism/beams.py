@@ -1,0 +1,58 @@
+"""The planar beam model of a :class:`~.description.Mechanism`, as the
+:class:`~flexfem.geometry.user_model.beam_tables.BeamSpec` the beam model builder takes
+(geometry/user_model/beam_model.py): every flexure a beam on its centre line over its free
+span, with its thickness profile (a leaf's root fillets, a notch's circle), every body a rigid
+block holding the flexures' roots and standing for its group at its centre (the continuum's
+force on a body's outline acts there; its mean displacement is the displacement there for a
+body that moves rigidly). The root, notch and crossing corrections of the builder apply as
+to any declared beam model (docs/model_files.md, "The beam model"). Lengths in m."""
+import numpy as np
+
+from ..user_model.beam_tables import BeamLine, BeamSpec, Profile, RigidBody
+from .description import Leaf, Mechanism
+
+#: stations on a fillet or a notch (the profile is linear between them)
+STATIONS = 33
+
+
+def _rounded(s: np.ndarray, r: float) -> np.ndarray:
+    """The added thickness 2 (r - sqrt(r^2 - (r - s)^2)) of a circular fillet of radius r at a
+    distance s from the root (0 beyond s = r)."""
+    u = np.clip(r - s, 0.0, None)
+    return 2 * (r - np.sqrt(np.clip(r * r - u * u, 0.0, None)))
+
+
+def profile(flexure, length: float) -> Profile:
+    """The in-plane thickness t(s) (m) of ``flexure`` along its free span of ``length`` (m):
+    a leaf's constant thickness with its (square-root) fillets, a circular notch's
+    t + 2 (R - sqrt(R^2 - (s - R)^2))."""
+    t = flexure.thickness
+    if isinstance(flexure, Leaf):
+        if flexure.fillet <= 0:
+            return Profile((0.0, length), (t, t))
+        r = flexure.fillet
+        near = np.linspace(0.0, r, STATIONS)
+        s = np.concatenate([near, length - near[::-1]])
+        return Profile(tuple(s.tolist()),
+                       tuple((t + _rounded(np.minimum(s, length - s), r)).tolist()))
+    r = flexure.radius
+    s = np.linspace(0.0, length, 4 * STATIONS + 1)
+    return Profile(tuple(s.tolist()), tuple((t + _rounded(r - np.abs(s - r), r)).tolist()))
+
+
+def beam_spec(mechanism: Mechanism, elements: int = 20, **options) -> BeamSpec:
+    """The BeamSpec of ``mechanism``; ``options``: the builder's (shear, root_extension,
+    crossings, roots, notch_correction)."""
+    lines, joins = [], {b.name: [] for b in mechanism.bodies}
+    for i, f in enumerate(mechanism.flexures):
+        span = mechanism.span(i)
+        a, b = tuple(span.a.tolist()), tuple(span.b.tolist())
+        lines.append(BeamLine((a, b), profile(f, span.length), mechanism.depth, elements,
+                              f.source))
+        joins[f.between[0]].append(a)
+        joins[f.between[1]].append(b)
+    rigid = tuple(RigidBody(tuple(joins[b.name]), {b.name: tuple(b.centre.tolist())},
+                            tuple(b.boxes), b.source) for b in mechanism.bodies)
+    groups = {b.name: i for i, b in enumerate(mechanism.bodies)}
+    return BeamSpec(tuple(lines), rigid, elements=elements, source=mechanism.source,
+                    groups=groups, **options)

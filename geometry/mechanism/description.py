@@ -1,0 +1,323 @@
+"""A flexure mechanism described once: rigid bodies joined by flexures (SI units, m).
+
+:class:`Body` is a union of axis-aligned boxes; :class:`Leaf` a straight blade of constant
+thickness (with a fillet of radius ``fillet`` at both roots); :class:`Notch` a circular notch
+hinge (a blank of width ``thickness + 2 radius`` cut by two circles of ``radius`` that leave a
+neck of ``thickness``). A flexure runs along its centre line from ``start`` (inside or on the
+first body it joins) to ``end`` (inside or on the second); its free span is the part between
+the bodies. :class:`Mechanism` holds them and :meth:`Mechanism.check` refuses what cannot be
+built, naming the body or flexure. The continuum (draw.py) and the beam model (beams.py) are
+both derived from this one description, with the bodies' names as their groups.
+"""
+from dataclasses import dataclass
+import math
+
+import numpy as np
+
+TOL = 1e-9  # relative to the mechanism's size: points closer than this coincide
+
+
+@dataclass(frozen=True)
+class Body:
+    """A rigid body: ``name`` (its group in every model) and ``boxes`` ((lower-left,
+    upper-right) corner pairs, m)."""
+
+    name: str
+    boxes: tuple
+    source: str = ""
+
+    def __post_init__(self):
+        boxes = []
+        for box in self.boxes:
+            (x0, y0), (x1, y1) = box
+            if not all(map(math.isfinite, (x0, y0, x1, y1))) or x0 == x1 or y0 == y1:
+                raise ValueError(f"{self.source or 'body'}: body {self.name!r}: box "
+                                 f"{[list(box[0]), list(box[1])]} must be two opposite corners "
+                                 "of a rectangle of non-zero area (m)")
+            boxes.append(((min(x0, x1), min(y0, y1)), (max(x0, x1), max(y0, y1))))
+        if not boxes:
+            raise ValueError(f"{self.source or 'body'}: body {self.name!r} needs a box")
+        object.__setattr__(self, "boxes", tuple(boxes))
+
+    def contains(self, point, tol: float) -> bool:
+        """True where ``point`` (m) lies inside a box or on its outline (within ``tol``)."""
+        x, y = point
+        return any(x0 - tol <= x <= x1 + tol and y0 - tol <= y <= y1 + tol
+                   for (x0, y0), (x1, y1) in self.boxes)
+
+    def span_inside(self, a, b, tol: float) -> list:
+        """The intervals [s0, s1] of s in [0, 1] where a + s (b - a) lies in the body."""
+        out = []
+        a, d = np.asarray(a, float), np.subtract(b, a)
+        for (x0, y0), (x1, y1) in self.boxes:
+            lo, hi = 0.0, 1.0
+            for k, (low, high) in enumerate(((x0 - tol, x1 + tol), (y0 - tol, y1 + tol))):
+                if abs(d[k]) < 1e-300:
+                    if not low <= a[k] <= high:
+                        lo, hi = 1.0, 0.0
+                    continue
+                s0, s1 = sorted(((low - a[k]) / d[k], (high - a[k]) / d[k]))
+                lo, hi = max(lo, s0), min(hi, s1)
+            if hi >= lo:
+                out.append((lo, hi))
+        return sorted(out)
+
+    @property
+    def area(self) -> float:
+        """Area of the boxes (m^2; overlapping boxes are counted once only where disjoint)."""
+        return sum((x1 - x0) * (y1 - y0) for (x0, y0), (x1, y1) in self.boxes)
+
+    @property
+    def centre(self) -> np.ndarray:
+        """Area centroid of the boxes (m): where the beam model applies the body's loads."""
+        areas = [(x1 - x0) * (y1 - y0) for (x0, y0), (x1, y1) in self.boxes]
+        centres = [((x0 + x1) / 2, (y0 + y1) / 2) for (x0, y0), (x1, y1) in self.boxes]
+        return np.average(np.asarray(centres), axis=0, weights=areas)
+
+    def face_at(self, point, tol: float):
+        """Unit direction (2,) along the box edge ``point`` lies on (inside no other box), or
+        None."""
+        x, y = point
+        for (x0, y0), (x1, y1) in self.boxes:
+            if x0 - tol <= x <= x1 + tol and (abs(y - y0) <= tol or abs(y - y1) <= tol):
+                return np.array([1.0, 0.0])
+            if y0 - tol <= y <= y1 + tol and (abs(x - x0) <= tol or abs(x - x1) <= tol):
+                return np.array([0.0, 1.0])
+        return None
+
+
+@dataclass(frozen=True)
+class Leaf:
+    """A leaf spring (blade) of in-plane ``thickness`` (m) from ``start`` to ``end`` (m) on its
+    centre line, joining the bodies ``between``; ``fillet``: root fillet radius (m, 0: square
+    roots)."""
+
+    between: tuple
+    start: tuple
+    end: tuple
+    thickness: float
+    fillet: float = 0.0
+    name: str = ""
+    source: str = ""
+    kind = "leaf"
+
+    @property
+    def width(self) -> float:
+        """The in-plane width of the flexure's outline at its roots (m)."""
+        return self.thickness
+
+
+@dataclass(frozen=True)
+class Notch:
+    """A circular notch hinge: neck ``thickness`` (m) at the middle of its free span, notch
+    ``radius`` (m), on the centre line from ``start`` to ``end`` (m) joining ``between``; the
+    blank is ``thickness + 2 radius`` wide and its free span 2 radius long (the bodies' faces
+    must be that far apart along it)."""
+
+    between: tuple
+    start: tuple
+    end: tuple
+    thickness: float
+    radius: float
+    name: str = ""
+    source: str = ""
+    kind = "circular_notch"
+
+    @property
+    def width(self) -> float:
+        return self.thickness + 2 * self.radius
+
+
+@dataclass(frozen=True)
+class Span:
+    """Where a flexure is free: its root points ``a`` (leaving the first body) and ``b``
+    (entering the second), m; ``d`` the unit direction a -> b, ``n`` its left normal;
+    ``length`` |b - a| (m)."""
+
+    a: np.ndarray
+    b: np.ndarray
+
+    @property
+    def length(self) -> float:
+        return float(np.linalg.norm(self.b - self.a))
+
+    @property
+    def d(self) -> np.ndarray:
+        return (self.b - self.a) / self.length
+
+    @property
+    def n(self) -> np.ndarray:
+        return np.array([-self.d[1], self.d[0]])
+
+    def corners(self, width: float) -> np.ndarray:
+        """(4, 2) corners (m) of the rectangle ``width`` wide over the span."""
+        h = width / 2 * self.n
+        return np.array([self.a - h, self.b - h, self.b + h, self.a + h])
+
+
+def _label(flexure, index: int) -> str:
+    name = f" {flexure.name!r}" if flexure.name else ""
+    return f"flexure {index + 1}{name} ({flexure.kind} between {flexure.between[0]!r} and " \
+           f"{flexure.between[1]!r})"
+
+
+def _error(item, message: str) -> ValueError:
+    return ValueError(f"{item.source + ': ' if item.source else ''}{message}")
+
+
+def _convex_overlap(p: np.ndarray, q: np.ndarray, tol: float) -> bool:
+    """True where the convex polygons p and q ((k, 2), m) overlap by more than ``tol``
+    (separating-axis test)."""
+    for poly in (p, q):
+        for i in range(len(poly)):
+            edge = poly[(i + 1) % len(poly)] - poly[i]
+            axis = np.array([-edge[1], edge[0]]) / np.linalg.norm(edge)
+            pa, qa = p @ axis, q @ axis
+            if pa.max() <= qa.min() + tol or qa.max() <= pa.min() + tol:
+                return False
+    return True
+
+
+@dataclass(frozen=True)
+class Mechanism:
+    """Rigid ``bodies`` joined by ``flexures``; ``depth``: out-of-plane thickness (m)."""
+
+    bodies: tuple
+    flexures: tuple
+    depth: float
+    source: str = ""
+
+    def body(self, name: str) -> Body:
+        for b in self.bodies:
+            if b.name == name:
+                return b
+        raise KeyError(name)
+
+    @property
+    def size(self) -> float:
+        """The diagonal of the bounding box of the bodies (m)."""
+        corners = np.array([c for b in self.bodies for box in b.boxes for c in box])
+        return float(np.linalg.norm(corners.max(axis=0) - corners.min(axis=0)))
+
+    @property
+    def tol(self) -> float:
+        return TOL * self.size
+
+    def span(self, index: int) -> Span:
+        """The free span of flexure ``index``: from where its centre line leaves its first body
+        to where it enters the second."""
+        f = self.flexures[index]
+        first, second = (self.body(name) for name in f.between)
+        tol = self.tol
+        s_a = 0.0
+        for lo, hi in first.span_inside(f.start, f.end, tol):
+            if lo <= s_a + tol:
+                s_a = max(s_a, hi)
+        s_b = 1.0
+        for lo, hi in reversed(second.span_inside(f.start, f.end, tol)):
+            if hi >= s_b - tol:
+                s_b = min(s_b, lo)
+        start, end = np.asarray(f.start, float), np.asarray(f.end, float)
+        return Span(start + s_a * (end - start), start + s_b * (end - start))
+
+    def check(self, supported=None) -> None:
+        """ValueError naming the body or flexure (and the model file's line where known) for
+        unknown or repeated names, overlapping bodies, a flexure end outside the body it names,
+        a leaf thicker than long, a fillet or notch that does not fit, overlapping flexures, a
+        body joined to nothing, and (``supported``: the held group names) a mechanism with no
+        support or a body not connected to a held one."""
+        names = [b.name for b in self.bodies]
+        for b in self.bodies:
+            if names.count(b.name) > 1:
+                raise _error(b, f"body {b.name!r} is named twice; each body needs its own name")
+        for i, p in enumerate(self.bodies):
+            for q in self.bodies[i + 1:]:
+                if any(_convex_overlap(_box(u), _box(v), self.tol) for u in p.boxes
+                       for v in q.boxes):
+                    raise _error(q, f"bodies {p.name!r} and {q.name!r} overlap; a body is one "
+                                 "name for all its boxes")
+        spans = [self._check_flexure(i) for i in range(len(self.flexures))]
+        self._check_overlaps(spans)
+        joined = {name for f in self.flexures for name in f.between}
+        for b in self.bodies:
+            if b.name not in joined:
+                raise _error(b, f"body {b.name!r} is joined to nothing: no [[flexure]] has it in "
+                             "its between")
+        held = [name for name in (supported or ()) if name in names]
+        if supported is not None and not held:
+            raise ValueError(f"{self.source}: the mechanism has no support: hold a body "
+                             f"([[supports]] group = one of {names})")
+        reached, todo = set(held), list(held)
+        while todo:
+            name = todo.pop()
+            for f in self.flexures:
+                if name in f.between:
+                    other = f.between[1] if f.between[0] == name else f.between[0]
+                    if other not in reached:
+                        reached.add(other)
+                        todo.append(other)
+        for b in self.bodies:
+            if held and b.name not in reached:
+                raise _error(b, f"body {b.name!r} is not connected by flexures to a held body "
+                             f"({', '.join(held)}): it would float free")
+
+    def _check_flexure(self, i: int) -> Span:
+        f = self.flexures[i]
+        label = _label(f, i)
+        names = [b.name for b in self.bodies]
+        if len(f.between) != 2 or f.between[0] == f.between[1]:
+            raise _error(f, f"{label}: between must name two different bodies")
+        for name in f.between:
+            if name not in names:
+                raise _error(f, f"{label}: no body is named {name!r}; bodies: {names}")
+        if not f.thickness > 0:
+            raise _error(f, f"{label}: thickness = {f.thickness!r} must be > 0 (m)")
+        for point, name, key in ((f.start, f.between[0], "from"), (f.end, f.between[1], "to")):
+            if not self.body(name).contains(point, self.tol):
+                raise _error(f, f"{label}: {key} = {list(point)} is not inside body {name!r}; "
+                             "a flexure's ends lie inside (or on) the bodies it joins")
+        if math.dist(f.start, f.end) <= self.tol:
+            raise _error(f, f"{label}: from and to are the same point")
+        span = self.span(i)
+        if span.length <= self.tol:
+            raise _error(f, f"{label}: no free length between {f.between[0]!r} and "
+                         f"{f.between[1]!r}: the bodies touch along it")
+        for point in (span.a, span.b):
+            if sum(b.contains(point, self.tol) for b in self.bodies) > 1:
+                raise _error(f, f"{label}: its root at {point.tolist()} touches two bodies")
+        mid = (span.a + span.b) / 2
+        for b in self.bodies:
+            if b.contains(mid, -self.tol):
+                raise _error(f, f"{label}: its free span runs through body {b.name!r}")
+        if isinstance(f, Leaf):
+            if f.thickness >= span.length:
+                raise _error(f, f"{label}: a leaf thicker ({f.thickness:.4g} m) than long "
+                             f"({span.length:.4g} m free) is a block, not a flexure; check the "
+                             "units (lengths are in m)")
+            if f.fillet < 0 or 2 * f.fillet >= span.length:
+                raise _error(f, f"{label}: fillet = {f.fillet:.4g} m must be >= 0 and less than "
+                             f"half the free length ({span.length:.4g} m)")
+        else:
+            if not f.radius > 0:
+                raise _error(f, f"{label}: radius = {f.radius!r} must be > 0 (m)")
+            if abs(span.length - 2 * f.radius) > 1e-6 * span.length + self.tol:
+                raise _error(f, f"{label}: its free span is {span.length:.6g} m but a circular "
+                             f"notch of radius {f.radius:.6g} m spans 2 radius = "
+                             f"{2 * f.radius:.6g} m; place the bodies' faces 2 radius apart")
+        return span
+
+    def _check_overlaps(self, spans) -> None:
+        """Overlapping flexures are refused; two leaves that cross at an angle are a joint."""
+        for i, (f, s) in enumerate(zip(self.flexures, spans)):
+            for j in range(i + 1, len(spans)):
+                g, t = self.flexures[j], spans[j]
+                crossing = (isinstance(f, Leaf) and isinstance(g, Leaf)
+                            and abs(float(np.cross(s.d, t.d))) > math.sin(math.radians(10)))
+                if not crossing and _convex_overlap(s.corners(f.width), t.corners(g.width),
+                                                    self.tol):
+                    raise _error(g, f"{_label(g, j)} overlaps {_label(f, i)}")
+
+
+def _box(box) -> np.ndarray:
+    (x0, y0), (x1, y1) = box
+    return np.array([(x0, y0), (x1, y0), (x1, y1), (x0, y1)], float)

@@ -1,0 +1,235 @@
+"""The continuum of a :class:`~.description.Mechanism`: its outline drawn with gmsh's
+OpenCASCADE kernel (boxes, flexures, root fillets, notches), fragmented into one conforming
+model with a boundary group per body (its outline, where it meets no flexure), meshed with
+local refinement in every flexure; 2-D, or extruded by the depth to a solid (the group: the
+body's lateral faces). Lengths in m."""
+import math
+
+import numpy as np
+
+from ...fem import FEMesh, gmsh_session, mesh_from_gmsh
+from .description import Leaf, Mechanism
+
+_REACH = 1.0 / math.tan(math.radians(10))  # an oblique root's edge reaches t/2 cot(10 deg) in
+
+
+def _polygon(occ, points) -> int:
+    tags = [occ.addPoint(x, y, 0) for x, y in points]
+    lines = [occ.addLine(tags[i], tags[(i + 1) % len(tags)]) for i in range(len(tags))]
+    return occ.addPlaneSurface([occ.addCurveLoop(lines)])
+
+
+def _central_piece(gmsh, pieces, point) -> list:
+    """The piece of ``pieces`` (dimtags) nearest ``point``; the others are removed."""
+    occ = gmsh.model.occ
+    ranked = sorted(pieces, key=lambda dt: np.linalg.norm(
+        np.asarray(occ.getCenterOfMass(*dt))[:2] - point))
+    if ranked[1:]:
+        occ.remove(ranked[1:], recursive=True)
+    return ranked[:1]
+
+
+def _side_root(body, point, direction, reach: float, tol: float):
+    """Where the line through ``point`` along ``direction`` (unit) leaves ``body`` nearest
+    ``point``, looking ``reach`` (m) either side."""
+    start, end = point - reach * direction, point + reach * direction
+    exits = [hi for _, hi in body.span_inside(start, end, tol)]
+    s = min(exits, key=lambda v: abs(v - 0.5))
+    return start + s * (end - start)
+
+
+def fillet_corners(mechanism: Mechanism, index: int) -> list:
+    """[(C, T1, T2, centre)] (m) of the root fillets of leaf ``index``: the corner C where a
+    side of the leaf meets a body's face, the tangent points on the side (T1) and on the face
+    (T2) of the circle of radius ``fillet`` and its centre. ValueError where a fillet does not
+    fit on the face."""
+    leaf = mechanism.flexures[index]
+    if not isinstance(leaf, Leaf) or leaf.fillet <= 0:
+        return []
+    span, tol, r = mechanism.span(index), mechanism.tol, leaf.fillet
+    out = []
+    for name, root, inward in ((leaf.between[0], span.a, span.d),
+                               (leaf.between[1], span.b, -span.d)):
+        body = mechanism.body(name)
+        for side in (-1.0, 1.0):
+            offset = side * leaf.thickness / 2 * span.n
+            corner = _side_root(body, root + offset, inward, leaf.thickness * _REACH, tol)
+            face = body.face_at(corner, 10 * tol)
+            if face is None:
+                raise ValueError(f"{leaf.source}: the fillet of flexure {index + 1} at "
+                                 f"{corner.tolist()} is not on a face of body {name!r}")
+            face = face if float(face @ offset) > 0 else -face
+            theta = math.acos(max(-1.0, min(1.0, float(face @ inward))))
+            along = r / math.tan(theta / 2)
+            t1, t2 = corner + along * inward, corner + along * face
+            centre = corner + r / math.sin(theta / 2) * (inward + face) / np.linalg.norm(
+                inward + face)
+            if body.face_at(t2, 10 * tol) is None or 2 * along >= span.length:
+                raise ValueError(f"{leaf.source}: the fillet (radius {r:.4g} m) of flexure "
+                                 f"{index + 1} does not fit on the face of body {name!r} at "
+                                 f"{corner.tolist()} or on the leaf")
+            out.append((corner, t1, t2, centre))
+    return out
+
+
+def _flexure_shapes(gmsh, mechanism: Mechanism, index: int, body_tags) -> list:
+    """The surfaces (dimtags) of flexure ``index``: its outline over the free span, cut by the
+    bodies, its notches or fillets."""
+    occ = gmsh.model.occ
+    f, span = mechanism.flexures[index], mechanism.span(index)
+    reach = f.width / 2 * _REACH
+    ext = type(span)(span.a - reach * span.d, span.b + reach * span.d)
+    blank = [(2, _polygon(occ, ext.corners(f.width)))]
+    pieces, _ = occ.cut(blank, body_tags, removeObject=True, removeTool=False)
+    mid = (span.a + span.b) / 2
+    shape = _central_piece(gmsh, pieces, mid)
+    if not isinstance(f, Leaf):
+        disks = [(2, occ.addDisk(*(mid + side * (f.thickness / 2 + f.radius) * span.n), 0,
+                                 f.radius, f.radius)) for side in (-1, 1)]
+        shape, _ = occ.cut(shape, disks)
+        shape = _central_piece(gmsh, shape, mid)
+    for corner, t1, t2, centre in fillet_corners(mechanism, index):
+        triangle = [(2, _polygon(occ, [corner, t1, t2]))]
+        disk = [(2, occ.addDisk(centre[0], centre[1], 0, f.fillet, f.fillet))]
+        cusp, _ = occ.cut(triangle, disk)
+        shape += _central_piece(gmsh, cusp, corner + (t1 - corner + t2 - corner) / 6)
+    return shape
+
+
+def draw(gmsh, mechanism: Mechanism, dim: int = 2) -> dict:
+    """Draw ``mechanism`` into the open gmsh session, fragmented into one conforming model with
+    a physical group per body (its outline in 2-D, its lateral faces in 3-D: dimension
+    dim - 1) and "solid" (everything). Returns {"bodies": {name: [entity tags of dim]},
+    "flexures": [[entity tags of dim] per flexure]}."""
+    occ = gmsh.model.occ
+    body_tags = []
+    for body in mechanism.bodies:
+        boxes = [(2, occ.addRectangle(x0, y0, 0, x1 - x0, y1 - y0))
+                 for (x0, y0), (x1, y1) in body.boxes]
+        if len(boxes) > 1:
+            boxes, _ = occ.fuse(boxes[:1], boxes[1:])
+        body_tags.append(boxes)
+    every_body = [dt for tags in body_tags for dt in tags]
+    flexure_tags = [_flexure_shapes(gmsh, mechanism, i, every_body)
+                    for i in range(len(mechanism.flexures))]
+    inputs = body_tags + flexure_tags
+    flat = [dt for tags in inputs for dt in tags]
+    _, children = occ.fragment(flat, [])
+    owner, k = [], 0
+    for group, tags in enumerate(inputs):
+        for _ in tags:
+            owner.append(group)
+            k += 1
+    parts = [set() for _ in inputs]
+    for group, kids in zip(owner, children):
+        parts[group].update(tag for _, tag in kids)
+    if dim == 3:
+        occ.synchronize()
+        parts = _extrude(gmsh, parts, mechanism.depth)
+    occ.synchronize()
+    n_bodies = len(mechanism.bodies)
+    shared = _shared_boundary(gmsh, dim)
+    for body, tags in zip(mechanism.bodies, parts[:n_bodies]):
+        outline = [c for c in _boundary(gmsh, dim, tags) if c not in shared
+                   and (dim == 2 or _lateral(gmsh, c, mechanism.depth))]
+        gmsh.model.addPhysicalGroup(dim - 1, outline, name=body.name)
+    everything = sorted(set().union(*parts))
+    gmsh.model.addPhysicalGroup(dim, everything, name="solid")
+    return {"bodies": {b.name: sorted(t) for b, t in zip(mechanism.bodies, parts)},
+            "flexures": [sorted(t) for t in parts[n_bodies:]]}
+
+
+def _boundary(gmsh, dim: int, tags) -> list:
+    return [abs(t) for _, t in gmsh.model.getBoundary([(dim, t) for t in sorted(tags)],
+                                                      combined=False, oriented=False)]
+
+
+def _shared_boundary(gmsh, dim: int) -> set:
+    """Entities of dimension dim - 1 that bound two entities of dimension dim."""
+    count = {}
+    for _, tag in gmsh.model.getEntities(dim):
+        for c in set(_boundary(gmsh, dim, [tag])):
+            count[c] = count.get(c, 0) + 1
+    return {c for c, n in count.items() if n > 1}
+
+
+def _lateral(gmsh, face: int, depth: float) -> bool:
+    """True for a face that spans the whole depth (not a top or bottom face)."""
+    _, _, z0, _, _, z1 = gmsh.model.getBoundingBox(2, face)
+    return z1 - z0 > 0.5 * depth
+
+
+def _extrude(gmsh, parts, depth: float) -> list:
+    """Each part's surfaces extruded by ``depth`` along z, the volumes fragmented into one
+    conforming solid; returns the parts' volume tags."""
+    occ = gmsh.model.occ
+    volumes = []
+    for tags in parts:
+        out = occ.extrude([(2, t) for t in sorted(tags)], 0, 0, depth)
+        volumes.append([tag for d, tag in out if d == 3])
+    flat = [(3, t) for vs in volumes for t in vs]
+    _, children = occ.fragment(flat, [])
+    owner = [i for i, vs in enumerate(volumes) for _ in vs]
+    new = [set() for _ in parts]
+    for i, kids in zip(owner, children):
+        new[i].update(tag for _, tag in kids)
+    return new
+
+
+def element_sizes(mechanism: Mechanism, coarse: float | None = None) -> tuple:
+    """(size in each flexure (m) list, coarse size in the bodies (m)): half a leaf's
+    thickness (and half its fillet radius), a quarter of a notch's neck; the bodies
+    ``coarse`` or a twentieth of the mechanism's size, at most half the shortest box side."""
+    sizes = []
+    for f in mechanism.flexures:
+        if isinstance(f, Leaf):
+            sizes.append(min(f.thickness / 2, f.fillet / 2) if f.fillet > 0 else f.thickness / 2)
+        else:
+            sizes.append(f.thickness / 4)
+    if coarse is None:
+        shortest = min(min(x1 - x0, y1 - y0) for b in mechanism.bodies
+                       for (x0, y0), (x1, y1) in b.boxes)
+        coarse = min(mechanism.size / 20, shortest / 2)
+    return sizes, max(coarse, max(sizes))
+
+
+def _refine(gmsh, mechanism: Mechanism, shapes: dict, size_factor: float, coarse, dim: int):
+    sizes, coarse = element_sizes(mechanism, coarse)
+    field = gmsh.model.mesh.field
+    thresholds = []
+    for f, tags, h in zip(mechanism.flexures, shapes["flexures"], sizes):
+        distance = field.add("Distance")
+        curves = sorted(set(_boundary(gmsh, dim, tags)))
+        field.setNumbers(distance, "CurvesList" if dim == 2 else "SurfacesList", curves)
+        field.setNumber(distance, "Sampling", 100)
+        threshold = field.add("Threshold")
+        field.setNumber(threshold, "InField", distance)
+        field.setNumber(threshold, "SizeMin", h * size_factor)
+        field.setNumber(threshold, "SizeMax", coarse * size_factor)
+        field.setNumber(threshold, "DistMin", f.width / 2)
+        field.setNumber(threshold, "DistMax", f.width / 2 + 4 * coarse)
+        thresholds.append(threshold)
+    minimum = field.add("Min")
+    field.setNumbers(minimum, "FieldsList", thresholds)
+    field.setAsBackgroundMesh(minimum)
+    for option in ("MeshSizeExtendFromBoundary", "MeshSizeFromPoints", "MeshSizeFromCurvature"):
+        gmsh.option.setNumber(f"Mesh.{option}", 0)
+    gmsh.option.setNumber("Mesh.MeshSizeMax", coarse * size_factor)
+
+
+def mesh_mechanism(mechanism: Mechanism, dim: int = 2, size_factor: float = 1.0,
+                   coarse: float | None = None) -> FEMesh:
+    """The meshed continuum (linear cells; the Model raises the order) with a boundary group
+    per body. ``size_factor`` scales every element size; ``coarse``: the bodies' size (m)."""
+    if not (math.isfinite(size_factor) and size_factor > 0):
+        raise ValueError(f"size_factor = {size_factor!r} must be a finite number > 0")
+    with gmsh_session("mechanism") as gmsh:
+        shapes = draw(gmsh, mechanism, dim)
+        _refine(gmsh, mechanism, shapes, size_factor, coarse, dim)
+        gmsh.option.setNumber("Mesh.ElementOrder", 1)
+        try:
+            gmsh.model.mesh.generate(dim)
+        except Exception as error:  # gmsh raises plain Exception with its message
+            raise ValueError(f"{mechanism.source}: gmsh could not mesh the mechanism: "
+                             f"{error}") from None
+        return mesh_from_gmsh(gmsh)

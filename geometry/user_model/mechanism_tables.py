@@ -1,0 +1,110 @@
+"""The ``[[body]]`` and ``[[flexure]]`` tables of a model file (docs/model_files.md, "Bodies
+and flexures") -> :class:`flexfem.geometry.mechanism.Mechanism`. Every coordinate and size is a
+number (m) or an expression of the ``[parameters]`` (beam_tables.evaluate_expression); errors
+name the model file, the line and the body or flexure."""
+from ..mechanism import Body, Leaf, Mechanism, Notch
+from .beam_tables import evaluate_expression
+from .tables import Locator, check_keys
+
+BODY_KEYS = ("name", "box")
+FLEXURE_KEYS = {"leaf": ("kind", "name", "between", "from", "to", "thickness", "fillet"),
+                "circular_notch": ("kind", "name", "between", "from", "to", "thickness",
+                                   "radius")}
+
+
+def _value(raw, names, where):
+    return evaluate_expression(raw, names, where)
+
+
+def _point(raw, names, where) -> tuple:
+    if not (isinstance(raw, list) and len(raw) == 2):
+        raise ValueError(f"{where} = {raw!r} must be a point [x, y] (m)")
+    return tuple(_value(v, names, where) for v in raw)
+
+
+def _boxes(raw, names, where) -> tuple:
+    """One box [[x0, y0], [x1, y1]] or a list of them."""
+    if isinstance(raw, list) and len(raw) == 2 and all(
+            isinstance(p, list) and len(p) == 2 and not isinstance(p[0], list) for p in raw):
+        raw = [raw]
+    if not (isinstance(raw, list) and raw):
+        raise ValueError(f"{where} = {raw!r} must be [[x0, y0], [x1, y1]] (two opposite "
+                         "corners, m) or a list of such boxes")
+    out = []
+    for box in raw:
+        if not (isinstance(box, list) and len(box) == 2):
+            raise ValueError(f"{where}: {box!r} must be two opposite corners [[x0, y0], [x1, y1]]")
+        out.append(tuple(_point(p, names, where) for p in box))
+    return tuple(out)
+
+
+def _body(entry, i, names, loc: Locator) -> Body:
+    check_keys(entry, BODY_KEYS, loc, "body", i, "[[body]]")
+    name = entry.get("name")
+    if not isinstance(name, str) or not name.strip() or name == "solid":
+        raise loc.error(f"[[body]] name = {name!r} must be a non-empty string (not 'solid'): "
+                        "the body's group in every model", "body", "name", i)
+    if "box" not in entry:
+        raise loc.error(f"[[body]] {name!r} needs box = [[x0, y0], [x1, y1]] (m)", "body",
+                        None, i)
+    try:
+        return Body(name, _boxes(entry["box"], names, f"[[body]] {name!r} box"),
+                    loc.at("body", "name", i))
+    except ValueError as error:
+        raise loc.error(str(error).removeprefix(loc.at("body", "name", i) + ": "), "body",
+                        "box", i) from None
+
+
+def _flexure(entry, i, names, loc: Locator):
+    if not isinstance(entry, dict):
+        raise loc.error(f"[[flexure]] must be a table, not {entry!r}", "flexure", None, i)
+    kind = entry.get("kind", "leaf")
+    if kind not in FLEXURE_KEYS:
+        raise loc.error(f"[[flexure]] kind = {kind!r}; choose one of {', '.join(FLEXURE_KEYS)}",
+                        "flexure", "kind", i)
+    keys = FLEXURE_KEYS[kind]
+    check_keys(entry, keys, loc, "flexure", i, f"[[flexure]] ({kind})")
+    required = [k for k in keys if k not in ("kind", "name", "fillet")]
+    missing = [k for k in required if k not in entry]
+    if missing:
+        raise loc.error(f"[[flexure]] ({kind}) needs {', '.join(missing)}", "flexure", None, i)
+    between = entry["between"]
+    if not (isinstance(between, list) and len(between) == 2
+            and all(isinstance(b, str) for b in between)):
+        raise loc.error(f"[[flexure]] between = {between!r} must name two bodies "
+                        "[\"A\", \"B\"]", "flexure", "between", i)
+    name = entry.get("name", "")
+    if not isinstance(name, str):
+        raise loc.error(f"[[flexure]] name = {name!r} must be a string", "flexure", "name", i)
+    values = {}
+    for key in keys[3:]:
+        if key not in entry:
+            continue
+        try:
+            values[key] = (_point(entry[key], names, f"[[flexure]] {key}")
+                           if key in ("from", "to") else
+                           _value(entry[key], names, f"[[flexure]] {key}"))
+        except ValueError as error:
+            raise loc.error(str(error), "flexure", key, i) from None
+    common = dict(between=tuple(between), start=values["from"], end=values["to"],
+                  thickness=values["thickness"], name=name, source=loc.at("flexure", None, i))
+    if kind == "leaf":
+        return Leaf(fillet=values.get("fillet", 0.0), **common)
+    return Notch(radius=values["radius"], **common)
+
+
+def parse_mechanism(raw: dict, names: dict, depth: float, loc: Locator,
+                    supported=None) -> Mechanism:
+    """The Mechanism of the model file's ``[[body]]`` and ``[[flexure]]`` tables, checked
+    (:meth:`Mechanism.check`, ``supported``: the held groups); ``names``: the parameters
+    {name: value}; ``depth``: the [section] thickness (m)."""
+    for table in ("body", "flexure"):
+        value = raw.get(table)
+        if not (isinstance(value, list) and value and all(isinstance(e, dict) for e in value)):
+            raise loc.error(f"{table} must be an array of tables: [[{table}]] ... (at least one)",
+                            None, table)
+    bodies = tuple(_body(e, i, names, loc) for i, e in enumerate(raw["body"]))
+    flexures = tuple(_flexure(e, i, names, loc) for i, e in enumerate(raw["flexure"]))
+    mechanism = Mechanism(bodies, flexures, depth, str(loc.path))
+    mechanism.check(supported)
+    return mechanism
