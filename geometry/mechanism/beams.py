@@ -2,9 +2,10 @@
 :class:`~flexfem.geometry.user_model.beam_tables.BeamSpec` the beam model builder takes
 (geometry/user_model/beam_model.py): every flexure a beam on its centre line over its free
 span, with its thickness profile (a leaf's root fillets, a notch's circle), every body a rigid
-block holding the flexures' roots and standing for its group at its centre (the continuum's
-force on a body's outline acts there; its mean displacement is the displacement there for a
-body that moves rigidly). The root, notch and crossing corrections of the builder apply as
+block holding the flexures' roots and standing for its group at the centroid of its outline
+where no flexure meets it (:meth:`Mechanism.outline_centre`: the continuum's force on the
+body's outline acts there, and its mean displacement is the displacement there for a body that
+moves rigidly). The root, notch and crossing corrections of the builder apply as
 to any declared beam model (docs/model_files.md, "The beam model"). Lengths in m."""
 import numpy as np
 
@@ -40,18 +41,34 @@ def profile(flexure, length: float) -> Profile:
     return Profile(tuple(s.tolist()), tuple((t + _rounded(r - np.abs(s - r), r)).tolist()))
 
 
+def _crossing(span, other, tol: float):
+    """The point (2,) where the free spans ``span`` and ``other`` cross inside both, or None
+    (parallel spans, or meeting at an end)."""
+    cross = float(np.cross(span.d, other.d))
+    if abs(cross) < 1e-12:
+        return None
+    offset = other.a - span.a
+    s = float(np.cross(offset, other.d)) / cross
+    u = float(np.cross(offset, span.d)) / cross
+    inside = tol < s < span.length - tol and tol < u < other.length - tol
+    return span.a + s * span.d if inside else None
+
+
 def beam_spec(mechanism: Mechanism, elements: int = 20, **options) -> BeamSpec:
     """The BeamSpec of ``mechanism``; ``options``: the builder's (shear, root_extension,
     crossings, roots, notch_correction)."""
     lines, joins = [], {b.name: [] for b in mechanism.bodies}
-    for i, f in enumerate(mechanism.flexures):
-        span = mechanism.span(i)
+    spans = [mechanism.span(i) for i in range(len(mechanism.flexures))]
+    for i, (f, span) in enumerate(zip(mechanism.flexures, spans)):
         a, b = tuple(span.a.tolist()), tuple(span.b.tolist())
-        lines.append(BeamLine((a, b), profile(f, span.length), mechanism.depth, elements,
-                              f.source))
+        inner = sorted((float((p - span.a) @ span.d), tuple(p.tolist()))
+                       for j, other in enumerate(spans) if j != i
+                       for p in [_crossing(span, other, mechanism.tol)] if p is not None)
+        lines.append(BeamLine((a, *(p for _, p in inner), b), profile(f, span.length),
+                              mechanism.depth, elements, f.source))
         joins[f.between[0]].append(a)
         joins[f.between[1]].append(b)
-    rigid = tuple(RigidBody(tuple(joins[b.name]), {b.name: tuple(b.centre.tolist())},
+    rigid = tuple(RigidBody(tuple(joins[b.name]), {b.name: tuple(mechanism.outline_centre(b.name).tolist())},
                             tuple(b.boxes), b.source) for b in mechanism.bodies)
     groups = {b.name: i for i, b in enumerate(mechanism.bodies)}
     return BeamSpec(tuple(lines), rigid, elements=elements, source=mechanism.source,

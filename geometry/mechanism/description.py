@@ -15,6 +15,8 @@ import math
 import numpy as np
 
 TOL = 1e-9  # relative to the mechanism's size: points closer than this coincide
+REACH = 1.0 / math.tan(math.radians(10))  # an oblique root's side meets the face within
+#                                          (width / 2) cot(10 deg) of the centre line
 
 
 @dataclass(frozen=True)
@@ -220,6 +222,62 @@ class Mechanism:
         start, end = np.asarray(f.start, float), np.asarray(f.end, float)
         return Span(start + s_a * (end - start), start + s_b * (end - start))
 
+    def roots(self, index: int) -> list:
+        """[(body name, corner (2,), inward (2,), face (2,), side)] of flexure ``index``: where
+        each side of its outline (side -1 or +1 along the span's normal) meets the face of the
+        body at each end, the direction into the free span and the face's direction away from
+        the flexure (m, unit vectors)."""
+        f, span, tol = self.flexures[index], self.span(index), self.tol
+        out = []
+        for name, root, inward in ((f.between[0], span.a, span.d),
+                                   (f.between[1], span.b, -span.d)):
+            body = self.body(name)
+            for side in (-1.0, 1.0):
+                offset = side * f.width / 2 * span.n
+                corner = side_root(body, root + offset, inward, f.width * REACH, tol)
+                face = body.face_at(corner, 10 * tol)
+                if face is None:
+                    raise _error(f, f"{_label(f, index)}: its side meets body {name!r} at "
+                                 f"{corner.tolist()}, on no face of it")
+                face = face if float(face @ offset) > 0 else -face
+                out.append((name, corner, inward, face, side))
+        return out
+
+    def footprint(self, index: int) -> list:
+        """[(body name, p0, p1)]: the segment of each body's face that flexure ``index``
+        covers (between its sides' roots, and its fillets' tangent points), m."""
+        f = self.flexures[index]
+        r = f.fillet if isinstance(f, Leaf) else 0.0
+        ends = {}
+        for name, corner, inward, face, _ in self.roots(index):
+            theta = math.acos(max(-1.0, min(1.0, float(face @ inward))))
+            ends.setdefault(name, []).append(corner + face * r / math.tan(theta / 2))
+        return [(name, p0, p1) for name, (p0, p1) in ends.items()]
+
+    def outline_centre(self, name: str) -> np.ndarray:
+        """Centroid (m) of body ``name``'s outline where no flexure meets it: the body's
+        group in the continuum. A force on the group acts there and the group's mean
+        displacement is that of this point when the body moves rigidly."""
+        body, tol = self.body(name), self.tol
+        covered = [(p0, p1) for i in range(len(self.flexures))
+                   for n, p0, p1 in self.footprint(i) if n == name]
+        total, moment = 0.0, np.zeros(2)
+        for box in body.boxes:
+            corners = _box(box)
+            for k in range(4):
+                a, b = corners[k], corners[(k + 1) % 4]
+                cuts = [(0.0, 1.0)]
+                for other in body.boxes:
+                    if other is not box:
+                        cuts = _subtract(cuts, _inside(a, b, other, -tol))
+                for p0, p1 in covered:
+                    cuts = _subtract(cuts, _along(a, b, p0, p1, tol))
+                for lo, hi in cuts:
+                    length = (hi - lo) * float(np.linalg.norm(b - a))
+                    total += length
+                    moment += length * (a + (lo + hi) / 2 * (b - a))
+        return moment / total
+
     def check(self, supported=None) -> None:
         """ValueError naming the body or flexure (and the model file's line where known) for
         unknown or repeated names, overlapping bodies, a flexure end outside the body it names,
@@ -316,6 +374,58 @@ class Mechanism:
                 if not crossing and _convex_overlap(s.corners(f.width), t.corners(g.width),
                                                     self.tol):
                     raise _error(g, f"{_label(g, j)} overlaps {_label(f, i)}")
+
+
+def side_root(body: Body, point, direction, reach: float, tol: float) -> np.ndarray:
+    """Where the line through ``point`` along ``direction`` (unit) leaves ``body`` nearest
+    ``point``, looking ``reach`` (m) either side (m)."""
+    start, end = point - reach * direction, point + reach * direction
+    exits = [hi for _, hi in body.span_inside(start, end, tol)]
+    s = min(exits, key=lambda v: abs(v - 0.5))
+    return start + s * (end - start)
+
+
+def _subtract(intervals, cut) -> list:
+    """[lo, hi] intervals of [0, 1] less the interval ``cut`` (or None)."""
+    if cut is None:
+        return intervals
+    c0, c1 = cut
+    out = []
+    for lo, hi in intervals:
+        if c1 <= lo or c0 >= hi:
+            out.append((lo, hi))
+            continue
+        if c0 > lo:
+            out.append((lo, c0))
+        if c1 < hi:
+            out.append((c1, hi))
+    return out
+
+
+def _inside(a, b, box, tol):
+    """The interval of s where a + s (b - a) lies strictly inside ``box``, or None."""
+    (x0, y0), (x1, y1) = box
+    lo, hi = 0.0, 1.0
+    d = b - a
+    for k, (low, high) in enumerate(((x0 - tol, x1 + tol), (y0 - tol, y1 + tol))):
+        if abs(d[k]) < 1e-300:
+            if not low < a[k] < high:
+                return None
+            continue
+        s0, s1 = sorted(((low - a[k]) / d[k], (high - a[k]) / d[k]))
+        lo, hi = max(lo, s0), min(hi, s1)
+    return (lo, hi) if hi > lo else None
+
+
+def _along(a, b, p0, p1, tol):
+    """The interval of s on a -> b covered by the segment p0 p1 lying on the same line."""
+    d = b - a
+    length2 = float(d @ d)
+    n = np.array([-d[1], d[0]]) / math.sqrt(length2)
+    if abs(float((p0 - a) @ n)) > 10 * tol or abs(float((p1 - a) @ n)) > 10 * tol:
+        return None
+    s0, s1 = sorted((float((p0 - a) @ d) / length2, float((p1 - a) @ d) / length2))
+    return (max(s0, 0.0), min(s1, 1.0)) if min(s1, 1.0) > max(s0, 0.0) else None
 
 
 def _box(box) -> np.ndarray:

@@ -8,9 +8,7 @@ import math
 import numpy as np
 
 from ...fem import FEMesh, gmsh_session, mesh_from_gmsh
-from .description import Leaf, Mechanism
-
-_REACH = 1.0 / math.tan(math.radians(10))  # an oblique root's edge reaches t/2 cot(10 deg) in
+from .description import REACH, Leaf, Mechanism
 
 
 def _polygon(occ, points) -> int:
@@ -29,46 +27,27 @@ def _central_piece(gmsh, pieces, point) -> list:
     return ranked[:1]
 
 
-def _side_root(body, point, direction, reach: float, tol: float):
-    """Where the line through ``point`` along ``direction`` (unit) leaves ``body`` nearest
-    ``point``, looking ``reach`` (m) either side."""
-    start, end = point - reach * direction, point + reach * direction
-    exits = [hi for _, hi in body.span_inside(start, end, tol)]
-    s = min(exits, key=lambda v: abs(v - 0.5))
-    return start + s * (end - start)
-
-
 def fillet_corners(mechanism: Mechanism, index: int) -> list:
     """[(C, T1, T2, centre)] (m) of the root fillets of leaf ``index``: the corner C where a
     side of the leaf meets a body's face, the tangent points on the side (T1) and on the face
     (T2) of the circle of radius ``fillet`` and its centre. ValueError where a fillet does not
-    fit on the face."""
+    fit on the face or the leaf."""
     leaf = mechanism.flexures[index]
     if not isinstance(leaf, Leaf) or leaf.fillet <= 0:
         return []
     span, tol, r = mechanism.span(index), mechanism.tol, leaf.fillet
     out = []
-    for name, root, inward in ((leaf.between[0], span.a, span.d),
-                               (leaf.between[1], span.b, -span.d)):
-        body = mechanism.body(name)
-        for side in (-1.0, 1.0):
-            offset = side * leaf.thickness / 2 * span.n
-            corner = _side_root(body, root + offset, inward, leaf.thickness * _REACH, tol)
-            face = body.face_at(corner, 10 * tol)
-            if face is None:
-                raise ValueError(f"{leaf.source}: the fillet of flexure {index + 1} at "
-                                 f"{corner.tolist()} is not on a face of body {name!r}")
-            face = face if float(face @ offset) > 0 else -face
-            theta = math.acos(max(-1.0, min(1.0, float(face @ inward))))
-            along = r / math.tan(theta / 2)
-            t1, t2 = corner + along * inward, corner + along * face
-            centre = corner + r / math.sin(theta / 2) * (inward + face) / np.linalg.norm(
-                inward + face)
-            if body.face_at(t2, 10 * tol) is None or 2 * along >= span.length:
-                raise ValueError(f"{leaf.source}: the fillet (radius {r:.4g} m) of flexure "
-                                 f"{index + 1} does not fit on the face of body {name!r} at "
-                                 f"{corner.tolist()} or on the leaf")
-            out.append((corner, t1, t2, centre))
+    for name, corner, inward, face, _ in mechanism.roots(index):
+        theta = math.acos(max(-1.0, min(1.0, float(face @ inward))))
+        along = r / math.tan(theta / 2)
+        t1, t2 = corner + along * inward, corner + along * face
+        centre = corner + r / math.sin(theta / 2) * (inward + face) / np.linalg.norm(
+            inward + face)
+        if mechanism.body(name).face_at(t2, 10 * tol) is None or 2 * along >= span.length:
+            raise ValueError(f"{leaf.source}: the fillet (radius {r:.4g} m) of flexure "
+                             f"{index + 1} does not fit on the face of body {name!r} at "
+                             f"{corner.tolist()} or on the leaf")
+        out.append((corner, t1, t2, centre))
     return out
 
 
@@ -77,7 +56,7 @@ def _flexure_shapes(gmsh, mechanism: Mechanism, index: int, body_tags) -> list:
     bodies, its notches or fillets."""
     occ = gmsh.model.occ
     f, span = mechanism.flexures[index], mechanism.span(index)
-    reach = f.width / 2 * _REACH
+    reach = f.width / 2 * REACH
     ext = type(span)(span.a - reach * span.d, span.b + reach * span.d)
     blank = [(2, _polygon(occ, ext.corners(f.width)))]
     pieces, _ = occ.cut(blank, body_tags, removeObject=True, removeTool=False)

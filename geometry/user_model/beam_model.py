@@ -56,7 +56,7 @@ def _line_mesh(line, tol, cuts=None, trim=(0.0, 0.0), factors=None) -> BeamMesh:
     lengths left out at the first and last point (an oblique root's, :mod:`.roots`);
     ``factors``: a notch's correction on every element."""
     mesh, profile, cuts = None, line.thickness, cuts or {}
-    last = len(line.points) - 2
+    last, before = len(line.points) - 2, 0.0  # before: arc length to the segment's start, m
     for k in range(last + 1):
         a, b = np.asarray(line.points[k], float), np.asarray(line.points[k + 1], float)
         length = float(np.linalg.norm(b - a))
@@ -70,9 +70,10 @@ def _line_mesh(line, tol, cuts=None, trim=(0.0, 0.0), factors=None) -> BeamMesh:
         for s0, s1 in zip(marks[:-1], marks[1:]):
             n = max(1, round(line.elements * (s1 - s0) / length))
             part = beam_from_profile(a + s0 / length * (b - a), a + s1 / length * (b - a),
-                                     lambda s, s0=profile.arc[k] + s0: profile(s0 + s),
+                                     lambda s, s0=before + s0: profile(s0 + s),
                                      line.depth, n)
             mesh = part if mesh is None else mesh.join(part, tol)
+        before += length
     if factors is not None:
         mesh = BeamMesh(mesh.nodes, mesh.elements, corrected_sections(mesh.sections, factors),
                         mesh.point_nodes)

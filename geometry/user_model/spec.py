@@ -1,7 +1,7 @@
 """A model file (TOML) -> :class:`ModelSpec`: a user's flexure given by a geometry file and
 what to do with it. Every error is a ValueError naming the model file and, where the key can
 be found, its line."""
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 import tomllib
 
@@ -196,8 +196,9 @@ def _mechanism_spec(path: Path, raw: dict, loc: Locator, overridden: set, dim: i
         "material": parse_material(raw["material"], loc),
         "section": section if dim == 2 else Section("solid"),
         "mesh": parse_mesh(raw.get("mesh", {}), loc),
-        "supports": parse_supports(raw.get("supports", []), dim, loc),
-        "loads": parse_loads(raw.get("loads", []), dim, loc),
+        "supports": parse_supports(raw.get("supports", []), 2, loc),
+        "loads": tuple(replace(load, vector=tuple(load.vector) + (0.0,) * (dim - 2))
+                       for load in parse_loads(raw.get("loads", []), 2, loc)),
         "analysis": parse_analysis(raw.get("analysis", {}), loc),
     }
     if parts["mesh"].refine:

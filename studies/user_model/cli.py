@@ -26,7 +26,8 @@ def parse_sets(items) -> dict:
 
 def run(args) -> dict:
     """analyze_model of ``args.model`` with the ``--set`` overrides."""
-    spec = load_spec(args.model, parse_sets(args.set), allow_code=args.allow_code)
+    spec = load_spec(args.model, parse_sets(args.set), allow_code=args.allow_code,
+                     dim=getattr(args, "dim", None))
     return analyze_model(spec, model=args.reduced)
 
 
@@ -85,6 +86,9 @@ def register(subparsers):
                         default="continuum",
                         help="continuum: the FEM of the geometry (default); beam: the beam "
                              "model the file declares ([[beam]], [[rigid]])")
+    parser.add_argument("--dim", type=int, choices=(2, 3), default=None,
+                        help="bodies and flexures: 2 (default) or 3, the continuum extruded by "
+                             "the [section] thickness")
     parser.add_argument("--allow-code", action="store_true",
                         help="trust the model file: its .geo may run programs, write files "
                              "and read outside its folder (refused by default)")
