@@ -10,7 +10,7 @@ to any declared beam model (docs/model_files.md, "The beam model"). Lengths in m
 import numpy as np
 
 from ..user_model.beam_tables import BeamLine, BeamSpec, Profile, RigidBody
-from .description import Leaf, Mechanism
+from .description import Leaf, Mechanism, cross2
 
 #: stations on a fillet or a notch (the profile is linear between them)
 STATIONS = 33
@@ -44,12 +44,12 @@ def profile(flexure, length: float) -> Profile:
 def _crossing(span, other, tol: float):
     """The point (2,) where the free spans ``span`` and ``other`` cross inside both, or None
     (parallel spans, or meeting at an end)."""
-    cross = float(np.cross(span.d, other.d))
+    cross = cross2(span.d, other.d)
     if abs(cross) < 1e-12:
         return None
     offset = other.a - span.a
-    s = float(np.cross(offset, other.d)) / cross
-    u = float(np.cross(offset, span.d)) / cross
+    s = cross2(offset, other.d) / cross
+    u = cross2(offset, span.d) / cross
     inside = tol < s < span.length - tol and tol < u < other.length - tol
     return span.a + s * span.d if inside else None
 

@@ -19,6 +19,11 @@ REACH = 1.0 / math.tan(math.radians(10))  # an oblique root's side meets the fac
 #                                          (width / 2) cot(10 deg) of the centre line
 
 
+def cross2(a, b) -> float:
+    """The z component of a x b for plane vectors a, b (2,)."""
+    return float(a[0] * b[1] - a[1] * b[0])
+
+
 @dataclass(frozen=True)
 class Body:
     """A rigid body: ``name`` (its group in every model) and ``boxes`` ((lower-left,
@@ -370,7 +375,7 @@ class Mechanism:
             for j in range(i + 1, len(spans)):
                 g, t = self.flexures[j], spans[j]
                 crossing = (isinstance(f, Leaf) and isinstance(g, Leaf)
-                            and abs(float(np.cross(s.d, t.d))) > math.sin(math.radians(10)))
+                            and abs(cross2(s.d, t.d)) > math.sin(math.radians(10)))
                 if not crossing and _convex_overlap(s.corners(f.width), t.corners(g.width),
                                                     self.tol):
                     raise _error(g, f"{_label(g, j)} overlaps {_label(f, i)}")

@@ -8,7 +8,7 @@ import math
 import numpy as np
 
 from ...fem import FEMesh, gmsh_session, mesh_from_gmsh
-from .description import REACH, Leaf, Mechanism
+from .description import REACH, Leaf, Mechanism, cross2
 
 
 def _polygon(occ, points) -> int:
@@ -68,7 +68,8 @@ def _flexure_shapes(gmsh, mechanism: Mechanism, index: int, body_tags) -> list:
         shape, _ = occ.cut(shape, disks)
         shape = _central_piece(gmsh, shape, mid)
     for corner, t1, t2, centre in fillet_corners(mechanism, index):
-        triangle = [(2, _polygon(occ, [corner, t1, t2]))]
+        ccw = cross2(t1 - corner, t2 - corner) > 0  # OCC fuses faces of one orientation
+        triangle = [(2, _polygon(occ, [corner, t1, t2] if ccw else [corner, t2, t1]))]
         disk = [(2, occ.addDisk(centre[0], centre[1], 0, f.fillet, f.fillet))]
         cusp, _ = occ.cut(triangle, disk)
         shape += _central_piece(gmsh, cusp, corner + (t1 - corner + t2 - corner) / 6)
@@ -185,8 +186,8 @@ def _refine(gmsh, mechanism: Mechanism, shapes: dict, size_factor: float, coarse
         field.setNumber(threshold, "InField", distance)
         field.setNumber(threshold, "SizeMin", h * size_factor)
         field.setNumber(threshold, "SizeMax", coarse * size_factor)
-        field.setNumber(threshold, "DistMin", f.width / 2)
-        field.setNumber(threshold, "DistMax", f.width / 2 + 4 * coarse)
+        field.setNumber(threshold, "DistMin", f.thickness / 2)
+        field.setNumber(threshold, "DistMax", f.thickness / 2 + 2 * coarse)
         thresholds.append(threshold)
     minimum = field.add("Min")
     field.setNumbers(minimum, "FieldsList", thresholds)

@@ -7,7 +7,6 @@ import tomllib
 
 from ...fem.materials import Material
 from ..mechanism import Mechanism
-from ..mechanism.beams import beam_spec
 from .beam_tables import BeamSpec, _options as beam_options, parse_beams
 from .geo_guard import check_inside
 from .mechanism_tables import parse_mechanism
@@ -212,6 +211,8 @@ def _mechanism_spec(path: Path, raw: dict, loc: Locator, overridden: set, dim: i
                                 {s.group for s in parts["supports"]})
     groups = {b.name: dim - 1 for b in mechanism.bodies} | {"solid": dim}
     _check_groups(parts, groups, path, dim, loc)
+    from ..mechanism.beams import beam_spec  # it builds on beam_tables: imported when used
+
     options = beam_options(raw.get("beam_model", {}), loc)
     return ModelSpec(path=path, geometry=path, dim=dim, parameters=parameters, groups=groups,
                      constants=dict(parameters), description=str(raw.get("description", "")),

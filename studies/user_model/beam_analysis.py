@@ -45,6 +45,9 @@ def beam_supports_and_loads(spec, info) -> tuple[list, list]:
 
 
 def _unsupported(spec) -> None:
+    if spec.dim != 2:
+        raise ValueError(f"{spec.source}: the beam model is planar; --dim 3 is the "
+                         "continuum's (the solid extruded), use --model continuum")
     a = spec.analysis
     asked = [k for k, v in (("buckling", a.buckling), ("harmonic", a.harmonic)) if v]
     if asked:

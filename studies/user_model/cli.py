@@ -1,6 +1,8 @@
 """``flexfem analyze MODEL.toml [--set NAME=VALUE ...] [--model beam] [--json]``: a user's
 flexure from its model file (see docs/model_files.md); ``--model beam``: the beam model the file
 declares."""
+import argparse
+
 from ...geometry.user_model import load_spec
 from .analysis import analyze_model
 
@@ -94,3 +96,37 @@ def register(subparsers):
                              "and read outside its folder (refused by default)")
     parser.add_argument("--json", action="store_true", help="print one JSON object")
     parser.set_defaults(run=run, summarize=summarize)
+    register_export(subparsers)
+
+
+def run_export(args) -> dict:
+    """``flexfem export``: the outline of a model file of bodies and flexures as DXF or STEP."""
+    from ...geometry.mechanism.export import export
+
+    spec = load_spec(args.model, parse_sets(args.set), allow_code=args.allow_code)
+    if spec.mechanism is None:
+        raise ValueError(f"{spec.source}: export needs a model of bodies and flexures "
+                         "([[body]], [[flexure]]); a geometry file is already a drawing")
+    path = export(spec.mechanism, args.out, args.dim)
+    return {"model": spec.source, "out": str(path), "dim": args.dim,
+            "format": path.suffix.lower().lstrip("."),
+            "units": "mm" if path.suffix.lower() == ".dxf" else "m"}
+
+
+def summarize_export(result: dict) -> str:
+    return (f"{result['model']}: {result['dim']}-D outline written to {result['out']} "
+            f"({result['format'].upper()}, {result['units']})")
+
+
+def register_export(subparsers):
+    parser = subparsers.add_parser(
+        "export", help="write a model's outline for manufacture (DXF in mm, or STEP)")
+    parser.add_argument("model", metavar="MODEL.toml", help="a model file of bodies and flexures")
+    parser.add_argument("out", metavar="OUT.dxf|OUT.step", help="the file to write")
+    parser.add_argument("--set", action="append", metavar="NAME=VALUE", default=[],
+                        help="override a [parameters] entry (SI); repeatable")
+    parser.add_argument("--dim", type=int, choices=(2, 3), default=2,
+                        help="STEP: 2 the face (default), 3 the solid extruded by the depth")
+    parser.add_argument("--allow-code", action="store_true", help=argparse.SUPPRESS)
+    parser.add_argument("--json", action="store_true", help="print one JSON object")
+    parser.set_defaults(run=run_export, summarize=summarize_export)

@@ -1,0 +1,120 @@
+"""Mechanisms written once as bodies and flexures (examples/bodies/), analysed by the
+continuum and by the beam model derived from the same description: each against its closed
+form, within the closed form's own accuracy, and the two models within 3 % of each other."""
+import json
+import math
+from pathlib import Path
+
+import pytest
+from flexfem.geometry.user_model import load_spec
+from flexfem.studies.cli import main
+from flexfem.studies.run import run_convergence, sweep
+from flexfem.studies.user_model.analysis import evaluate
+
+BODIES = Path(__file__).parents[3] / "examples" / "bodies"
+
+
+def _both(name: str, metric: str, **options) -> tuple[float, float]:
+    file = str(BODIES / f"{name}.toml")
+    return (evaluate({}, file=file, **options)[metric],
+            evaluate({}, file=file, model="beam", **options)[metric])
+
+
+def _EI(spec, t: float) -> float:
+    return spec.material.E * spec.section.thickness * t ** 3 / 12
+
+
+def test_parallel_guide_against_fixed_guided_leaves():
+    spec = load_spec(BODIES / "guide.toml")
+    L, t = spec.constants["L"], spec.constants["t"]
+    continuum, beam = _both("guide", "stiffness_stage_x")
+    closed = 24 * _EI(spec, t) / L ** 3  # two fixed-guided leaves
+    # beam theory omits the roots' compliance, O(t/L) = 2.5 % here: the continuum is softer
+    assert -3 * t / L < continuum / closed - 1 < 0
+    assert beam == pytest.approx(continuum, rel=0.03)
+
+
+def test_compound_parallelogram_is_two_guides_in_series():
+    spec = load_spec(BODIES / "compound.toml")
+    L, t = spec.constants["L"], spec.constants["t"]
+    continuum, beam = _both("compound", "stiffness_stage_x")
+    closed = 12 * _EI(spec, t) / L ** 3
+    assert -3 * t / L * 2 < continuum / closed - 1 < 0  # two rows of roots in series
+    assert beam == pytest.approx(continuum, rel=0.03)
+
+
+def test_cross_pivot_against_the_welded_crossing():
+    """Two leaves joined where they cross at their middles (a planar, monolithic cross
+    pivot): each half bends as a fixed-guided beam about the joint, K = 8 E I / L."""
+    spec = load_spec(BODIES / "cross_pivot.toml")
+    L, t = spec.constants["L"], spec.constants["t"]
+    continuum, beam = _both("cross_pivot", "compliance_22")
+    closed = L / (8 * _EI(spec, t))
+    # the solid joint and roots: within 3 t / L = 5 % of beam theory (stiffer: the joint)
+    assert abs(continuum / closed - 1) < 3 * t / L
+    assert beam == pytest.approx(continuum, rel=0.04)
+
+
+def test_circular_notch_against_paros_weisbord():
+    """Paros and Weisbord (1965), thin neck: K = 2 E w t^2.5 / (9 pi sqrt(R)), accurate to a
+    few % at t/R = 0.1."""
+    spec = load_spec(BODIES / "notch.toml")
+    t, R = spec.constants["t"], spec.constants["R"]
+    continuum, beam = _both("notch", "compliance_22")
+    closed = 9 * math.pi * math.sqrt(R) / (2 * spec.material.E * spec.section.thickness
+                                           * t ** 2.5)
+    assert continuum == pytest.approx(closed, rel=0.05)
+    assert beam == pytest.approx(continuum, rel=0.03)
+
+
+def test_group_point_of_the_beam_model_carries_the_continuum_load():
+    """A lateral force on the lever acts at the centroid of the lever's outline (less the
+    notch's footprint), so both models agree on the displacement it causes too."""
+    continuum, beam = _both("notch", "stiffness_lever_x")
+    assert beam == pytest.approx(continuum, rel=0.03)
+
+
+def test_the_same_groups_in_both_models_and_in_3d():
+    spec = load_spec(BODIES / "guide.toml")
+    assert spec.groups == {"ground": 1, "stage": 1, "solid": 2}
+    assert set(spec.beams.groups) == {"ground", "stage"}
+    solid = load_spec(BODIES / "guide.toml", dim=3)
+    assert solid.groups == {"ground": 2, "stage": 2, "solid": 3}
+    assert solid.section.kind == "solid" and solid.mechanism.depth == 0.01
+
+
+@pytest.mark.slow
+def test_the_extruded_solid_agrees_with_the_plane_model(tmp_path):
+    """3-D: the guide's leaves are 10 t wide, between plane stress and plane strain
+    (E / (1 - nu^2) = 1.09 E): the solid is stiffer than the plane-stress model by less."""
+    file = str(BODIES / "guide.toml")
+    plane = evaluate({}, file=file)["stiffness_stage_x"]
+    spec = load_spec(file, dim=3)
+    from flexfem.studies.user_model.analysis import analyze_model
+    solid = analyze_model(spec)["stiffness"]["stage"]["x"]
+    nu = spec.material.nu
+    assert plane < solid < plane / (1 - nu ** 2)
+
+
+def test_cli_models_and_dims(capsys):
+    assert main(["analyze", str(BODIES / "guide.toml"), "--model", "beam", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["solver"] == "beam" and out["stiffness"]["stage"]["x"] > 0
+    assert main(["analyze", str(BODIES / "guide.toml"), "--model", "beam", "--dim", "3"]) == 2
+    assert "planar" in capsys.readouterr().err
+    assert main(["analyze", str(BODIES.parent / "parallel_guide" / "guide.toml"),
+                 "--dim", "3"]) == 2
+    assert "2-D" in capsys.readouterr().err
+
+
+def test_sweep_and_convergence_of_a_bodies_file(tmp_path):
+    study = tmp_path / "study.toml"
+    model = tmp_path / "guide.toml"
+    model.write_text((BODIES / "guide.toml").read_text())
+    study.write_text('mechanism = { model = "guide.toml" }\n[grid]\nt = [0.0008, 0.001]\n')
+    summary = sweep(study, tmp_path / "out", workers=1, progress=False)
+    k = [row["stiffness_stage_x"] for row in summary["results"]]
+    assert summary["failed"] == 0 and k[1] / k[0] == pytest.approx(1.25 ** 3, rel=0.03)
+    result = run_convergence(str(model), "stiffness_stage_x", n_levels=3, start=2.0)
+    assert result["dofs"][0] < result["dofs"][-1]
+    assert result["values"][-1] == pytest.approx(k[1], rel=0.005)
