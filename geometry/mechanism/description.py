@@ -215,14 +215,14 @@ class Mechanism:
         to where it enters the second."""
         f = self.flexures[index]
         first, second = (self.body(name) for name in f.between)
-        tol = self.tol
+        step = TOL  # in fractions of the centre line; the boxes themselves clip exactly
         s_a = 0.0
-        for lo, hi in first.span_inside(f.start, f.end, tol):
-            if lo <= s_a + tol:
+        for lo, hi in first.span_inside(f.start, f.end, 0.0):
+            if lo <= s_a + step:
                 s_a = max(s_a, hi)
         s_b = 1.0
-        for lo, hi in reversed(second.span_inside(f.start, f.end, tol)):
-            if hi >= s_b - tol:
+        for lo, hi in reversed(second.span_inside(f.start, f.end, 0.0)):
+            if hi >= s_b - step:
                 s_b = min(s_b, lo)
         start, end = np.asarray(f.start, float), np.asarray(f.end, float)
         return Span(start + s_a * (end - start), start + s_b * (end - start))

@@ -11,9 +11,9 @@ from .beam_tables import BeamSpec, _options as beam_options, parse_beams
 from .geo_guard import check_inside
 from .mechanism_tables import parse_mechanism
 from .geometry import CAD_SUFFIXES, GEO_SUFFIXES, SUFFIXES, inspect_geometry
-from .tables import (Analysis, Locator, MeshOptions, Section, is_number, parse_analysis,
-                     parse_loads, parse_material, parse_mesh, parse_section, parse_selects,
-                     parse_supports)
+from .tables import (Analysis, Load, Locator, MeshOptions, Section, Support, is_number,
+                     parse_analysis, parse_loads, parse_material, parse_mesh, parse_section,
+                     parse_selects, parse_supports)
 
 TOP_KEYS = ("geometry", "dim", "description", "parameters", "material", "section", "mesh",
             "supports", "loads", "select", "analysis", "beam", "rigid", "beam_model", "body",
@@ -218,6 +218,34 @@ def _mechanism_spec(path: Path, raw: dict, loc: Locator, overridden: set, dim: i
                      constants=dict(parameters), description=str(raw.get("description", "")),
                      beams=beam_spec(mechanism, **options), allow_code=allow_code,
                      mechanism=mechanism, selects=(), **parts)
+
+
+def mechanism_spec(mechanism: Mechanism, material: Material, supports, loads,
+                   analysis: Analysis = Analysis(), dim: int = 2, order: int = 2,
+                   mesh_size: float | None = None) -> ModelSpec:
+    """A ModelSpec of a Mechanism built in Python (the model file's [[body]]/[[flexure]]
+    route without a file): ``supports`` ["group", ...] held, ``loads`` {"group": (Fx, Fy)}
+    total forces (N), ``analysis`` as a model file's; ``dim`` 3 extrudes the continuum.
+    analyze_model(spec, model="beam" | "continuum") then analyses either model."""
+    from ..mechanism.beams import beam_spec
+
+    if dim not in (2, 3):
+        raise ValueError(f"dim = {dim!r} must be 2 or 3")
+    mechanism.check(set(supports))
+    groups = {b.name: dim - 1 for b in mechanism.bodies} | {"solid": dim}
+    for name in list(supports) + list(loads):
+        if name not in groups:
+            raise ValueError(f"group {name!r} is no body of the mechanism; bodies: "
+                             f"{', '.join(b.name for b in mechanism.bodies)}")
+    section = Section("plane_stress", mechanism.depth) if dim == 2 else Section("solid")
+    forces = tuple(Load(g, "force", tuple(float(v) for v in f) + (0.0,) * (dim - 2))
+                   for g, f in loads.items())
+    path = Path(mechanism.source or "<mechanism>")
+    return ModelSpec(path=path, geometry=path, dim=dim, material=material, section=section,
+                     mesh=MeshOptions(order, mesh_size), supports=tuple(
+                         Support(g, None) for g in supports), loads=forces,
+                     analysis=analysis, groups=groups, beams=beam_spec(mechanism),
+                     mechanism=mechanism)
 
 
 def load_spec(path, overrides: dict | None = None, allow_code: bool = False,
