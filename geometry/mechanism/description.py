@@ -14,14 +14,11 @@ import math
 
 import numpy as np
 
+from .plane import along, box_corners, convex_overlap, cross2, inside_box, side_root, subtract
+
 TOL = 1e-9  # relative to the mechanism's size: points closer than this coincide
 REACH = 1.0 / math.tan(math.radians(10))  # an oblique root's side meets the face within
 #                                          (width / 2) cot(10 deg) of the centre line
-
-
-def cross2(a, b) -> float:
-    """The z component of a x b for plane vectors a, b (2,)."""
-    return float(a[0] * b[1] - a[1] * b[0])
 
 
 @dataclass(frozen=True)
@@ -172,19 +169,6 @@ def _error(item, message: str) -> ValueError:
     return ValueError(f"{item.source + ': ' if item.source else ''}{message}")
 
 
-def _convex_overlap(p: np.ndarray, q: np.ndarray, tol: float) -> bool:
-    """True where the convex polygons p and q ((k, 2), m) overlap by more than ``tol``
-    (separating-axis test)."""
-    for poly in (p, q):
-        for i in range(len(poly)):
-            edge = poly[(i + 1) % len(poly)] - poly[i]
-            axis = np.array([-edge[1], edge[0]]) / np.linalg.norm(edge)
-            pa, qa = p @ axis, q @ axis
-            if pa.max() <= qa.min() + tol or qa.max() <= pa.min() + tol:
-                return False
-    return True
-
-
 @dataclass(frozen=True)
 class Mechanism:
     """Rigid ``bodies`` joined by ``flexures``; ``depth``: out-of-plane thickness (m)."""
@@ -268,15 +252,15 @@ class Mechanism:
                    for n, p0, p1 in self.footprint(i) if n == name]
         total, moment = 0.0, np.zeros(2)
         for box in body.boxes:
-            corners = _box(box)
+            corners = box_corners(box)
             for k in range(4):
                 a, b = corners[k], corners[(k + 1) % 4]
                 cuts = [(0.0, 1.0)]
                 for other in body.boxes:
                     if other is not box:
-                        cuts = _subtract(cuts, _inside(a, b, other, -tol))
+                        cuts = subtract(cuts, inside_box(a, b, other, -tol))
                 for p0, p1 in covered:
-                    cuts = _subtract(cuts, _along(a, b, p0, p1, tol))
+                    cuts = subtract(cuts, along(a, b, p0, p1, tol))
                 for lo, hi in cuts:
                     length = (hi - lo) * float(np.linalg.norm(b - a))
                     total += length
@@ -295,7 +279,7 @@ class Mechanism:
                 raise _error(b, f"body {b.name!r} is named twice; each body needs its own name")
         for i, p in enumerate(self.bodies):
             for q in self.bodies[i + 1:]:
-                if any(_convex_overlap(_box(u), _box(v), self.tol) for u in p.boxes
+                if any(convex_overlap(box_corners(u), box_corners(v), self.tol) for u in p.boxes
                        for v in q.boxes):
                     raise _error(q, f"bodies {p.name!r} and {q.name!r} overlap; a body is one "
                                  "name for all its boxes")
@@ -376,63 +360,6 @@ class Mechanism:
                 g, t = self.flexures[j], spans[j]
                 crossing = (isinstance(f, Leaf) and isinstance(g, Leaf)
                             and abs(cross2(s.d, t.d)) > math.sin(math.radians(10)))
-                if not crossing and _convex_overlap(s.corners(f.width), t.corners(g.width),
+                if not crossing and convex_overlap(s.corners(f.width), t.corners(g.width),
                                                     self.tol):
                     raise _error(g, f"{_label(g, j)} overlaps {_label(f, i)}")
-
-
-def side_root(body: Body, point, direction, reach: float, tol: float) -> np.ndarray:
-    """Where the line through ``point`` along ``direction`` (unit) leaves ``body`` nearest
-    ``point``, looking ``reach`` (m) either side (m)."""
-    start, end = point - reach * direction, point + reach * direction
-    exits = [hi for _, hi in body.span_inside(start, end, tol)]
-    s = min(exits, key=lambda v: abs(v - 0.5))
-    return start + s * (end - start)
-
-
-def _subtract(intervals, cut) -> list:
-    """[lo, hi] intervals of [0, 1] less the interval ``cut`` (or None)."""
-    if cut is None:
-        return intervals
-    c0, c1 = cut
-    out = []
-    for lo, hi in intervals:
-        if c1 <= lo or c0 >= hi:
-            out.append((lo, hi))
-            continue
-        if c0 > lo:
-            out.append((lo, c0))
-        if c1 < hi:
-            out.append((c1, hi))
-    return out
-
-
-def _inside(a, b, box, tol):
-    """The interval of s where a + s (b - a) lies strictly inside ``box``, or None."""
-    (x0, y0), (x1, y1) = box
-    lo, hi = 0.0, 1.0
-    d = b - a
-    for k, (low, high) in enumerate(((x0 - tol, x1 + tol), (y0 - tol, y1 + tol))):
-        if abs(d[k]) < 1e-300:
-            if not low < a[k] < high:
-                return None
-            continue
-        s0, s1 = sorted(((low - a[k]) / d[k], (high - a[k]) / d[k]))
-        lo, hi = max(lo, s0), min(hi, s1)
-    return (lo, hi) if hi > lo else None
-
-
-def _along(a, b, p0, p1, tol):
-    """The interval of s on a -> b covered by the segment p0 p1 lying on the same line."""
-    d = b - a
-    length2 = float(d @ d)
-    n = np.array([-d[1], d[0]]) / math.sqrt(length2)
-    if abs(float((p0 - a) @ n)) > 10 * tol or abs(float((p1 - a) @ n)) > 10 * tol:
-        return None
-    s0, s1 = sorted((float((p0 - a) @ d) / length2, float((p1 - a) @ d) / length2))
-    return (max(s0, 0.0), min(s1, 1.0)) if min(s1, 1.0) > max(s0, 0.0) else None
-
-
-def _box(box) -> np.ndarray:
-    (x0, y0), (x1, y1) = box
-    return np.array([(x0, y0), (x1, y0), (x1, y1), (x0, y1)], float)
