@@ -37,6 +37,9 @@ def _notch_factors(line, nu: float):
     leaf, None for any other: a beam of one straight segment (collinear points) whose
     thickness is least inside it and at least 1.5 times that at both ends
     (:func:`..hinge_patch.has_notch`)."""
+    profile = line.thickness
+    if profile.expression is None and min(profile.values) == max(profile.values):
+        return None  # a uniform leaf: nothing to correct
     points = np.asarray(line.points, float)
     chord = points[-1] - points[0]
     length = float(np.linalg.norm(chord))
