@@ -25,8 +25,8 @@ def _rounded(s: np.ndarray, r: float) -> np.ndarray:
 
 def profile(flexure, length: float) -> Profile:
     """The in-plane thickness t(s) (m) of ``flexure`` along its free span of ``length`` (m):
-    a leaf's constant thickness with its (square-root) fillets, a circular notch's
-    t + 2 (R - sqrt(R^2 - (s - R)^2))."""
+    a leaf's constant thickness with its (square-root) fillets, a notch's
+    t + 2 b (1 - sqrt(1 - ((s - a) / a)^2)) (semi-axes a along, b across; a = b: circular)."""
     t = flexure.thickness
     if isinstance(flexure, Leaf):
         if flexure.fillet <= 0:
@@ -36,9 +36,11 @@ def profile(flexure, length: float) -> Profile:
         s = np.concatenate([near, length - near[::-1]])
         return Profile(tuple(s.tolist()),
                        tuple((t + _rounded(np.minimum(s, length - s), r)).tolist()))
-    r = flexure.radius
+    along, across = flexure.semi_axes
     s = np.linspace(0.0, length, 4 * STATIONS + 1)
-    return Profile(tuple(s.tolist()), tuple((t + _rounded(r - np.abs(s - r), r)).tolist()))
+    u = np.clip((s - along) / along, -1.0, 1.0)
+    values = t + 2 * across * (1 - np.sqrt(1 - u * u))
+    return Profile(tuple(s.tolist()), tuple(values.tolist()))
 
 
 def _crossing(span, other, tol: float):

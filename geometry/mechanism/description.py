@@ -113,23 +113,33 @@ class Leaf:
 
 @dataclass(frozen=True)
 class Notch:
-    """A circular notch hinge: neck ``thickness`` (m) at the middle of its free span, notch
-    ``radius`` (m), on the centre line from ``start`` to ``end`` (m) joining ``between``; the
-    blank is ``thickness + 2 radius`` wide and its free span 2 radius long (the bodies' faces
-    must be that far apart along it)."""
+    """A notch hinge: neck ``thickness`` (m) at the middle of its free span, on the centre
+    line from ``start`` to ``end`` (m) joining ``between``; its two cut-outs are circles of
+    ``radius`` (m), or ellipses of semi-axes ``radius`` along the centre line and ``across``
+    (m) across it. The blank is ``thickness + 2 across`` wide and its free span 2 radius long
+    (the bodies' faces must be that far apart along it; the cut-outs are tangent to them)."""
 
     between: tuple
     start: tuple
     end: tuple
     thickness: float
     radius: float
+    across: float | None = None
     name: str = ""
     source: str = ""
-    kind = "circular_notch"
+
+    @property
+    def kind(self) -> str:
+        return "circular_notch" if self.across is None else "elliptical_notch"
+
+    @property
+    def semi_axes(self) -> tuple:
+        """(along, across) the centre line (m)."""
+        return self.radius, self.radius if self.across is None else self.across
 
     @property
     def width(self) -> float:
-        return self.thickness + 2 * self.radius
+        return self.thickness + 2 * self.semi_axes[1]
 
 
 @dataclass(frozen=True)
@@ -345,11 +355,12 @@ class Mechanism:
                 raise _error(f, f"{label}: fillet = {f.fillet:.4g} m must be >= 0 and less than "
                              f"half the free length ({span.length:.4g} m)")
         else:
-            if not f.radius > 0:
-                raise _error(f, f"{label}: radius = {f.radius!r} must be > 0 (m)")
+            if not (f.radius > 0 and f.semi_axes[1] > 0):
+                raise _error(f, f"{label}: radius = {f.radius!r} and across = {f.across!r} "
+                             "must be > 0 (m)")
             if abs(span.length - 2 * f.radius) > 1e-6 * span.length + self.tol:
-                raise _error(f, f"{label}: its free span is {span.length:.6g} m but a circular "
-                             f"notch of radius {f.radius:.6g} m spans 2 radius = "
+                raise _error(f, f"{label}: its free span is {span.length:.6g} m but a notch of "
+                             f"radius {f.radius:.6g} m (along the centre line) spans 2 radius = "
                              f"{2 * f.radius:.6g} m; place the bodies' faces 2 radius apart")
         return span
 

@@ -63,8 +63,11 @@ def _flexure_shapes(gmsh, mechanism: Mechanism, index: int, body_tags) -> list:
     mid = (span.a + span.b) / 2
     shape = _central_piece(gmsh, pieces, mid)
     if not isinstance(f, Leaf):
-        disks = [(2, occ.addDisk(*(mid + side * (f.thickness / 2 + f.radius) * span.n), 0,
-                                 f.radius, f.radius)) for side in (-1, 1)]
+        along, across = f.semi_axes
+        major = (along, across, span.d) if along >= across else (across, along, span.n)
+        disks = [(2, occ.addDisk(*(mid + side * (f.thickness / 2 + across) * span.n), 0,
+                                 major[0], major[1], xAxis=[*major[2], 0.0]))
+                 for side in (-1, 1)]
         shape, _ = occ.cut(shape, disks)
         shape = _central_piece(gmsh, shape, mid)
     for corner, t1, t2, centre in fillet_corners(mechanism, index):

@@ -9,7 +9,9 @@ from .tables import Locator, check_keys
 BODY_KEYS = ("name", "box")
 FLEXURE_KEYS = {"leaf": ("kind", "name", "between", "from", "to", "thickness", "fillet"),
                 "circular_notch": ("kind", "name", "between", "from", "to", "thickness",
-                                   "radius")}
+                                   "radius"),
+                "elliptical_notch": ("kind", "name", "between", "from", "to", "thickness",
+                                     "radius", "across")}
 
 
 def _value(raw, names, where):
@@ -90,7 +92,7 @@ def _flexure(entry, i, names, loc: Locator):
                   thickness=values["thickness"], name=name, source=loc.at("flexure", None, i))
     if kind == "leaf":
         return Leaf(fillet=values.get("fillet", 0.0), **common)
-    return Notch(radius=values["radius"], **common)
+    return Notch(radius=values["radius"], across=values.get("across"), **common)
 
 
 def parse_mechanism(raw: dict, names: dict, depth: float, loc: Locator,
