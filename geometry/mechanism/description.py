@@ -284,6 +284,9 @@ class Mechanism:
         body joined to nothing, and (``supported``: the held group names) a mechanism with no
         support or a body not connected to a held one."""
         names = [b.name for b in self.bodies]
+        if not 1e-6 <= self.size <= 10.0:
+            raise ValueError(f"{self.source}: the mechanism is {self.size:.4g} m across; "
+                             "lengths are in m (a flexure mechanism is 1 um to 10 m)")
         for b in self.bodies:
             if names.count(b.name) > 1:
                 raise _error(b, f"body {b.name!r} is named twice; each body needs its own name")
@@ -327,8 +330,9 @@ class Mechanism:
         for name in f.between:
             if name not in names:
                 raise _error(f, f"{label}: no body is named {name!r}; bodies: {names}")
-        if not f.thickness > 0:
-            raise _error(f, f"{label}: thickness = {f.thickness!r} must be > 0 (m)")
+        if not f.thickness >= 1e-6:
+            raise _error(f, f"{label}: thickness = {f.thickness!r} m must be at least 1 um "
+                         "(lengths are in m)")
         for point, name, key in ((f.start, f.between[0], "from"), (f.end, f.between[1], "to")):
             if not self.body(name).contains(point, self.tol):
                 raise _error(f, f"{label}: {key} = {list(point)} is not inside body {name!r}; "

@@ -11,7 +11,9 @@ from pathlib import Path
 import re
 
 from ...fem import FEMesh, gmsh_session, mesh_from_gmsh, read_mesh
+from ...fem.budget import check_budget
 from ..mechanism import mesh_mechanism
+from .estimate import estimate_geometry_mesh
 from .geo_guard import check_geo
 from .selection import compile_rule, entity_values
 
@@ -170,13 +172,16 @@ def _refine(gmsh, refinements, coarse: float) -> None:
     gmsh.model.mesh.field.setAsBackgroundMesh(field)
 
 
-def mesh_geometry(spec, size_factor: float = 1.0) -> FEMesh:
+def mesh_geometry(spec, size_factor: float = 1.0, max_dofs: int | None = None) -> FEMesh:
     """Mesh the model file's geometry (m) with its named groups. ``size_factor`` multiplies
-    every element size (a .msh cannot be remeshed: only 1 is accepted)."""
+    every element size (a .msh cannot be remeshed: only 1 is accepted). A mesh whose estimate
+    (estimate.py) is above ``max_dofs`` (None: half the available memory) is refused before
+    gmsh meshes it (BudgetError)."""
     if not size_factor > 0:
         raise ValueError(f"size_factor = {size_factor!r} must be > 0")
     if spec.mechanism is not None:
-        return mesh_mechanism(spec.mechanism, spec.dim, size_factor, spec.mesh.size)
+        return mesh_mechanism(spec.mechanism, spec.dim, size_factor, spec.mesh.size,
+                              order=spec.mesh.order, max_dofs=max_dofs)
     suffix = spec.geometry.suffix.lower()
     if suffix in MESH_SUFFIXES:
         if size_factor != 1.0:
@@ -204,6 +209,10 @@ def mesh_geometry(spec, size_factor: float = 1.0) -> FEMesh:
         if gmsh.model.getDimension() != spec.dim:
             raise ValueError(f"{spec.source}: dim = {spec.dim} but {spec.geometry} is "
                              f"{gmsh.model.getDimension()}-D")
+        what = f"the mesh of {spec.geometry.name} at size_factor {size_factor:g}"
+        estimate = estimate_geometry_mesh(gmsh, spec.dim, spec.mesh.order, size_factor,
+                                          spec.mesh.size, what)
+        check_budget(estimate, spec.dim, max_dofs, what=what)
         try:
             gmsh.model.mesh.generate(spec.dim)
         except Exception as error:

@@ -12,6 +12,12 @@ from .toml_lines import find_line
 SECTION_KINDS = ("plane_stress", "plane_strain", "solid")
 LOAD_KINDS = ("force", "traction", "pressure")
 SOLVERS = ("auto", "direct", "amg")
+#: What solids have (elastomers to diamond, aerogels to osmium): a model file's value outside
+#: is a units mistake (MPa for Pa, g/cm^3 for kg/m^3) or overflows the solve.
+PHYSICAL = {"E": (1e3, 1e13, "Pa"), "rho": (1.0, 1e5, "kg/m^3"),
+            "yield_strength": (1e3, 1e11, "Pa")}
+#: Lengths a flexure mechanism has (m): a thinner part or a larger one is a units mistake.
+LENGTHS = (1e-6, 10.0)
 
 
 @dataclass(frozen=True)
@@ -170,6 +176,11 @@ def parse_material(raw, loc: Locator) -> Material:
                    f"{', '.join(missing)})")
             raise loc.error(msg, "material", "name" if name is not None else None)
         values, source = raw, f"model file {loc.path}"
+    for key, (low, high, unit) in PHYSICAL.items():
+        if key in raw and not low <= values[key] <= high:
+            raise loc.error(f"[material] {key} = {values[key]!r} is outside what solids have "
+                            f"({low:g} to {high:g} {unit}); check the units ({unit})",
+                            "material", key)
     try:
         return Material(name=name or "user", source=source, **values)
     except ValueError as error:
@@ -194,7 +205,11 @@ def parse_section(raw, dim: int, loc: Locator) -> Section:
         if kind == "plane_stress":
             raise loc.error("[section] plane_stress needs thickness (m, out of plane)", "section")
         return Section(kind)
-    return Section(kind, positive(raw, "thickness", loc, "section"))
+    thickness = positive(raw, "thickness", loc, "section")
+    if not LENGTHS[0] <= thickness <= LENGTHS[1]:
+        raise loc.error(f"[section] thickness = {thickness!r} m is outside {LENGTHS[0]:g} to "
+                        f"{LENGTHS[1]:g} m; lengths are in m", "section", "thickness")
+    return Section(kind, thickness)
 
 
 def parse_mesh(raw, loc: Locator) -> MeshOptions:

@@ -10,7 +10,7 @@ from ...fem import (Fixed, Force, Model, PlaneStrain, PlaneStress, Prescribed, S
                     solve_nonlinear, solve_static)
 from ...geometry.user_model import ModelSpec, load_spec, mesh_geometry
 from .beam_analysis import analyze_beam_model
-from .outputs import groups_of as _groups, stiffness
+from .outputs import check_finite, groups_of as _groups, stiffness
 
 MODELS = ("continuum", "beam")
 
@@ -47,9 +47,10 @@ def element_size(model: Model) -> float:
     return float(np.mean(np.linalg.norm(mesh.p[:, edges[0]] - mesh.p[:, edges[1]], axis=0)))
 
 
-def build_model(spec: ModelSpec, size_factor: float = 1.0) -> Model:
-    """Mesh the geometry and make the Model (m, Pa)."""
-    mesh = mesh_geometry(spec, size_factor)
+def build_model(spec: ModelSpec, size_factor: float = 1.0, max_dofs: int | None = None) -> Model:
+    """Mesh the geometry and make the Model (m, Pa); a mesh estimated above ``max_dofs``
+    (None: half the available memory) is refused before meshing."""
+    mesh = mesh_geometry(spec, size_factor, max_dofs)
     return Model(mesh, spec.material, formulation(spec), order=spec.mesh.order)
 
 
@@ -58,21 +59,23 @@ def _in_context(spec: ModelSpec, error: ValueError) -> ValueError:
     return type(error)(f"{spec.source}: {error}")
 
 
-def analyze_model(spec: ModelSpec, size_factor: float = 1.0, model: str = "continuum") -> dict:
+def analyze_model(spec: ModelSpec, size_factor: float = 1.0, model: str = "continuum",
+                  max_dofs: int | None = None) -> dict:
     """Solve the model file's problem. Returns (SI): dofs, solver, h (m), max_von_mises (Pa),
     max_von_mises_location (m), mean_displacement {group: vector (m)} of every support and
     load group, reactions {group: vector (N)} of every support, stiffness {group: {axis:
     N/m}} (single force load), frequencies_hz (when [analysis] modes), nonlinear (when
     [analysis] steps), compliance / buckling / harmonic (when asked; see :func:`_precision`).
     ``model="beam"``: the same keys from the model file's declared beams
-    (:func:`~flexfem.studies.user_model.beam_analysis.analyze_beam_model`; size_factor unused)."""
+    (:func:`~flexfem.studies.user_model.beam_analysis.analyze_beam_model`; size_factor unused).
+    ``max_dofs``: the continuum's mesh budget (None: half the available memory)."""
     if model not in MODELS:
         raise ValueError(f"{spec.source}: model = {model!r} must be one of {MODELS}")
     if model == "beam":
-        return analyze_beam_model(spec)
+        return check_finite(analyze_beam_model(spec), spec.source)
     supports, loads = supports_and_loads(spec)
     try:
-        model = build_model(spec, size_factor)
+        model = build_model(spec, size_factor, max_dofs)
         result = solve_static(model, supports, loads, solver=spec.analysis.solver)
     except ValueError as error:
         raise _in_context(spec, error) from None
@@ -100,7 +103,7 @@ def analyze_model(spec: ModelSpec, size_factor: float = 1.0, model: str = "conti
         out.update(_precision(spec, model, supports, loads))
     except ValueError as error:
         raise _in_context(spec, error) from None
-    return out
+    return check_finite(out, spec.source)
 
 
 def _precision(spec, model, supports, loads) -> dict:

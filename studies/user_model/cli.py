@@ -4,6 +4,7 @@ declares."""
 import argparse
 
 from ...geometry.user_model import load_spec
+from ..options import count
 from .analysis import analyze_model
 
 _AXES = ("x", "y", "z")
@@ -30,7 +31,7 @@ def run(args) -> dict:
     """analyze_model of ``args.model`` with the ``--set`` overrides."""
     spec = load_spec(args.model, parse_sets(args.set), allow_code=args.allow_code,
                      dim=getattr(args, "dim", None))
-    return analyze_model(spec, model=args.reduced)
+    return analyze_model(spec, model=args.reduced, max_dofs=getattr(args, "max_dofs", None))
 
 
 def _vector(v, unit: str) -> str:
@@ -88,6 +89,9 @@ def register(subparsers):
                         default="continuum",
                         help="continuum: the FEM of the geometry (default); beam: the beam "
                              "model the file declares ([[beam]], [[rigid]])")
+    parser.add_argument("--max-dofs", type=count, default=None, metavar="N",
+                        help="refuse a mesh estimated above N unknowns, before meshing "
+                             "(default: what half the available memory affords)")
     parser.add_argument("--dim", type=int, choices=(2, 3), default=None,
                         help="bodies and flexures: 2 (default) or 3, the continuum extruded by "
                              "the [section] thickness")

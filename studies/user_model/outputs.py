@@ -11,10 +11,14 @@ def groups_of(spec) -> list[str]:
 
 
 def stiffness(spec, mean_displacement: dict) -> dict:
-    """{group: {axis: N/m}} where exactly one force load is applied: force / mean displacement
-    of its group along the force (axis 'x'/'y'/'z' for an axis-aligned force, else 'along')."""
+    """{group: {axis: N/m}} where exactly one force load is applied and every support holds
+    still: force / mean displacement of its group along the force (axis 'x'/'y'/'z' for an
+    axis-aligned force, else 'along'). A prescribed support displacement moves the group too,
+    so force over displacement is then no stiffness: none is reported."""
     forces = [load for load in spec.loads if load.kind == "force"]
     if len(forces) != 1 or len(spec.loads) != 1:
+        return {}
+    if any(s.components and any(v != 0 for v in s.components.values()) for s in spec.supports):
         return {}
     load = forces[0]
     f = np.array(load.vector)
@@ -28,3 +32,23 @@ def stiffness(spec, mean_displacement: dict) -> dict:
     return {load.group: {axis: float(np.linalg.norm(f) / along) if along else float("inf")}}
 
 
+
+
+def check_finite(result: dict, source: str) -> dict:
+    """``result`` unchanged if every number in it is finite; else ValueError naming the first
+    quantity that is not (an overflow of extreme inputs: a 1e300 N load, a 1e-300 m
+    thickness), so that nothing non-finite is printed or stored as a result."""
+    def walk(value, key):
+        if isinstance(value, dict):
+            for k, v in value.items():
+                walk(v, f"{key}.{k}" if key else str(k))
+        elif isinstance(value, (list, tuple)):
+            for i, v in enumerate(value):
+                walk(v, f"{key}[{i}]")
+        elif isinstance(value, (float, np.floating)) and not np.isfinite(value):
+            raise ValueError(f"{source}: {key} = {value}: the inputs are beyond what double "
+                             "precision can solve (check the loads, sizes and material for "
+                             "extreme values and units: lengths in m, forces in N, moduli in "
+                             "Pa)")
+    walk(result, "")
+    return result

@@ -1,0 +1,78 @@
+"""How big a model file's mesh will be, before gmsh is asked for it (fem/budget.py decides
+whether it fits the machine).
+
+From the loaded geometry, without meshing: each curve's node count from its length and the
+element sizes at its ends (gmsh interpolates the size linearly along a curve: the nodes are
+L ln(h1/h0) / (h1 - h0)), and each surface's (volume's) elements at the largest size on its
+boundary: no element is larger, so A / (sqrt(3)/4 h_max^2) triangles (V / (h_max^3 / 8.5)
+tetrahedra) is a lower bound for a uniform-size region, and areas come from OpenCASCADE where
+it made the entity (its bounding box otherwise, an upper bound). An element size that is not
+a positive finite length well above round-off (1e-9 of the model) is refused outright: gmsh
+would silently mesh coarser, or never finish. Lengths in m.
+"""
+import math
+
+import numpy as np
+
+TRIANGLE = math.sqrt(3) / 4
+TETRAHEDRA_PER_CUBE = 8.5  # regular-ish tetrahedra of edge h in a volume h^3
+NODES_PER_ELEMENT = {(2, 1): 0.5, (2, 2): 2.05, (3, 1): 0.18, (3, 2): 1.4}
+
+
+def _length(gmsh, curve: int) -> float:
+    try:
+        return float(gmsh.model.occ.getMass(1, curve))
+    except Exception:  # noqa: BLE001 - a built-in kernel curve: measure it by sampling
+        lo, hi = gmsh.model.getParametrizationBounds(1, curve)
+        u = np.linspace(lo[0], hi[0], 33)
+        xyz = np.asarray(gmsh.model.getValue(1, curve, u)).reshape(-1, 3)
+        return float(np.linalg.norm(np.diff(xyz, axis=0), axis=1).sum())
+
+
+def _measure(gmsh, dim: int, tag: int) -> float:
+    try:
+        return float(gmsh.model.occ.getMass(dim, tag))
+    except Exception:  # noqa: BLE001 - a built-in kernel entity: its bounding box
+        box = gmsh.model.getBoundingBox(dim, tag)
+        return float(np.prod([max(box[3 + k] - box[k], 0.0) for k in range(dim)]))
+
+
+def _nodes_along(length: float, h0: float, h1: float) -> float:
+    if abs(h1 - h0) <= 1e-12 * max(h0, h1):
+        return length / h0
+    return length * math.log(h1 / h0) / (h1 - h0)
+
+
+def estimate_geometry_mesh(gmsh, dim: int, order: int, size_factor: float = 1.0,
+                           size_max: float | None = None, what: str = "the geometry") -> dict:
+    """{"elements", "nodes", "dofs"} expected of meshing the loaded geometry; ValueError naming
+    ``what`` for an element size gmsh cannot honour."""
+    box = gmsh.model.getBoundingBox(-1, -1)
+    diag = math.dist(box[:3], box[3:])
+    points = gmsh.model.getEntities(0)
+    given = gmsh.model.mesh.getSizes(points) if points else []
+    cap = min(size_max or math.inf, diag)
+    size = {tag: min(float(lc) if lc > 0 else diag, cap) * size_factor
+            for (_, tag), lc in zip(points, given)}
+    smallest = min(size.values(), default=cap * size_factor)
+    if not (math.isfinite(smallest) and smallest > 1e-9 * diag):
+        raise ValueError(f"{what}: an element size of {smallest:.3g} m on a model "
+                         f"{diag:.3g} m across cannot be meshed (gmsh honours sizes down to "
+                         "~1e-9 of the model); check the sizes and lengths (m) that set it")
+    nodes_1d, largest = 0.0, {}
+    for _, curve in gmsh.model.getEntities(1):
+        ends = [abs(t) for _, t in gmsh.model.getBoundary([(1, curve)], recursive=False)]
+        h = [size.get(p, cap * size_factor) for p in ends] or [cap * size_factor]
+        nodes_1d += _nodes_along(_length(gmsh, curve), min(h), max(h))
+        largest[curve] = max(h)
+    elements = nodes_1d
+    for _, tag in gmsh.model.getEntities(dim):
+        bounding = gmsh.model.getBoundary([(dim, tag)], combined=False, oriented=False,
+                                          recursive=dim == 3)
+        h = max((largest.get(abs(t), cap * size_factor) for d, t in bounding if d == 1),
+                default=cap * size_factor)
+        cell = TRIANGLE * h * h if dim == 2 else h ** 3 / TETRAHEDRA_PER_CUBE
+        elements += _measure(gmsh, dim, tag) / cell
+    nodes = NODES_PER_ELEMENT[(dim, order)] * elements
+    return {"elements": int(min(elements, 1e18)), "nodes": int(min(nodes, 1e18)),
+            "dofs": int(min(dim * nodes, 1e18))}

@@ -1,0 +1,79 @@
+"""Extreme but finite inputs to a model file give a clear refusal (exit 2, one line naming
+the problem), never NaN, inf, a silently coarse mesh or a meshing run that cannot end: element
+sizes gmsh cannot honour, meshes above the budget, overflowing loads, unphysical materials and
+sections, lengths given in mm, and a stiffness where a support moves."""
+import json
+from pathlib import Path
+
+import pytest
+from flexfem.studies.cli import main
+
+EXAMPLES = Path(__file__).parents[3] / "examples"
+GEO_GUIDE = EXAMPLES / "parallel_guide" / "guide.toml"
+BODIES_GUIDE = EXAMPLES / "bodies" / "guide.toml"
+
+
+def _refused(capsys, *argv) -> str:
+    assert main(["analyze", *map(str, argv)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "Traceback" not in err
+    return err
+
+
+@pytest.mark.parametrize("size", ["1e-12", "1e-300", "0"])
+def test_a_mesh_size_gmsh_cannot_honour_is_refused(capsys, size):
+    err = _refused(capsys, GEO_GUIDE, "--set", f"mesh.size={size}")
+    assert "must be a number > 0" in err or "cannot be meshed" in err
+
+
+def test_a_vanishing_dimension_of_a_geo_is_refused_before_meshing(capsys):
+    err = _refused(capsys, GEO_GUIDE, "--set", "t=1e-300")
+    assert "element size of 5e-301 m" in err  # lc_leaf = t / 2
+
+
+def test_a_mesh_above_the_budget_is_refused_in_seconds(capsys):
+    err = _refused(capsys, GEO_GUIDE, "--set", "mesh.size=3e-5", "--max-dofs", "1000000")
+    assert "above the budget of 1,000,000 DOFs" in err
+    err = _refused(capsys, BODIES_GUIDE, "--set", "t=1e-5", "--max-dofs", "100000")
+    assert "above the budget" in err
+
+
+@pytest.mark.parametrize("path", [GEO_GUIDE, BODIES_GUIDE], ids=["geo", "bodies"])
+@pytest.mark.parametrize("model", ["continuum", "beam"])
+def test_an_overflowing_load_is_refused_not_printed_as_nan(tmp_path, capsys, path, model):
+    text = path.read_text().replace("force = [1.0, 0.0]", "force = [1e300, 1e300]")
+    copy = path.parent / f"_overflow_{path.stem}.toml"
+    try:
+        copy.write_text(text)
+        err = _refused(capsys, copy, "--model", model)
+    finally:
+        copy.unlink()
+    assert "beyond what double precision can solve" in err
+
+
+@pytest.mark.parametrize("setting, message", [
+    ("material.E=1e300", "outside what solids have"),
+    ("material.E=1e-300", "outside what solids have"),
+    ("material.rho=1e300", "outside what solids have"),
+    ("section.thickness=1e300", "lengths are in m"),
+    ("section.thickness=1e-300", "lengths are in m"),
+])
+def test_unphysical_material_and_section_values_are_refused(capsys, setting, message):
+    for path in (GEO_GUIDE, BODIES_GUIDE):
+        assert message in _refused(capsys, path, "--set", setting)
+
+
+def test_lengths_in_mm_are_caught(capsys):
+    err = _refused(capsys, BODIES_GUIDE, "--set", "L=40", "--set", "d=20", "--set", "t=1")
+    assert "lengths are in m" in err
+
+
+def test_no_stiffness_where_a_support_moves(tmp_path, capsys):
+    text = BODIES_GUIDE.read_text().replace('group = "ground"        # a body',
+                                            'group = "ground"\nx = 0.001\ny = 0.0  # a body')
+    path = tmp_path / "guide.toml"
+    path.write_text(text)
+    assert main(["analyze", str(path), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["stiffness"] == {}
+    assert out["mean_displacement"]["ground"][0] == pytest.approx(0.001, rel=1e-6)
