@@ -8,9 +8,15 @@ modal solve of flexfem's quadratic elements: measured peaks of the DBMA analysis
 2.8 kB per DOF in 2-D (106k DOFs) and 11 kB in 3-D (100k DOFs); the constants keep a
 factor ~2 of margin.
 """
+import math
 import os
 
 BYTES_PER_DOF = {2: 5_000, 3: 20_000}
+#: Elements of a size h: a triangle's area (x h^2), tetrahedra in a cube of side h.
+TRIANGLE = math.sqrt(3) / 4
+TETRAHEDRA_PER_CUBE = 8.5  # regular tetrahedra of edge h: h^3 / (6 sqrt 2) each
+#: Nodes per element of large unstructured meshes, by (dim, order).
+NODES_PER_ELEMENT = {(2, 1): 0.5, (2, 2): 2.05, (3, 1): 0.18, (3, 2): 1.4}
 FALLBACK_MEMORY = 4 * 2**30  # when the available memory cannot be read
 
 

@@ -49,7 +49,7 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
-USER_ERRORS = (ValueError, TypeError, OSError, sqlite3.Error)
+USER_ERRORS = (ValueError, TypeError, OSError, sqlite3.Error, ArithmeticError)
 
 
 def _one_line(error: BaseException) -> str:

@@ -95,6 +95,14 @@ def run_convergence(mechanism: str, metric: str, tol="0.5%", n_levels: int = 4, 
     the registry's coarsest_size_factor); writes convergence_<metric>.png into ``out_dir`` when
     given. JSON-able. ``allow_code``: a model file's .geo may run code (geo_guard.py)."""
     tolerance = parse_tolerance(tol)
+    if not (math.isfinite(ratio) and 1 < ratio <= 10):
+        raise ValueError(f"ratio = {ratio!r} must be in (1, 10]: the size factor between "
+                         "levels (2 halves the element size)")
+    if not isinstance(n_levels, int) or not 3 <= n_levels <= 12:
+        raise ValueError(f"levels = {n_levels!r} must be a whole number from 3 to 12")
+    if start is not None and not (math.isfinite(start) and 1e-3 <= start <= 1e3):
+        raise ValueError(f"start = {start!r} must be a size_factor in [0.001, 1000] (1: the "
+                         "mechanism's default mesh)")
     if str(mechanism).endswith(".toml"):  # a model file
         mechanism = model_mechanism(mechanism)
     if start is None:

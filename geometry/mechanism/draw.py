@@ -8,8 +8,7 @@ import math
 import numpy as np
 
 from ...fem import FEMesh, gmsh_session, mesh_from_gmsh
-from ...fem.budget import check_budget
-from ..user_model.estimate import NODES_PER_ELEMENT, TETRAHEDRA_PER_CUBE, TRIANGLE
+from ...fem.budget import NODES_PER_ELEMENT, TETRAHEDRA_PER_CUBE, TRIANGLE, check_budget
 from .description import REACH, Leaf, Mechanism, cross2
 
 

@@ -14,9 +14,7 @@ import math
 
 import numpy as np
 
-TRIANGLE = math.sqrt(3) / 4
-TETRAHEDRA_PER_CUBE = 8.5  # regular-ish tetrahedra of edge h in a volume h^3
-NODES_PER_ELEMENT = {(2, 1): 0.5, (2, 2): 2.05, (3, 1): 0.18, (3, 2): 1.4}
+from ...fem.budget import NODES_PER_ELEMENT, TETRAHEDRA_PER_CUBE, TRIANGLE
 
 
 def _length(gmsh, curve: int) -> float:

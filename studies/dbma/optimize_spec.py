@@ -66,8 +66,10 @@ class OptimizeSpec:
                 raise ValueError(f"OptimizeSpec: {name} = {getattr(self, name)!r} must be >= 0 (0: no constraint)")
         if not self.safety_factor >= 1:
             raise ValueError(f"OptimizeSpec: safety_factor = {self.safety_factor!r} must be >= 1")
-        if not self.stroke_m > 0:
-            raise ValueError(f"OptimizeSpec: stroke_m = {self.stroke_m!r} must be > 0 (m)")
+        if not 0 < self.stroke_m <= 1e-3:
+            raise ValueError(f"OptimizeSpec: stroke_m = {self.stroke_m!r} must be > 0 and at "
+                             "most 1 mm (m: a piezo stack's elongation is tens of um, and the "
+                             "amplifier's linear model holds for small strokes)")
         for name, low in (("max_evaluations", 8), ("n_seed", 16), ("seed", 0)):
             v = getattr(self, name)
             if not (isinstance(v, int) and v >= low):

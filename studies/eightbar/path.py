@@ -68,12 +68,28 @@ def classic_linkage_deviations(n: int = 201) -> list:
     return rows
 
 
+def check_resolved(deviation_at, n: int, what: str):
+    """The deviation ``deviation_at(n)`` if sampling the path at ``n`` points resolves it: the
+    band from 2 n - 1 points (every point and the midpoints) within 1 % (or 1e-9 of the
+    travel: an exact straight line's band is round-off); ValueError naming
+    both otherwise (a coarse sampling misses the path's extremes: it under-reports)."""
+    coarse = deviation_at(n)  # its own check of n first
+    fine = deviation_at(2 * n - 1)
+    if abs(coarse.band_m - fine.band_m) > 0.01 * fine.band_m + 1e-9 * fine.travel_m:
+        raise ValueError(f"{what}: {n} points do not resolve the path: its deviation band is "
+                         f"{coarse.band_m:.4g} m at {n} points but {fine.band_m:.4g} m at "
+                         f"{2 * n - 1}; use more points (the default resolves it)")
+    return coarse
+
+
 def trace_classic(name: str, n: int = 201) -> dict:
     """Straightness of one classic linkage (watt, roberts, chebyshev, peaucellier,
-    modified_peaucellier): travel_m, max_deviation_m, band_m, deviation_pct."""
+    modified_peaucellier): travel_m, max_deviation_m, band_m, deviation_pct. ValueError
+    where ``n`` points do not resolve the path (:func:`check_resolved`)."""
     if name not in CLASSIC_LINKAGES:
         raise ValueError(f"linkage = {name!r}, must be one of {sorted(CLASSIC_LINKAGES)}")
-    _, dev = trace_straight_line(CLASSIC_LINKAGES[name](), n)
+    dev = check_resolved(lambda k: trace_straight_line(CLASSIC_LINKAGES[name](), k)[1], n,
+                         f"linkage trace {name}")
     return {"linkage": name, "travel_m": dev.travel_m, "max_deviation_m": dev.max_deviation_m,
             "band_m": dev.band_m, "deviation_pct": dev.deviation_pct}
 

@@ -42,6 +42,9 @@ class CantileverParams:
             value = getattr(self, name)
             if not value > 0:
                 raise ValueError(f"{name} = {value!r} must be > 0")
+            if name.endswith("_m") and not value <= 10.0:
+                raise ValueError(f"{name} = {value!r} m is larger than a cantilever of this "
+                                 "model (at most 10 m); lengths are in m")
 
 
 def second_moment_of_area(width_m: float, thickness_m: float) -> float:
@@ -91,8 +94,8 @@ def elements_for(size_factor: float = 1.0, n_elements: int | None = None) -> int
         if int(n_elements) < 1:
             raise ValueError(f"n_elements = {n_elements!r} must be >= 1")
         return int(n_elements)
-    if not size_factor > 0:
-        raise ValueError(f"size_factor = {size_factor!r} must be > 0")
+    if not 1e-4 <= size_factor <= 1e4:
+        raise ValueError(f"size_factor = {size_factor!r} must be in [1e-4, 1e4]")
     return max(1, round(BASE_ELEMENTS / size_factor))
 
 

@@ -79,3 +79,11 @@ def test_docs_example_runs():
     # regression values: the numbers the page quotes, so that the page cannot drift from the code
     assert scope["tr"].deviation.band_m == pytest.approx(1.53e-6, rel=0.01)
     assert scope["tr"].deviation.deviation_pct == pytest.approx(0.0026, rel=0.01)
+
+
+def test_a_sampling_too_coarse_to_resolve_the_path_is_refused(capsys):
+    """Three points of Watt's linkage all but miss its deviation (0.26 um against 9.4 um):
+    refused, naming both bands, where the default sampling is accepted."""
+    assert main(["linkage", "trace", "watt", "--points", "3"]) == 2
+    assert "do not resolve the path" in capsys.readouterr().err
+    assert main(["linkage", "trace", "watt", "--json"]) == 0
