@@ -16,6 +16,7 @@ import datetime
 import hashlib
 import json
 import math
+import os
 import sqlite3
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -41,6 +42,8 @@ CREATE TABLE IF NOT EXISTS cases (
 
 
 STATUSES = ("ok", "failed", "error")
+COLUMNS = ("key", "mechanism", "params", "options", "status", "metrics", "error",
+           "wall_time_s", "dofs", "worker", "flexfem_version", "finished_at")
 KEY_SCHEMA = 2  # in every case key: 2 = options normalised to their declared types first
 
 
@@ -138,7 +141,10 @@ class ResultStore:
             raise ValueError(f"{self.path}: an empty file, not a flexfem result store; delete it "
                              "(or choose another --out) to start a new store")
         self.path.parent.mkdir(parents=True, exist_ok=True)
-        self._db = sqlite3.connect(self.path, timeout=30.0)
+        try:
+            self._db = sqlite3.connect(self.path, timeout=30.0)
+        except sqlite3.DatabaseError as error:
+            raise self._unreadable(error) from None
         try:
             self._db.execute("PRAGMA journal_mode=WAL")
             # NORMAL in WAL mode survives a process crash (not a power cut), keeps commits fast
@@ -146,13 +152,39 @@ class ResultStore:
             self._migrate()
             self._db.execute(SCHEMA)
             self._db.commit()
+            self._check_columns()
         except sqlite3.DatabaseError as error:
             self._db.close()
             raise self._unreadable(error) from None
+        except ValueError:
+            self._db.close()
+            raise
+
+    def _read_only(self) -> bool:
+        folder = self.path.parent
+        return not (os.access(folder, os.W_OK) and (not self.path.exists()
+                                                     or os.access(self.path, os.W_OK)))
 
     def _unreadable(self, error) -> ValueError:
+        text = str(error)
+        if self._read_only() or "readonly" in text or "read-only" in text:
+            return ValueError(f"{self.path}: the store (or its folder) is read-only ({error}); "
+                              "its results are kept: make the folder writable, or copy the "
+                              "store to a writable folder and give that with --out")
         return ValueError(f"{self.path}: not a readable flexfem result store ({error}); move it "
                           "aside or delete it and run again: its cases will be computed anew")
+
+    def _check_columns(self) -> None:
+        """A table whose columns were altered (a column dropped, renamed or added) is refused by
+        name, before any row is read."""
+        found = tuple(r[1] for r in self._db.execute("PRAGMA table_info(cases)"))
+        if found != COLUMNS:
+            missing = [c for c in COLUMNS if c not in found]
+            extra = [c for c in found if c not in COLUMNS]
+            raise ValueError(f"{self.path}: its table 'cases' was altered (missing columns: "
+                             f"{missing or 'none'}; unknown: {extra or 'none'}); a flexfem store "
+                             f"has {', '.join(COLUMNS)}. Move it aside or delete it and run "
+                             "again: its cases will be computed anew")
 
     def _migrate(self) -> None:
         """A store from before the "error" status: rebuild its table with the new CHECK."""
@@ -203,9 +235,13 @@ class ResultStore:
 
 def _case_from_row(r, path) -> CaseResult:
     try:
+        params, options = json.loads(r[2]), json.loads(r[3])
+        for name, value in (("params", params), ("options", options)):
+            if not isinstance(value, dict):
+                raise TypeError(f"{name} = {value!r} is not a table")
         metrics = {k: (math.nan if v is None else v) for k, v in json.loads(r[5]).items()}
-        return CaseResult(key=r[0], mechanism=r[1], params=json.loads(r[2]),
-                          options=json.loads(r[3]), status=r[4], metrics=metrics, error=r[6],
+        return CaseResult(key=r[0], mechanism=r[1], params=params,
+                          options=options, status=r[4], metrics=metrics, error=r[6],
                           wall_time_s=r[7], dofs=r[8], worker=r[9], flexfem_version=r[10],
                           finished_at=r[11])
     except (TypeError, ValueError, AttributeError) as error:  # JSONDecodeError is a ValueError

@@ -40,6 +40,8 @@ STUDY_KEYS = {"mechanism", "name", "base", "options", "grid", "cases", "sample",
 SAMPLE_KEYS = {"method", "n", "seed", "ranges"}
 PLOT_KEYS = {"metric", "parameter", "overlay"}
 MAX_CASES = 100_000  # designs a study may expand to unless run_study(max_cases=...) says more
+MAX_KEYS = 1_000  # names a study's base, options, grid or sample ranges may hold: a mechanism
+#                   has tens of parameters; more is a generated file gone wrong
 
 
 def _check_keys(table: dict, allowed: set, where: str) -> None:
@@ -166,7 +168,11 @@ def study_from_dict(data: dict) -> Study:
     if "mechanism" not in data:
         raise ValueError("missing key mechanism (a registered name or 'module:function')")
     for key in ("base", "options", "grid"):
-        _check_keys(data.get(key, {}), set(data.get(key, {})), key)
+        table = data.get(key, {})
+        if isinstance(table, dict) and len(table) > MAX_KEYS:
+            raise ValueError(f"[{key}] has {len(table):,} entries; a study names at most "
+                             f"{MAX_KEYS:,} parameters (a mechanism has tens)")
+        _check_keys(table, set(table), key)
     sample = None
     if "sample" in data:
         table = data["sample"]

@@ -169,3 +169,10 @@ def test_a_dbma_study_with_dim_2_0_runs_and_is_the_case_of_dim_2(tmp_path):
     again = run_study(Study("dbma", options={"dim": 2, "size_factor": 4.0}), store, workers=1,
                       progress=False)
     assert (again.computed, again.reused) == (0, 1)
+
+
+def test_a_study_with_a_million_base_keys_is_refused_by_its_size():
+    from flexfem.studies.engine.sweep import study_from_dict
+
+    with pytest.raises(ValueError, match=r"\[base\] has 1,000,000 entries"):
+        study_from_dict({"mechanism": "toy", "base": {f"p{i}": 1.0 for i in range(10**6)}})
