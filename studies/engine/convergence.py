@@ -16,6 +16,7 @@ levels (coarse c, medium m, fine f; ratios r_cm = h_c/h_m, r_mf = h_m/h_f):
 - the coarsest level whose value is within a relative tolerance of f_ext.
 """
 import math
+import sys
 import time
 from dataclasses import asdict, dataclass
 from pathlib import Path
@@ -77,6 +78,11 @@ def richardson_extrapolate(f_medium: float, f_fine: float, r_mf: float, p: float
     return (r_mf**p * f_fine - f_medium) / (r_mf**p - 1)
 
 
+def _describe(options: dict) -> str:
+    return ", ".join(f"{k} {v:g}" if isinstance(v, float) else f"{k} {v}"
+                     for k, v in options.items())
+
+
 def grid_convergence_index(f_medium: float, f_fine: float, r_mf: float, p: float) -> float:
     """Relative fine-grid convergence index 1.25 |(f_f - f_m)/f_f| / (r^p - 1) (eq. 6)."""
     return SAFETY_FACTOR * abs((f_fine - f_medium) / f_fine) / (r_mf**p - 1)
@@ -134,20 +140,29 @@ def _mesh_sizes(outputs: list, key: str | None, dim: int) -> tuple[str, list]:
 
 
 def converge(evaluate, metric: str, levels: list, mesh_size_key: str | None = None,
-             params: dict | None = None, tol: float | None = None, dim: int = 2) -> ConvergenceResult:
+             params: dict | None = None, tol: float | None = None, dim: int = 2,
+             progress=None) -> ConvergenceResult:
     """Evaluate ``metric`` at each level (evaluate options, coarse to fine) and estimate its
     converged value. ``evaluate``: ``evaluate(params, **options) -> metrics``; ``params``:
     the design (default: the mechanism's); ``mesh_size_key``: "h" or "dofs" (default: "h" when
-    returned); ``dim``: the dimension relating dofs to h; ``tol``: relative tolerance."""
+    returned); ``dim``: the dimension relating dofs to h; ``tol``: relative tolerance;
+    ``progress``: a stream that gets a line per level as it completes (None: stderr when it is
+    a terminal)."""
     if len(levels) < 3:
         raise ValueError(f"levels has {len(levels)} entries; the observed order needs >= 3")
     if tol is not None:
         tol = parse_tolerance(tol)
     outputs, times = [], []
-    for options in levels:
+    stream = progress if progress is not None else (sys.stderr if sys.stderr.isatty() else None)
+    for i, options in enumerate(levels):
         start = time.perf_counter()
         outputs.append(evaluate(dict(params or {}), **options))
         times.append(time.perf_counter() - start)
+        if stream is not None:
+            out = outputs[-1]
+            print(f"level {i + 1}/{len(levels)} ({_describe(options)}): "
+                  f"{out.get('dofs', '?')} DOFs, {metric} = {out.get(metric, '?')}, "
+                  f"{times[-1]:.1f} s", file=stream, flush=True)
     if any(metric not in o for o in outputs):
         raise ValueError(f"metric = {metric!r} is not returned; returned: {sorted(outputs[0])}")
     key, sizes = _mesh_sizes(outputs, mesh_size_key, dim)

@@ -54,6 +54,14 @@ def build_model(spec: ModelSpec, size_factor: float = 1.0, max_dofs: int | None 
     return Model(mesh, spec.material, formulation(spec), order=spec.mesh.order)
 
 
+def _solver(spec: ModelSpec) -> str:
+    """A model file's solver: "auto" is the direct one. AMG-CG, which "auto" picks for the
+    largest built-in meshes, has not been shown to converge on any thin leaf a user may draw
+    (docs/performance.md records it failing on a 1 M-DOF 2-D case); it runs only when the file
+    asks for it ([analysis] solver = "amg"), and then under its residual check."""
+    return "direct" if spec.analysis.solver == "auto" else spec.analysis.solver
+
+
 def _in_context(spec: ModelSpec, error: ValueError) -> ValueError:
     """fem errors prefixed by the model file (their own type kept)."""
     return type(error)(f"{spec.source}: {error}")
@@ -76,7 +84,7 @@ def analyze_model(spec: ModelSpec, size_factor: float = 1.0, model: str = "conti
     supports, loads = supports_and_loads(spec)
     try:
         model = build_model(spec, size_factor, max_dofs)
-        result = solve_static(model, supports, loads, solver=spec.analysis.solver)
+        result = solve_static(model, supports, loads, solver=_solver(spec))
     except ValueError as error:
         raise _in_context(spec, error) from None
     groups = _groups(spec)

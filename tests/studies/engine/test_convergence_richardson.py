@@ -169,3 +169,16 @@ def test_levels_that_agree_within_noise_are_converged_not_nan(capsys):
     text = summarize_convergence({"mechanism": "noise", **result.to_dict()})
     assert "converged within" in text and "order not measurable" in text and "nan" not in text
     assert "coarsest level within 0.5 %: 0 (h 1)" in text
+
+
+def test_a_progress_line_per_level():
+    import io
+
+    from flexfem.studies.engine.convergence import converge, default_levels
+    from flexfem.studies.mechanisms import get_evaluator
+
+    stream = io.StringIO()
+    converge(get_evaluator("toy"), "tip_deflection", default_levels(3), progress=stream)
+    lines = stream.getvalue().splitlines()
+    assert [line.split(" (")[0] for line in lines] == ["level 1/3", "level 2/3", "level 3/3"]
+    assert all("DOFs, tip_deflection = " in line for line in lines)
