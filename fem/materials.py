@@ -12,7 +12,9 @@ class Material:
 
     name : label; E : Young's modulus (Pa); nu : Poisson's ratio (-); rho : density (kg/m^3);
     yield_strength : stress at which the design fails (Pa; fracture strength for brittle
-    materials); source : where the values come from.
+    materials); source : where the values come from; ultimate_strength (Pa, math.inf when
+    unknown); fatigue_strength : the fully reversed stress amplitude survived for
+    fatigue_cycles cycles (Pa; None: no fatigue data); fatigue_source : where those come from.
     """
 
     name: str
@@ -21,6 +23,10 @@ class Material:
     rho: float
     yield_strength: float = math.inf
     source: str = "user-defined"
+    ultimate_strength: float = math.inf
+    fatigue_strength: float | None = None
+    fatigue_cycles: float | None = None
+    fatigue_source: str = ""
 
     def __post_init__(self):
         _require(self, "E", lambda v: v > 0, "> 0 (Pa)")
@@ -30,6 +36,15 @@ class Material:
             raise ValueError(f"material {self.name!r}: yield_strength = {self.yield_strength!r} "
                              "must be > 0 (Pa; math.inf for none)")
         object.__setattr__(self, "yield_strength", float(self.yield_strength))
+        if not (_is_number(self.ultimate_strength) and self.ultimate_strength > 0):
+            raise ValueError(f"material {self.name!r}: ultimate_strength = "
+                             f"{self.ultimate_strength!r} must be > 0 (Pa; math.inf for none)")
+        if (self.fatigue_strength is None) != (self.fatigue_cycles is None):
+            raise ValueError(f"material {self.name!r}: give fatigue_strength and fatigue_cycles "
+                             "together (or neither)")
+        if self.fatigue_strength is not None:
+            _require(self, "fatigue_strength", lambda v: v > 0, "> 0 (Pa)")
+            _require(self, "fatigue_cycles", lambda v: v >= 1, ">= 1")
 
     @property
     def lame(self) -> tuple[float, float]:
@@ -40,7 +55,10 @@ class Material:
 
     def as_dict(self) -> dict:
         return {"name": self.name, "E": self.E, "nu": self.nu, "rho": self.rho,
-                "yield_strength": self.yield_strength}
+                "yield_strength": self.yield_strength,
+                "ultimate_strength": self.ultimate_strength,
+                "fatigue_strength": self.fatigue_strength,
+                "fatigue_cycles": self.fatigue_cycles}
 
 
 def _is_number(value) -> bool:

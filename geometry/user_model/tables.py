@@ -15,7 +15,8 @@ SOLVERS = ("auto", "direct", "amg")
 #: What solids have (elastomers to diamond, aerogels to osmium): a model file's value outside
 #: is a units mistake (MPa for Pa, g/cm^3 for kg/m^3) or overflows the solve.
 PHYSICAL = {"E": (1e3, 1e13, "Pa"), "rho": (1.0, 1e5, "kg/m^3"),
-            "yield_strength": (1e3, 1e11, "Pa")}
+            "yield_strength": (1e3, 1e11, "Pa"), "ultimate_strength": (1e3, 1e11, "Pa"),
+            "fatigue_strength": (1e3, 1e11, "Pa"), "fatigue_cycles": (1.0, 1e12, "cycles")}
 #: Lengths a flexure mechanism has (m): a thinner part or a larger one is a units mistake.
 LENGTHS = (1e-6, 10.0)
 
@@ -116,7 +117,9 @@ class Analysis:
     (large-deflection) solve (None: linear only); solver: 'auto', 'direct' or 'amg';
     compliance: a boundary group whose rigid-face compliance matrix is reported (None: none);
     buckling: number of linear buckling factors of the loads (None: none); harmonic: a
-    Harmonic (None: none)."""
+    Harmonic (None: none); the stroke limits' safety_factor (>= 1), mean_stroke (m, the
+    offset or preload the stroke cycles about) and fatigue criterion ('goodman' or
+    'soderberg'; studies/user_model/stroke.py)."""
 
     modes: int | None = None
     steps: int | None = None
@@ -124,6 +127,9 @@ class Analysis:
     compliance: str | None = None
     buckling: int | None = None
     harmonic: Harmonic | None = None
+    safety_factor: float = 1.0
+    mean_stroke: float = 0.0
+    fatigue: str = "goodman"
 
 
 def is_number(value) -> bool:
@@ -153,8 +159,10 @@ def positive(raw: dict, key: str, loc: Locator, table, index: int = 0, what=None
 
 def parse_material(raw, loc: Locator) -> Material:
     """A library material by ``name`` (keys given override it) or E, nu, rho
-    (yield_strength optional), Pa and kg/m^3."""
-    keys = ("name", "E", "nu", "rho", "yield_strength")
+    (yield_strength, ultimate_strength, fatigue_strength with fatigue_cycles optional), Pa
+    and kg/m^3."""
+    keys = ("name", "E", "nu", "rho", "yield_strength", "ultimate_strength",
+            "fatigue_strength", "fatigue_cycles")
     raw = dict(check_keys(raw, keys, loc, "material"))
     name = raw.pop("name", None)
     if name is not None and not isinstance(name, str):
@@ -166,6 +174,8 @@ def parse_material(raw, loc: Locator) -> Material:
         base = material(name).as_dict()
         values = {**{k: base[k] for k in keys[1:]}, **raw}
         source = material(name).source
+        values["fatigue_source"] = (material(name).fatigue_source if not set(raw) & {
+            "fatigue_strength", "fatigue_cycles"} else f"model file {loc.path}")
     else:
         missing = [k for k in ("E", "nu", "rho") if k not in raw]
         if missing:
@@ -175,7 +185,9 @@ def parse_material(raw, loc: Locator) -> Material:
                    f"[material] needs a library name ({known}) or E, nu and rho (missing: "
                    f"{', '.join(missing)})")
             raise loc.error(msg, "material", "name" if name is not None else None)
-        values, source = raw, f"model file {loc.path}"
+        values, source = dict(raw), f"model file {loc.path}"
+        if "fatigue_strength" in raw:
+            values["fatigue_source"] = source
     for key, (low, high, unit) in PHYSICAL.items():
         if key in raw and not low <= values[key] <= high:
             raise loc.error(f"[material] {key} = {values[key]!r} is outside what solids have "
@@ -331,9 +343,20 @@ def parse_harmonic(raw, loc: Locator) -> Harmonic:
 
 
 def parse_analysis(raw, loc: Locator) -> Analysis:
-    raw = check_keys(raw, ("modes", "steps", "solver", "compliance", "buckling", "harmonic"),
-                     loc, "analysis")
+    raw = check_keys(raw, ("modes", "steps", "solver", "compliance", "buckling", "harmonic",
+                           "safety_factor", "mean_stroke", "fatigue"), loc, "analysis")
     values = {}
+    if "safety_factor" in raw and not (is_number(raw["safety_factor"])
+                                       and 1 <= raw["safety_factor"] <= 100):
+        raise loc.error(f"[analysis] safety_factor = {raw['safety_factor']!r} must be a number "
+                        "from 1 to 100", "analysis", "safety_factor")
+    if "mean_stroke" in raw and not (is_number(raw["mean_stroke"])
+                                     and abs(raw["mean_stroke"]) <= LENGTHS[1]):
+        raise loc.error(f"[analysis] mean_stroke = {raw['mean_stroke']!r} must be a length "
+                        "(m)", "analysis", "mean_stroke")
+    if raw.get("fatigue", "goodman") not in ("goodman", "soderberg"):
+        raise loc.error(f"[analysis] fatigue = {raw['fatigue']!r}; choose goodman or soderberg",
+                        "analysis", "fatigue")
     if "compliance" in raw:
         if not isinstance(raw["compliance"], str):
             raise loc.error(f"[analysis] compliance = {raw['compliance']!r} must be the name "
@@ -353,4 +376,6 @@ def parse_analysis(raw, loc: Locator) -> Analysis:
         raise loc.error(f"[analysis] solver = {solver!r}; choose one of {', '.join(SOLVERS)}",
                         "analysis", "solver")
     return Analysis(values.get("modes"), values.get("steps"), solver,
-                    values.get("compliance"), values.get("buckling"), values.get("harmonic"))
+                    values.get("compliance"), values.get("buckling"), values.get("harmonic"),
+                    float(raw.get("safety_factor", 1.0)), float(raw.get("mean_stroke", 0.0)),
+                    raw.get("fatigue", "goodman"))

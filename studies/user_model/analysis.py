@@ -11,6 +11,7 @@ from ...fem import (Fixed, Force, Model, PlaneStrain, PlaneStress, Prescribed, S
 from ...geometry.user_model import ModelSpec, load_spec, mesh_geometry
 from .beam_analysis import analyze_beam_model
 from .outputs import check_finite, groups_of as _groups, stiffness
+from .stroke import stroke_limits
 
 MODELS = ("continuum", "beam")
 
@@ -80,7 +81,9 @@ def analyze_model(spec: ModelSpec, size_factor: float = 1.0, model: str = "conti
     if model not in MODELS:
         raise ValueError(f"{spec.source}: model = {model!r} must be one of {MODELS}")
     if model == "beam":
-        return check_finite(analyze_beam_model(spec), spec.source)
+        out = analyze_beam_model(spec)
+        out.update(stroke_limits(spec, out))
+        return check_finite(out, spec.source)
     supports, loads = supports_and_loads(spec)
     try:
         model = build_model(spec, size_factor, max_dofs)
@@ -111,6 +114,8 @@ def analyze_model(spec: ModelSpec, size_factor: float = 1.0, model: str = "conti
         out.update(_precision(spec, model, supports, loads))
     except ValueError as error:
         raise _in_context(spec, error) from None
+    nominal = (lambda: analyze_beam_model(spec)) if spec.beams is not None else None
+    out.update(stroke_limits(spec, out, nominal))
     return check_finite(out, spec.source)
 
 

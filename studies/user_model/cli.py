@@ -53,6 +53,8 @@ def summarize(result: dict) -> str:
     for group, by_axis in result["stiffness"].items():
         for axis, k in by_axis.items():
             lines.append(f"stiffness of {group!r} along {axis}: {k:.4g} N/m")
+    if result.get("stroke_limit_yield") is not None or "stroke_group" in result:
+        lines += _stroke_lines(result)
     if "frequencies_hz" in result:
         lines.append("natural frequencies: " + ", ".join(f"{f:.4g}" for f in
                                                           result["frequencies_hz"]) + " Hz")
@@ -76,6 +78,26 @@ def summarize(result: dict) -> str:
             lines.append(f"large deflection ({nl['steps']} steps), mean displacement of "
                          f"{group!r}: {_vector(u, 'm')}")
     return "\n".join(lines)
+
+
+def _stroke_lines(result: dict) -> list[str]:
+    """The stroke limits in a designer's words."""
+    group, n = result["stroke_group"], result["safety_factor"]
+    lines = []
+    if result["stroke_limit_yield"] is not None:
+        lines.append(f"stroke of {group!r} to yield (safety factor {n:g}): "
+                     f"{result['stroke_limit_yield'] * 1e3:.4g} mm")
+    if result["stroke_limit_fatigue"] is not None:
+        mean = (f" about a mean of {result['mean_stroke'] * 1e3:.4g} mm"
+                if result["mean_stroke"] else "")
+        lines.append(f"stroke amplitude of {group!r} for {result['fatigue_cycles']:.3g} cycles "
+                     f"({result['fatigue_criterion']}{mean}): "
+                     f"{result['stroke_limit_fatigue'] * 1e3:.4g} mm")
+    else:
+        lines.append(f"no fatigue-limited stroke: the material has no fatigue data")
+    lines.append(f"  sized by the {result['stroke_stress_basis']}, at "
+                 f"{_vector(result['stroke_limit_where'], 'm')}")
+    return lines
 
 
 def register(subparsers):
