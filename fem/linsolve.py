@@ -22,8 +22,9 @@ from . import memory
 from .restriction import Restriction  # noqa: F401 (part of this module's interface)
 from .symmetric import symmetric_from_upper
 
-# Above these sizes (free DOFs) "auto" uses AMG-CG: measured crossover on 2 cores, see
-# docs/performance.md. Direct factorization fill grows much faster in 3-D.
+# Above these sizes (free DOFs) "auto" uses AMG-CG, where the direct factor's memory would
+# crowd a 2-core machine (docs/performance.md, "AMG-CG for the largest meshes"); direct
+# factorization fill grows much faster in 3-D.
 AMG_THRESHOLD = {2: 2_000_000, 3: 400_000}
 
 # matrix kinds -> PARDISO matrix type: real SPD (Cholesky on the upper triangle), real

@@ -83,6 +83,10 @@ def _describe(options: dict) -> str:
                      for k, v in options.items())
 
 
+#: Below this observed order a monotone sequence is not extrapolated: it is called divergent.
+MIN_ORDER = 0.5
+
+
 def grid_convergence_index(f_medium: float, f_fine: float, r_mf: float, p: float) -> float:
     """Relative fine-grid convergence index 1.25 |(f_f - f_m)/f_f| / (r^p - 1) (eq. 6)."""
     return SAFETY_FACTOR * abs((f_fine - f_medium) / f_fine) / (r_mf**p - 1)
@@ -172,12 +176,17 @@ def converge(evaluate, metric: str, levels: list, mesh_size_key: str | None = No
     f_c, f_m, f_f = values[-3:]
     r_cm, r_mf = sizes[-3] / sizes[-2], sizes[-2] / sizes[-1]
     p = observed_order(f_c, f_m, f_f, r_cm, r_mf)
+    steps = [b - a for a, b in zip(values, values[1:]) if b != a]
+    one_way = all(s * steps[0] > 0 for s in steps)
     if f_f == f_m:
         behaviour, extrapolated, error, gci = "exact", f_f, 0.0, 0.0
-    elif math.isnan(p) or (f_m - f_c) * (f_f - f_m) > 0 and abs(f_f - f_m) >= abs(f_m - f_c):
+    elif math.isnan(p) or (f_m - f_c) * (f_f - f_m) > 0 and (
+            abs(f_f - f_m) >= abs(f_m - f_c) or p < MIN_ORDER):
+        # the changes do not shrink, or so slowly that no extrapolation can be trusted: a
+        # singular quantity (a stress at a sharp re-entrant corner grows as h^-0.46)
         behaviour, extrapolated, error, gci = "divergent", f_f, math.nan, math.nan
     else:
-        behaviour = "monotone" if (f_m - f_c) * (f_f - f_m) > 0 else "oscillatory"
+        behaviour = "monotone" if one_way else "oscillatory"
         extrapolated = richardson_extrapolate(f_m, f_f, r_mf, p)
         error = SAFETY_FACTOR * abs(f_f - f_m) / (r_mf**p - 1)
         gci = grid_convergence_index(f_m, f_f, r_mf, p)

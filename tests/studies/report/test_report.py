@@ -206,7 +206,7 @@ def test_quick_report_prints_every_number_it_printed_before(quick_report):
     """Every number of the quick report's summary.json before the mechanism contract
     reshaped the code (tests/data/quick_report_before.json) is printed again, within solver
     round-off, except the relative differences that are no longer printed. Round-off: the
-    blocked assembly and PARDISO's block format (docs/performance.md, fifth run) moved the
+    blocked assembly and PARDISO's block format (docs/performance.md, "The direct solver") moved the
     eight-bar's k_x by 1.5e-6 (its K has a condition number ~1e12) and a pivot's stiffness
     error, a difference of two close stiffnesses, by 1.5e-9 absolute."""
     _, report = quick_report
