@@ -182,3 +182,30 @@ def test_a_progress_line_per_level():
     lines = stream.getvalue().splitlines()
     assert [line.split(" (")[0] for line in lines] == ["level 1/3", "level 2/3", "level 3/3"]
     assert all("DOFs, tip_deflection = " in line for line in lines)
+
+
+def _synthetic(values):
+    """An evaluate returning ``values`` level by level, h halving from 1."""
+    from flexfem.studies.engine.convergence import converge, default_levels
+
+    def evaluate(params, size_factor):
+        return {"h": size_factor, "f": values[round(-math.log2(size_factor))]}
+
+    return converge(evaluate, "f", default_levels(len(values)))
+
+
+def test_a_sequence_that_goes_down_and_up_is_not_monotone():
+    result = _synthetic([10.0, 9.0, 9.5, 9.6])  # the last three alone look monotone
+    assert result.behaviour == "oscillatory"
+
+
+def test_a_singular_stress_is_not_extrapolated():
+    """A stress at a sharp re-entrant corner grows as h^-0.46: the changes grow and no order or
+    extrapolation is reported; a quantity converging at order 2 is extrapolated."""
+    singular = _synthetic([2.0 ** (0.455 * k) for k in range(4)])
+    assert singular.behaviour == "divergent" and math.isnan(singular.error_estimate)
+    slow = _synthetic([1 + 2.0 ** (-0.3 * k) for k in range(4)])  # order 0.3
+    assert slow.behaviour == "divergent"
+    smooth = _synthetic([1 + 4.0 ** -k for k in range(4)])
+    assert smooth.behaviour == "monotone" and smooth.order == pytest.approx(2.0)
+    assert smooth.extrapolated == pytest.approx(1.0)
