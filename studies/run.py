@@ -1,5 +1,6 @@
 """Studies of registered mechanisms by name: a study file or a convergence study, its
 mechanism found in the registry (studies/mechanisms.py), run by the engine (studies/engine/)."""
+import json
 import math
 from pathlib import Path
 
@@ -10,7 +11,7 @@ from .engine.convergence import (
     parse_tolerance,
     plot_convergence,
 )
-from .engine.store import export_csv, export_parquet, parquet_available
+from .engine.store import case_key, export_csv, export_parquet, flexfem_version, parquet_available
 from .engine.sweep import Study, plot_metric
 from .mechanisms import (
     check_mechanism,
@@ -76,7 +77,14 @@ def sweep(study, out_dir=None, workers: int | None = None, scheduler: str | None
         path = out / f"{spec.metric}_vs_{spec.parameter}.png"
         figures.append(plot_metric(result.cases, spec.metric, spec.parameter, path, spec.overlay,
                                    units).name)
-    return {"name": study.name, "mechanism": study.mechanism, "out": str(out),
+    extra = {}
+    if study.tolerances is not None:
+        extra["tolerances"] = tolerance_summary(study, result.cases)
+        (out / "tolerances.json").write_text(json.dumps(extra["tolerances"], indent=1))
+        tables.append("tolerances.json")
+        if extra["tolerances"]["metrics"]:
+            figures.append(plot_tolerances(extra["tolerances"], out / "tolerances.png").name)
+    return {**extra, "name": study.name, "mechanism": study.mechanism, "out": str(out),
             "store": str(result.store_path), "executor": result.executor,
             "cases": len(result.cases), "computed": result.computed, "reused": result.reused,
             "failed": len(result.failed), "wall_time_s": result.wall_time_s,
@@ -85,6 +93,50 @@ def sweep(study, out_dir=None, workers: int | None = None, scheduler: str | None
             "failures": [{"params": c.params, "status": c.status, "error": c.error}
                          for c in result.failed],
             "results": [c.to_row() for c in result.cases]}
+
+
+def tolerance_summary(study: Study, cases) -> dict:
+    """The study's tolerance analysis (engine/tolerance.py) from its stored cases: {"n_designs",
+    "failed" (designs without a result: no indices then), "parameters" {name: {nominal,
+    tolerance, distribution}}, "metrics" {metric: spread and Sobol indices}}."""
+    by_key = {c.key: c for c in cases}
+    version = flexfem_version()
+    outputs, failed = [], 0
+    for point in study.tolerances.points():
+        params = {**study.base, **point}
+        case = by_key.get(case_key(study.mechanism, params, study.options, version))
+        if case is None or not case.ok:
+            failed += 1
+        else:
+            outputs.append(case.metrics)
+    parameters = {k: vars(v) for k, v in study.tolerances.parameters.items()}
+    metrics = study.tolerances.analyze(outputs) if not failed else {}
+    return {"n_designs": len(outputs) + failed, "failed": failed, "parameters": parameters,
+            "metrics": metrics}
+
+
+def plot_tolerances(summary: dict, path) -> Path:
+    """Bar chart of each metric's total-order Sobol indices (what its scatter comes from)."""
+    from .report.figures import pyplot
+
+    plt = pyplot()
+    metrics = list(summary["metrics"])
+    names = list(summary["parameters"])
+    fig, ax = plt.subplots(figsize=(6.4, 0.5 + 0.45 * len(metrics) * len(names)))
+    labels, values = [], []
+    for metric in metrics:
+        for name in names:
+            labels.append(f"{metric}: {name}")
+            values.append(summary["metrics"][metric]["total_order"][name])
+    ax.barh(range(len(values)), values, color="tab:blue")
+    ax.set_yticks(range(len(values)), labels)
+    ax.invert_yaxis()
+    ax.set_xlabel("total-order Sobol index (share of the output's variance)")
+    ax.set_xlim(0, max(1.0, max(values, default=1.0)))
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+    return Path(path)
 
 
 def run_convergence(mechanism: str, metric: str, tol="0.5%", n_levels: int = 4, ratio: float = 2.0,

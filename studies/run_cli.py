@@ -61,6 +61,14 @@ def summarize_sweep(result: dict) -> str:
                      " they are computed again by the next run")
     lines += [f"  {f.get('status', 'failed')} {f['params']}: {f['error']}"
               for f in result["failures"][:10]]
+    for metric, m in result.get("tolerances", {}).get("metrics", {}).items():
+        total = m["total_order"][m["dominant"]]
+        lines.append(f"  {metric}: {m['mean']:.4g} +- {3 * m['std']:.3g} (3 sigma); the "
+                     f"tolerance that matters most: {m['dominant']} (total-order index "
+                     f"{total:.2f})")
+    if result.get("tolerances", {}).get("failed"):
+        lines.append(f"  {result['tolerances']['failed']} toleranced design(s) failed: no "
+                     "Sobol indices until every design has a result")
     files = result["tables"] + result["figures"]
     lines.append(f"results in {result['out']}: {', '.join(files)}")
     return "\n".join(lines)

@@ -25,6 +25,7 @@ import tomllib
 from ..report.figures import axis_label, legend_outside, pyplot
 from .executors import make_executor
 from .progress import Progress
+from .tolerance import Tolerances, tolerances_from_dict
 from .store import (
     CaseResult,
     ResultStore,
@@ -36,7 +37,8 @@ from .units import unit_of
 from .validate import check_value, normalise_options
 
 SAMPLE_METHODS = ("lhs", "sobol")
-STUDY_KEYS = {"mechanism", "name", "base", "options", "grid", "cases", "sample", "plots"}
+STUDY_KEYS = {"mechanism", "name", "base", "options", "grid", "cases", "sample", "plots",
+              "tolerances"}
 SAMPLE_KEYS = {"method", "n", "seed", "ranges"}
 PLOT_KEYS = {"metric", "parameter", "overlay"}
 MAX_CASES = 100_000  # designs a study may expand to unless run_study(max_cases=...) says more
@@ -121,6 +123,7 @@ class Study:
     cases: tuple = ()
     sample: Sample | None = None
     plots: tuple = ()
+    tolerances: Tolerances | None = None
 
     def __post_init__(self):
         if not isinstance(self.mechanism, str) or not self.mechanism.strip():
@@ -188,10 +191,11 @@ def study_from_dict(data: dict) -> Study:
         if "metric" not in table or "parameter" not in table:
             raise ValueError(f"plots[{i}] needs both metric and parameter")
         plots.append(PlotSpec(table["metric"], table["parameter"], tuple(table.get("overlay", ()))))
+    tolerances = (tolerances_from_dict(data["tolerances"]) if "tolerances" in data else None)
     return Study(mechanism=data["mechanism"], name=data.get("name", "study"),
                  base=dict(data.get("base", {})), options=dict(data.get("options", {})),
                  grid=dict(data.get("grid", {})), cases=tuple(data.get("cases", ())),
-                 sample=sample, plots=tuple(plots))
+                 sample=sample, plots=tuple(plots), tolerances=tolerances)
 
 
 def read_study_file(path) -> dict:
@@ -222,6 +226,8 @@ def design_points(study: Study) -> list[dict]:
     varied += [dict(case) for case in study.cases]
     if study.sample is not None:
         varied += study.sample.points()
+    if study.tolerances is not None:
+        varied += study.tolerances.points()
     return [{**study.base, **point} for point in varied] or [dict(study.base)]
 
 

@@ -82,8 +82,10 @@ def summarize(result: dict) -> str:
 
 def _stroke_lines(result: dict) -> list[str]:
     """The stroke limits in a designer's words."""
-    group, n = result["stroke_group"], result["safety_factor"]
+    group, n = result["stroke_group"], result.get("safety_factor", 1.0)
     lines = []
+    if "stroke_limit_where" not in result:  # no stress to size it by
+        return [f"no stroke limit of {group!r}: sized by {result['stroke_stress_basis']}"]
     if result["stroke_limit_yield"] is not None:
         lines.append(f"stroke of {group!r} to yield (safety factor {n:g}): "
                      f"{result['stroke_limit_yield'] * 1e3:.4g} mm")

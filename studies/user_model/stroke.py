@@ -19,9 +19,12 @@ from ...geometry.mechanism.description import Leaf
 
 
 def _single_force(spec):
+    """The one force load of a model whose supports hold still, or None."""
     forces = [load for load in spec.loads if load.kind == "force"]
     if len(forces) != 1 or len(spec.loads) != 1 or not np.any(forces[0].vector):
         return None
+    if any(s.components and any(v != 0 for v in s.components.values()) for s in spec.supports):
+        return None  # a moving support strains the flexure too: no stroke of the force alone
     return forces[0]
 
 
@@ -55,8 +58,14 @@ def stroke_limits(spec, result: dict, nominal=None) -> dict:
         basis = "nominal beam stress |N|/A + |M| c/I (no stress concentration)"
     elif spec.mechanism is not None:
         leaf = sharp_root_near(spec.mechanism, where)
-        if leaf is not None and nominal is not None:
-            beam = nominal()
+        try:
+            beam = nominal() if leaf is not None and nominal is not None else None
+        except ValueError as error:  # the beam model cannot stand in: say so, size by nothing
+            return {"stroke_group": load.group, "stroke_stress_basis": "none: the continuum's "
+                    f"peak sits at the square root of flexure {leaf + 1} (singular) and the "
+                    f"beam model cannot give the nominal stress ({error})",
+                    "stroke_limit_yield": None, "stroke_limit_fatigue": None}
+        if beam is not None:
             stroke = float(np.asarray(beam["mean_displacement"][load.group]) @ direction)
             stress, where = beam["max_von_mises"], beam["max_von_mises_location"]
             basis = (f"nominal beam stress: the continuum's peak sits at the square root of "

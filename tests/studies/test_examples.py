@@ -4,10 +4,11 @@ from pathlib import Path
 
 import pytest
 from flexfem.studies.dbma.analysis import params_from_dict
+from flexfem.studies.eightbar.analysis import params_from_dict as eightbar_params
 from flexfem.studies.engine.sweep import design_points, load_study
 
 EXAMPLES = sorted((Path(__file__).resolve().parents[2] / "examples").glob("*.toml"))
-DESIGN_CHECKS = {"dbma": params_from_dict}
+DESIGN_CHECKS = {"dbma": params_from_dict, "eightbar": eightbar_params}
 
 
 @pytest.mark.parametrize("path", EXAMPLES, ids=lambda p: p.name)
@@ -39,3 +40,21 @@ def test_the_dbma_sweep_runs_and_follows_the_paper(tmp_path):
                       (0.4e-3, 0.6e-3, 0.8e-3, 1.0e-3))
         assert [R for _, R in line] == sorted((R for _, R in line), reverse=True)
     assert all(r["force_N"] == 100.0 for r in rows)
+
+
+@pytest.mark.slow
+def test_the_eightbar_tolerance_study_names_the_tolerance_that_matters(tmp_path):
+    """The example with a smaller Monte Carlo (n = 16: 80 designs): every design runs, and the
+    thin flexures' width drives the drive stiffness (k_x ~ sum of w^3 over the flexures)."""
+    from dataclasses import replace
+
+    from flexfem.studies.run import sweep
+    path = next(p for p in EXAMPLES if p.name == "eightbar_tolerances.toml")
+    study = load_study(path)
+    study = replace(study, tolerances=replace(study.tolerances, n=16))
+    result = sweep(study, tmp_path / "out", workers=2, progress=False)
+    assert result["failed"] == 0 and result["cases"] == 16 * 5
+    metrics = result["tolerances"]["metrics"]
+    assert {"k_x", "f1_hz", "fem_deviation_pct"} <= set(metrics)
+    assert metrics["k_x"]["dominant"] in ("flexure_width", "base_flexure_width")
+    assert metrics["k_x"]["total_order"]["root_fillet_radius"] < 0.2
