@@ -8,7 +8,7 @@ Beam theory of a notch (Paros and Weisbord's integral of the profile) keeps plan
 through a thickness that changes quickly along the hinge, and its end section, which a leaf
 loads across its thickness, carries its load near its middle; the 2-D stress field does
 neither, and the notch is softer than its beam: 2 % at t/R = 0.05, 8 % at 0.2, 29 % at 1 in
-rotation, 12-33 % in extension (docs/beam.md, "Notch hinges: the 2-D patch"). The correction
+rotation, 12-33 % in extension (docs/beam_validation.md, "Notch hinges: the 2-D patch"). The correction
 is computed, not fitted to a mechanism: the hinge with a stub of its end height, as long as
 that height, at each end (the least body it can enter), rigid beyond the stubs, in plane
 stress (flexfem's P2 continuum, ``NECK_ELEMENTS`` triangles across the local thickness, finer

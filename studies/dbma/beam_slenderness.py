@@ -166,7 +166,7 @@ def plot_slenderness(rows: list, path, mechanism_rows: list | None = None) -> di
                 "Bare beam theory is too stiff by ~b / l (bending) and more axially: it leaves "
                 "the band below l/b ~ 20. As built, a sharp-cornered leaf stays in it down to "
                 "l/b ~ 2, a circular notch in bending at every l/b; axially the notch keeps "
-                "part of its junction with blocks much taller than its ends (docs/beam.md, "
+                "part of its junction with blocks much taller than its ends (docs/beam_validation.md, "
                 "\"Notch hinges: the 2-D patch\").")
 
 

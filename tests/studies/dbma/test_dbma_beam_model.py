@@ -1,6 +1,6 @@
 """The DBMA's beam model: its input member's 2-D patch (cut-independent, converged), the
 block model the spatial beam lifts against beam theory's closed form, and the whole model
-against the 2-D continuum on designs other than the paper's (docs/beam.md, "DBMA: the input
+against the 2-D continuum on designs other than the paper's (docs/beam_validation.md, "DBMA: the input
 member's patch")."""
 import dataclasses
 
@@ -92,7 +92,7 @@ OTHER_DESIGNS = [
 @pytest.mark.parametrize("params, layout", OTHER_DESIGNS)
 def test_dbma_beam_model_against_the_continuum(params, layout):
     """R, k_in, k_out and the working frequency within 3 % of the 2-D continuum, the
-    target (measured: within 1.3 %; with the block model k_out was 0-6 % low, docs/beam.md,
+    target (measured: within 1.3 %; with the block model k_out was 0-6 % low, docs/beam_validation.md,
     "DBMA: the input member's patch")."""
     from flexfem.studies.dbma.beam import analyze_dbma_beam
     from flexfem.studies.dbma.beam_report import continuum_metrics
@@ -137,7 +137,7 @@ def test_the_notch_correction_brings_a_notch_between_blocks_into_the_band():
     build it, within 1.5 % (measured +0.5, +0.6 %). Axially the blocks, 1.8 to 5 times
     taller than the notch's ends, take a little more than the root rule gives: 3-7 % stiff
     (measured -6.9 % at l/b = 3, -3.0 % at 10; 9-10.5 % before the root rule was fitted down
-    to H/t = 1.1; docs/beam.md, "Notch hinges: the 2-D patch")."""
+    to H/t = 1.1; docs/beam_validation.md, "Notch hinges: the 2-D patch")."""
     from flexfem.studies.dbma.beam_slenderness import TRUST_LIMIT, slenderness_rows
 
     for row in slenderness_rows((3.0, 10.0), ("circular",)):
