@@ -139,6 +139,56 @@ def plot_tolerances(summary: dict, path) -> Path:
     return Path(path)
 
 
+def run_front(path, out_dir=None, allow_code: bool = False) -> dict:
+    """The Pareto front of a front file (engine/front.py) into ``out_dir`` (default: a folder
+    named after the file): front.json, front.png and the evaluation store."""
+    from .engine.front import front_from_dict, search_front
+
+    path = Path(path)
+    data = engine.read_study_file(path)
+    name = data.pop("name", path.stem)
+    mechanism = data.get("mechanism")
+    if isinstance(mechanism, dict):
+        if set(mechanism) != {"model"}:
+            raise ValueError(f"mechanism = {mechanism!r}: a table must be {{ model = \"FILE.toml\" }}")
+        mechanism = model_mechanism(mechanism["model"], path.parent, allow_code)
+    check_mechanism(mechanism, allow_code=allow_code)
+    front = front_from_dict({**data, "mechanism": mechanism})
+    out = Path(out_dir if out_dir is not None else name)
+    out.mkdir(parents=True, exist_ok=True)
+    result = search_front(front, get_evaluator(mechanism, allow_code=allow_code),
+                          out / "evaluations.sqlite")
+    summary = {"name": name, "mechanism": mechanism, "out": str(out),
+               "objectives": [list(o) for o in front.objectives],
+               "constraints": [list(c) for c in front.constraints], **result}
+    (out / "front.json").write_text(json.dumps(summary, indent=1))
+    summary["figures"] = [plot_front(summary, out / "front.png").name] if result["designs"] else []
+    return summary
+
+
+def plot_front(summary: dict, path) -> Path:
+    """The front in its first two objectives (and the confirming model's, where given)."""
+    from .report.figures import pyplot
+
+    plt = pyplot()
+    (a, _), (b, _) = summary["objectives"][:2]
+    fig, ax = plt.subplots(figsize=(5.6, 4.2))
+    designs = summary["designs"]
+    ax.plot([d["objectives"][a] for d in designs], [d["objectives"][b] for d in designs], "o",
+            label="front (screening model)")
+    confirmed = [d["confirmed"] for d in designs if d.get("confirmed")]
+    if confirmed:
+        ax.plot([c[a] for c in confirmed], [c[b] for c in confirmed], "x",
+                label="confirmed")
+    ax.set_xlabel(a)
+    ax.set_ylabel(b)
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+    return Path(path)
+
+
 def run_convergence(mechanism: str, metric: str, tol="0.5%", n_levels: int = 4, ratio: float = 2.0,
                     params: dict | None = None, out_dir=None, dim: int = 2,
                     start: float | None = None, allow_code: bool = False) -> dict:

@@ -1,7 +1,7 @@
 """``flexfem sweep`` and ``flexfem converge``: parameter and mesh-convergence studies."""
 from .engine.sweep import MAX_CASES
 from .options import count, json_object, tolerance
-from .run import run_convergence, sweep
+from .run import run_convergence, run_front, sweep
 
 
 def register(subparsers):
@@ -38,6 +38,31 @@ def register(subparsers):
                         "its folder")
     c.add_argument("--json", action="store_true", help="print the result as one JSON object")
     c.set_defaults(run=_run_converge, summarize=summarize_convergence)
+    register_front(subparsers)
+
+
+def register_front(subparsers):
+    f = subparsers.add_parser("front", help="Pareto front of a mechanism's design: several "
+                                            "objectives, constraints (NSGA-II, pymoo)")
+    f.add_argument("front", metavar="FRONT.toml", help="the front file (docs/studies.md)")
+    f.add_argument("--out", help="output folder (default: ./<file name>)")
+    f.add_argument("--allow-code", action="store_true",
+                   help="let the file name a Python 'module:function' mechanism")
+    f.add_argument("--json", action="store_true", help="print the result as one JSON object")
+    f.set_defaults(run=lambda a: run_front(a.front, a.out, a.allow_code), summarize=summarize_front)
+
+
+def summarize_front(result: dict) -> str:
+    names = [m for m, _ in result["objectives"]]
+    lines = [f"front {result['name']} ({result['mechanism']}): {len(result['designs'])} designs "
+             f"on the front, {result['evaluations']} evaluations ({result['failed']} failed)"]
+    for d in result["designs"][:20]:
+        values = ", ".join(f"{m} {d['objectives'][m]:.4g}" for m in names)
+        margins = ", ".join(f"{m} {v:+.3g}" for m, v in d["margins"].items())
+        lines.append(f"  {values}" + (f"  (margins: {margins})" if margins else ""))
+    lines.append(f"results in {result['out']}: front.json" + "".join(
+        f", {f}" for f in result.get("figures", [])))
+    return "\n".join(lines)
 
 
 def _run_sweep(args) -> dict:

@@ -183,6 +183,9 @@ def flat_metrics(result: dict) -> dict[str, float]:
     if "compliance" in result:
         for i, row in enumerate(result["compliance"]["matrix"]):
             out[f"compliance_{i}{i}"] = float(row[i])
+    for key in ("stroke_limit_yield", "stroke_limit_fatigue"):
+        if result.get(key) is not None:
+            out[key] = float(result[key])
     if result.get("harmonic", {}).get("resonances_hz"):
         out["harmonic_resonance_hz"] = float(result["harmonic"]["resonances_hz"][0])
     return out
@@ -195,7 +198,8 @@ def evaluate(params: dict | None = None, *, model: Literal["continuum", "beam"] 
     (SI) and ``options`` its other tables ('material.E': 210e9, 'analysis.modes': 3, ...),
     by the continuum FEM or (``model="beam"``) its declared beam model. Keys: dofs, h (m),
     max_von_mises (Pa), mean_displacement_<group>_<axis> (m), reaction_<group>_<axis> (N),
-    stiffness_<group>_<axis> (N/m, single force load), f1_hz, f2_hz, ... (Hz). A path given
+    stiffness_<group>_<axis> (N/m, single force load), f1_hz, f2_hz, ... (Hz),
+    stroke_limit_yield and stroke_limit_fatigue (m, studies/user_model/stroke.py). A path given
     as ``model`` (``evaluate(model="guide.toml")``) is the file, analysed by the continuum.
     ``allow_code``: the file's .geo may run code (geometry/user_model/geo_guard.py)."""
     if file is None and model not in MODELS:

@@ -152,3 +152,21 @@ def test_elliptical_notch_against_the_refined_continuum():
     assert beam == pytest.approx(fine, rel=0.03)
     circular = evaluate({}, file=str(BODIES / "notch.toml"))["compliance_22"]
     assert fine < circular  # the same neck, wider cut-outs: less compliant near the neck
+
+
+@pytest.mark.slow
+def test_the_guide_front_screened_by_the_beam_and_confirmed(tmp_path):
+    """examples/bodies/guide_front.toml: every front design keeps its stroke margin, a softer
+    drive comes with a lower first mode, and the continuum confirms the beam's front within
+    3 % on both objectives."""
+    from flexfem.studies.run import run_front
+
+    result = run_front(BODIES / "guide_front.toml", tmp_path / "out")
+    designs = result["designs"]
+    assert len(designs) >= 5 and all(d["margins"]["stroke_limit_yield"] >= 0 for d in designs)
+    k = [d["objectives"]["stiffness_stage_x"] for d in designs]
+    f = [d["objectives"]["f1_hz"] for d in designs]
+    assert k == sorted(k) and f == sorted(f)
+    for d in designs:
+        for metric, value in d["objectives"].items():
+            assert d["confirmed"][metric] == pytest.approx(value, rel=0.03), metric

@@ -1,0 +1,43 @@
+"""Front searches: NSGA-II (pymoo) finds ZDT1's known front, honours a constraint, and a re-run
+finds every evaluation in its store."""
+import math
+
+import pytest
+from flexfem.studies.cli import main
+from flexfem.studies.run import run_front
+
+pytest.importorskip("pymoo", reason="pymoo is a dependency of front searches")
+
+
+def _front_file(tmp_path, constraint: str = "", generations: int = 60) -> str:
+    path = tmp_path / "zdt1.toml"
+    variables = "\n".join(f"x{i} = [0.0, 1.0]" for i in range(1, 6))
+    path.write_text(f'mechanism = "zdt1:evaluate"\n[variables]\n{variables}\n'
+                    '[[objectives]]\nmetric = "f1"\ngoal = "min"\n'
+                    '[[objectives]]\nmetric = "f2"\ngoal = "min"\n' + constraint +
+                    f"[search]\npopulation = 40\ngenerations = {generations}\nseed = 1\n")
+    return str(path)
+
+
+def test_zdt1_front_is_found(tmp_path):
+    result = run_front(_front_file(tmp_path), tmp_path / "out", allow_code=True)
+    designs = result["designs"]
+    assert len(designs) >= 20
+    f1 = [d["objectives"]["f1"] for d in designs]
+    gaps = [d["objectives"]["f2"] - (1 - math.sqrt(d["objectives"]["f1"])) for d in designs]
+    assert max(gaps) < 0.05 and min(gaps) > -1e-9  # on the true front, never beyond it
+    assert min(f1) < 0.05 and max(f1) > 0.9          # and spread along it
+    again = run_front(_front_file(tmp_path), tmp_path / "out", allow_code=True)
+    assert again["designs"] == designs               # the same designs, from the store
+
+
+def test_a_constraint_cuts_the_front(tmp_path):
+    constraint = '[[constraints]]\nmetric = "f1"\nat_least = 0.5\n'
+    result = run_front(_front_file(tmp_path, constraint, 40), tmp_path / "out", allow_code=True)
+    assert all(d["objectives"]["f1"] >= 0.5 - 1e-9 for d in result["designs"])
+    assert all(d["margins"]["f1"] >= -1e-9 for d in result["designs"])
+
+
+def test_code_is_refused_without_allow_code(tmp_path, capsys):
+    assert main(["front", _front_file(tmp_path), "--out", str(tmp_path / "o")]) == 2
+    assert "--allow-code" in capsys.readouterr().err
