@@ -157,8 +157,8 @@ def test_elliptical_notch_against_the_refined_continuum():
 @pytest.mark.slow
 def test_the_guide_front_screened_by_the_beam_and_confirmed(tmp_path):
     """examples/bodies/guide_front.toml: every front design keeps its stroke margin, a softer
-    drive comes with a lower first mode, and the continuum confirms the beam's front within
-    3 % on both objectives."""
+    drive comes with a lower first mode, and the continuum confirms the beam's front: the
+    beam model's roots leave it softer by less than t/L (0.9 % at L/t = 110, 3.3 % at 28)."""
     from flexfem.studies.run import run_front
 
     result = run_front(BODIES / "guide_front.toml", tmp_path / "out")
@@ -168,5 +168,6 @@ def test_the_guide_front_screened_by_the_beam_and_confirmed(tmp_path):
     f = [d["objectives"]["f1_hz"] for d in designs]
     assert k == sorted(k) and f == sorted(f)
     for d in designs:
+        slenderness = d["params"]["t"] / d["params"]["L"]
         for metric, value in d["objectives"].items():
-            assert d["confirmed"][metric] == pytest.approx(value, rel=0.03), metric
+            assert 0 < d["confirmed"][metric] / value - 1 < slenderness, metric
