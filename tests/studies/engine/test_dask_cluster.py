@@ -174,3 +174,21 @@ def test_a_model_file_geo_runs_no_code_on_dask_workers(tmp_path, dask_cluster):
     summary = sweep(study, tmp_path / "out", scheduler=dask_cluster, progress=False)
     assert summary["failed"] == 2 and not marker.exists()
     assert all("'System' runs a shell command" in f["error"] for f in summary["failures"])
+
+
+def test_a_tolerance_study_on_dask_gives_the_local_indices(tmp_path, dask_cluster):
+    """The Monte Carlo's designs are ordinary cases: on the cluster they give the indices of
+    the local run (the toy cantilever, its root and tip thickness toleranced)."""
+    from flexfem.studies.engine.tolerance import Tolerance, Tolerances
+    from flexfem.studies.run import sweep
+
+    tolerances = Tolerances({"thickness_root_m": Tolerance(0.002, 1e-4),
+                             "thickness_tip_m": Tolerance(0.001, 1e-4, "uniform")}, n=16)
+    study = Study("toy", name="tolerances", tolerances=tolerances)
+    local = sweep(study, tmp_path / "local", workers=1, progress=False)
+    remote = sweep(study, tmp_path / "dask", scheduler=dask_cluster, progress=False)
+    assert remote["executor"].startswith("Dask cluster") and remote["failed"] == 0
+    for metric, m in local["tolerances"]["metrics"].items():
+        for name, value in m["total_order"].items():
+            assert remote["tolerances"]["metrics"][metric]["total_order"][name] == \
+                pytest.approx(value, rel=1e-9, abs=1e-12)
