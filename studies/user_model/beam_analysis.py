@@ -15,6 +15,7 @@ from ...fem.beam import (Fixed, NodalLoad, Prescribed, compliance, solve_beam_mo
                          solve_beam_nonlinear, solve_beam_static)
 from ...fem.compliance import Compliance
 from ...geometry.user_model.beam_model import beam_model
+from .beam3d_modes import planar_twin, spatial_modes
 from .outputs import groups_of, stiffness
 
 _AXES = ("x", "y")
@@ -45,9 +46,9 @@ def beam_supports_and_loads(spec, info) -> tuple[list, list]:
 
 
 def _unsupported(spec) -> None:
-    if spec.dim != 2:
-        raise ValueError(f"{spec.source}: the beam model is planar; --dim 3 is the "
-                         "continuum's (the solid extruded), use --model continuum")
+    if spec.dim != 2 and spec.mechanism is None:
+        raise ValueError(f"{spec.source}: the declared beam model is planar; a 3-D geometry "
+                         "file is the continuum's (--model continuum)")
     a = spec.analysis
     asked = [k for k, v in (("buckling", a.buckling), ("harmonic", a.harmonic)) if v]
     if asked:
@@ -71,6 +72,9 @@ def analyze_beam_model(spec) -> dict:
     """The continuum analyze_model's keys from the declared beam model (solver "beam", h the
     mean element length, m)."""
     _unsupported(spec)
+    solid = spec if spec.dim == 3 else None
+    if solid is not None:  # bodies and flexures: the planar statics, the lifted model's modes
+        spec = planar_twin(spec)
     try:
         model, info = beam_model(spec)
         supports, loads = beam_supports_and_loads(spec, info)
@@ -89,7 +93,13 @@ def analyze_beam_model(spec) -> dict:
         "mean_displacement": mean, "reactions": _reactions(spec, state, info),
         "stiffness": stiffness(spec, mean), "yield_strength": spec.material.yield_strength,
     }
-    if spec.analysis.modes:
+    if solid is not None:  # the solid's groups have three components
+        out["dim"] = 3
+        for key in ("mean_displacement", "reactions"):
+            out[key] = {g: list(v) + [0.0] for g, v in out[key].items()}
+    if spec.analysis.modes and solid is not None:
+        out["frequencies_hz"] = spatial_modes(solid, model, info, spec.analysis.modes)
+    elif spec.analysis.modes:
         modes = solve_beam_modes(model, supports, n=spec.analysis.modes)
         out["frequencies_hz"] = modes.frequencies_hz.tolist()
     if spec.analysis.steps:

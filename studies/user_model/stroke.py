@@ -28,6 +28,12 @@ def _single_force(spec):
     return forces[0]
 
 
+def _along(u, direction) -> float:
+    """The component of displacement ``u`` (2 or 3 components) along ``direction``."""
+    u = np.asarray(u, float)
+    return float(u @ direction[:u.size])
+
+
 def sharp_root_near(mechanism, point, reach: float = 1.0):
     """The index of the leaf with square roots whose root corner lies within ``reach`` x its
     thickness of ``point`` (m), or None."""
@@ -51,7 +57,7 @@ def stroke_limits(spec, result: dict, nominal=None) -> dict:
     if load is None:
         return {}
     direction = np.asarray(load.vector, float) / np.linalg.norm(load.vector)
-    stroke = float(np.asarray(result["mean_displacement"][load.group]) @ direction)
+    stroke = _along(result["mean_displacement"][load.group], direction)
     stress, where = result["max_von_mises"], result["max_von_mises_location"]
     basis = "peak von Mises stress of the continuum"
     if result.get("solver") == "beam":
@@ -66,7 +72,7 @@ def stroke_limits(spec, result: dict, nominal=None) -> dict:
                     f"beam model cannot give the nominal stress ({error})",
                     "stroke_limit_yield": None, "stroke_limit_fatigue": None}
         if beam is not None:
-            stroke = float(np.asarray(beam["mean_displacement"][load.group]) @ direction)
+            stroke = _along(beam["mean_displacement"][load.group], direction)
             stress, where = beam["max_von_mises"], beam["max_von_mises_location"]
             basis = (f"nominal beam stress: the continuum's peak sits at the square root of "
                      f"flexure {leaf + 1}, a singular corner (it grows under refinement); give "

@@ -1,0 +1,57 @@
+"""The spatial beam model of bodies and flexures (``--model beam --dim 3``): the planar beam
+model lifted out of the plane by the mechanism's depth (geometry/spatial_beam.py), its bodies'
+masses with their out-of-plane rotary inertias, for the modes out of the plane as well as in
+it. The statics stay the planar model's (in-plane loads). SI units."""
+from dataclasses import replace
+
+import numpy as np
+
+from ...fem.beam3d import Fixed, solve_beam3d_modes
+from ...geometry.spatial_beam import lifted_model
+from ...geometry.user_model.tables import Section
+
+
+def planar_twin(spec):
+    """The 2-D spec of a 3-D spec of bodies and flexures: the plane-stress section of the
+    mechanism's depth, the loads' in-plane components."""
+    depth = spec.mechanism.depth
+    loads = tuple(replace(load, vector=tuple(load.vector)[:2]) for load in spec.loads)
+    groups = {name: 1 for name, d in spec.groups.items() if d == 2} | {"solid": 2}
+    return replace(spec, dim=2, section=Section("plane_stress", depth), loads=loads,
+                   groups=groups)
+
+
+def _box_inertias(body, rho: float, depth: float) -> tuple:
+    """(mass, centroid (2,), (J_x, J_y, J_z) about it) of a body's boxes extruded by depth."""
+    parts = []
+    for (x0, y0), (x1, y1) in body.boxes:
+        w, h = x1 - x0, y1 - y0
+        parts.append((rho * w * h * depth, np.array([(x0 + x1) / 2, (y0 + y1) / 2]), w, h))
+    m = sum(p[0] for p in parts)
+    c = sum(p[0] * p[1] for p in parts) / m
+    jx = sum(mi * ((h * h + depth * depth) / 12 + (ci[1] - c[1]) ** 2) for mi, ci, w, h in parts)
+    jy = sum(mi * ((w * w + depth * depth) / 12 + (ci[0] - c[0]) ** 2) for mi, ci, w, h in parts)
+    jz = sum(mi * ((w * w + h * h) / 12 + float((ci - c) @ (ci - c))) for mi, ci, w, h in parts)
+    return m, c, (jx, jy, jz)
+
+
+def spatial_modes(spec, planar, info, n: int) -> list:
+    """The ``n`` lowest frequencies (Hz) of the lifted model, held where the planar model's
+    supports hold (every support holds its body whole: a partial support of a solid has no
+    planar meaning here)."""
+    if any(s.components is not None for s in spec.supports):
+        raise ValueError(f"{spec.source}: --model beam --dim 3 holds bodies whole; a support "
+                         "with components (x = ..., y = ...) is the 2-D model's")
+    mechanism, tol = spec.mechanism, 1e-9 * spec.mechanism.size
+    masses = {}
+    for node, _ in planar.point_masses.items():
+        for body in mechanism.bodies:
+            m, c, j = _box_inertias(body, spec.material.rho, mechanism.depth)
+            if np.linalg.norm(planar.nodes[node] - c) <= 10 * tol:
+                masses[node] = (m, *j)
+                break
+        else:
+            raise ValueError(f"{spec.source}: a body's mass node has no body (internal)")
+    model = lifted_model(planar, mechanism.depth, point_masses=masses)
+    supports = [Fixed((info["groups"][s.group],)) for s in spec.supports]
+    return solve_beam3d_modes(model, supports, n=n).frequencies_hz.tolist()
