@@ -17,6 +17,8 @@ from .model import Model
 from .static import check_supports, vertex_displacement
 from .symmetric import symmetric_matvec
 
+SHIFT = 1e-10  # the default shift, relative to the mean stiffness/mass diagonal ratio
+
 
 @dataclass(frozen=True, eq=False)
 class Modes:
@@ -78,10 +80,12 @@ def solve_modes(model: Model, n: int = 6, supports=(), shift_hz: float | None = 
         K_full, owned = symmetric.upper(tangent_stiffness(model, prestress)), True
     M = linsolve.Restriction(M_upper, I, upper=True)  # an operator on M: no copy
     if shift_hz is None:
-        # -(scale of the stiffness/mass ratio) * 1e-6: far below any elastic mode, and keeps
-        # K - sigma M positive definite for a free body
+        # -(scale of the stiffness/mass ratio) * 1e-10: below the elastic modes of any
+        # flexure, and keeps K - sigma M positive definite for a free body (its condition
+        # ~1e10); a shift much farther below the lowest modes than they lie apart would
+        # cluster them for Lanczos (a 1 m leaf's 0.3 Hz modes took ARPACK ~1e4 steps at 1e-6)
         diagonal = K_full.diagonal()[I]
-        sigma = -1e-6 * float(diagonal.mean() / M.diagonal().mean())
+        sigma = -SHIFT * float(diagonal.mean() / M.diagonal().mean())
     else:
         sigma = (2 * np.pi * shift_hz) ** 2 * np.sign(shift_hz)
     # one factorization of K - sigma M for every Lanczos step; SPD for sigma < 0 (Cholesky),

@@ -77,3 +77,12 @@ def test_no_stiffness_where_a_support_moves(tmp_path, capsys):
     out = json.loads(capsys.readouterr().out)
     assert out["stiffness"] == {}
     assert out["mean_displacement"]["ground"][0] == pytest.approx(0.001, rel=1e-6)
+
+
+def test_a_very_flexible_stage_gets_its_modes(capsys):
+    """L = -1 hangs the stage a metre below the ground on 1 m leaves: modes of ~1 Hz, far
+    below the element stiffness. The modal shift is near enough for Lanczos to separate them
+    (it once took ~1e4 steps: a run that seemed to hang)."""
+    assert main(["analyze", str(BODIES_GUIDE), "--set", "L=-1", "--json"]) == 0
+    f = json.loads(capsys.readouterr().out)["frequencies_hz"]
+    assert 0.5 < f[0] < 3.0 and f == sorted(f)
