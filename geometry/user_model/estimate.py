@@ -47,6 +47,9 @@ def estimate_geometry_mesh(gmsh, dim: int, order: int, size_factor: float = 1.0,
     ``what`` for an element size gmsh cannot honour."""
     box = gmsh.model.getBoundingBox(-1, -1)
     diag = math.dist(box[:3], box[3:])
+    if not 1e-6 <= diag <= 10.0:
+        raise ValueError(f"{what}: the geometry is {diag:.4g} m across; lengths are in m (a "
+                         "flexure mechanism is 1 um to 10 m)")
     points = gmsh.model.getEntities(0)
     given = gmsh.model.mesh.getSizes(points) if points else []
     cap = min(size_max or math.inf, diag)

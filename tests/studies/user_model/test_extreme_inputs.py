@@ -86,3 +86,8 @@ def test_a_very_flexible_stage_gets_its_modes(capsys):
     assert main(["analyze", str(BODIES_GUIDE), "--set", "L=-1", "--json"]) == 0
     f = json.loads(capsys.readouterr().out)["frequencies_hz"]
     assert 0.5 < f[0] < 3.0 and f == sorted(f)
+
+
+def test_a_drawing_in_mm_is_caught_before_meshing(capsys):
+    err = _refused(capsys, GEO_GUIDE, "--set", "L=40")
+    assert "40.01 m across; lengths are in m" in err
