@@ -4,16 +4,14 @@ import math
 import numpy as np
 import pytest
 
-from flexfem.fem import Fixed as FEFixed, Material, Model, PlaneStress
+from flexfem.fem import (Fixed as FEFixed, Material, Model, PlaneStress, gmsh_session,
+                         mesh_from_gmsh)
 from flexfem.fem.beam import BeamModel, Fixed, Section, beam_chain
 from flexfem.fem.beam.compliance import compliance
 from flexfem.fem.compliance import compliance_matrix
 from flexfem.geometry.beam_layout import profile_beam
-from flexfem.geometry.hinge_patch import (NotchFactors, _patch_mesh, notch_factors,
-                                          patch_factors, tabulated)
-from flexfem.geometry.hinge_profiles import add_hinge_surface, profile_thickness
-
-STEEL = Material("steel", E=200e9, nu=0.3, rho=7800.0)
+from flexfem.geometry.hinge_patch import NotchFactors, notch_factors, patch_factors, tabulated
+from flexfem.geometry.hinge_profiles import profile_thickness
 
 
 @pytest.mark.parametrize("args, match", [
@@ -29,41 +27,112 @@ def test_bad_input_names_the_problem(args, match):
         notch_factors(*args)
 
 
-def test_the_corrected_beam_reproduces_the_notch_with_its_stubs():
-    """A notch at t/R = 1 with a stub of its end height at each end (the patch): its beam,
-    the stubs as beams, with the factors has the 2-D patch's end compliance (computed here
-    again) in rotation, extension and their coupling to 2e-4, sideways within 0.5 % (shear is
-    under 2 % of it: its factor stays 1), where the bare beam is 19 % stiff in rotation and
-    12 % in extension (with the stubs' own compliance)."""
-    b, l = 1e-3, 2e-3
-    h = b + l  # the notch's end height, b + 2 R
-    f = patch_factors("circular", l, b, b, 0.3)
-    thickness = lambda s: profile_thickness("circular", l, b, b, s)
+def _notched_bar(b, R, stub, nu, neck_elements):
+    """3 x 3 end compliance (m/N, 1/N, rad/(N m)) of the continuum: a bar of height
+    b + 2 R with a circular notch cut by two disks of radius R centred on its faces (neck b,
+    notch length 2 R), ``stub`` (m) of bar beyond the notch at each end, plane stress, the
+    near end clamped, the far end a rigid face (its centre); Poisson's ratio ``nu``; P2
+    triangles about t(x) / ``neck_elements`` across the local thickness, three times finer at
+    the neck's surface. Drawn and meshed here, not by flexfem.geometry.hinge_patch."""
+    l, h = 2 * R, b + 2 * R
+    x0, x1 = -stub, l + stub
+    thickness = lambda x: h - 2 * math.sqrt(max(R ** 2 - (min(max(x, 0.0), l) - R) ** 2, 0.0))
+    with gmsh_session("notched_bar") as gmsh:
+        occ = gmsh.model.occ
+        bar = occ.addRectangle(x0, -h / 2, 0.0, x1 - x0, h)
+        disks = [(2, occ.addDisk(R, y, 0.0, R, R)) for y in (h / 2, -h / 2)]
+        body, _ = occ.cut([(2, bar)], disks)
+        occ.synchronize()
+        gmsh.model.addPhysicalGroup(2, [tag for _, tag in body], name="body")
+        eps = 1e-3 * b + 1e-7  # OCC's bounding boxes are 1e-7 m loose
+        for name, x in (("root", x0), ("tip", x1)):
+            ends = gmsh.model.getEntitiesInBoundingBox(x - eps, -h, -1.0, x + eps, h, 1.0, 1)
+            gmsh.model.addPhysicalGroup(1, [tag for _, tag in ends], name=name)
 
-    def drawn(occ):
-        stubs = [(2, occ.addRectangle(-h, -h / 2, 0.0, h, h)),
-                 (2, occ.addRectangle(l, -h / 2, 0.0, h, h))]
-        fused, _ = occ.fuse([(2, add_hinge_surface(occ, 0.0, l, 0.0, b, "circular", b))],
-                            stubs)
-        return [tag for _, tag in fused]
+        def size(dim, tag, x, y, z, lc):
+            local = min(thickness(x), h) / neck_elements
+            fine = b / (3 * neck_elements) + 0.5 * math.hypot(x - R, abs(y) - b / 2)
+            return min(local, fine)
 
-    patch = Model(_patch_mesh(drawn, l, (-h, l + h), thickness, l / 2, b, 12), STEEL,
-                  PlaneStress(2e-3), order=2)
-    C2 = compliance_matrix(patch, [FEFixed("root")], "tip", point=(l + h, 0.0)).matrix
-    out = {}
-    for name, factors in (("bare", None), ("corrected", f)):
-        notch = profile_beam((0, 0), (l, 0), thickness, 2e-3, (), 40, 0.0, vectorized=True,
-                             factors=factors)
-        mesh = beam_chain([(-h, 0), (0, 0)], Section.rect(2e-3, h), 4).join(notch, 1e-12)
-        mesh = mesh.join(beam_chain([(l, 0), (l + h, 0)], Section.rect(2e-3, h), 4), 1e-12)
-        model = BeamModel(mesh.nodes, mesh.elements, mesh.sections, STEEL, shear=True)
-        out[name] = compliance(model, [Fixed(mesh.node_at((-h, 0)))], mesh.node_at((l + h, 0)))
-    for i, j in ((0, 0), (2, 2), (1, 2)):
-        assert out["corrected"][i, j] == pytest.approx(C2[i, j], rel=2e-4), (i, j)
-    assert out["corrected"][1, 1] == pytest.approx(C2[1, 1], rel=5e-3)
-    assert out["bare"][2, 2] / C2[2, 2] - 1 == pytest.approx(-0.19, abs=0.02)
-    assert out["bare"][0, 0] / C2[0, 0] - 1 == pytest.approx(-0.12, abs=0.02)
-    assert f.shear == 1.0 and f.kt_bending > 1.0 and f.kt_tension > f.kt_bending
+        for key in ("Mesh.MeshSizeExtendFromBoundary", "Mesh.MeshSizeFromPoints",
+                    "Mesh.MeshSizeFromCurvature"):
+            gmsh.option.setNumber(key, 0)
+        gmsh.model.mesh.setSizeCallback(size)
+        gmsh.option.setNumber("Mesh.Algorithm", 6)
+        gmsh.model.mesh.generate(2)
+        mesh = mesh_from_gmsh(gmsh)
+    model = Model(mesh, Material("steel", 200e9, nu, 7800.0), PlaneStress(1e-3), order=2)
+    return compliance_matrix(model, [FEFixed("root")], "tip", point=(x1, 0.0)).matrix
+
+
+def _notch_beam(b, R, stub, nu, factors, rigid_ends=False):
+    """The same bar as beams: the notch's profile beam (80 elements, ``factors`` on them; no
+    root extension: the notch's ends are the bar's own height) and the stubs as Timoshenko
+    beams; ``rigid_ends``: the notch alone, clamped at one end, loaded at the other."""
+    l, h = 2 * R, b + 2 * R
+    thickness = lambda s: profile_thickness("circular", l, b, R, s)
+    mesh = profile_beam((0.0, 0.0), (l, 0.0), thickness, 1e-3, (), 80, 0.0, vectorized=True,
+                        factors=factors)
+    first, last = (0.0, 0.0), (l, 0.0)
+    if not rigid_ends:
+        near = beam_chain([(-stub, 0.0), (0.0, 0.0)], Section.rect(1e-3, h), 8)
+        far = beam_chain([(l, 0.0), (l + stub, 0.0)], Section.rect(1e-3, h), 8)
+        mesh = near.join(mesh, 1e-9 * l).join(far, 1e-9 * l)
+        first, last = (-stub, 0.0), (l + stub, 0.0)
+    model = BeamModel(mesh.nodes, mesh.elements, mesh.sections,
+                      Material("steel", 200e9, nu, 7800.0), shear=True)
+    return compliance(model, [Fixed(mesh.node_at(first))], mesh.node_at(last))
+
+
+@pytest.mark.parametrize("t_over_r, nu, stubs", [
+    (0.25, 0.3, 3.0),   # in the table, off its grid
+    (1.0, 0.3, 2.0),    # in the table, off its grid
+    (3.0, 0.27, 2.0),   # outside the table: computed
+])
+def test_the_corrected_notch_beam_is_the_continuum_of_a_notched_bar(t_over_r, nu, stubs):
+    """Independent truth: flexfem's 2-D plane-stress continuum (P2) of a bar b + 2 R tall
+    with a circular notch cut by two disks, drawn and meshed in this test (24 triangles
+    across the local thickness; 16 across gives the same to 0.2 %, 36 to 0.05 %), with
+    ``stubs`` times the bar's height beyond the notch at each end: two and three times the
+    stub the factors were computed with (notch_factors' patch: one height), so the check is
+    that the correction belongs to the notch, not to its patch. The corrected beam (the
+    user-facing notch_factors, the stubs as Timoshenko beams) has the continuum's end
+    compliance in rotation, extension, their coupling and sideways within 0.5 % (the
+    documented accuracy: factors converged to 0.3 % and interpolated within 0.2 %; measured
+    within 0.2 %), where the bare beam (Paros-Weisbord's plane sections) is more than 3 %
+    stiff in rotation (measured 8-17 %): the check can tell a wrong factor."""
+    b = 1e-3
+    R = b / t_over_r
+    stub = stubs * (b + 2 * R)
+    coarse = _notched_bar(b, R, stub, nu, 16)
+    C2 = _notched_bar(b, R, stub, nu, 24)
+    assert np.diag(coarse) == pytest.approx(np.diag(C2), rel=2e-3)  # the mesh is converged
+    f = notch_factors("circular", 2 * R, b, R, nu)
+    corrected = _notch_beam(b, R, stub, nu, f)
+    bare = _notch_beam(b, R, stub, nu, None)
+    for i, j in ((0, 0), (2, 2), (1, 2), (1, 1)):
+        assert corrected[i, j] == pytest.approx(C2[i, j], rel=5e-3), (i, j)
+    assert bare[2, 2] / C2[2, 2] - 1 < -0.03
+    assert f.kt_bending > 1.0 and f.kt_tension > f.kt_bending
+    if t_over_r <= 1.0:  # shear is under 2 % of the sideways deflection: its factor stays 1
+        assert f.shear == 1.0
+
+
+@pytest.mark.parametrize("t_over_r", [0.01, 0.02, 0.05])
+def test_thin_notches_have_paros_and_weisbords_stiffness(t_over_r):
+    """Independent truth: Paros and Weisbord's closed form for a circular notch's rotational
+    stiffness, K = 2 E w t^2.5 / (9 pi sqrt(R)) (J. M. Paros, L. Weisbord, "How to design
+    flexure hinges", Machine Design 37 (1965) 151-156), the leading term for t << R (the
+    terms it drops are of relative order t / R: the exact plane-section integral exceeds it
+    by 0.13 t / R). The corrected beam of the notch alone (rigid ends, no stubs) has that
+    stiffness within 0.5 t / R (measured 0.27 t / R below it): it tends to the published
+    stiffness as t / R -> 0, as the continuum does."""
+    E, w, b = 200e9, 1e-3, 1e-3
+    R = b / t_over_r
+    f = notch_factors("circular", 2 * R, b, R, 0.3)
+    K = 1.0 / _notch_beam(b, R, 0.0, 0.3, f, rigid_ends=True)[2, 2]
+    paros_weisbord = 2 * E * w * b ** 2.5 / (9 * math.pi * math.sqrt(R))
+    assert abs(K / paros_weisbord - 1) < 0.5 * t_over_r
 
 
 def test_thin_notches_tend_to_beam_theory():

@@ -83,8 +83,10 @@ def test_root_extension_rules():
     assert check_root_extension(0.38) == 0.38
     with pytest.raises(ValueError, match="root_extension"):
         check_root_extension(-1)
-    assert axial_root_compliance(20.0, 1.0) == pytest.approx(1.59, abs=0.02)
-    assert axial_root_compliance(1.0, 1.0) == pytest.approx(0.38)  # the block it replaces
+    # at H = t the root enters a block no taller than itself: the plain root extension
+    # (its value at taller blocks is checked against the continuum, not against its own fit:
+    # tests/geometry/test_root_axial_compliance.py)
+    assert axial_root_compliance(1.0, 1.0) == pytest.approx(0.38)
 
 
 def test_leaf_hinge_within_3_percent_of_the_continuum_over_slenderness():

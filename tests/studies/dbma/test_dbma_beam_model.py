@@ -131,19 +131,21 @@ def test_dbma_with_circular_notches_against_the_continuum(params):
 
 
 def test_the_notch_correction_brings_a_notch_between_blocks_into_the_band():
-    """A circular notch between two blocks (l/b = 3 and 10, t/R = 0.67 and 0.2): bare beam
-    theory (Paros-Weisbord's plane sections) is 7-20 % stiffer than the 2-D continuum in
-    bending; with the notch's own 2-D correction and the root extension, as the mechanisms
-    build it, within 1.5 % (measured +0.5, +0.6 %). Axially the blocks, 1.8 to 5 times
-    taller than the notch's ends, take a little more than the root rule gives: 3-7 % stiff
-    (measured -6.9 % at l/b = 3, -3.0 % at 10; 9-10.5 % before the root rule was fitted down
-    to H/t = 1.1; docs/beam_validation.md, "Notch hinges: the 2-D patch")."""
+    """A circular notch between two blocks (l/b = 3 and 10, t/R = 0.67 and 0.2), against the
+    2-D plane-stress continuum (independent truth): bare beam theory (Paros-Weisbord's plane
+    sections) is 7-20 % stiffer in bending; with the notch's own 2-D correction and the root
+    extension, as the mechanisms build it, within 1.5 % (measured +0.5, +0.6 % on this
+    specimen's mesh; -1.0, -0.04 % on a converged one, 32 triangles across the neck).
+    Axially the blocks, 1.8 to 5 times taller than the notch's ends, take more than the root
+    rule gives: the beam is within 8 %, the accuracy documented for a notch entering a much
+    taller block (docs/beam_validation.md, "Notch hinges: the 2-D patch": 3-7.4 % stiff;
+    measured -6.9 % at l/b = 3, -3.0 % at 10; -7.3 and -3.3 % converged)."""
     from flexfem.studies.dbma.beam_slenderness import TRUST_LIMIT, slenderness_rows
 
     for row in slenderness_rows((3.0, 10.0), ("circular",)):
         assert row["bending_error_bare"] < -2 * TRUST_LIMIT
         assert abs(row["bending_error"]) < 0.015
-        assert -0.08 < row["axial_error"] < -0.02
+        assert abs(row["axial_error"]) < 0.08
 
 
 @pytest.mark.parametrize("profile", ["circular", "filleted"])

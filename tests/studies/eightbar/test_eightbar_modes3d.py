@@ -69,16 +69,16 @@ def test_spatial_beam_modes_beside_the_3d_continuum():
     mode and the out-of-plane mode ~3 % below this mesh's.
 
     - Both models: the lowest mode is out of plane, below the in-plane working mode.
-    - In plane (the first four): the beam within 6 % below (measured 4.0-4.5 % with flexible
-      links, 3.4-4.3 % with rigid ones: the mesh's ~3 % and the wide flexures' restrained
-      anticlastic bending, ~1 %, which the beam's E I leaves out).
-    - Out of plane, mode 1: the beam's Saint-Venant torsion 5-15 % low (measured 9.7 %);
-      with each flexure's J times Vlasov's warping-restraint factor, within 4 % (measured
-      2.4 %, the mesh's).
+    - In plane (the first four): the beam within 6 % (measured 4.0-4.5 % below with
+      flexible links, 3.4-4.3 % with rigid ones: the mesh's ~3 % and the wide flexures'
+      restrained anticlastic bending, ~1 %, which the beam's E I leaves out).
+    - Out of plane, mode 1: with each flexure's J times Vlasov's warping-restraint factor,
+      within 4 % (measured 2.4 %, the mesh's); the beam's Saint-Venant torsion alone is more
+      than 4 % low (measured 9.7 %), so the check tells the factor from its absence.
     - Out of plane, modes 2 and 3, where the links and anchors carry > 15 % of the strain
       energy (measured 32, 21 %): the flexible links within 3 % (measured -1.0, +0.3 %),
-      storing about that share (measured 31, 17 %: within 0.06); the rigid links 7-25 %
-      too stiff (measured 19.7, 9.9 %), well beyond the 3 % target."""
+      storing about that share (measured 31, 17 %: within 0.06); the rigid links are
+      outside that 3 % target (measured 19.7, 9.9 % too stiff)."""
     params = EightBarFlexureParams()
     out = compare_modes(params, n_modes=10)
     cont, rows = out["continuum"], out["rows"]
@@ -89,9 +89,9 @@ def test_spatial_beam_modes_beside_the_3d_continuum():
         assert model["out_of_plane_share"][0] > 0.99  # the lowest mode is out of plane
     assert oop[0]["continuum_hz"] < inp[0]["continuum_hz"]
     for r in inp[:4]:
-        assert -6.0 <= r["diff_pct"] < 0, r
+        assert abs(r["diff_pct"]) <= 6.0, r
         assert np.allclose(r["beam_mass_fraction"], r["continuum_mass_fraction"], atol=0.05)
-    assert -15.0 <= oop[0]["diff_pct"] <= -5.0
+    assert oop[0]["diff_pct"] < -4.0
     assert oop[0]["continuum_mass_fraction"][2] == pytest.approx(
         oop[0]["beam_mass_fraction"][2], abs=0.05)
     warped = beam_modes(params, n_modes=1, warping=True)["f_hz"][0]
@@ -103,7 +103,7 @@ def test_spatial_beam_modes_beside_the_3d_continuum():
         assert abs(r["diff_pct"]) <= 3.0, r
         assert out["beam"]["links_energy_share"][r["beam_mode"] - 1] == pytest.approx(
             share, abs=0.06)
-        assert 7.0 <= stiff["diff_pct"] <= 25.0
+        assert stiff["diff_pct"] > 3.0
 
 
 @pytest.mark.slow
