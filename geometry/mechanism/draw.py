@@ -99,11 +99,7 @@ def draw(gmsh, mechanism: Mechanism, dim: int = 2) -> dict:
     inputs = body_tags + flexure_tags
     flat = [dt for tags in inputs for dt in tags]
     _, children = occ.fragment(flat, [])
-    owner, k = [], 0
-    for group, tags in enumerate(inputs):
-        for _ in tags:
-            owner.append(group)
-            k += 1
+    owner = [group for group, tags in enumerate(inputs) for _ in tags]
     parts = [set() for _ in inputs]
     for group, kids in zip(owner, children):
         parts[group].update(tag for _, tag in kids)
