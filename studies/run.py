@@ -180,6 +180,9 @@ def plot_front(summary: dict, path) -> Path:
     if confirmed:
         ax.plot([c[a] for c in confirmed], [c[b] for c in confirmed], "x",
                 label="confirmed")
+    for ref in summary.get("references", []):
+        ax.plot(ref["objectives"][a], ref["objectives"][b], "*", markersize=12,
+                label=f"{ref['name']} (dominated by {ref['dominated_by']})")
     ax.set_xlabel(a)
     ax.set_ylabel(b)
     ax.legend()

@@ -60,6 +60,10 @@ def summarize_front(result: dict) -> str:
         values = ", ".join(f"{m} {d['objectives'][m]:.4g}" for m in names)
         margins = ", ".join(f"{m} {v:+.3g}" for m, v in d["margins"].items())
         lines.append(f"  {values}" + (f"  (margins: {margins})" if margins else ""))
+    for ref in result.get("references", []):
+        values = ", ".join(f"{m} {ref['objectives'][m]:.4g}" for m in names)
+        lines.append(f"  reference {ref['name']}: {values}; {ref['dominated_by']} front "
+                     "design(s) dominate it")
     lines.append(f"results in {result['out']}: front.json" + "".join(
         f", {f}" for f in result.get("figures", [])))
     return "\n".join(lines)

@@ -21,11 +21,16 @@ A front file::
     seed = 0
     [confirm]                                # options of the confirming model (optional)
     model = "continuum"
+    [[reference]]                            # designs to place beside the front (optional)
+    name = "paper"
+    params = { t = 1e-3 }                    # over the base
 
 Every evaluation is stored as it completes (the study store): a re-run with the same file and
 seed asks for the same designs and finds them there. The front's designs are re-evaluated by
 the confirming model where one is given, and each design carries its constraint margins
-(positive: satisfied, in the metric's units).
+(positive: satisfied, in the metric's units). Each reference design is evaluated as well and
+placed: its objectives, margins, and how many front designs dominate it (better or equal in
+every objective, better in one).
 """
 from dataclasses import dataclass, field
 import math
@@ -53,6 +58,7 @@ class Front:
     generations: int = 30
     seed: int = 0
     confirm: dict | None = None
+    references: tuple = ()
 
     def __post_init__(self):
         if not self.variables:
@@ -80,7 +86,7 @@ class Front:
 def front_from_dict(data: dict) -> Front:
     """A Front from a parsed front file (mechanism already resolved to a name)."""
     allowed = {"mechanism", "name", "base", "options", "variables", "objectives", "constraints",
-               "search", "confirm"}
+               "search", "confirm", "reference"}
     unknown = sorted(set(data) - allowed)
     if unknown:
         raise ValueError(f"unknown key(s) {unknown}; allowed: {sorted(allowed)}")
@@ -95,10 +101,16 @@ def front_from_dict(data: dict) -> Front:
     if set(search) - {"population", "generations", "seed"}:
         raise ValueError(f"[search] keys are population, generations and seed, not "
                          f"{sorted(set(search))}")
+    references = []
+    for r in data.get("reference", []):
+        if not (isinstance(r, dict) and set(r) == {"name", "params"}
+                and isinstance(r["params"], dict)):
+            raise ValueError(f"reference {r!r} must be {{ name = \"...\", params = {{ ... }} }}")
+        references.append((str(r["name"]), dict(r["params"])))
     return Front(data["mechanism"], dict(data.get("variables", {})), objectives,
                  tuple(constraints), dict(data.get("base", {})), dict(data.get("options", {})),
                  search.get("population", 40), search.get("generations", 30),
-                 search.get("seed", 0), data.get("confirm"))
+                 search.get("seed", 0), data.get("confirm"), tuple(references))
 
 
 def _cached(evaluate, front: Front, store: ResultStore, options: dict):
@@ -178,9 +190,28 @@ def search_front(front: Front, evaluate, store_path) -> dict:
                 metrics = check(design["params"])
                 design["confirmed"] = ({m: metrics[m] for m, _ in front.objectives}
                                        if metrics is not None else None)
+        references = []
+        for name, params in front.references:
+            metrics = run({**front.base, **params})
+            if metrics is None:
+                raise ValueError(f"reference {name!r}: its design could not be evaluated")
+            objectives = {m: metrics[m] for m, _ in front.objectives}
+            references.append({"name": name, "params": {**front.base, **params},
+                               "objectives": objectives,
+                               "margins": {m: -_violation(metrics[m], s, b)
+                                           for m, s, b in front.constraints},
+                               "dominated_by": sum(_dominates(d["objectives"], objectives,
+                                                              front.objectives)
+                                                   for d in designs)})
     first = front.objectives[0][0]
     designs.sort(key=lambda d: d["objectives"][first])
-    return {"designs": designs, **counts}
+    return {"designs": designs, "references": references, **counts}
+
+
+def _dominates(a: dict, b: dict, objectives) -> bool:
+    """True where objectives ``a`` are at least as good as ``b`` in all and better in one."""
+    better = [(a[m] - b[m]) * (1 if goal == "min" else -1) for m, goal in objectives]
+    return all(x <= 0 for x in better) and any(x < 0 for x in better)
 
 
 def _violation(value: float, sense: str, bound: float) -> float:

@@ -31,6 +31,19 @@ def test_zdt1_front_is_found(tmp_path):
     assert again["designs"] == designs               # the same designs, from the store
 
 
+def test_a_reference_design_is_placed_beside_the_front(tmp_path):
+    """x = 0.5 everywhere lies far behind ZDT1's front (g = 5.5): front designs dominate it."""
+    reference = "[[reference]]\nname = \"middle\"\nparams = " + "{ " + ", ".join(
+        f"x{i} = 0.5" for i in range(1, 6)) + " }\n"
+    path = _front_file(tmp_path, generations=20)
+    with open(path, "a") as f:
+        f.write(reference)
+    result = run_front(path, tmp_path / "out", allow_code=True)
+    (middle,) = result["references"]
+    assert middle["name"] == "middle" and middle["objectives"]["f1"] == pytest.approx(0.5)
+    assert middle["dominated_by"] >= 1
+
+
 def test_a_constraint_cuts_the_front(tmp_path):
     constraint = '[[constraints]]\nmetric = "f1"\nat_least = 0.5\n'
     result = run_front(_front_file(tmp_path, constraint, 40), tmp_path / "out", allow_code=True)
