@@ -1,14 +1,18 @@
-"""The example studies in examples/ load, every design they declare is a valid design, and
-running one gives the numbers theory and the paper lead to."""
+"""The example studies and front files in examples/ load, the designs they declare are valid
+designs, and running one gives the numbers theory and the paper lead to."""
 from pathlib import Path
+import tomllib
 
 import pytest
 from flexfem.studies.dbma.analysis import params_from_dict
 from flexfem.studies.eightbar.analysis import params_from_dict as eightbar_params
 from flexfem.studies.engine.sweep import design_points, load_study
 
-EXAMPLES = sorted((Path(__file__).resolve().parents[2] / "examples").glob("*.toml"))
+TOP = sorted((Path(__file__).resolve().parents[2] / "examples").glob("*.toml"))
+FRONTS = [p for p in TOP if "objectives" in tomllib.loads(p.read_text())]
+EXAMPLES = [p for p in TOP if p not in FRONTS]
 DESIGN_CHECKS = {"dbma": params_from_dict, "eightbar": eightbar_params}
+CHECKED = 40  # designs checked a study at most, spread over it (an eight-bar check: ~0.35 s)
 
 
 @pytest.mark.parametrize("path", EXAMPLES, ids=lambda p: p.name)
@@ -17,8 +21,22 @@ def test_example_study_declares_valid_designs(path):
     designs = design_points(study)
     assert len(designs) > 1
     check = DESIGN_CHECKS[study.mechanism]
-    for design in designs:
+    for design in designs[::max(1, len(designs) // CHECKED)]:
         check(design)  # raises ValueError on an unknown or out-of-bounds parameter
+
+
+@pytest.mark.parametrize("path", FRONTS, ids=lambda p: p.name)
+def test_example_front_declares_valid_bounds(path):
+    """Both corners of the search box and every reference are valid designs."""
+    from flexfem.studies.engine.front import front_from_dict
+    from flexfem.studies.engine.sweep import read_study_file
+
+    front = front_from_dict(read_study_file(path))
+    check = DESIGN_CHECKS[front.mechanism]
+    for corner in (0, 1):
+        check({**front.base, **{k: v[corner] for k, v in front.variables.items()}})
+    for _, params in front.references:
+        check({**front.base, **params})
 
 
 @pytest.mark.slow
