@@ -1,9 +1,9 @@
 """A flexure mechanism described once: rigid bodies joined by flexures (SI units, m).
 
 :class:`Body` is a union of axis-aligned boxes; :class:`Leaf` a straight blade of constant
-thickness (with a fillet of radius ``fillet`` at both roots); :class:`Notch` a circular notch
-hinge (a blank of width ``thickness + 2 radius`` cut by two circles of ``radius`` that leave a
-neck of ``thickness``). A flexure runs along its centre line from ``start`` (inside or on the
+thickness (with a fillet of radius ``fillet`` at both roots); :class:`Notch` a circular or
+elliptical notch hinge (a blank cut by two circles or ellipses that leave a neck of
+``thickness``). A flexure runs along its centre line from ``start`` (inside or on the
 first body it joins) to ``end`` (inside or on the second); its free span is the part between
 the bodies. :class:`Mechanism` holds them and :meth:`Mechanism.check` refuses what cannot be
 built, naming the body or flexure. The continuum (draw.py) and the beam model (beams.py) are
@@ -68,15 +68,8 @@ class Body:
 
     @property
     def area(self) -> float:
-        """Area of the boxes (m^2; overlapping boxes are counted once only where disjoint)."""
+        """The boxes' areas summed (m^2; a body's boxes should not overlap)."""
         return sum((x1 - x0) * (y1 - y0) for (x0, y0), (x1, y1) in self.boxes)
-
-    @property
-    def centre(self) -> np.ndarray:
-        """Area centroid of the boxes (m): where the beam model applies the body's loads."""
-        areas = [(x1 - x0) * (y1 - y0) for (x0, y0), (x1, y1) in self.boxes]
-        centres = [((x0 + x1) / 2, (y0 + y1) / 2) for (x0, y0), (x1, y1) in self.boxes]
-        return np.average(np.asarray(centres), axis=0, weights=areas)
 
     def face_at(self, point, tol: float):
         """Unit direction (2,) along the box edge ``point`` lies on (inside no other box), or
