@@ -77,3 +77,56 @@ def estimate_geometry_mesh(gmsh, dim: int, order: int, size_factor: float = 1.0,
     nodes = NODES_PER_ELEMENT[(dim, order)] * elements
     return {"elements": int(min(elements, 1e18)), "nodes": int(min(nodes, 1e18)),
             "dofs": int(min(dim * nodes, 1e18))}
+
+
+def _polyline(gmsh, curve: int, samples: int = 9) -> np.ndarray:
+    lo, hi = gmsh.model.getParametrizationBounds(1, curve)
+    u = np.linspace(lo[0], hi[0], samples)
+    return np.asarray(gmsh.model.getValue(1, curve, u)).reshape(-1, 3)[:, :2]
+
+
+def _segments_cross(p: np.ndarray, q: np.ndarray, tol: float) -> bool:
+    """True where segment p (2, 2) and segment q (2, 2) cross or touch (within tol), ends
+    shared by both excepted."""
+    def orient(a, b, c):
+        return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+
+    if min(np.linalg.norm(p[i] - q[j]) for i in (0, 1) for j in (0, 1)) <= tol:
+        return False  # adjacent pieces of the outline
+    d1, d2 = orient(q[0], q[1], p[0]), orient(q[0], q[1], p[1])
+    d3, d4 = orient(p[0], p[1], q[0]), orient(p[0], p[1], q[1])
+    return d1 * d2 < 0 and d3 * d4 < 0
+
+
+def check_outlines(gmsh, what: str = "the geometry") -> None:
+    """ValueError naming ``what`` where a plane surface's boundary crosses itself or a hole
+    touches its outline (a dimension set so that the drawing turns inside out: a negative or
+    vanishing length): gmsh would mesh it for minutes before failing."""
+    if gmsh.model.getDimension() != 2:
+        return
+    box = gmsh.model.getBoundingBox(-1, -1)
+    tol = 1e-9 * math.dist(box[:3], box[3:])
+    points = gmsh.model.getEntities(0)
+    xyz = np.array([gmsh.model.getValue(0, tag, []) for _, tag in points]).reshape(-1, 3)
+    for i in range(len(xyz)):
+        close = np.flatnonzero(np.linalg.norm(xyz[i + 1:] - xyz[i], axis=1) <= tol)
+        if close.size:
+            raise ValueError(f"{what}: points {points[i][1]} and "
+                             f"{points[i + 1 + close[0]][1]} of the drawing coincide: a "
+                             "dimension vanishes or is negative")
+    for _, surface in gmsh.model.getEntities(2):
+        curves = sorted({abs(t) for _, t in gmsh.model.getBoundary([(2, surface)],
+                                                                   oriented=False)})
+        pieces = []
+        for c in curves:
+            line = _polyline(gmsh, c)
+            if np.linalg.norm(line[-1] - line[0]) <= tol and np.ptp(line, axis=0).max() <= tol:
+                raise ValueError(f"{what}: curve {c} of surface {surface} has no length; a "
+                                 "dimension of the drawing vanishes")
+            pieces += [(c, line[k:k + 2]) for k in range(len(line) - 1)]
+        for i, (ci, p) in enumerate(pieces):
+            for cj, q in pieces[i + 1:]:
+                if ci != cj and _segments_cross(p, q, tol):
+                    raise ValueError(f"{what}: the outline of surface {surface} crosses itself "
+                                     f"(curves {ci} and {cj}): a dimension of the drawing "
+                                     "is negative or too small for the shapes around it")

@@ -13,7 +13,7 @@ import re
 from ...fem import FEMesh, gmsh_session, mesh_from_gmsh, read_mesh
 from ...fem.budget import check_budget
 from ..mechanism import mesh_mechanism
-from .estimate import estimate_geometry_mesh
+from .estimate import check_outlines, estimate_geometry_mesh
 from .geo_guard import check_geo
 from .selection import compile_rule, entity_values
 
@@ -213,6 +213,7 @@ def mesh_geometry(spec, size_factor: float = 1.0, max_dofs: int | None = None) -
         estimate = estimate_geometry_mesh(gmsh, spec.dim, spec.mesh.order, size_factor,
                                           spec.mesh.size, what)
         check_budget(estimate, spec.dim, max_dofs, what=what)
+        check_outlines(gmsh, what)
         try:
             gmsh.model.mesh.generate(spec.dim)
         except Exception as error:

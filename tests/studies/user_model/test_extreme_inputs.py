@@ -91,3 +91,12 @@ def test_a_very_flexible_stage_gets_its_modes(capsys):
 def test_a_drawing_in_mm_is_caught_before_meshing(capsys):
     err = _refused(capsys, GEO_GUIDE, "--set", "L=40")
     assert "40.01 m across; lengths are in m" in err
+
+
+@pytest.mark.parametrize("setting, message", [("L=-1", "crosses itself"),
+                                              ("d=1e-300", "coincide"),
+                                              ("hb=1e-300", "coincide")])
+def test_a_drawing_turned_inside_out_is_refused_before_meshing(capsys, setting, message):
+    """A negative or vanishing dimension of a .geo makes its outline cross itself or two of
+    its points coincide: gmsh would mesh it for minutes before failing."""
+    assert message in _refused(capsys, GEO_GUIDE, "--set", setting)
