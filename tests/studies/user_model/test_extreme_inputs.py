@@ -100,3 +100,15 @@ def test_a_drawing_turned_inside_out_is_refused_before_meshing(capsys, setting, 
     """A negative or vanishing dimension of a .geo makes its outline cross itself or two of
     its points coincide: gmsh would mesh it for minutes before failing."""
     assert message in _refused(capsys, GEO_GUIDE, "--set", setting)
+
+
+@pytest.mark.parametrize("argv", [
+    ["converge", "toy", "--metric", "tip_deflection", "--start", "1e-300"],
+    ["converge", "toy", "--metric", "tip_deflection", "--ratio", "1e300"],
+    ["converge", "toy", "--metric", "tip_deflection", "--params", '{"length_m": 1e300}'],
+    ["optimize", "dbma", "--stroke", "1e300", "--quick"],
+])
+def test_extreme_command_line_values_are_one_line_refusals(capsys, argv):
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "Traceback" not in err
