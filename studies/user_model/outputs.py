@@ -10,21 +10,26 @@ def groups_of(spec) -> list[str]:
     return list(dict.fromkeys(names))
 
 
-def stiffness(spec, mean_displacement: dict) -> dict:
-    """{group: {axis: N/m}} where exactly one force load is applied and every support holds
-    still: force / mean displacement of its group along the force (axis 'x'/'y'/'z' for an
-    axis-aligned force, else 'along'). A prescribed support displacement moves the group too,
-    so force over displacement is then no stiffness: none is reported."""
+def single_force(spec):
+    """The model's one load if it is a non-zero force and every support holds still, else
+    None. Only then is a group's motion the force's alone: a prescribed support displacement
+    moves the group too, so force over displacement would be no stiffness."""
     forces = [load for load in spec.loads if load.kind == "force"]
-    if len(forces) != 1 or len(spec.loads) != 1:
-        return {}
+    if len(forces) != 1 or len(spec.loads) != 1 or not np.any(forces[0].vector):
+        return None
     if any(s.components and any(v != 0 for v in s.components.values()) for s in spec.supports):
+        return None
+    return forces[0]
+
+
+def stiffness(spec, mean_displacement: dict) -> dict:
+    """{group: {axis: N/m}} for the :func:`single_force`: force / mean displacement of its
+    group along the force (axis 'x'/'y'/'z' for an axis-aligned force, else 'along')."""
+    load = single_force(spec)
+    if load is None:
         return {}
-    load = forces[0]
     f = np.array(load.vector)
     nonzero = np.flatnonzero(f)
-    if len(nonzero) == 0:
-        return {}
     u = np.asarray(mean_displacement[load.group])
     direction = f / np.linalg.norm(f)
     along = float(u @ direction)

@@ -16,16 +16,7 @@ import numpy as np
 
 from ...fem.fatigue import fatigue_stroke, yield_stroke
 from ...geometry.mechanism.description import Leaf
-
-
-def _single_force(spec):
-    """The one force load of a model whose supports hold still, or None."""
-    forces = [load for load in spec.loads if load.kind == "force"]
-    if len(forces) != 1 or len(spec.loads) != 1 or not np.any(forces[0].vector):
-        return None
-    if any(s.components and any(v != 0 for v in s.components.values()) for s in spec.supports):
-        return None  # a moving support strains the flexure too: no stroke of the force alone
-    return forces[0]
+from .outputs import single_force
 
 
 def _along(u, direction) -> float:
@@ -53,7 +44,7 @@ def stroke_limits(spec, result: dict, nominal=None) -> dict:
     stroke_direction (unit vector), stroke_limit_where (m), stroke_stress_basis, and
     stress_per_stroke (Pa/m); {} without a single force load. ``nominal``: a callable giving
     the beam model's result, used where the continuum's peak is at a sharp root."""
-    load = _single_force(spec)
+    load = single_force(spec)
     if load is None:
         return {}
     direction = np.asarray(load.vector, float) / np.linalg.norm(load.vector)
