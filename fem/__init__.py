@@ -13,6 +13,9 @@
     c = compliance_matrix(model, [Fixed("fixed")], "tip", state=(large, -1))
     buckling = solve_buckling(model, [Fixed("fixed")], [Force("tip", (-1.0, 0.0))], n=3)
     frf = solve_harmonic(model, [Fixed("fixed")], loads, freqs, damping=0.02).frf("tip", "y")
+
+The same functions take a planar BeamModel with named groups (:mod:`.beam.face`): one set of
+supports and loads, by group name, for the continuum and the reduced beam model.
 """
 from .boundary import (BodyForce, Fixed, Force, Gravity, PointForce, Prescribed, Pressure,
                        Traction)
@@ -21,14 +24,17 @@ from .gmsh_session import gmsh_session
 from .linsolve import SingularSystemError
 from .materials import Material, material, material_names
 from .mesh import FEMesh, drop_unused_vertices, facets_where, mesh_from_gmsh, read_mesh
-from .modal import Modes, solve_modes
+from .modal import Modes
 from .model import Model, PlaneStrain, PlaneStress, Solid3D, von_mises
-from .nonlinear import NonConvergenceError, NonlinearResult, solve_nonlinear
+from .nonlinear import NonConvergenceError, NonlinearResult
 from .rigid_face import RigidFace
-from .static import StaticResult, UnderConstrainedError, solve_static
-from .buckling import Buckling, solve_buckling
-from .compliance import Compliance, compliance_matrix
-from .harmonic import FRF, HarmonicResult, Rayleigh, solve_harmonic
+from .static import StaticResult, UnderConstrainedError
+from .buckling import Buckling
+from .compliance import Compliance
+from .harmonic import FRF, HarmonicResult, Rayleigh
+from .analyses import (compliance_matrix, solve_buckling, solve_harmonic, solve_modes,
+                       solve_nonlinear, solve_static)
+from .beam import BeamGroup, BeamModel
 from .springs import group_spring
 from .stress import nonlinear_stress, nonlinear_stress_at
 
@@ -40,5 +46,5 @@ __all__ = [
     "mesh_from_gmsh", "nonlinear_stress", "nonlinear_stress_at", "read_mesh", "solve_modes", "solve_nonlinear", "solve_static",
     "von_mises", "write_mesh", "write_result",
     "Buckling", "Compliance", "FRF", "HarmonicResult", "Rayleigh", "compliance_matrix",
-    "solve_buckling", "solve_harmonic", "group_spring",
+    "solve_buckling", "solve_harmonic", "group_spring", "BeamGroup", "BeamModel",
 ]

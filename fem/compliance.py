@@ -159,7 +159,7 @@ def _reduced_tangent(model, space: ReducedSpace, state):
     return _nonlinear_tangent(model, space, state, u)
 
 
-def _frame(dim, angle, frame) -> np.ndarray:
+def rotation_frame(dim, angle, frame) -> np.ndarray:
     """(dim, dim) orthonormal axes (columns) from ``angle`` (2-D, rad) or ``frame``."""
     if not (isinstance(angle, (int, float)) and math.isfinite(angle)):
         raise ValueError(f"angle = {angle!r} must be a finite number (rad)")
@@ -217,9 +217,16 @@ def compliance_matrix(model, supports, face, point=None, state=None, angle: floa
     if not isinstance(group, str):
         raise ValueError(f"face = {face!r} must be a boundary group name or a RigidFace")
     dim = model.dim
-    R = _frame(dim, angle, frame)
+    R = rotation_frame(dim, angle, frame)
     C, centre = _face_compliance(model, supports, group, state)
-    P = centre if point is None else np.asarray(point, dtype=float)
+    return moved_compliance(group, C, centre, point, R)
+
+
+def moved_compliance(face: str, C: np.ndarray, centre, point, R: np.ndarray) -> Compliance:
+    """The Compliance of ``face`` from ``C`` (about ``centre``, global axes) moved to
+    ``point`` (m; None: the centre) and turned into the axes ``R`` (columns)."""
+    dim = len(centre)
+    P = np.asarray(centre, dtype=float) if point is None else np.asarray(point, dtype=float)
     if P.shape != (dim,) or not np.all(np.isfinite(P)):
         raise ValueError(f"point = {point!r} must be {dim} finite coordinates (m)")
     d = P - centre
@@ -233,4 +240,4 @@ def compliance_matrix(model, supports, face, point=None, state=None, angle: floa
     Rn = np.zeros((n, n))
     Rn[:dim, :dim] = R.T
     Rn[dim:, dim:] = R.T if dim == 3 else 1.0
-    return Compliance(group, Rn @ A @ C @ A.T @ Rn.T, P, R)
+    return Compliance(face, Rn @ A @ C @ A.T @ Rn.T, P, R)

@@ -10,14 +10,14 @@
 from .assembly import SingularBeamError
 from .compliance import compliance
 from .modal import BeamModes, solve_beam_modes
-from .model import (BeamMesh, BeamModel, Fixed, NodalLoad, Prescribed, RigidLink, Section,
+from .model import (BeamGroup, BeamMesh, BeamModel, Fixed, NodalLoad, Prescribed, RigidLink, Section,
                     beam_chain, beam_from_profile)
 from .nonlinear import BeamNonlinearResult, NonConvergenceError, solve_beam_nonlinear
 from .static import BeamState, BeamStaticResult, solve_beam_displacements, solve_beam_static
 from .superelement import Superelement
 
 __all__ = [
-    "BeamMesh", "BeamModel", "BeamModes", "BeamNonlinearResult", "BeamState",
+    "BeamGroup", "BeamMesh", "BeamModel", "BeamModes", "BeamNonlinearResult", "BeamState",
     "BeamStaticResult", "Fixed", "NodalLoad", "NonConvergenceError", "Prescribed", "RigidLink",
     "Section", "SingularBeamError", "Superelement", "beam_chain", "beam_from_profile",
     "compliance", "solve_beam_displacements", "solve_beam_modes", "solve_beam_nonlinear",

@@ -158,6 +158,22 @@ class NodalLoad:
     m: float = 0.0
 
 
+@dataclass(frozen=True)
+class BeamGroup:
+    """The nodes (masters of rigid bodies) a group names, and the extent (dx, dy) of the face
+    it stands for (m; zero for a point)."""
+
+    nodes: tuple
+    span: tuple = (0.0, 0.0)
+
+    def __post_init__(self):
+        nodes = tuple(int(n) for n in np.atleast_1d(self.nodes))
+        if not nodes:
+            raise ValueError("BeamGroup: a group needs at least one node")
+        object.__setattr__(self, "nodes", nodes)
+        object.__setattr__(self, "span", tuple(float(abs(s)) for s in self.span))
+
+
 @dataclass
 class BeamMesh:
     """Nodes (n, 2) m, elements (n_e, 2) node pairs, one Section per element, and
@@ -286,10 +302,11 @@ class BeamModel:
     deformation (default off: Euler-Bernoulli); rigid_links: RigidLink sequence;
     point_masses: {node: (mass kg, rotary inertia kg m^2)}; superelements: Superelement
     sequence (linear parts condensed onto nodes; assembled as pairs of nodes, ``pairs``,
-    after the elements: ``connectivity``)."""
+    after the elements: ``connectivity``); groups: {name: BeamGroup or node indices}, the
+    places the analysis face's supports and loads name (:mod:`.face`)."""
 
     def __init__(self, nodes, elements, sections, material: Material, shear: bool = False,
-                 rigid_links=(), point_masses=None, superelements=()):
+                 rigid_links=(), point_masses=None, superelements=(), groups=None):
         self.nodes = np.asarray(nodes, dtype=float)
         if self.nodes.ndim != 2 or self.nodes.shape[1] != 2 or not np.all(np.isfinite(self.nodes)):
             raise ValueError(f"nodes must be a finite (n, 2) array, got shape {self.nodes.shape}")
@@ -316,6 +333,23 @@ class BeamModel:
         self._check_links()
         self.superelements = tuple(superelements)
         self._pairs()
+        self.groups = {}
+        for name, g in (groups or {}).items():
+            self.add_group(name, g)
+
+    def add_group(self, name: str, nodes, span=(0.0, 0.0)) -> None:
+        """Name ``nodes`` (a BeamGroup, or node indices with the face's extent ``span``, m)
+        as group ``name``; the nodes must not be rigid-link slaves (support their master)."""
+        g = nodes if isinstance(nodes, BeamGroup) else BeamGroup(nodes, span)
+        if not isinstance(name, str) or not name:
+            raise ValueError(f"group name {name!r} must be a non-empty string")
+        for n in g.nodes:
+            if not 0 <= n < self.n_nodes:
+                raise ValueError(f"group {name!r}: node {n} outside 0..{self.n_nodes - 1}")
+            if self.master_of[n] >= 0:
+                raise ValueError(f"group {name!r}: node {n} is a rigid-link slave; name its "
+                                 f"master {self.master_of[n]}")
+        self.groups[name] = g
 
     def _pairs(self):
         parts = []

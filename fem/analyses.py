@@ -1,0 +1,66 @@
+"""The analysis functions of flexfem.fem, for a continuum Model and a planar BeamModel alike.
+
+    result = solve_static(model, [Fixed("ground")], [Force("stage", (1.0, 0.0))])
+    result.mean_displacement("stage"), result.reactions["ground"], result.max_von_mises
+
+Each takes the supports and loads of :mod:`.boundary` by group name and returns results with
+the same names whichever model it is given: a continuum :class:`.model.Model` is solved by
+the continuum's function (:mod:`.static`, :mod:`.modal`, ...), a beam model with named groups
+(:class:`.beam.BeamModel`) by :mod:`.beam.face` (what a group is on a beam model, and what
+its stress means, is there). Options that only the continuum has (a rigid face, a prestress,
+arc-length control, buckling) raise a TypeError or ValueError naming them on a beam model.
+"""
+from . import buckling, compliance, harmonic, modal, nonlinear, static
+from .beam import face as beam_face
+from .beam.model import BeamModel
+
+
+def _pick(model, continuum, beam):
+    return beam if isinstance(model, BeamModel) else continuum
+
+
+def solve_static(model, supports, loads=(), **options):
+    return _pick(model, static.solve_static, beam_face.solve_static)(model, supports, loads,
+                                                                     **options)
+
+
+def solve_modes(model, n: int = 6, supports=(), **options):
+    return _pick(model, modal.solve_modes, beam_face.solve_modes)(model, n, supports, **options)
+
+
+def solve_nonlinear(model, supports, loads, **options):
+    return _pick(model, nonlinear.solve_nonlinear, beam_face.solve_nonlinear)(
+        model, supports, loads, **options)
+
+
+def compliance_matrix(model, supports, face, **options):
+    return _pick(model, compliance.compliance_matrix, beam_face.compliance_matrix)(
+        model, supports, face, **options)
+
+
+def solve_harmonic(model, supports, loads, frequencies_hz, **options):
+    return _pick(model, harmonic.solve_harmonic, beam_face.solve_harmonic)(
+        model, supports, loads, frequencies_hz, **options)
+
+
+def solve_buckling(model, supports, loads, n: int = 3):
+    if isinstance(model, BeamModel):
+        raise ValueError("solve_buckling: the beam model has no linearised buckling; solve "
+                         "the continuum, or follow the beam's load path with solve_nonlinear")
+    return buckling.solve_buckling(model, supports, loads, n)
+
+
+def _describe(function, continuum, beam=None) -> None:
+    """The face's docstring: the continuum's, then what the beam model does."""
+    text = continuum.__doc__ or ""
+    if beam is not None:
+        text += f"\n\n    On a beam model (:mod:`flexfem.fem.beam.face`): {beam.__doc__}"
+    function.__doc__ = text
+
+
+_describe(solve_static, static.solve_static, beam_face.solve_static)
+_describe(solve_modes, modal.solve_modes, beam_face.solve_modes)
+_describe(solve_nonlinear, nonlinear.solve_nonlinear, beam_face.solve_nonlinear)
+_describe(compliance_matrix, compliance.compliance_matrix, beam_face.compliance_matrix)
+_describe(solve_harmonic, harmonic.solve_harmonic, beam_face.solve_harmonic)
+_describe(solve_buckling, buckling.solve_buckling)

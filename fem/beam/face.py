@@ -1,0 +1,284 @@
+"""The continuum's analysis face on a planar beam model with named groups.
+
+A group is what a mesh's boundary group is to the continuum: the place where supports hold
+and loads act. On a beam model it is one or more nodes, each the master of a rigid body (a
+block, a pad, a mounting face), and the extent of the face it stands for (``span``, m). So the
+supports and loads of :mod:`flexfem.fem.boundary` apply to either model:
+
+- ``Fixed(group)`` holds every node of the group (x, y and rotation): a clamped rigid face;
+- ``Prescribed(group, x=..., y=...)`` holds those components at the values; a component held
+  on a face that spans across it holds the face's rotation too (every point of a rigid face
+  having the same x means it does not turn), as the continuum's every-node constraint does;
+- ``Force(group, vector)`` is the group's total force (N), shared equally by its nodes.
+
+Results carry the continuum's names: ``mean_displacement(group)`` (the mean of the group's
+nodes: the face's motion at its reference point), ``reactions[group]`` (N, summed over its
+nodes), ``max_von_mises`` (the beam stress |N|/A + |M| c / I, Pa; no stress concentration)
+and ``max_von_mises_location`` (m). SI units.
+"""
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..boundary import Fixed, Force, Prescribed
+from ..compliance import Compliance, moved_compliance, rotation_frame
+from ..harmonic import FRF, _check_frequencies, _damping_ratios
+from .compliance import compliance
+from .modal import BeamModes, solve_beam_modes
+from .model import BeamGroup, BeamModel
+from .model import Fixed as NodeFixed
+from .model import NodalLoad
+from .model import Prescribed as NodePrescribed
+from .nonlinear import BeamNonlinearResult, solve_beam_nonlinear
+from .static import BeamState, solve_beam_static
+
+AXES = ("x", "y")
+
+
+def group(model: BeamModel, name) -> BeamGroup:
+    """The model's group ``name``; ValueError naming the known groups."""
+    groups = model.groups
+    if name not in groups:
+        raise ValueError(f"group {name!r} is not one of the beam model's groups "
+                         f"{sorted(groups)}")
+    return groups[name]
+
+
+def node_supports(model: BeamModel, supports) -> list:
+    """The beam model's own node supports for group supports (Fixed, Prescribed)."""
+    out = []
+    for s in supports:
+        if isinstance(s, (NodeFixed, NodePrescribed)):
+            out.append(s)
+        elif isinstance(s, Fixed):
+            out.append(NodeFixed(group(model, s.group).nodes))
+        elif isinstance(s, Prescribed):
+            g = group(model, s.group)
+            values = s.components()
+            if 2 in values or any(callable(v) for v in values.values()):
+                raise ValueError(f"Prescribed({s.group!r}): the planar beam model takes numbers "
+                                 "for x and y (m)")
+            turns_free = True
+            for axis, value in values.items():
+                out += [NodePrescribed(n, AXES[axis], float(value)) for n in g.nodes]
+                turns_free &= g.span[1 - axis] == 0.0
+            if not turns_free:
+                out += [NodePrescribed(n, "theta", 0.0) for n in g.nodes]
+        else:
+            raise ValueError(f"supports: {s!r}: the beam model takes Fixed and Prescribed")
+    return out
+
+
+def node_loads(model: BeamModel, loads) -> list:
+    """NodalLoads for group forces (Force: the total, shared equally by the group's nodes)."""
+    out = []
+    for load in loads:
+        if isinstance(load, NodalLoad):
+            out.append(load)
+        elif isinstance(load, Force):
+            if len(load.vector) != 2:
+                raise ValueError(f"Force({load.group!r}): the planar beam model takes (F_x, "
+                                 "F_y) in N")
+            nodes = group(model, load.group).nodes
+            fx, fy = (v / len(nodes) for v in load.vector)
+            out += [NodalLoad(n, fx, fy) for n in nodes]
+        else:
+            raise ValueError(f"loads: {type(load).__name__} on the beam model: it takes Force "
+                             "(the group's total, N); a traction, pressure or body load is "
+                             "the continuum's")
+    return out
+
+
+def _supported(supports) -> list:
+    return [s.group for s in supports if isinstance(s, (Fixed, Prescribed))]
+
+
+@dataclass(frozen=True, eq=False)
+class BeamResult:
+    """A beam state read by group: the continuum StaticResult's names. ``state``: the
+    BeamState (q, element forces, stresses, node reactions)."""
+
+    model: BeamModel
+    state: BeamState
+    supported: tuple = ()
+    solver: str = "beam"
+
+    @property
+    def displacement(self) -> np.ndarray:
+        """(n_nodes, 2) displacement, m."""
+        return self.state.displacement
+
+    def mean_displacement(self, name: str) -> np.ndarray:
+        """(2,) mean displacement of the group's nodes, m."""
+        return self.state.q[list(group(self.model, name).nodes), :2].mean(axis=0)
+
+    def rotation(self, name: str) -> float:
+        """Mean rotation of the group's nodes, rad (counter-clockwise)."""
+        return float(self.state.q[list(group(self.model, name).nodes), 2].mean())
+
+    @property
+    def reactions(self) -> dict:
+        """{group: (F_x, F_y) N} of every supported group, summed over its nodes."""
+        out = {}
+        for name in self.supported:
+            rows = [self.state.reactions.get(n, np.zeros(3))[:2]
+                    for n in group(self.model, name).nodes]
+            out[name] = np.sum(rows, axis=0)
+        return out
+
+    @property
+    def max_von_mises(self) -> float:
+        """Largest beam stress |N|/A + |M| c / I, Pa."""
+        return self.state.max_stress
+
+    @property
+    def max_von_mises_location(self) -> np.ndarray:
+        """Where max_von_mises is, m (on the element's centre line)."""
+        return np.asarray(self.state.max_stress_location[2], dtype=float)
+
+
+def solve_static(model: BeamModel, supports, loads=(), **options) -> BeamResult:
+    """Linear static solve of a grouped beam model (the continuum's supports and loads)."""
+    _no_options("solve_static", options, ("solver",))
+    state = solve_beam_static(model, node_supports(model, supports), node_loads(model, loads))
+    return BeamResult(model, state, tuple(_supported(supports)))
+
+
+def solve_modes(model: BeamModel, n: int = 6, supports=(), **options) -> BeamModes:
+    """The ``n`` lowest natural frequencies (Hz) and shapes, supports held at zero (their
+    values ignored, as the continuum's); effective_mass (n, 2) kg."""
+    _no_options("solve_modes", options, ())
+    held = [_at_zero(s) for s in node_supports(model, supports)]
+    return solve_beam_modes(model, held, n=n)
+
+
+def _at_zero(support):
+    if isinstance(support, NodePrescribed):
+        return NodePrescribed(support.node, support.dof, 0.0)
+    return support
+
+
+@dataclass(frozen=True, eq=False)
+class BeamPath:
+    """Converged steps of a large-rotation solve, read by group. ``result``: the
+    BeamNonlinearResult (states per step)."""
+
+    model: BeamModel
+    result: BeamNonlinearResult
+    supported: tuple = ()
+
+    @property
+    def load_factors(self) -> np.ndarray:
+        return self.result.load_factors
+
+    def step(self, k: int = -1) -> BeamResult:
+        """Step ``k`` as a BeamResult."""
+        return BeamResult(self.model, self.result.states[k], self.supported)
+
+    def mean_displacement(self, name: str, step: int = -1) -> np.ndarray:
+        """(2,) mean displacement of the group's nodes at ``step``, m."""
+        return self.step(step).mean_displacement(name)
+
+    def path(self, name: str) -> np.ndarray:
+        """(n_steps + 1, 2) mean displacement of the group over the steps, m."""
+        return np.array([self.mean_displacement(name, k) for k in range(len(self.load_factors))])
+
+    @property
+    def reactions(self) -> list:
+        """Per step {group: (F_x, F_y) N}."""
+        return [self.step(k).reactions for k in range(len(self.load_factors))]
+
+    @property
+    def max_von_mises(self) -> float:
+        """Largest beam stress at the last step, Pa."""
+        return self.result.final.max_stress
+
+
+def solve_nonlinear(model: BeamModel, supports, loads, steps: int = 10,
+                    max_iterations: int = 25, tol: float = 1e-9, min_step: float = 1e-4,
+                    **options) -> BeamPath:
+    """Large-rotation (co-rotational) static solve, the loads and prescribed values scaled
+    0 -> 1 in ``steps`` increments (halved on failure down to ``min_step``)."""
+    _no_options("solve_nonlinear", options, ("solver", "check_stability"))
+    result = solve_beam_nonlinear(model, node_supports(model, supports),
+                                  node_loads(model, loads), steps=steps,
+                                  max_iterations=max_iterations, tol=tol, min_step=min_step)
+    return BeamPath(model, result, tuple(_supported(supports)))
+
+
+def compliance_matrix(model: BeamModel, supports, face, point=None, angle: float = 0.0,
+                      frame=None, **options) -> Compliance:
+    """3 x 3 compliance of the group ``face`` (one node: the master of its rigid body) under
+    ``supports``, at ``point`` (m; default that node), in the axes rotated by ``angle`` (rad)
+    or the columns of ``frame`` (as the continuum's compliance_matrix)."""
+    _no_options("compliance_matrix", options, ())
+    nodes = group(model, face).nodes
+    if len(nodes) != 1:
+        raise ValueError(f"compliance_matrix: group {face!r} has {len(nodes)} nodes; a "
+                         "compliance is of one rigid body (a group of one node)")
+    C = compliance(model, node_supports(model, supports), nodes[0])
+    centre = model.nodes[nodes[0]].copy()
+    return moved_compliance(face, C, centre, point, rotation_frame(2, angle, frame))
+
+
+@dataclass(frozen=True, eq=False)
+class BeamHarmonic:
+    """Steady-state amplitudes: frequencies_hz (n,); q (n, n_nodes, 3) complex (m, rad)."""
+
+    model: BeamModel
+    frequencies_hz: np.ndarray
+    q: np.ndarray
+    modes: BeamModes
+    info: dict = field(default_factory=dict)
+
+    def mean_displacement(self, name: str) -> np.ndarray:
+        """(n, 2) complex mean displacement amplitude of the group, m."""
+        return self.q[:, list(group(self.model, name).nodes), :2].mean(axis=1)
+
+    def frf(self, name: str, component) -> FRF:
+        """Response of the group's mean displacement along ``component`` (0/'x', 1/'y')."""
+        i = {"x": 0, "y": 1}.get(component, component)
+        if i not in (0, 1):
+            raise ValueError(f"component = {component!r} must be 'x', 'y', 0 or 1")
+        return FRF(self.frequencies_hz, self.mean_displacement(name)[:, i])
+
+
+def solve_harmonic(model: BeamModel, supports, loads, frequencies_hz, damping=0.0,
+                   n_modes: int = 20, **options) -> BeamHarmonic:
+    """Steady-state response to the loads (amplitudes, N) by modal superposition of
+    ``n_modes`` modes plus the static correction (exact at 0 Hz), as the continuum's 'modal'
+    method: damping a modal damping ratio (one, or one per mode) or Rayleigh(alpha, beta)."""
+    _no_options("solve_harmonic", options, ("method",))
+    f_hz = _check_frequencies(frequencies_hz)
+    held = [_at_zero(s) for s in node_supports(model, supports)]
+    nodal = node_loads(model, loads)
+    modes = solve_beam_modes(model, held, n=n_modes)
+    static = solve_beam_static(model, held, nodal).q
+    f = np.zeros((model.n_nodes, 3))
+    for load in nodal:
+        f[load.node] += (load.fx, load.fy, load.m)
+    w_r = 2 * np.pi * modes.frequencies_hz
+    zeta = _damping_ratios(damping, w_r)
+    phi = modes.shapes.reshape(len(w_r), -1)
+    p = phi @ f.ravel()
+    residual = static.ravel() - phi.T @ (p / w_r ** 2)
+    omega = 2 * np.pi * f_hz
+    with np.errstate(divide="ignore", invalid="ignore"):
+        h = 1.0 / (w_r[None, :] ** 2 - omega[:, None] ** 2 + 2j * zeta * w_r * omega[:, None])
+    q = (h * p) @ phi + residual
+    return BeamHarmonic(model, f_hz, q.reshape(len(f_hz), model.n_nodes, 3), modes,
+                        info={"n_modes": n_modes, "damping_ratios": zeta})
+
+
+def _no_options(what: str, options: dict, ignored: tuple) -> None:
+    """Options of the continuum's function that mean nothing on a beam model: those in
+    ``ignored`` (a solver choice) are accepted, any other is a TypeError naming it."""
+    unknown = sorted(set(options) - set(ignored))
+    if unknown:
+        raise TypeError(f"{what}: option(s) {unknown} are the continuum's; the beam model "
+                        "takes none of them")
+
+
+__all__ = ["BeamGroup", "BeamHarmonic", "BeamPath", "BeamResult",
+           "compliance_matrix", "node_loads", "node_supports", "solve_harmonic",
+           "solve_modes", "solve_nonlinear", "solve_static"]
