@@ -109,14 +109,14 @@ def linear_points(rows):
 def dbma_beam_point(p, layout=None):
     """The beam model's outputs of continuum_metrics: R_fem_per_side, k_in, k_out,
     fn_working and the (nominal) stress, model build included."""
-    from flexfem.geometry.dbma.beam import dbma_beam_model
-    from flexfem.studies.dbma.beam import beam_modal, beam_output_stiffness, beam_static
+    from flexfem.studies.dbma.analysis import modal_response, output_stiffness, static_response
+    from flexfem.studies.dbma.beam import beam_model
 
-    model, info = dbma_beam_model(p, layout)
-    static = beam_static(model, info, 100.0)
+    model, _ = beam_model(p, layout)
+    static = static_response(model, 100.0)
     return {"R_fem_per_side": static["R_fem_per_side"], "k_in": static["k_in"],
-            "k_out": beam_output_stiffness(model, info),
-            "fn_working": beam_modal(model, info, 6)["fn_working"],
+            "k_out": output_stiffness(model),
+            "fn_working": modal_response(model, 6)[0]["fn_working"],
             "max_von_mises": static["max_von_mises"], "dofs": model.n_dofs}
 
 

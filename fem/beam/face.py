@@ -132,6 +132,11 @@ class BeamResult:
         return self.state.max_stress
 
     @property
+    def max_von_mises_element(self) -> float:
+        """The beam stress has no smoothing: max_von_mises, Pa."""
+        return self.state.max_stress
+
+    @property
     def max_von_mises_location(self) -> np.ndarray:
         """Where max_von_mises is, m (on the element's centre line)."""
         return np.asarray(self.state.max_stress_location[2], dtype=float)

@@ -305,6 +305,8 @@ class BeamModel:
     after the elements: ``connectivity``); groups: {name: BeamGroup or node indices}, the
     places the analysis face's supports and loads name (:mod:`.face`)."""
 
+    dim = 2  # planar: the continuum Model's name for its space dimension
+
     def __init__(self, nodes, elements, sections, material: Material, shear: bool = False,
                  rigid_links=(), point_masses=None, superelements=(), groups=None):
         self.nodes = np.asarray(nodes, dtype=float)

@@ -23,7 +23,7 @@ width; the members' faces around a hinge are about as tall). Lengths in m.
 """
 import numpy as np
 
-from ...fem.beam import (BeamMesh, BeamModel, Fixed, Prescribed, RigidLink, Section,
+from ...fem.beam import (BeamGroup, BeamMesh, BeamModel, RigidLink, Section,
                          beam_chain)
 from ...fem.materials import Material
 from ..beam_layout import ROOT_EXTENSION, check_root_extension, profile_beam
@@ -131,8 +131,11 @@ def _input_member(bld, links, supers, p, layout, J, pad, sx, hinge_ends, root_ex
 def dbma_beam_model(p: DBMAParams, layout: DBMALayout | None = None,
                     root_extension: float = ROOT_EXTENSION, arm_elements: int = 8,
                     shear: bool = True, elements_per_hinge: int | None = None,
-                    notch_correction: bool = True, member_patch: bool = True) -> tuple:
-    """(BeamModel, info) of the DBMA. info: "input_a" / "input_b" (masters of the left /
+                    notch_correction: bool = True, member_patch: bool = True,
+                    material: Material | None = None) -> tuple:
+    """(BeamModel, info) of the DBMA, with the continuum mesh's groups:
+    "fixed" (the mounting face), "input_a", "input_b" and "input" (the pad faces), "output"
+    (the top of member 4), each with its face's extent. info: "input_a" / "input_b" (masters of the left /
     right input members, on their pads' faces), "output" (master of member 4, on its top
     face), "ground" (the bottom of member 11, its mounting face), "hinges" {label: (first,
     last element) of the hinge-arm-hinge chain}, "hinge_elements" (the 16 hinges' elements,
@@ -142,7 +145,7 @@ def dbma_beam_model(p: DBMAParams, layout: DBMALayout | None = None,
     (:func:`flexfem.geometry.hinge_patch.notch_factors`; False: plain beam theory).
     ``member_patch``: the input members where their pads bear on them as 2-D patches
     (:mod:`.member_patch`; a linear superelement each); False: as rigid blocks on short pad
-    beams (the model the spatial beam lifts)."""
+    beams (the model the spatial beam lifts). ``material``: default E, nu, rho of ``p``."""
     layout = layout or DBMALayout()
     check_layout(p, layout)
     root_extension = check_root_extension(root_extension)
@@ -185,20 +188,18 @@ def dbma_beam_model(p: DBMAParams, layout: DBMALayout | None = None,
                   6 / p.ll)
     base = _column(bld, links, 0.0, (-out4.y1, -out4.y0), p.ls, p.d, ground, 6 / p.ll)
     master, ground = top[out4.y1], [base[-out4.y1]]
+    pads = (0.0, layout.pad_height)
     model = BeamModel(np.vstack(bld.nodes), np.vstack(bld.elements), bld.sections,
-                      Material("dbma_steel", p.E, p.nu, p.rho), shear=shear, rigid_links=links,
-                      superelements=supers)
+                      material or Material("dbma_steel", p.E, p.nu, p.rho), shear=shear,
+                      rigid_links=links, superelements=supers,
+                      groups={"fixed": BeamGroup(ground, (p.ls, 0.0)),
+                              "input_a": BeamGroup(slaves["input_a"], pads),
+                              "input_b": BeamGroup(slaves["input_b"], pads),
+                              "input": BeamGroup((slaves["input_a"], slaves["input_b"]), pads),
+                              "output": BeamGroup(master, (p.ls, 0.0))})
     return model, {"input_a": slaves["input_a"], "input_b": slaves["input_b"],
                    "output": master, "ground": ground, "hinges": spans,
                    "hinge_elements": np.array(in_hinges)}
-
-
-def pads_held(info) -> list:
-    """Supports of a dbma_beam_model for k_out and the modes: the mounting face clamped, each
-    pad face's x and rotation held (the actuator holding its stroke)."""
-    return [Fixed(tuple(info["ground"]))] + [Prescribed(n, d, 0.0) for n in
-                                             (info["input_a"], info["input_b"])
-                                             for d in ("x", "theta")]
 
 
 def dbma_beam3d_model(p: DBMAParams, layout: DBMALayout | None = None,

@@ -11,6 +11,7 @@ the pads along x (docs/dbma.md). Forces in N, lengths in m, stresses in Pa, freq
 import dataclasses
 import math
 from pathlib import Path
+from typing import Literal
 
 import numpy as np
 
@@ -80,26 +81,42 @@ def build_model(p: DBMAParams, layout: DBMALayout | None = None, dim: int = 2,
     return Model(mesh, dbma_material(p), formulation, order=2)
 
 
-def static_response(model: Model, force: float) -> dict:
+def static_response(model, force: float, peak_stress=None) -> dict:
     """R (-), elongation and output displacement (m), input stiffness k_in = F / elongation
-    (N/m), max von Mises (Pa, nodal and element) and where (m), safety factor against yield.
+    (N/m), max von Mises (Pa, nodal and element) and where (m), safety factor against yield,
+    of the continuum or the beam model (its groups are the mesh's).
 
     R_fem = output / elongation; R_fem_per_side = output / (elongation / 2), the output over
     one pad's motion relative to the symmetry plane (the paper's reading, docs/dbma.md): the
-    two pads move equally by symmetry, and using their mean removes the mesh's asymmetry."""
+    two pads move equally by symmetry, and using their mean removes the mesh's asymmetry.
+    ``peak_stress(result) -> {"peak_stress": Pa, ...}``: the beam model's stress at its
+    roots (:func:`flexfem.studies.dbma.beam.root_stress`), which then is max_von_mises, the
+    model's own in "nominal_stress"."""
     result = solve_static(model, static_supports(), actuator_loads(force, model.dim))
     u_a = result.mean_displacement("input_a")
     u_b = result.mean_displacement("input_b")
     u_out = result.mean_displacement("output")[OUTPUT_AXIS]
     elongation = u_b[0] - u_a[0]
-    vm = result.max_von_mises
-    return {"force": force, "elongation": elongation, "output_displacement": u_out,
-            "R_fem": u_out / elongation, "R_fem_per_side": 2 * u_out / elongation,
-            "input_a_x": u_a[0], "input_b_x": u_b[0],
-            "k_in": force / elongation, "max_von_mises": vm,
-            "max_von_mises_element": result.max_von_mises_element,
-            "max_von_mises_location": [float(v) for v in result.max_von_mises_location],
-            "safety_factor": model.material.yield_strength / vm}
+    out = {"force": force, "elongation": elongation, "output_displacement": u_out,
+           "R_fem": u_out / elongation, "R_fem_per_side": 2 * u_out / elongation,
+           "input_a_x": u_a[0], "input_b_x": u_b[0], "k_in": force / elongation,
+           "max_von_mises": result.max_von_mises,
+           "max_von_mises_element": result.max_von_mises_element,
+           "max_von_mises_location": [float(v) for v in result.max_von_mises_location]}
+    if peak_stress is not None:
+        out.update(peak_stress(result), nominal_stress=out["max_von_mises"])
+        out["max_von_mises"] = out["max_von_mises_element"] = out["peak_stress"]
+    strength = model.material.yield_strength
+    out["safety_factor"] = strength / out["max_von_mises"] if strength else math.nan
+    return out
+
+
+def output_stiffness(model, force: float = 100.0) -> float:
+    """k_out = F / u_out (N/m): the output pushed along y, the mounting face and the pads
+    held along x (a rigid actuator, :func:`modal_supports`)."""
+    z = (0.0,) if model.dim == 3 else ()
+    result = solve_static(model, modal_supports(), [Force("output", (0.0, force) + z)])
+    return force / float(result.mean_displacement("output")[OUTPUT_AXIS])
 
 
 def working_mode(modes) -> int:
@@ -107,7 +124,7 @@ def working_mode(modes) -> int:
     return int(np.argmax(modes.effective_mass[:, OUTPUT_AXIS])) + 1
 
 
-def modal_response(model: Model, n_modes: int = 6) -> tuple[dict, object]:
+def modal_response(model, n_modes: int = 6) -> tuple[dict, object]:
     """First n_modes frequencies (Hz), effective masses (kg, n x dim), the working mode."""
     modes = solve_modes(model, n=n_modes, supports=modal_supports())
     k = working_mode(modes)
@@ -154,22 +171,68 @@ def params_from_dict(values: dict) -> DBMAParams:
     return dataclasses.replace(paper_design(), **values)  # DBMAParams checks the types
 
 
-def evaluate(params_dict: dict, dim: int = 2, size_factor: float = 1.0,
-             modes: bool = False, force: float = 100.0, max_dofs: int | None = None) -> dict:
-    """Metrics for the sweep engine: R_fem, k_in (N/m), max_von_mises (Pa, at ``force`` N),
-    dofs, h (hinge element size, m), the analytical metrics, and with ``modes`` fn_working
-    (Hz) and working_mode. ``max_dofs``: the mesh budget (None: the machine's)."""
-    p = params_from_dict(params_dict)
-    model = build_model(p, None, dim, size_factor, max_dofs=max_dofs)
-    static = static_response(model, force)
+MODELS = ("continuum", "beam")
+
+
+def build(p: DBMAParams, layout: DBMALayout | None = None, model: str = "continuum",
+          dim: int = 2, size_factor: float = 1.0, max_dofs: int | None = None,
+          root_extension: float | None = None) -> tuple:
+    """(model, peak_stress) of the DBMA, with the groups every analysis here names: the
+    continuum FEM (:func:`build_model`; peak_stress None) or the reduced beam model
+    (:func:`flexfem.studies.dbma.beam.beam_model`, planar; its root stress). The analyses
+    (:func:`static_response`, :func:`output_stiffness`, :func:`modal_response`) are the same
+    for both."""
+    if model == "continuum":
+        return build_model(p, layout, dim, size_factor, max_dofs=max_dofs), None
+    if model == "beam":
+        from .beam import beam_model  # the beam's builder uses this module's material
+        return beam_model(p, layout, root_extension)
+    raise ValueError(f"model = {model!r} must be one of {MODELS}")
+
+
+def evaluate(params_dict: dict | None = None, dim: int = 2, size_factor: float = 1.0,
+             modes: bool = False, force: float = 100.0, max_dofs: int | None = None, *,
+             model: Literal["continuum", "beam"] = "continuum",
+             hinge_profile: Literal["leaf", "filleted", "circular"] = "leaf",
+             root_extension: float | None = None) -> dict:
+    """Metrics for the sweep engine, from the continuum FEM or the reduced beam model
+    (``model``; a study selects it with ``options = { model = "beam" }``): R_fem,
+    R_fem_per_side, k_in and k_out (N/m), max_von_mises (Pa, at ``force`` N), safety_factor,
+    dofs, the analytical metrics, and with ``modes`` fn_working (Hz) and working_mode; the
+    continuum's h (hinge element size, m). ``dim``, ``size_factor`` and ``max_dofs`` (the
+    mesh budget, None: the machine's) are the continuum's; ``root_extension`` (default
+    geometry/beam_layout.py's) the beam's; each model ignores the other's."""
+    p = params_from_dict(params_dict or {})
+    layout = DBMALayout(hinge_profile=hinge_profile)
+    fe, peak = build(p, layout, model, dim, size_factor, max_dofs, root_extension)
+    static = static_response(fe, force, peak)
     out = {k: v for k, v in analytical_metrics(p).items() if isinstance(v, (int, float))}
-    out.update({k: static[k] for k in ("R_fem", "R_fem_per_side", "k_in", "max_von_mises")})
+    out.update({k: static[k] for k in ("R_fem", "R_fem_per_side", "k_in", "max_von_mises",
+                                       "safety_factor")})
     out["force_N"] = float(force)  # the load case max_von_mises belongs to
+    out["k_out"] = output_stiffness(fe)
     check_result(out, p)
-    out.update({"dofs": int(model.n_dofs), "h": p.b / (4 if dim == 2 else 2) * size_factor})
+    out["dofs"] = int(fe.n_dofs)
+    if model == "continuum":
+        out["h"] = p.b / (4 if dim == 2 else 2) * size_factor
     if modes:
-        modal, _ = modal_response(model)
+        modal, _ = modal_response(fe)
         out.update({"fn_working": modal["fn_working"], "working_mode": modal["working_mode"]})
+    return out
+
+
+def fem_metrics(params_dict: dict, dim: int = 2, size_factor: float = 1.0,
+                modes: bool = False) -> dict:
+    """R_fem, R_fem_per_side (and with ``modes`` fn_working) of the continuum FEM: what the
+    figures and the convergence study plot, without evaluate's output-stiffness solve."""
+    p = params_from_dict(params_dict)
+    fe = build_model(p, None, dim, size_factor)
+    out = {k: v for k, v in static_response(fe, 100.0).items()
+           if k in ("R_fem", "R_fem_per_side")}
+    check_result(out, p)
+    out.update({"dofs": int(fe.n_dofs), "h": p.b / (4 if dim == 2 else 2) * size_factor})
+    if modes:
+        out["fn_working"] = modal_response(fe)[0]["fn_working"]
     return out
 
 
@@ -191,7 +254,8 @@ def fig13_sweep(p: DBMAParams, b_values, h_values, size_factor: float = 1.0) -> 
         for v in values:
             q = dataclasses.replace(p, **{name: float(v)})
             a = analytical_metrics(q)
-            r = evaluate({f.name: getattr(q, f.name) for f in dataclasses.fields(q)}, 2, size_factor)
+            r = fem_metrics({f.name: getattr(q, f.name) for f in dataclasses.fields(q)}, 2,
+                            size_factor)
             rows.append({"parameter": name, "value_m": float(v), "R_fem": r["R_fem"],
                          "R_fem_per_side": r["R_fem_per_side"], "R_eq7": a["R_eq7"],
                          "R_enhanced": a.get("R_enhanced", math.nan)})
@@ -208,7 +272,7 @@ def convergence_study(p: DBMAParams, size_factors=(2.83, 2.0, 1.41, 1.0),
 
     def cached(params, size_factor):  # one static + modal solve per level, for both metrics
         if size_factor not in outputs:
-            outputs[size_factor] = evaluate(params, 2, size_factor, modes=True)
+            outputs[size_factor] = fem_metrics(params, 2, size_factor, modes=True)
         return outputs[size_factor]
 
     levels = [{"size_factor": s} for s in size_factors]

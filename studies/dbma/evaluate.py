@@ -1,13 +1,10 @@
-"""The DBMA's study entry: ``evaluate(params, model="continuum" | "beam", **options)``.
-
-``model="continuum"`` (default) is the FEM (:func:`flexfem.studies.dbma.analysis.evaluate`);
-``model="beam"`` the reduced beam model (:func:`flexfem.studies.dbma.beam.evaluate_beam`),
-same metric names. A study file selects it with ``options = { model = "beam" }``.
+"""The DBMA's study entry: ``evaluate(params, model="continuum" | "beam", **options)``
+(:func:`flexfem.studies.dbma.analysis.evaluate`: one analysis, the model's builder chosen by
+``model``). A study file selects the beam model with ``options = { model = "beam" }``.
 """
-from ..engine.choice import ModelChoice
-from . import analysis, beam
+from .analysis import evaluate
 
-evaluate = ModelChoice("continuum", continuum=analysis.evaluate, beam=beam.evaluate_beam)
+__all__ = ["evaluate", "UNITS"]
 
 _LENGTHS = ("c", "a", "d", "l", "e", "ls", "ll", "b", "h", "elongation", "output_displacement",
             "root_extension")

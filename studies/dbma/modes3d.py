@@ -62,11 +62,11 @@ def beam_modes3d(p: DBMAParams, layout: DBMALayout | None = None, n_modes: int =
 def _planar_family(out: dict, p, layout, root_extension, n_modes: int) -> dict:
     """``out`` with its in-plane modes replaced by the planar beam model's (member patches
     on), merged by frequency, the first ``n_modes`` kept."""
-    from ...fem.beam import solve_beam_modes
-    from ...geometry.dbma.beam import dbma_beam_model, pads_held
+    from ...geometry.dbma.beam import dbma_beam_model
+    from .analysis import modal_response
 
-    model, info = dbma_beam_model(p, layout, root_extension)
-    planar = solve_beam_modes(model, pads_held(info), n=n_modes)
+    model, _ = dbma_beam_model(p, layout, root_extension)
+    planar = modal_response(model, n_modes)[1]
     fraction = np.column_stack([planar.effective_mass / out["total_mass_kg"],
                                 np.zeros(n_modes)])
     rows = [(f, m, 0.0) for f, m in zip(planar.frequencies_hz, fraction.tolist())]

@@ -175,18 +175,18 @@ def test_dbma_beam_matches_the_continuum_on_a_slender_design():
 
 def _beam_as_fem(params: dict, size_factor: float) -> dict:
     """Raw metrics in fem_metrics' form from the beam model (a fast stand-in for the FEM)."""
-    from flexfem.geometry.dbma.beam import dbma_beam_model
-    from flexfem.studies.dbma import beam as b
-    from flexfem.studies.dbma.analysis import dbma_material
+    from flexfem.studies.dbma.analysis import (dbma_material, modal_response, output_stiffness,
+                                               static_response)
+    from flexfem.studies.dbma.beam import beam_model
 
     p = dataclasses.replace(paper_design(), **params)
-    model, info = dbma_beam_model(p)
-    s = b.beam_static(model, info, 100.0)
-    modal = b.beam_modal(model, info, 4)
+    model, _ = beam_model(p)
+    s = static_response(model, 100.0)
+    modal = modal_response(model, 4)[0]
     return {"force": 100.0, "elongation": s["elongation"], "R_fem": s["R_fem"],
             "k_in": s["k_in"], "max_von_mises": s["max_von_mises"],
             "max_von_mises_element": s["max_von_mises"],
-            "k_out": b.beam_output_stiffness(model, info), "fn_working": modal["fn_working"],
+            "k_out": output_stiffness(model), "fn_working": modal["fn_working"],
             "working_mode": modal["working_mode"],
             "yield_strength": dbma_material(p).yield_strength, "dofs": int(model.n_dofs)}
 

@@ -115,7 +115,8 @@ def test_dbma_with_circular_notches_against_the_continuum(params):
     neck's K_t times the nominal) within 10 % (0.4-0.6 %); bare beam theory of the notch was
     4.6-8.6 % stiff in k_in."""
     from flexfem.geometry.dbma.beam import dbma_beam_model
-    from flexfem.studies.dbma.beam import analyze_dbma_beam, beam_static
+    from flexfem.studies.dbma.analysis import static_response
+    from flexfem.studies.dbma.beam import analyze_dbma_beam
     from flexfem.studies.dbma.beam_report import continuum_metrics
 
     p = dataclasses.replace(paper_design(), **params)
@@ -126,7 +127,7 @@ def test_dbma_with_circular_notches_against_the_continuum(params):
         assert beam[key] == pytest.approx(cont[key], rel=0.03), key
     assert beam["max_von_mises"] == pytest.approx(cont["max_von_mises"], rel=0.10)
     assert beam["kt_bending"] > 1.0 and beam["nominal_stress"] < beam["max_von_mises"]
-    bare = beam_static(*dbma_beam_model(p, lay, notch_correction=False), 100.0)
+    bare = static_response(dbma_beam_model(p, lay, notch_correction=False)[0], 100.0)
     assert bare["k_in"] / cont["k_in"] - 1 > 0.04
 
 
@@ -181,16 +182,15 @@ def test_leaf_hinges_are_converged_at_the_default_element_count(params):
     frequencies of four times as many elements to 1e-7 (a uniform leaf: each element exact
     in statics; the hinges' mass is a small part of the mechanism's; measured: 3e-8 with 4
     elements a hinge, profile_beam's least, against 32)."""
-    from flexfem.studies.dbma.beam import beam_modal, beam_output_stiffness, beam_static
+    from flexfem.studies.dbma.analysis import modal_response, output_stiffness, static_response
 
     p = dataclasses.replace(paper_design(), **params)
 
     def outputs(n):
-        model, info = gb.dbma_beam_model(p, elements_per_hinge=n)
-        s = beam_static(model, info, 100.0)
-        return np.array([s["R_fem"], s["k_in"], s["max_von_mises"],
-                         beam_output_stiffness(model, info),
-                         *beam_modal(model, info)["frequencies_hz"]]), model.n_dofs
+        model, _ = gb.dbma_beam_model(p, elements_per_hinge=n)
+        s = static_response(model, 100.0)
+        return np.array([s["R_fem"], s["k_in"], s["max_von_mises"], output_stiffness(model),
+                         *modal_response(model)[0]["frequencies_hz"]]), model.n_dofs
 
     default, n_default = outputs(None)
     fine, n_fine = outputs(4 * gb.LEAF_ELEMENTS)
@@ -242,10 +242,10 @@ def test_the_member_patch_is_converged_at_the_default_cells():
 
 def _outputs(p) -> np.ndarray:
     """R, k_in, k_out and four frequencies of the beam model (member patch on)."""
-    from flexfem.studies.dbma.beam import beam_modal, beam_output_stiffness, beam_static
+    from flexfem.studies.dbma.analysis import modal_response, output_stiffness, static_response
 
-    model, info = gb.dbma_beam_model(p)
+    model, _ = gb.dbma_beam_model(p)
     assert len(model.superelements) == 2
-    s = beam_static(model, info, 100.0)
-    return np.array([s["R_fem"], s["k_in"], beam_output_stiffness(model, info),
-                     *beam_modal(model, info, 4)["frequencies_hz"]])
+    s = static_response(model, 100.0)
+    return np.array([s["R_fem"], s["k_in"], output_stiffness(model),
+                     *modal_response(model, 4)[0]["frequencies_hz"]])

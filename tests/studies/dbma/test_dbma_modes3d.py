@@ -7,7 +7,7 @@ import pytest
 from flexfem.geometry.dbma.beam import dbma_beam_model
 from flexfem.geometry.dbma.drawing import DBMALayout
 from flexfem.geometry.dbma.params import paper_design
-from flexfem.studies.dbma.beam import beam_modal
+from flexfem.studies.dbma.analysis import modal_response
 from flexfem.studies.dbma.modes3d import beam_modes3d, compare_modes3d
 from flexfem.studies.modes3d import SPLIT
 
@@ -27,15 +27,15 @@ def test_in_plane_modes_are_the_planar_models(profile):
     p, layout = paper_design(), DBMALayout(hinge_profile=profile)
     leaf = profile == "leaf"
     spatial = beam_modes3d(p, layout, n_modes=12, warping=leaf, member_patch=False)
-    planar = beam_modal(*dbma_beam_model(p, layout, member_patch=False),
-                        n_modes=4)["frequencies_hz"]
+    planar = modal_response(dbma_beam_model(p, layout, member_patch=False)[0],
+                            4)[0]["frequencies_hz"]
     assert _family(spatial, False)[:4] == pytest.approx(planar, rel=1e-8)
     share = np.array(spatial["out_of_plane_share"])
     assert np.all((share < 1e-12) | (share > 1 - 1e-12))
     # by default the in-plane family is the planar model's with the members' patches, the
     # out-of-plane one the lifted model's
     merged = beam_modes3d(p, layout, n_modes=12, warping=leaf)
-    patched = beam_modal(*dbma_beam_model(p, layout), n_modes=4)["frequencies_hz"]
+    patched = modal_response(dbma_beam_model(p, layout)[0], 4)[0]["frequencies_hz"]
     assert _family(merged, False)[:4] == pytest.approx(patched, rel=1e-12)
     assert _family(merged, True)[:3] == pytest.approx(_family(spatial, True)[:3], rel=1e-9)
 
