@@ -62,12 +62,12 @@ MEDIANS, CPU = [], []
 
 
 def eightbar_linear_beam(params):
-    from flexfem.geometry.eightbar.beam import eightbar_beam_model
-    from flexfem.studies.eightbar.beam import beam_linear, beam_modes
-    model, info = eightbar_beam_model(params)
-    lin = beam_linear(model, info, params.rigid.travel / 2)
+    from flexfem.studies.eightbar.analysis import linear_analysis, modal_analysis
+    from flexfem.studies.eightbar.beam import beam_model
+    model, places, _ = beam_model(params)
+    lin = linear_analysis(model, params.rigid.travel / 2, places)
     return {"k_x": lin["k_x"], "k_y": lin["k_y"], "stress": lin["max_von_mises"],
-            "f1": beam_modes(model, info, 1)[0]["f_hz"], "dofs": model.n_dofs}
+            "f1": modal_analysis(model, 1)[0]["f_hz"], "dofs": model.n_dofs}
 
 
 def eightbar_linear_continuum(params):
@@ -145,25 +145,19 @@ def dbma_modes3d(rows, p):
 
 
 def strokes(rows, steps=8):
-    from flexfem.fem.beam import Fixed, Prescribed, solve_beam_nonlinear
-    from flexfem.geometry.eightbar.beam import eightbar_beam_model
     from flexfem.geometry.eightbar.flexure import EightBarFlexureParams
     from flexfem.studies.eightbar.analysis import build_model, large_deflection
-    from flexfem.studies.eightbar.beam import NEWTON_TOL, STROKE_ELEMENTS, beam_stroke
+    from flexfem.studies.eightbar.beam import STROKE_ELEMENTS, beam_model
 
     params = EightBarFlexureParams()
     travel = params.rigid.travel
-    model, info = eightbar_beam_model(params, STROKE_ELEMENTS)
+    model, places, _ = beam_model(params, stroke=True)
 
     def beam_both():
-        plus = beam_stroke(model, info, params, travel, steps)
-        minus = solve_beam_nonlinear(model, [Fixed(tuple(info["ground"])),
-                                             Prescribed(info["end_effector"], "x", -travel / 2)],
-                                     steps=steps, tol=NEWTON_TOL)
-        return {"deviation_um": plus["fem_deviation_m"] * 1e6, "peak_MPa":
-                max(plus["peak_von_mises_travel"], max(s.max_stress for s in minus.states))
-                / 1e6, "end_force_N": plus["end_force_n"],
-                "newton": plus["newton_iterations"] + sum(minus.iterations)}
+        both = large_deflection(model, params, travel, steps, True, places)
+        return {"deviation_um": both["fem_deviation_m"] * 1e6,
+                "peak_MPa": both["peak_von_mises_travel"] / 1e6,
+                "end_force_N": both["end_force_n"], "newton": both["newton_iterations"]}
 
     tb, b = timed(beam_both)
     start = time.perf_counter()
@@ -174,7 +168,7 @@ def strokes(rows, steps=8):
          "peak_MPa": nl["peak_von_mises_travel"] / 1e6, "end_force_N": nl["end_force_n"]}
     rows.append((f"eight-bar full stroke, 2 x {steps} steps (solve only)", tb, tc, b, c))
     start = time.perf_counter()
-    eightbar_beam_model(params, STROKE_ELEMENTS)
+    beam_model(params, STROKE_ELEMENTS)
     rows.append(("eight-bar full stroke, with the model's build", tb + time.perf_counter()
                  - start, tc + t_build, {}, {}))
 

@@ -23,6 +23,7 @@ import numpy as np
 from ..boundary import Fixed, Force, Prescribed
 from ..compliance import Compliance, moved_compliance, rotation_frame
 from ..harmonic import FRF, _check_frequencies, _damping_ratios
+from ..rigid_face_input import RigidFace
 from .compliance import compliance
 from .modal import BeamModes, solve_beam_modes
 from .model import BeamGroup, BeamModel
@@ -151,8 +152,9 @@ def solve_static(model: BeamModel, supports, loads=(), **options) -> BeamResult:
 
 def solve_modes(model: BeamModel, n: int = 6, supports=(), **options) -> BeamModes:
     """The ``n`` lowest natural frequencies (Hz) and shapes, supports held at zero (their
-    values ignored, as the continuum's); effective_mass (n, 2) kg."""
-    _no_options("solve_modes", options, ())
+    values ignored, as the continuum's); effective_mass (n, 2) kg. A shift_hz is accepted
+    and not needed (the beam's eigensolvers choose their own)."""
+    _no_options("solve_modes", options, ("shift_hz",))
     held = [_at_zero(s) for s in node_supports(model, supports)]
     return solve_beam_modes(model, held, n=n)
 
@@ -165,16 +167,22 @@ def _at_zero(support):
 
 @dataclass(frozen=True, eq=False)
 class BeamPath:
-    """Converged steps of a large-rotation solve, read by group. ``result``: the
-    BeamNonlinearResult (states per step)."""
+    """Converged steps of a large-rotation solve, read by group as the continuum's
+    NonlinearResult. ``result``: the BeamNonlinearResult (states per step); ``faces``: the
+    rigid faces' groups."""
 
     model: BeamModel
     result: BeamNonlinearResult
     supported: tuple = ()
+    faces: tuple = ()
 
     @property
     def load_factors(self) -> np.ndarray:
         return self.result.load_factors
+
+    @property
+    def iterations(self) -> list:
+        return self.result.iterations
 
     def step(self, k: int = -1) -> BeamResult:
         """Step ``k`` as a BeamResult."""
@@ -194,21 +202,77 @@ class BeamPath:
         return [self.step(k).reactions for k in range(len(self.load_factors))]
 
     @property
+    def face_motion(self) -> list:
+        """Per step {face: (c_x, c_y, theta)} (m, m, rad) of each rigid face's node."""
+        return [{f: s.q[group(self.model, f).nodes[0]].copy() for f in self.faces}
+                for s in self.result.states]
+
+    @property
+    def face_reactions(self) -> list:
+        """Per step {face: (F_x, F_y, M)} (N, N, N m) on each rigid face's node: the support's
+        reaction on a held coordinate, the applied load on a free one."""
+        out = []
+        for lam, s in zip(self.load_factors, self.result.states):
+            row = {}
+            for f in self.faces:
+                node = group(self.model, f).nodes[0]
+                row[f] = s.reactions.get(node, np.zeros(3)) + lam * self._applied.get(f, 0.0)
+            out.append(row)
+        return out
+
+    @property
+    def _applied(self) -> dict:
+        return self.result.info.get("face_loads", {})
+
+    def stress_at_step(self, k: int) -> tuple:
+        """(stress, stress) per element (Pa) at step ``k``: the continuum's (nodal, element
+        maximum) pair; the beam stress has no smoothing (0 on an element without a stress: a
+        section given without its outer-fibre distance c)."""
+        stress = np.nan_to_num(self.result.states[k].stress, nan=0.0)
+        return stress, stress
+
+    @property
     def max_von_mises(self) -> float:
         """Largest beam stress at the last step, Pa."""
         return self.result.final.max_stress
 
 
+def rigid_face_conditions(model: BeamModel, faces) -> tuple:
+    """(node supports, node loads, {face: applied (F_x, F_y, M)}) of RigidFaces on groups of
+    one node (a rigid body's master): a prescribed x, y or rotation holds that DOF; a free one
+    carries the face's force or moment."""
+    supports, loads, applied = [], [], {}
+    for face in faces:
+        if not isinstance(face, RigidFace) or face.dim == 3:
+            raise ValueError(f"rigid_faces: {face!r}: the planar beam model takes 2-D "
+                             "RigidFace")
+        nodes = group(model, face.group).nodes
+        if len(nodes) != 1:
+            raise ValueError(f"RigidFace({face.group!r}): the group has {len(nodes)} nodes; a "
+                             "rigid face on the beam model is one rigid body's node")
+        values = (face.x, face.y, face.rotation)
+        supports += [NodePrescribed(nodes[0], dof, float(v))
+                     for dof, v in zip(("x", "y", "theta"), values) if v is not None]
+        force = (*face.force[:2], face.moment)
+        loads.append(NodalLoad(nodes[0], *force))
+        applied[face.group] = np.array(force, dtype=float)
+    return supports, loads, applied
+
+
 def solve_nonlinear(model: BeamModel, supports, loads, steps: int = 10,
                     max_iterations: int = 25, tol: float = 1e-9, min_step: float = 1e-4,
-                    **options) -> BeamPath:
-    """Large-rotation (co-rotational) static solve, the loads and prescribed values scaled
-    0 -> 1 in ``steps`` increments (halved on failure down to ``min_step``)."""
+                    rigid_faces=(), **options) -> BeamPath:
+    """Large-rotation (co-rotational) static solve, the loads, prescribed values and
+    ``rigid_faces`` (RigidFace on one-node groups) scaled 0 -> 1 in ``steps`` increments
+    (halved on failure down to ``min_step``)."""
     _no_options("solve_nonlinear", options, ("solver", "check_stability"))
-    result = solve_beam_nonlinear(model, node_supports(model, supports),
-                                  node_loads(model, loads), steps=steps,
+    held, applied_loads, applied = rigid_face_conditions(model, rigid_faces)
+    result = solve_beam_nonlinear(model, node_supports(model, supports) + held,
+                                  node_loads(model, loads) + applied_loads, steps=steps,
                                   max_iterations=max_iterations, tol=tol, min_step=min_step)
-    return BeamPath(model, result, tuple(_supported(supports)))
+    result.info["face_loads"] = applied
+    return BeamPath(model, result, tuple(_supported(supports)),
+                    tuple(f.group for f in rigid_faces))
 
 
 def compliance_matrix(model: BeamModel, supports, face, point=None, angle: float = 0.0,

@@ -41,14 +41,19 @@ def unchecked_params(base: EightBarFlexureParams, **changes) -> EightBarFlexureP
 
 def eightbar_beam_model(params: EightBarFlexureParams, n_per_flexure: int = 24,
                         root_extension: float = ROOT_EXTENSION, shear: bool = True) -> tuple:
-    """(BeamModel, info) of the suspension in its drawn pose. info: "end_effector" (master
-    node of the end-effector link, on its bottom face's centroid), "ground" (clamped nodes),
-    "masters" {link: node}, "flexures" {joint: (first, last element)}."""
+    """(BeamModel, info) of the suspension in its drawn pose, with the continuum mesh's groups
+    "fixed" (the anchors' clamped nodes) and "end_effector" (the end-effector link's master,
+    on its bottom face's centroid, with that face's extent). info: "end_effector",
+    "ground" (clamped nodes), "masters" {link: node}, "flexures" {joint: (first, last
+    element)}."""
     layout = eightbar_layout(params)
-    face = np.asarray(layout.edges["end_effector"], float).mean(axis=0)  # end_effector_point
+    edge = np.asarray(layout.edges["end_effector"], float)
+    face = edge.mean(axis=0)  # end_effector_point
     model, info = layout_beam_model(
         layout, _material(params.material), params.thickness,
         fillet_radius=params.root_fillet_radius, n_per_flexure=n_per_flexure,
         root_extension=root_extension, anchors={EE_LINK: face}, shear=shear)
     info["end_effector"] = info["masters"][EE_LINK]
+    model.add_group("fixed", info["ground"])
+    model.add_group("end_effector", [info["end_effector"]], edge[-1] - edge[0])
     return model, info

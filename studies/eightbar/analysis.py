@@ -15,7 +15,8 @@ holding x changes nothing). Large deflection: the face as a RigidFace, x prescri
 rotation free, from the middle to each end of the travel.
 """
 import math
-from dataclasses import fields, replace
+from dataclasses import dataclass, fields, replace
+from typing import Callable, Literal
 
 import numpy as np
 
@@ -77,21 +78,41 @@ def group_at_vertex(model: Model, vertex: int) -> str:
     return "unknown"
 
 
-def linear_analysis(model: Model, displacement: float) -> dict:
+@dataclass(frozen=True)
+class Places:
+    """Where a model's stress maxima are, named: ``peak(result)`` {"x", "y"(, "z") m,
+    "flexure"} of a linear result's max_von_mises; ``element(result, e)`` the flexure (or
+    link) of entry ``e`` of a nonlinear step's element stresses."""
+
+    peak: Callable
+    element: Callable
+
+
+def continuum_places(model: Model) -> Places:
+    """The mesh's subdomains name the continuum's maxima (:func:`group_at_vertex`)."""
+    def peak(result):
+        vertex = int(np.argmax(result.von_mises_nodal))
+        where = dict(zip("xyz", (float(c) for c in model.mesh.mesh.p[:, vertex])))
+        return {**where, "flexure": group_at_vertex(model, vertex)}
+
+    return Places(peak, lambda result, e: group_at_vertex(model, int(model.mesh.mesh.t[0, e])))
+
+
+def linear_analysis(model, displacement: float, places: Places | None = None) -> dict:
     """k_x, k_y (N/m), and the von Mises stress (Pa) with the end-effector moved by
-    ``displacement`` (m) along x, linearly: nodal maximum, its location and flexure, and the
-    quadrature-point maximum. Returns the StaticResult as "result"."""
+    ``displacement`` (m) along x, linearly: its maximum, where and in which flexure
+    (``places``, default the continuum's), and the quadrature-point maximum; the continuum or
+    the beam model. Returns the static result as "result"."""
+    places = places or continuum_places(model)
     probe = displacement
     fixed = Fixed("fixed")
     along = solve_static(model, [fixed, Prescribed("end_effector", x=probe)], [])
     across = solve_static(model, [fixed, Prescribed("end_effector", x=0.0, y=probe)], [])
     k_x = float(along.reactions["end_effector"][0] / probe)
     k_y = float(across.reactions["end_effector"][1] / probe)
-    vertex = int(np.argmax(along.von_mises_nodal))
-    where = dict(zip("xyz", (float(c) for c in model.mesh.mesh.p[:, vertex])))
     return {"k_x": k_x, "k_y": k_y, "max_von_mises": along.max_von_mises,
             "max_von_mises_element": along.max_von_mises_element,
-            "max_stress_location": {**where, "flexure": group_at_vertex(model, vertex)},
+            "max_stress_location": places.peak(along),
             "stress_displacement_m": probe, "result": along}
 
 
@@ -124,7 +145,7 @@ def stress_convergence(params: EightBarFlexureParams, size_factors=(1.0, 0.7, 0.
     return rows
 
 
-def modal_analysis(model: Model, n: int = 4) -> list:
+def modal_analysis(model, n: int = 4) -> list:
     """First ``n`` modes: [{"f_hz", "m_eff_x_kg", "m_eff_y_kg"(, "m_eff_z_kg" in 3-D)}] with
     the base fixed."""
     # a shift just below zero: the default (1e-6 of the stiffness/mass scale) sits far above
@@ -134,7 +155,7 @@ def modal_analysis(model: Model, n: int = 4) -> list:
             for f, m in zip(modes.frequencies_hz, modes.effective_mass)]
 
 
-def _half_stroke(model, end, steps):
+def _half_stroke(model, places: Places, end, steps):
     """One nonlinear solve from the middle to ``end`` (m): rows per converged step."""
     face = RigidFace("end_effector", x=end)
     result = solve_nonlinear(model, [Fixed("fixed")], [], steps=steps, tol=NEWTON_TOL,
@@ -143,25 +164,29 @@ def _half_stroke(model, end, steps):
     for k, (motion, force) in enumerate(zip(result.face_motion, result.face_reactions)):
         element_max = result.stress_at_step(k)[1]
         element = int(np.argmax(element_max))
-        peak, vertex = float(element_max[element]), int(model.mesh.mesh.t[0, element])
+        peak = float(element_max[element])
         rows.append({"x_m": float(motion["end_effector"][0]), "y_m": float(motion["end_effector"][1]),
                      "rotation_rad": float(motion["end_effector"][2]),
                      "force_x_n": float(force["end_effector"][0]),
                      "force_y_n": float(force["end_effector"][1]),
-                     "peak_von_mises_pa": peak, "peak_flexure": group_at_vertex(model, vertex)})
+                     "peak_von_mises_pa": peak, "peak_flexure": places.element(result, element)})
     return rows, result
 
 
-def large_deflection(model: Model, params: EightBarFlexureParams, travel: float, steps: int = 8,
-                     both_halves: bool = True) -> dict:
+def large_deflection(model, params: EightBarFlexureParams, travel: float, steps: int = 8,
+                     both_halves: bool = True, places: Places | None = None) -> dict:
     """Displacement-controlled trace of the end-effector over ``travel`` (m), centred on the
     drawn pose. With ``both_halves=False`` only the +x half is solved and the -x half is its
     mirror image (the part is mirror-symmetric about x = 0: y(-s) = y(s), rotation(-s) =
     -rotation(s), force(-s) = -force(s)). Returns the path rows (sorted by x), the FEM and
-    rigid-body straightness and the peak stress along the travel against yield."""
-    rows_plus, last = _half_stroke(model, travel / 2, steps)
+    rigid-body straightness and the peak stress along the travel against yield. ``places``:
+    default the continuum's."""
+    places = places or continuum_places(model)
+    rows_plus, last = _half_stroke(model, places, travel / 2, steps)
+    iterations = sum(last.iterations)
     if both_halves:
-        rows_minus, _ = _half_stroke(model, -travel / 2, steps)
+        rows_minus, other = _half_stroke(model, places, -travel / 2, steps)
+        iterations += sum(other.iterations)
     else:
         rows_minus = [{**r, "x_m": -r["x_m"], "rotation_rad": -r["rotation_rad"],
                        "force_x_n": -r["force_x_n"],
@@ -182,30 +207,58 @@ def large_deflection(model: Model, params: EightBarFlexureParams, travel: float,
             "peak_von_mises_flexure": peak["peak_flexure"], "yield_strength": yield_strength,
             "safety_factor": yield_strength / peak["peak_von_mises_pa"],
             "first_step_k_x": rows_plus[1]["force_x_n"] / rows_plus[1]["x_m"],
-            "end_force_n": rows_plus[-1]["force_x_n"], "final_result": last}
+            "end_force_n": rows_plus[-1]["force_x_n"], "newton_iterations": int(iterations),
+            "final_result": last}
 
 
 def _mirror_name(name: str) -> str:
     return name[:-1] + {"L": "R", "R": "L"}[name[-1]] if name[-2:] in ("_L", "_R") else name
 
 
+MODELS = ("continuum", "beam")
+
+
+def build(params: EightBarFlexureParams, model: str = "continuum", size_factor: float = 1.0,
+          max_dofs: int | None = None, dim: int = 2, n_per_flexure: int = 24,
+          root_extension: float | None = None, stroke: bool = False) -> tuple:
+    """(model, Places, facts) of the suspension with the groups "fixed" and "end_effector"
+    every analysis here names: the continuum FEM (:func:`build_model`; facts: h, mesh_sizes,
+    n_elements) or the planar beam model (:func:`flexfem.studies.eightbar.beam.beam_model`;
+    ``stroke``: its coarser model for the large-deflection path)."""
+    if model == "continuum":
+        fe, sizes = build_model(params, size_factor, max_dofs=max_dofs, dim=dim)
+        return fe, continuum_places(fe), {"h": sizes["flexure_size"], "mesh_sizes": sizes,
+                                          "n_elements": int(fe.mesh.mesh.t.shape[1])}
+    if model == "beam":
+        from .beam import beam_model  # the beam's builder uses this module's places
+        return beam_model(params, n_per_flexure, root_extension, stroke)
+    raise ValueError(f"model = {model!r} must be one of {MODELS}")
+
+
 def analyze_eightbar(params: EightBarFlexureParams | None = None, travel: float | None = None,
                      size_factor: float = 1.0, steps: int = 8, n_modes: int = 4,
                      both_halves: bool = True, nonlinear: bool = True,
-                     max_dofs: int | None = None, dim: int = 2) -> dict:
+                     max_dofs: int | None = None, dim: int = 2, *,
+                     model: str = "continuum", n_per_flexure: int = 24,
+                     root_extension: float | None = None) -> dict:
     """Linear stiffness and stress, modes, pseudo-rigid-body estimate and (``nonlinear``) the
     large-deflection trace over ``travel`` (m, default the rigid design's travel). SI units.
     The linear stress is at half the travel (the end of the stroke from the middle).
-    ``dim=3``: the solid (linear and modal only: ``nonlinear`` must be False)."""
+    ``model``: "continuum" (``dim=3``: the solid, linear and modal only) or "beam" (the same
+    analyses on the reduced beam model; ``dim=3``: the spatial beam model's modes, out of
+    plane too, the rest planar)."""
     params = params or EightBarFlexureParams()
-    if dim == 3 and nonlinear:
+    if dim not in (2, 3):
+        raise ValueError(f"dim = {dim!r} must be 2 or 3")
+    if dim == 3 and nonlinear and model == "continuum":
         raise ValueError("nonlinear=True needs dim=2: the 3-D model is linear and modal only")
     travel = params.rigid.travel if travel is None else float(travel)
     if not (math.isfinite(travel) and 0 < travel < params.rigid.ground_spacing):
         raise ValueError(f"travel = {travel!r} m must be in (0, ground_spacing = "
                          f"{params.rigid.ground_spacing} m)")
-    model, sizes = build_model(params, size_factor, max_dofs=max_dofs, dim=dim)
-    lin = linear_analysis(model, travel / 2)
+    options = {"n_per_flexure": n_per_flexure, "root_extension": root_extension}
+    fe, places, facts = build(params, model, size_factor, max_dofs, dim, **options)
+    lin = linear_analysis(fe, travel / 2, places)
     prbm = prbm_stiffness(params)
     prbm_stress = prbm_peak_stress(params, travel / 2)
     out = {"k_x": lin["k_x"], "k_y": lin["k_y"], "k_x_prbm": prbm["k_x"],
@@ -213,13 +266,18 @@ def analyze_eightbar(params: EightBarFlexureParams | None = None, travel: float 
            "max_von_mises_element": lin["max_von_mises_element"],
            "max_stress_location": lin["max_stress_location"],
            "prbm_bending_stress": prbm_stress, "travel_m": travel,
-           "dofs": model.n_dofs, "h": sizes["flexure_size"], "mesh_sizes": sizes,
-           "n_elements": int(model.mesh.mesh.t.shape[1]), "linear_result": lin["result"],
-           "solver": lin["result"].solver, "dim": dim}
+           "dofs": int(fe.n_dofs), "linear_result": lin["result"], "model": model,
+           "solver": lin["result"].solver, "dim": dim, **facts}
     if n_modes:
-        out["modes"] = modal_analysis(model, n_modes)
+        if model == "beam" and dim == 3:
+            from .beam import spatial_beam_modes
+            out["modes"] = spatial_beam_modes(params, n_modes, facts["root_extension"])
+        else:
+            out["modes"] = modal_analysis(fe, n_modes)
     if nonlinear:
-        nl = large_deflection(model, params, travel, steps, both_halves)
+        stroke = (fe, places) if model == "continuum" else build(
+            params, model, dim=2, stroke=True, **options)[:2]
+        nl = large_deflection(stroke[0], params, travel, steps, both_halves, stroke[1])
         out.update({k: v for k, v in nl.items() if k != "rows"})
         out["path"] = nl["rows"]
     return out
@@ -240,17 +298,22 @@ def params_from_dict(values: dict) -> EightBarFlexureParams:
 
 
 def evaluate(params: dict | None = None, size_factor: float = 1.0, nonlinear: bool = False,
-             steps: int = 6, max_dofs: int | None = None, **options) -> dict:
+             steps: int = 6, max_dofs: int | None = None, *,
+             model: Literal["continuum", "beam"] = "continuum", n_per_flexure: int = 24,
+             root_extension: float | None = None) -> dict:
     """Study-registry entry: flat float metrics of the design ``params`` (a flat dict, see
-    :func:`params_from_dict`), plus "h" (flexure element size, m) and "dofs". The nonlinear
-    trace (fem_deviation_pct, peak stress) only with ``nonlinear=True``."""
-    if options:
-        raise ValueError(f"unknown option(s) {sorted(options)}; known: size_factor, nonlinear, "
-                         "steps, max_dofs")
+    :func:`params_from_dict`) from the continuum FEM or the beam model (``model``; a study
+    selects it with ``options = { model = "beam" }``): k_x, k_y, k_x_prbm, max_von_mises,
+    max_von_mises_element, f1_hz, dofs (and the continuum's h, flexure element size, m). The
+    nonlinear trace (fem_deviation_pct, peak stress) only with ``nonlinear=True``.
+    ``size_factor``, ``max_dofs``: the continuum's; ``n_per_flexure``, ``root_extension``:
+    the beam's; each model ignores the other's."""
     out = analyze_eightbar(params_from_dict(params or {}), size_factor=size_factor, steps=steps,
-                           n_modes=1, both_halves=False, nonlinear=nonlinear, max_dofs=max_dofs)
-    metrics = {k: float(out[k]) for k in ("k_x", "k_y", "k_x_prbm", "max_von_mises",
-                                          "max_von_mises_element", "h", "dofs")}
+                           n_modes=1, both_halves=False, nonlinear=nonlinear, max_dofs=max_dofs,
+                           model=model, n_per_flexure=n_per_flexure,
+                           root_extension=root_extension)
+    keys = ("k_x", "k_y", "k_x_prbm", "max_von_mises", "max_von_mises_element", "dofs")
+    metrics = {k: float(out[k]) for k in keys + (("h",) if model == "continuum" else ())}
     metrics["f1_hz"] = out["modes"][0]["f_hz"]
     if nonlinear:
         for k in ("fem_deviation_pct", "rigid_deviation_pct", "peak_von_mises_travel",

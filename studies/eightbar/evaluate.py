@@ -1,14 +1,11 @@
-"""The eight-bar's study entry: ``evaluate(params, model="continuum" | "beam", **options)``.
-
-``model="continuum"`` (default) is the FEM
-(:func:`flexfem.studies.eightbar.analysis.evaluate`); ``model="beam"`` the reduced beam model
-(:func:`flexfem.studies.eightbar.beam.evaluate_beam`), same metric names, ~100x faster. A
-study file selects it with ``options = { model = "beam" }``.
+"""The eight-bar's study entry: ``evaluate(params, model="continuum" | "beam", **options)``
+(:func:`flexfem.studies.eightbar.analysis.evaluate`: one analysis, the model's builder chosen
+by ``model``; the beam model ~100x faster). A study file selects it with
+``options = { model = "beam" }``.
 """
-from ..engine.choice import ModelChoice
-from . import analysis, beam
+from .analysis import evaluate
 
-evaluate = ModelChoice("continuum", continuum=analysis.evaluate, beam=beam.evaluate_beam)
+__all__ = ["evaluate", "UNITS"]
 
 #: Units of the eight-bar's parameters (EightBarParams and EightBarFlexureParams: lengths) and
 #: metrics, for plot axes.
