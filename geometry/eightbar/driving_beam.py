@@ -37,7 +37,9 @@ def driving_beam_model(params: DrivingParams, flexure, n_per_flexure: int = 24,
     thickness, material; its ``rigid`` and ``root_fillet_radius`` ignored, as the continuum's
     mesh ignores them); ``fillet_radius`` (m): the roots' fillets (default: as drawn). info:
     that of layout_beam_model plus "input", "ee_L", "ee_R" (master nodes on those faces'
-    centres) and "layout" (the FlexureLayout)."""
+    centres) and "layout" (the FlexureLayout). The model's groups are the continuum mesh's:
+    "fixed" (the anchors' clamped nodes), "input", "ee_L" and "ee_R" (those faces' nodes,
+    with their extents)."""
     layout = driving_layout(params, flexure, shuttle=True)
     anchors = {link: np.asarray(layout.edges[face], float).mean(axis=0)
                for face, link in FACES.items()}
@@ -45,8 +47,11 @@ def driving_beam_model(params: DrivingParams, flexure, n_per_flexure: int = 24,
         layout, material_named(flexure.material), flexure.thickness,
         fillet_radius=fillet_radius, n_per_flexure=n_per_flexure,
         root_extension=root_extension, anchors=anchors, shear=shear)
+    model.add_group("fixed", info["ground"])
     for face, link in FACES.items():
         info[face] = info["masters"][link]
+        edge = np.asarray(layout.edges[face], float)
+        model.add_group(face, [info[face]], edge[-1] - edge[0])
     info["layout"] = layout
     return model, info
 

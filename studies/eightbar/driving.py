@@ -67,16 +67,13 @@ def build_model(params: DrivingParams, flexure: EightBarFlexureParams, size_fact
     return Model(mesh, material(flexure.material), PlaneStress(flexure.thickness), order=2), sizes
 
 
-def _face_mean(model: Model, result, group: str) -> np.ndarray:
-    return result.displacement[model.mesh.nodes(group)].mean(axis=0)
-
-
-def linear_drive(model: Model, displacement: float) -> dict:
-    """Input face moved ``displacement`` (m) along y, x free: the end-effector faces' mean
-    displacements (m), their x ratio (left / right), their cross-motion (|uy| / |ux|) and the
-    input force (N)."""
+def linear_drive(model, displacement: float) -> dict:
+    """Input face moved ``displacement`` (m) along y, x free, on the continuum or the beam
+    model: the end-effector faces' mean displacements (m: the continuum's area average, the
+    motion of a rigid face's centroid), their x ratio (left / right), their cross-motion
+    (|uy| / |ux|) and the input force (N)."""
     res = solve_static(model, [Fixed("fixed"), Prescribed("input", y=displacement)], [])
-    u_l, u_r = _face_mean(model, res, "ee_L"), _face_mean(model, res, "ee_R")
+    u_l, u_r = res.mean_displacement("ee_L"), res.mean_displacement("ee_R")
     return {"input_m": displacement, "ux_left_m": float(u_l[0]), "uy_left_m": float(u_l[1]),
             "ux_right_m": float(u_r[0]), "uy_right_m": float(u_r[1]),
             "ratio_left_right": float(u_l[0] / u_r[0]),

@@ -89,7 +89,7 @@ def test_options_take_their_declared_types_before_hashing():
 
 
 def test_a_model_the_mechanism_does_not_have_is_refused_by_name():
-    """ModelChoice declares its models as a Literal: options.model is checked with the other
+    """evaluate declares its models as a Literal: options.model is checked with the other
     options, before any case runs or is stored."""
     evaluate = mechanisms.get_evaluator("dbma")
     assert normalise_options(evaluate, {"model": "beam"}, "dbma") == {"model": "beam"}
