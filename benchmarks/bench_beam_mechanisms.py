@@ -63,7 +63,7 @@ MEDIANS, CPU = [], []
 
 def eightbar_linear_beam(params):
     from flexfem.studies.eightbar.analysis import linear_analysis, modal_analysis
-    from flexfem.studies.eightbar.beam import beam_model
+    from flexfem.studies.eightbar.beam_model import beam_model
     model, places, _ = beam_model(params)
     lin = linear_analysis(model, params.rigid.travel / 2, places)
     return {"k_x": lin["k_x"], "k_y": lin["k_y"], "stress": lin["max_von_mises"],
@@ -147,7 +147,7 @@ def dbma_modes3d(rows, p):
 def strokes(rows, steps=8):
     from flexfem.geometry.eightbar.flexure import EightBarFlexureParams
     from flexfem.studies.eightbar.analysis import build_model, large_deflection
-    from flexfem.studies.eightbar.beam import STROKE_ELEMENTS, beam_model
+    from flexfem.studies.eightbar.beam_model import STROKE_ELEMENTS, beam_model
 
     params = EightBarFlexureParams()
     travel = params.rigid.travel

@@ -30,6 +30,7 @@ from .newton import (NonConvergenceError, _newton, _solve_direct,  # noqa: F401
                      check_step_arguments)
 from .nonlinear_result import NonlinearResult
 from .stability import count_negative_eigenvalues
+from .stepping import march
 from .static import rigid_body_dof_modes
 
 
@@ -123,41 +124,30 @@ def _record(problem, z, u, r, lam):
 
 def _load_control(problem, steps, max_iterations, tol, min_step, on_step, z0) -> int:
     """Step the load factor 0 -> 1 from the converged ``z0`` at load factor 0 (see
-    :func:`solve_nonlinear`); the last two converged steps extrapolate each step's start.
-    Returns the number of step cuts."""
-    nominal = 1.0 / steps
-    dlam, lam, cuts, good, cuts_here = nominal, 0.0, 0, 0, 0
-    z = z_previous = z0
-    lam_previous = None
-    while lam < 1.0 - 1e-12:
-        dlam = min(dlam, 1.0 - lam)
-        try:
-            guess = None
-            if lam_previous is not None and cuts_here == 0:
-                guess = z + dlam / (lam - lam_previous) * (z - z_previous)
-            z_new, u, r, n_it, history = _newton(problem, z, lam, lam + dlam, max_iterations, tol,
-                                                 guess)
-        except _StepFailed as failure:
-            if dlam / 2 < min_step * (1 - 1e-9):
-                raise NonConvergenceError(
-                    f"no convergence beyond load factor {lam:.6g} (trying {lam + dlam:.6g}, step "
-                    f"{dlam:.3g} after {cuts} cuts): {failure.reason}; relative residuals "
-                    f"{', '.join(f'{h:.2e}' for h in failure.history) or 'none'}. Use more steps, "
-                    f"a smaller min_step (now {min_step:g}) or more max_iterations (now "
-                    f"{max_iterations}); if the residual grows, the structure may buckle or snap "
-                    "(a limit point), which load control cannot pass: use control='arc-length' or "
-                    "prescribe a displacement instead", lam, lam + dlam, len(failure.history),
-                    failure.history) from None
-            dlam, cuts, good, cuts_here = dlam / 2, cuts + 1, 0, cuts_here + 1
-            continue
-        lam_previous, lam, cuts_here = lam, lam + dlam, 0
-        z_previous, z = z, z_new
-        if on_step(z, lam, u, r, n_it):
-            break
-        good += 1
-        if good >= 2 and dlam < nominal:
-            dlam, good = min(2 * dlam, nominal), 0
-    return cuts
+    :func:`solve_nonlinear`; :func:`.stepping.march`); the last two converged steps
+    extrapolate each step's start. Returns the number of step cuts."""
+    path = {"z": z0, "z_previous": z0, "lam_previous": None}
+
+    def advance(lam, dlam, cuts_here):
+        z, guess = path["z"], None
+        if path["lam_previous"] is not None and cuts_here == 0:
+            guess = z + dlam / (lam - path["lam_previous"]) * (z - path["z_previous"])
+        z_new, u, r, n_it, _ = _newton(problem, z, lam, lam + dlam, max_iterations, tol, guess)
+        path.update(z=z_new, z_previous=z, lam_previous=lam)
+        return on_step(z_new, lam + dlam, u, r, n_it)
+
+    def failed(lam, dlam, cuts, failure):
+        return NonConvergenceError(
+            f"no convergence beyond load factor {lam:.6g} (trying {lam + dlam:.6g}, step "
+            f"{dlam:.3g} after {cuts} cuts): {failure.reason}; relative residuals "
+            f"{', '.join(f'{h:.2e}' for h in failure.history) or 'none'}. Use more steps, "
+            f"a smaller min_step (now {min_step:g}) or more max_iterations (now "
+            f"{max_iterations}); if the residual grows, the structure may buckle or snap "
+            "(a limit point), which load control cannot pass: use control='arc-length' or "
+            "prescribe a displacement instead", lam, lam + dlam, len(failure.history),
+            failure.history)
+
+    return march(advance, steps, min_step, failed)
 
 
 def _problems(model, supports, loads, rigid_faces, preloads, solver) -> tuple:

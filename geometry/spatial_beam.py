@@ -27,8 +27,8 @@ def spatial_sections(planar_model, out_of_plane: float) -> list:
     for (rect, _, t0, t1, A, I, _, kappa, tm, bending, axial,
          mass) in planar_model.section_table:
         if rect:  # Section.rect's shear area is 5/6 of the rectangle's
-            sec = Section.rect(t0, w, shear=shear, depth_y_end=t1,
-                               depth_y_mid=None if np.isnan(tm) else tm)
+            sec = Section.rect(w, t0, shear=shear, thickness_end=t1,
+                               thickness_mid=None if np.isnan(tm) else tm)
             out.append(replace(sec, factors=(bending, kappa / (5.0 / 6.0), axial, axial),
                                mass_factor=mass))
             continue

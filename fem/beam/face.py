@@ -84,9 +84,9 @@ def node_loads(model: BeamModel, loads) -> list:
             fx, fy = (v / len(nodes) for v in load.vector)
             out += [NodalLoad(n, fx, fy) for n in nodes]
         else:
-            raise ValueError(f"loads: {type(load).__name__} on the beam model: it takes Force "
-                             "(the group's total, N); a traction, pressure or body load is "
-                             "the continuum's")
+            raise ValueError(f"loads: {type(load).__name__} on the beam model: it takes forces "
+                             "(Force, the group's total in N; in a model file force = [...]); "
+                             "a traction, pressure or body load is the continuum's")
     return out
 
 

@@ -12,6 +12,7 @@ import numbers
 import numpy as np
 
 from ..materials import Material
+from .groups import BeamGroup
 from .superelement import Superelement
 
 DOF_NAMES = {"x": 0, "u": 0, "y": 1, "v": 1, "theta": 2, "t": 2, "rz": 2}
@@ -156,22 +157,6 @@ class NodalLoad:
     fx: float = 0.0
     fy: float = 0.0
     m: float = 0.0
-
-
-@dataclass(frozen=True)
-class BeamGroup:
-    """The nodes (masters of rigid bodies) a group names, and the extent (dx, dy) of the face
-    it stands for (m; zero for a point)."""
-
-    nodes: tuple
-    span: tuple = (0.0, 0.0)
-
-    def __post_init__(self):
-        nodes = tuple(int(n) for n in np.atleast_1d(self.nodes))
-        if not nodes:
-            raise ValueError("BeamGroup: a group needs at least one node")
-        object.__setattr__(self, "nodes", nodes)
-        object.__setattr__(self, "span", tuple(float(abs(s)) for s in self.span))
 
 
 @dataclass
@@ -341,17 +326,8 @@ class BeamModel:
 
     def add_group(self, name: str, nodes, span=(0.0, 0.0)) -> None:
         """Name ``nodes`` (a BeamGroup, or node indices with the face's extent ``span``, m)
-        as group ``name``; the nodes must not be rigid-link slaves (support their master)."""
-        g = nodes if isinstance(nodes, BeamGroup) else BeamGroup(nodes, span)
-        if not isinstance(name, str) or not name:
-            raise ValueError(f"group name {name!r} must be a non-empty string")
-        for n in g.nodes:
-            if not 0 <= n < self.n_nodes:
-                raise ValueError(f"group {name!r}: node {n} outside 0..{self.n_nodes - 1}")
-            if self.master_of[n] >= 0:
-                raise ValueError(f"group {name!r}: node {n} is a rigid-link slave; name its "
-                                 f"master {self.master_of[n]}")
-        self.groups[name] = g
+        as group ``name`` (a support on it needs its nodes to be no rigid-link slaves)."""
+        self.groups[name] = BeamGroup.of(name, nodes, span, self.n_nodes)
 
     def _pairs(self):
         parts = []

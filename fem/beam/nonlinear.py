@@ -15,6 +15,8 @@ import math
 import numpy as np
 
 from ..newton import NonConvergenceError, check_step_arguments
+from ..stepping import StepFailed as _StepFailed
+from ..stepping import march
 from .assembly import Assembler, Factor, SingularBeamError
 from .model import BeamModel, dof_index
 from .static import BeamState, make_state
@@ -42,12 +44,6 @@ class BeamNonlinearResult:
     def reaction_path(self, node: int) -> np.ndarray:
         """(n_steps + 1, 3) reaction (F_x, F_y N, M N m) of a supported ``node``."""
         return np.array([s.reactions[int(node)] for s in self.states])
-
-
-class _StepFailed(Exception):
-    def __init__(self, reason, history):
-        super().__init__(reason)
-        self.reason, self.history = reason, history
 
 
 class _Stepper:
@@ -137,39 +133,37 @@ def solve_beam_nonlinear(model: BeamModel, supports, loads=(), steps: int = 10,
                          "linear (small rotations only); use the linear solves")
     asm = Assembler(model, supports, loads)
     stepper = _Stepper(asm, control, tol, max_iterations)
-    z, lam, t = np.zeros(asm.space.n), 0.0, 0.0
-    ev0 = asm.evaluate(z, 0.0, tangent=False)
+    ev0 = asm.evaluate(np.zeros(asm.space.n), 0.0, tangent=False)
     states, lams, its = [make_state(asm, ev0.q, ev0.r, 0.0, w=ev0.w)], [0.0], [0]
     goal = 1.0 if control is None else float(stepper.c_value)
-    nominal, dt, cuts, good, crossings = 1.0 / steps, 1.0 / steps, 0, 0, []
-    while t < 1.0 - 1e-12:
-        dt = min(dt, 1.0 - t)
-        try:
-            z_new, lam_new, q, r, n_it, flipped = stepper.newton(z, lam, (t + dt) * goal)
-            if flipped and control is None:
-                raise _StepFailed("the tangent stiffness lost definiteness: the structure "
-                                  "buckles or snaps (a limit or bifurcation point) near load "
-                                  f"factor {lam:.6g}..{lam_new:.6g}", [])
-        except _StepFailed as failure:
-            if dt / 2 < min_step * (1 - 1e-9):
-                raise NonConvergenceError(
-                    f"no convergence beyond step fraction {t:.6g} (load factor {lam:.6g}; "
-                    f"trying {t + dt:.6g}) after {cuts} cuts: {failure.reason}; relative "
-                    f"residuals {', '.join(f'{h:.2e}' for h in failure.history) or 'none'}. "
-                    "Use more steps or a smaller min_step; under load control a limit point "
-                    "(buckling, snap-through) cannot be passed: use control=(node, dof, value)",
-                    lam, t + dt, len(failure.history), failure.history) from None
-            dt, cuts, good = dt / 2, cuts + 1, 0
-            continue
-        t, z, lam = t + dt, z_new, lam_new
+    path = {"z": np.zeros(asm.space.n), "lam": 0.0}
+    crossings = []
+
+    def advance(t, dt, _):
+        z_new, lam_new, q, r, n_it, flipped = stepper.newton(path["z"], path["lam"],
+                                                             (t + dt) * goal)
+        if flipped and control is None:
+            raise _StepFailed("the tangent stiffness lost definiteness: the structure "
+                              "buckles or snaps (a limit or bifurcation point) near load "
+                              f"factor {path['lam']:.6g}..{lam_new:.6g}", [])
+        path.update(z=z_new, lam=lam_new)
         if flipped:
             crossings.append(len(lams))
-        states.append(make_state(asm, q, r, lam))
-        lams.append(lam)
+        states.append(make_state(asm, q, r, lam_new))
+        lams.append(lam_new)
         its.append(n_it)
-        good += 1
-        if good >= 2 and dt < nominal:
-            dt, good = min(2 * dt, nominal), 0
+        return False
+
+    def failed(t, dt, cuts, failure):
+        return NonConvergenceError(
+            f"no convergence beyond step fraction {t:.6g} (load factor {path['lam']:.6g}; "
+            f"trying {t + dt:.6g}) after {cuts} cuts: {failure.reason}; relative "
+            f"residuals {', '.join(f'{h:.2e}' for h in failure.history) or 'none'}. "
+            "Use more steps or a smaller min_step; under load control a limit point "
+            "(buckling, snap-through) cannot be passed: use control=(node, dof, value)",
+            path["lam"], t + dt, len(failure.history), failure.history)
+
+    cuts = march(advance, steps, min_step, failed)
     return BeamNonlinearResult(model=model, load_factors=np.array(lams), states=states,
                                iterations=its, info={"step_cuts": cuts, "n_unknowns": asm.space.n,
                                      "definiteness_changes": crossings})

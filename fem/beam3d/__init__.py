@@ -1,6 +1,6 @@
 """flexfem.fem.beam3d: a spatial (6 DOFs per node) co-rotational beam model.
 
-    model = Beam3DModel(nodes, elements, Section.rect(2e-3, 10e-3), steel)
+    model = Beam3DModel(nodes, elements, Section.rect(10e-3, 2e-3), steel)
     lin = solve_beam3d_static(model, [Fixed(0)], [NodalLoad(tip, fz=-1.0)])
     big = solve_beam3d_nonlinear(model, [Fixed(0)], [NodalLoad(tip, fz=-50.0)], steps=20)
     modes = solve_beam3d_modes(model, [Fixed(0)], n=6)

@@ -98,15 +98,18 @@ class Section:
         positive("Az", self.Az, allow_none=True)
 
     @classmethod
-    def rect(cls, depth_y: float, depth_z: float, shear: bool = False,
-             depth_y_end: float | None = None, depth_y_mid: float | None = None):
-        """Rectangle of ``depth_y`` along local y by ``depth_z`` along local z (m); depth_y
-        tapered linearly to ``depth_y_end`` at the second node, or quadratically through
-        ``depth_y_mid`` too (the planar model's tapers); shear areas 5/6 A if ``shear`` (given
-        for the mid-length section; the stiffness follows A along the taper)."""
-        b, h = positive("depth_y", depth_y), positive("depth_z", depth_z)
-        end = positive("depth_y_end", depth_y_end, allow_none=True)
-        mid = positive("depth_y_mid", depth_y_mid, allow_none=True)
+    def rect(cls, width: float, thickness: float, shear: bool = False,
+             thickness_end: float | None = None, thickness_mid: float | None = None):
+        """Rectangle ``width`` (along local z: the plate's depth, out of a planar mechanism's
+        plane) by ``thickness`` (along local y: in the plane), m, in the planar
+        :meth:`flexfem.fem.beam.Section.rect`'s order; the thickness tapered linearly to
+        ``thickness_end`` at the second node, or quadratically through ``thickness_mid`` too
+        (the planar model's tapers); shear areas 5/6 A if ``shear`` (given for the mid-length
+        section; the stiffness follows A along the taper). depth_y = thickness, depth_z =
+        width."""
+        b, h = positive("thickness", thickness), positive("width", width)
+        end = positive("thickness_end", thickness_end, allow_none=True)
+        mid = positive("thickness_mid", thickness_mid, allow_none=True)
         taper = None
         if end is not None or mid is not None:
             end = b if end is None else end

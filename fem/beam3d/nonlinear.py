@@ -16,6 +16,8 @@ import numpy as np
 
 from ..beam.assembly import Factor, SingularBeamError
 from ..newton import NonConvergenceError, check_step_arguments
+from ..stepping import StepFailed as _StepFailed
+from ..stepping import march
 from .assembly import Assembler
 from .model import Beam3DModel, dof_index
 from .rotations import logm
@@ -40,12 +42,6 @@ class Beam3DNonlinearResult:
     def path(self, node: int) -> np.ndarray:
         """(n_steps + 1, 3) displacement (m) of ``node`` over the steps."""
         return np.array([s.u[int(node)] for s in self.states])
-
-
-class _StepFailed(Exception):
-    def __init__(self, reason, history):
-        super().__init__(reason)
-        self.reason, self.history = reason, history
 
 
 class _Stepper:
@@ -127,33 +123,30 @@ def solve_beam3d_nonlinear(model: Beam3DModel, supports, loads=(), steps: int = 
     asm = Assembler(model, supports, loads)
     stepper = _Stepper(asm, control, tol, max_iterations)
     u, R = asm.space.reference()
-    lam, t = 0.0, 0.0
     r0, _, _, T0, Tp0, _, fl0 = asm.evaluate(u, R, 0.0, tangent=False)
     states, lams, its = [make_state(asm, u, R, r0, 0.0, fl0, T0, Tp0)], [0.0], [0]
     goal = 1.0 if control is None else float(stepper.c_value)
-    nominal, dt, cuts, good = 1.0 / steps, 1.0 / steps, 0, 0
-    while t < 1.0 - 1e-12:
-        dt = min(dt, 1.0 - t)
-        try:
-            u_new, R_new, lam_new, r, n_it, T, Tp, fl = stepper.newton(u, R, lam, (t + dt) * goal)
-        except _StepFailed as failure:
-            if dt / 2 < min_step * (1 - 1e-9):
-                raise NonConvergenceError(
-                    f"no convergence beyond step fraction {t:.6g} (load factor {lam:.6g}; "
-                    f"trying {t + dt:.6g}) after {cuts} cuts: {failure.reason}; relative "
-                    f"residuals {', '.join(f'{h:.2e}' for h in failure.history) or 'none'}. "
-                    "Use more steps or a smaller min_step; under load control a limit point "
-                    "cannot be passed: use control=(node, dof, value)",
-                    lam, t + dt, len(failure.history), failure.history) from None
-            dt, cuts, good = dt / 2, cuts + 1, 0
-            continue
-        t, u, R, lam = t + dt, u_new, R_new, lam_new
-        states.append(make_state(asm, u, R, r, lam, fl, T, Tp))
-        lams.append(lam)
+    path = {"u": u, "R": R, "lam": 0.0}
+
+    def advance(t, dt, _):
+        u_new, R_new, lam_new, r, n_it, T, Tp, fl = stepper.newton(
+            path["u"], path["R"], path["lam"], (t + dt) * goal)
+        path.update(u=u_new, R=R_new, lam=lam_new)
+        states.append(make_state(asm, u_new, R_new, r, lam_new, fl, T, Tp))
+        lams.append(lam_new)
         its.append(n_it)
-        good += 1
-        if good >= 2 and dt < nominal:
-            dt, good = min(2 * dt, nominal), 0
+        return False
+
+    def failed(t, dt, cuts, failure):
+        return NonConvergenceError(
+            f"no convergence beyond step fraction {t:.6g} (load factor {path['lam']:.6g}; "
+            f"trying {t + dt:.6g}) after {cuts} cuts: {failure.reason}; relative "
+            f"residuals {', '.join(f'{h:.2e}' for h in failure.history) or 'none'}. "
+            "Use more steps or a smaller min_step; under load control a limit point "
+            "cannot be passed: use control=(node, dof, value)",
+            path["lam"], t + dt, len(failure.history), failure.history)
+
+    cuts = march(advance, steps, min_step, failed)
     return Beam3DNonlinearResult(model=model, load_factors=np.array(lams), states=states,
                                  iterations=its, info={"step_cuts": cuts,
                                                        "n_unknowns": asm.space.n})

@@ -122,7 +122,7 @@ def flexible_links(planar, info: dict, params: EightBarFlexureParams,
         raise ValueError("the planar model's flexure nodes are not its first nodes")
     nodes, elements = [planar.nodes[:n_flex]], [planar.elements]
     sections = spatial_sections(planar, w)
-    plate = Section.rect(layout.link_width, w, shear=shear)
+    plate = Section.rect(w, layout.link_width, shear=shear)
     pairs, spans, n, ground, face = [], {}, n_flex, [], None
     for link in layout.links + [layout.ground]:
         points, ends = _stations(layout, link)

@@ -221,7 +221,8 @@ def _master_group(body, supported: set) -> str | None:
 
 
 def beam_model(spec) -> tuple:
-    """(BeamModel, info) of ``spec`` (a ModelSpec with beams). info: "groups" {group: node},
+    """(BeamModel, info) of ``spec`` (a ModelSpec with beams), with the file's support, load
+    and [[rigid]] groups as the model's groups (:mod:`flexfem.fem.beam.face`). info: "groups" {group: node},
     "masters" [node per rigid body], "bodies" {group: index of its rigid body}. ValueError
     naming the model file where a rigid body joins no beam point, a point is joined twice, or
     a support or load group has no point."""
@@ -274,7 +275,19 @@ def beam_model(spec) -> tuple:
     _check_groups(spec, groups)
     model = BeamModel(np.asarray(nodes.xy), mesh.elements, mesh.sections, spec.material,
                       shear=beams.shear, rigid_links=links, point_masses=masses)
+    for name, node in groups.items():
+        model.add_group(name, [node], _span(spec, beams.rigid[beams.groups[name]]))
     return model, {"groups": groups, "masters": masters, "bodies": dict(beams.groups)}
+
+
+def _span(spec, body) -> tuple:
+    """The extent (m) of the face a group stands for: a body of a mechanism description is
+    its group whole (its blocks' bounding box); a [[rigid]] group's point stands for a face
+    of unknown extent (zero: a component held there leaves the rotation free)."""
+    if spec.mechanism is None or not body.blocks:
+        return (0.0, 0.0)
+    corners = np.array([p for block in body.blocks for p in block], dtype=float)
+    return tuple(corners.max(axis=0) - corners.min(axis=0))
 
 
 def _check_groups(spec, groups: dict) -> None:

@@ -19,12 +19,10 @@ from ...data import load_toml
 from ...fem import (
     Fixed,
     Force,
-    Material,
     Model,
     PlaneStress,
     Prescribed,
     Solid3D,
-    material,
     solve_modes,
     solve_static,
 )
@@ -35,7 +33,9 @@ from ...geometry.dbma.drawing import (
 )
 from ...geometry.dbma.params import DBMAParams, paper_design
 from ..engine.convergence import converge, plot_convergence
+from .beam_model import beam_model
 from .figures import analytical_metrics
+from .material import dbma_material  # noqa: F401 (public here too)
 from .guards import check_analysable, check_mesh_budget, check_result, validity_notes
 
 OUTPUT_AXIS = 1  # the output moves along y
@@ -44,13 +44,6 @@ OUTPUT_AXIS = 1  # the output moves along y
 def published() -> dict:
     """The paper's numbers (data/dbma_paper.toml), as printed."""
     return load_toml("dbma_paper.toml")
-
-
-def dbma_material(p: DBMAParams) -> Material:
-    """Steel with the paper's E and the assumed nu, rho; the yield strength is not in the paper:
-    that of structural steel (data/materials.toml) is used for the safety factor."""
-    return Material("dbma_steel", p.E, p.nu, p.rho, material("structural_steel").yield_strength,
-                    "E: DBMA paper Table 1 (215 GPa); nu, rho, yield: structural_steel")
 
 
 def actuator_loads(force: float, dim: int) -> list:
@@ -185,7 +178,6 @@ def build(p: DBMAParams, layout: DBMALayout | None = None, model: str = "continu
     if model == "continuum":
         return build_model(p, layout, dim, size_factor, max_dofs=max_dofs), None
     if model == "beam":
-        from .beam import beam_model  # the beam's builder uses this module's material
         return beam_model(p, layout, root_extension)
     raise ValueError(f"model = {model!r} must be one of {MODELS}")
 

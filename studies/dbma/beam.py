@@ -19,27 +19,11 @@ import math
 import numpy as np
 
 from ...geometry.beam_layout import ROOT_EXTENSION
-from ...geometry.dbma.beam import dbma_beam_model
 from ...geometry.dbma.drawing import DBMALayout
 from ...geometry.dbma.params import DBMAParams
-from .analysis import (dbma_material, evaluate, modal_response, output_stiffness,
-                       static_response)
-from .beam_stress import dbma_fillet_stress, dbma_notch_stress
+from .analysis import evaluate, modal_response, output_stiffness, static_response
+from .beam_model import beam_model
 from .figures import analytical_metrics
-
-
-def beam_model(p: DBMAParams, layout: DBMALayout | None = None,
-               root_extension: float | None = None) -> tuple:
-    """(BeamModel with the mesh's groups, peak_stress): ``peak_stress(result)`` the root
-    stress of filleted or circular-notch hinges from the nominal beam stress (None for
-    sharp leaves: the nominal stress is what the beam model reports)."""
-    layout = layout or DBMALayout()
-    extension = ROOT_EXTENSION if root_extension is None else root_extension
-    model, info = dbma_beam_model(p, layout, extension, material=dbma_material(p))
-    peak = {"filleted": lambda r: dbma_fillet_stress(p, layout, r.model, r.state),
-            "circular": lambda r: dbma_notch_stress(p, layout, r.model, info, r.state),
-            }.get(layout.hinge_profile)
-    return model, peak
 
 
 def beam_modal3d(p: DBMAParams, layout: DBMALayout, n_modes: int,

@@ -15,18 +15,15 @@ holding x changes nothing). Large deflection: the face as a RigidFace, x prescri
 rotation free, from the middle to each end of the travel.
 """
 import math
-from dataclasses import dataclass, fields, replace
-from typing import Callable, Literal
+from dataclasses import fields, replace
+from typing import Literal
 
 import numpy as np
 
 from ...fem import (
     Fixed,
-    Model,
-    PlaneStress,
     Prescribed,
     RigidFace,
-    Solid3D,
     material,
     solve_modes,
     solve_nonlinear,
@@ -35,67 +32,20 @@ from ...fem import (
 from ...geometry.eightbar.flexure import (
     EightBarFlexureParams,
     end_effector_point,
-    mesh_eightbar_flexure,
     prbm_peak_stress,
     prbm_stiffness,
 )
 from ...geometry.eightbar.rigid import EightBarParams, trace_eightbar
 from ...geometry.straight_line import straight_line_deviation
-from ...fem.budget import check_budget
-from ...geometry.eightbar.estimate import estimate_mesh
 from ..engine.validate import require_finite
+from .beam_model import beam_model, spatial_beam_modes
+from .continuum_model import build_model, group_at_vertex  # noqa: F401 (public here too)
+from .places import Places, continuum_places
 
 # Newton tolerance (relative to the reaction): the residual of this part stagnates near 3e-6
 # of the drive force -- round-off in the internal forces of the stiff links (E t ~ 4e8 N/m)
 # against a mechanism reaction of ~1 N -- so the default 1e-8 cannot be reached.
 NEWTON_TOL = 1e-5
-
-
-def build_model(params: EightBarFlexureParams, size_factor: float = 1.0, n_across: int = 3,
-                max_dofs: int | None = None, dim: int = 2, layers: int | None = None):
-    """(Model (P2: plane stress in 2-D, solid tetrahedra in 3-D), mesh sizes dict) of the
-    flexure suspension; a mesh above ``max_dofs`` (None: what half the available memory
-    affords) is refused before meshing. 3-D: ``layers`` through the thickness (see
-    :func:`~flexfem.geometry.eightbar.flexure.solid_mesh_options`)."""
-    check_budget(estimate_mesh(params, n_across, size_factor, dim=dim, layers=layers), dim,
-                 max_dofs, what=f"the eight-bar mesh at size_factor {size_factor:g}"
-                 + (" in 3-D" if dim == 3 else ""))
-    mesh, sizes = mesh_eightbar_flexure(params, n_across=n_across, size_factor=size_factor,
-                                        dim=dim, layers=layers)
-    formulation = PlaneStress(params.thickness) if dim == 2 else Solid3D()
-    return Model(mesh, material(params.material), formulation, order=2), sizes
-
-
-def group_at_vertex(model: Model, vertex: int) -> str:
-    """Name of the flexure (or link) holding mesh vertex ``vertex``: flexures first."""
-    mesh = model.mesh
-    elements = np.flatnonzero(np.any(mesh.mesh.t == vertex, axis=0))
-    names = [n for n in mesh.subdomains if n not in ("body", "links", "flexures", "anchors")]
-    names.sort(key=lambda n: (not n.startswith("flexure_"), n))
-    for name in names:
-        if np.intersect1d(mesh.subdomains[name], elements).size:
-            return name
-    return "unknown"
-
-
-@dataclass(frozen=True)
-class Places:
-    """Where a model's stress maxima are, named: ``peak(result)`` {"x", "y"(, "z") m,
-    "flexure"} of a linear result's max_von_mises; ``element(result, e)`` the flexure (or
-    link) of entry ``e`` of a nonlinear step's element stresses."""
-
-    peak: Callable
-    element: Callable
-
-
-def continuum_places(model: Model) -> Places:
-    """The mesh's subdomains name the continuum's maxima (:func:`group_at_vertex`)."""
-    def peak(result):
-        vertex = int(np.argmax(result.von_mises_nodal))
-        where = dict(zip("xyz", (float(c) for c in model.mesh.mesh.p[:, vertex])))
-        return {**where, "flexure": group_at_vertex(model, vertex)}
-
-    return Places(peak, lambda result, e: group_at_vertex(model, int(model.mesh.mesh.t[0, e])))
 
 
 def linear_analysis(model, displacement: float, places: Places | None = None) -> dict:
@@ -230,7 +180,6 @@ def build(params: EightBarFlexureParams, model: str = "continuum", size_factor: 
         return fe, continuum_places(fe), {"h": sizes["flexure_size"], "mesh_sizes": sizes,
                                           "n_elements": int(fe.mesh.mesh.t.shape[1])}
     if model == "beam":
-        from .beam import beam_model  # the beam's builder uses this module's places
         return beam_model(params, n_per_flexure, root_extension, stroke)
     raise ValueError(f"model = {model!r} must be one of {MODELS}")
 
@@ -270,7 +219,6 @@ def analyze_eightbar(params: EightBarFlexureParams | None = None, travel: float 
            "solver": lin["result"].solver, "dim": dim, **facts}
     if n_modes:
         if model == "beam" and dim == 3:
-            from .beam import spatial_beam_modes
             out["modes"] = spatial_beam_modes(params, n_modes, facts["root_extension"])
         else:
             out["modes"] = modal_analysis(fe, n_modes)

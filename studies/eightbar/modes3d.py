@@ -25,7 +25,7 @@ from ...geometry.eightbar.beam3d import eightbar_beam3d_model
 from ...geometry.eightbar.flexure import EightBarFlexureParams
 from ..modes3d import (TorsionScaled, mirror_vertices, out_of_plane_share, pair_modes,
                        vlasov_factor)
-from .analysis import build_model
+from .continuum_model import build_model
 
 
 def energy_share(model, shapes: np.ndarray, subdomain: str) -> np.ndarray:

@@ -9,7 +9,8 @@ from ...fem import (Fixed, Force, Model, PlaneStrain, PlaneStress, Prescribed, S
                     Traction, compliance_matrix, solve_buckling, solve_harmonic, solve_modes,
                     solve_nonlinear, solve_static)
 from ...geometry.user_model import ModelSpec, load_spec, mesh_geometry
-from .beam_analysis import analyze_beam_model
+from ...geometry.user_model.beam_model import beam_model
+from .beam_analysis import check_beam_analyses, lifted_outputs, planar_twin, spatial_modes
 from .outputs import check_finite, groups_of as _groups, stiffness
 from .stroke import stroke_limits
 
@@ -65,7 +66,20 @@ def _solver(spec: ModelSpec) -> str:
 
 def _in_context(spec: ModelSpec, error: ValueError) -> ValueError:
     """fem errors prefixed by the model file (their own type kept)."""
-    return type(error)(f"{spec.source}: {error}")
+    text = str(error)
+    return type(error)(text if text.startswith(spec.source) else f"{spec.source}: {text}")
+
+
+def build(spec: ModelSpec, model: str = "continuum", size_factor: float = 1.0,
+          max_dofs: int | None = None) -> tuple:
+    """(model, h) of the model file: the continuum FEM (:func:`build_model`; h its mean edge
+    length, m) or its beam model (:func:`~flexfem.geometry.user_model.beam_model.beam_model`,
+    with the file's groups; h the mean element length, m; size_factor unused)."""
+    if model == "continuum":
+        fe = build_model(spec, size_factor, max_dofs)
+        return fe, element_size(fe)
+    fe, _ = beam_model(spec)
+    return fe, float(np.mean(fe.lengths))
 
 
 def analyze_model(spec: ModelSpec, size_factor: float = 1.0, model: str = "continuum",
@@ -75,27 +89,29 @@ def analyze_model(spec: ModelSpec, size_factor: float = 1.0, model: str = "conti
     load group, reactions {group: vector (N)} of every support, stiffness {group: {axis:
     N/m}} (single force load), frequencies_hz (when [analysis] modes), nonlinear (when
     [analysis] steps), compliance / buckling / harmonic (when asked; see :func:`_precision`).
-    ``model="beam"``: the same keys from the model file's declared beams
-    (:func:`~flexfem.studies.user_model.beam_analysis.analyze_beam_model`; size_factor unused).
-    ``max_dofs``: the continuum's mesh budget (None: half the available memory)."""
+    ``model="beam"``: the same analysis of the file's beam model (its declared [[beam]] or
+    its bodies' and flexures'; planar statics, and with ``--dim 3`` the spatial beam model's
+    modes: :mod:`.beam_analysis`). ``max_dofs``: the continuum's mesh budget (None: half the
+    available memory)."""
     if model not in MODELS:
         raise ValueError(f"{spec.source}: model = {model!r} must be one of {MODELS}")
+    solid = None
     if model == "beam":
-        out = analyze_beam_model(spec)
-        out.update(stroke_limits(spec, out))
-        return check_finite(out, spec.source)
+        check_beam_analyses(spec)
+        if spec.dim == 3:  # bodies and flexures: the planar statics, the lifted model's modes
+            solid, spec = spec, planar_twin(spec)
     supports, loads = supports_and_loads(spec)
     try:
-        model = build_model(spec, size_factor, max_dofs)
-        result = solve_static(model, supports, loads, solver=_solver(spec))
+        fe, h = build(spec, model, size_factor, max_dofs)
+        result = solve_static(fe, supports, loads, solver=_solver(spec))
     except ValueError as error:
         raise _in_context(spec, error) from None
     groups = _groups(spec)
     mean = {g: result.mean_displacement(g).tolist() for g in groups}
     out = {
         "model": spec.source, "geometry": str(spec.geometry), "parameters": dict(spec.constants),
-        "dim": spec.dim, "dofs": int(model.n_dofs), "solver": result.solver,
-        "h": element_size(model), "max_von_mises": result.max_von_mises,
+        "dim": spec.dim, "dofs": int(fe.n_dofs), "solver": result.solver,
+        "h": h, "max_von_mises": result.max_von_mises,
         "max_von_mises_location": result.max_von_mises_location.tolist(),
         "mean_displacement": mean,
         "reactions": {g: np.asarray(r).tolist() for g, r in result.reactions.items()},
@@ -104,17 +120,23 @@ def analyze_model(spec: ModelSpec, size_factor: float = 1.0, model: str = "conti
     }
     if spec.analysis.modes:
         try:
-            modes = solve_modes(model, spec.analysis.modes, supports)
+            modes = (spatial_modes(solid, fe, spec.analysis.modes) if solid is not None else
+                     solve_modes(fe, spec.analysis.modes, supports).frequencies_hz.tolist())
         except ValueError as error:
             raise _in_context(spec, error) from None
-        out["frequencies_hz"] = modes.frequencies_hz.tolist()
+        out["frequencies_hz"] = modes
     if spec.analysis.steps:
-        out["nonlinear"] = _nonlinear(spec, model, supports, loads, groups)
+        out["nonlinear"] = _nonlinear(spec, fe, supports, loads, groups)
     try:
-        out.update(_precision(spec, model, supports, loads))
+        out.update(_precision(spec, fe, supports, loads))
     except ValueError as error:
         raise _in_context(spec, error) from None
-    nominal = (lambda: analyze_beam_model(spec)) if spec.beams is not None else None
+    if solid is not None:
+        out.update(lifted_outputs(out))
+        spec = solid
+    nominal = None
+    if model == "continuum" and spec.beams is not None:
+        nominal = lambda: analyze_model(spec, model="beam")  # noqa: E731
     out.update(stroke_limits(spec, out, nominal))
     return check_finite(out, spec.source)
 

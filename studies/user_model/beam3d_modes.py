@@ -35,7 +35,7 @@ def _box_inertias(body, rho: float, depth: float) -> tuple:
     return m, c, (jx, jy, jz)
 
 
-def spatial_modes(spec, planar, info, n: int) -> list:
+def spatial_modes(spec, planar, n: int) -> list:
     """The ``n`` lowest frequencies (Hz) of the lifted model, held where the planar model's
     supports hold (every support holds its body whole: a partial support of a solid has no
     planar meaning here)."""
@@ -53,5 +53,5 @@ def spatial_modes(spec, planar, info, n: int) -> list:
         else:
             raise ValueError(f"{spec.source}: a body's mass node has no body (internal)")
     model = lifted_model(planar, mechanism.depth, point_masses=masses)
-    supports = [Fixed((info["groups"][s.group],)) for s in spec.supports]
+    supports = [Fixed(planar.groups[s.group].nodes) for s in spec.supports]
     return solve_beam3d_modes(model, supports, n=n).frequencies_hz.tolist()

@@ -16,7 +16,7 @@ def test_a_bar_s_mass_centroid_and_inertia_tensor(steel):
     (I - e e^T) plus the section's rho L (I_p, I_y, I_z) about its local x, y, z (exact: the
     consistent mass reproduces rigid-body motion); the point mass by parallel axes."""
     d = np.array([1.0, 2.0, 2.0]) / 3.0
-    section = Section.rect(2e-3, 5e-3)
+    section = Section.rect(5e-3, 2e-3)
     L, mp = 0.1, 0.02
     model, tip = straight(steel, section, length=L, n=10, direction=d,
                           point_masses={10: (mp, 1e-6, 2e-6, 3e-6)})
@@ -41,7 +41,7 @@ def test_element_energies_add_up_to_the_work_of_the_tip_load(steel):
     the elements' strain energies sum to half the loads' work, F . u_tip / 2 (to round-off),
     and the root half stores 7/8 of the bending energy, (L^3 - (L/2)^3) / L^3 of M^2 / 2EI
     with M linear, plus half the torsion and shear energy."""
-    section = Section.rect(2e-3, 5e-3, shear=True)
+    section = Section.rect(5e-3, 2e-3, shear=True)
     model, tip = straight(steel, section, length=0.1, n=20)
     load = NodalLoad(tip, fy=0.3, fz=-0.2, mx=0.01)
     state = solve_beam3d_static(model, [Fixed(0)], [load])

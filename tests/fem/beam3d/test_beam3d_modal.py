@@ -25,7 +25,7 @@ def test_cantilever_frequencies_in_all_four_families(steel):
     L^4)) / 2 pi about each axis; axial: (2k - 1) / 4L sqrt(E / rho); torsion: (2k - 1) / 4L
     sqrt(G J / (rho Ip)); linear bar elements: +6e-5, +6e-4 on these, 1e-3 allowed."""
     L, b, h = 0.2, 1e-3, 2e-3
-    section = Section.rect(b, h)
+    section = Section.rect(h, b)
     model, _ = straight(steel, section, length=L, n=40)
     modes = solve_beam3d_modes(model, [Fixed(0)], n=40)
     kinds = np.array(_kind(modes))

@@ -21,7 +21,7 @@ def test_tangent_is_the_derivative_of_the_internal_force(steel):
     nodes = np.array([[0, 0, 0], [0.02, 0, 0], [0.04, 0.01, 0], [0.05, 0.02, 0.01],
                       [0.06, 0.03, 0.01]], dtype=float)
     elements = [[0, 1], [1, 2], [2, 3]]
-    model = Beam3DModel(nodes, elements, Section.rect(1e-3, 2e-3, shear=True), steel,
+    model = Beam3DModel(nodes, elements, Section.rect(2e-3, 1e-3, shear=True), steel,
                         rigid_links=[RigidLink(3, 4)])
     asm = Assembler(model, [Fixed(0)], [NodalLoad(4, fz=2.0, mx=0.1)])
     u = rng.normal(scale=2e-3, size=(5, 3))
@@ -47,7 +47,7 @@ def test_tip_moment_rolls_the_cantilever_into_a_circle(steel, axis, inertia):
     model's exact solution: chords of the undeformed element length h at angles
     (k + 1/2) d, d = M h / EI (no axial force): the circle scaled by (d/2) / sin(d/2)
     = 1 + 2.6e-4 (1.64e-4 L at the tip)."""
-    section = Section.rect(1e-3, 4e-3)
+    section = Section.rect(4e-3, 1e-3)
     L, n = 0.1, 20
     model, tip = straight(steel, section, length=L, n=n)
     M = 2 * np.pi * steel.E * getattr(section, inertia) / L
@@ -70,7 +70,7 @@ def test_tip_moment_rolls_the_cantilever_into_a_circle(steel, axis, inertia):
 def test_prescribed_rotation_turns_the_beam_rigidly(steel):
     """The clamp turned by 120 degrees about z (Prescribed r_z, multiplicative update):
     no stress, the tip on the rotated axis."""
-    model, tip = straight(steel, Section.rect(1e-3, 2e-3), length=0.1, n=10)
+    model, tip = straight(steel, Section.rect(2e-3, 1e-3), length=0.1, n=10)
     turn = 2 * np.pi / 3
     supports = [Fixed(0, ("x", "y", "z", "rx", "ry")), Prescribed(0, "rz", turn)]
     res = solve_beam3d_nonlinear(model, supports, steps=4)
@@ -113,7 +113,7 @@ def test_45_degree_bend_matches_the_published_tip_positions():
 def test_displacement_control_reaches_the_load_controlled_state(steel):
     """Stepping the tip's z displacement to the value a load-controlled solve reached at
     P returns load factor 1 and the same configuration."""
-    model, tip = straight(steel, Section.rect(2e-3, 1e-3), length=0.1, n=16)
+    model, tip = straight(steel, Section.rect(1e-3, 2e-3), length=0.1, n=16)
     loads = [NodalLoad(tip, fz=-20.0, fy=5.0)]
     by_load = solve_beam3d_nonlinear(model, [Fixed(0)], loads, steps=8)
     w = by_load.final.u[tip, 2]
@@ -124,12 +124,12 @@ def test_displacement_control_reaches_the_load_controlled_state(steel):
 
 
 def test_bad_input_is_named(steel):
-    model, tip = straight(steel, Section.rect(1e-3, 2e-3), length=0.1, n=4)
+    model, tip = straight(steel, Section.rect(2e-3, 1e-3), length=0.1, n=4)
     with pytest.raises(ValueError, match="translation"):
         solve_beam3d_nonlinear(model, [Fixed(0)], [NodalLoad(tip, mz=1.0)],
                                control=(tip, "rz", 0.1))
     with pytest.raises(ValueError, match="orientation"):
-        straight(steel, Section.rect(1e-3, 2e-3), orientation=(2.0, 0.0, 0.0))
+        straight(steel, Section.rect(2e-3, 1e-3), orientation=(2.0, 0.0, 0.0))
     with pytest.raises(ValueError, match="J"):
         Section(A=1.0, Iy=1.0, Iz=1.0, J=0.0)
     with pytest.raises(ValueError, match="dof"):

@@ -32,7 +32,7 @@ def test_cantilever_section_stresses_are_statics(steel):
     """Tip loads on a cantilever: at distance s from the tip the moments are F s, so along
     element e the normal stress is N/A + |F_z| s H / (2 I_y) + |F_y| s B / (2 I_z) and the
     torsion shear is T times the rectangle's factor, at every point."""
-    section = Section.rect(B, H)
+    section = Section.rect(H, B)
     model, tip = straight(steel, section, length=L, n=4)
     state = solve_beam3d_static(model, [Fixed(0)], [NodalLoad(tip, fx=N, fy=FY, fz=FZ,
                                                               mx=TORQUE)])
@@ -76,7 +76,7 @@ def test_mid_span_stresses_beside_the_3d_continuum(steel):
     long_side = twisted.stress_at([[L / 2, 0.0, H / 2]])[0]  # the middle of a long side
     tau = np.hypot(long_side[0, 1], long_side[0, 2])
 
-    beam, tip = straight(steel, Section.rect(B, H, shear=True), length=L, n=2)
+    beam, tip = straight(steel, Section.rect(H, B, shear=True), length=L, n=2)
     state = solve_beam3d_static(beam, [Fixed(0)], [NodalLoad(tip, fx=N, fy=FY, fz=FZ)])
     normal = state.stresses(n_points=2)["normal"][1, 0]  # mid-span: the second element's start
     torsion = solve_beam3d_static(beam, [Fixed(0)], [NodalLoad(tip, mx=TORQUE)]).stresses(

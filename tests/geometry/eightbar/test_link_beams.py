@@ -18,7 +18,7 @@ BETA_L_FREE = np.array([4.7300408, 7.8532046])  # free-free beam, first two bend
 def _model(parts, link, size, stations=(), shear=False):
     xy, elements, pairs, at = mesh_skeleton(link_skeleton(parts, link), stations, size)
     nodes = np.column_stack([xy, np.zeros(len(xy))])
-    return Beam3DModel(nodes, elements, Section.rect(W, T, shear=shear),
+    return Beam3DModel(nodes, elements, Section.rect(T, W, shear=shear),
                        material("aluminium_6061_t6")), pairs, at
 
 

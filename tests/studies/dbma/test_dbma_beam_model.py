@@ -168,9 +168,10 @@ def _analysis_with_elements(p, layout, n):
     from unittest import mock
 
     from flexfem.studies.dbma import beam as study
+    from flexfem.studies.dbma import beam_model as builder
 
     build = gb.dbma_beam_model
-    with mock.patch.object(study, "dbma_beam_model",
+    with mock.patch.object(builder, "dbma_beam_model",
                            lambda *a, **k: build(*a, **k, elements_per_hinge=n)):
         return study.analyze_dbma_beam(p, layout)
 
