@@ -30,6 +30,30 @@ def count(text: str) -> int:
     return int(value)
 
 
+def _shown(text: str) -> str:
+    """The value as typed, shortened where it is long (10**300 written out)."""
+    return repr(text) if len(text) <= 24 else f"{text[:12]!r}... ({len(text)} characters)"
+
+
+def whole_number(low: int, high: int):
+    """The type of an option that takes a whole number from ``low`` to ``high`` (1e3 is
+    accepted as 1000): a count whose upper end bounds the work or memory it asks for."""
+    expected = f"a whole number from {low:,} to {high:,}"
+
+    def parse(text: str) -> int:
+        try:
+            value = float(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{_shown(text)} is not a number; expected "
+                                             f"{expected}") from None
+        if not (math.isfinite(value) and value == int(value) and low <= value <= high):
+            raise argparse.ArgumentTypeError(f"{_shown(text)} must be {expected}")
+        return int(value)
+
+    parse.__name__ = "whole_number"
+    return parse
+
+
 def damping_ratio(text: str) -> float:
     """A damping ratio in (0, 1)."""
     try:
@@ -79,3 +103,8 @@ class Parser(argparse.ArgumentParser):
     def __init__(self, *args, **kwargs):
         kwargs.setdefault("formatter_class", DefaultsHelp)
         super().__init__(*args, **kwargs)
+
+    def error(self, message):
+        """A bad command line is one ``flexfem COMMAND: error: ...`` line and exit status 2,
+        as every other error the user can cause (argparse would print the usage first)."""
+        self.exit(2, f"{self.prog}: error: {message} (see {self.prog} --help)\n")

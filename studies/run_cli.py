@@ -1,6 +1,7 @@
 """``flexfem sweep`` and ``flexfem converge``: parameter and mesh-convergence studies."""
+from .engine.executors import MAX_WORKERS
 from .engine.sweep import MAX_CASES
-from .options import count, json_object, tolerance
+from .options import count, json_object, tolerance, whole_number
 from .run import run_convergence, run_front, sweep
 
 
@@ -8,7 +9,7 @@ def register(subparsers):
     p = subparsers.add_parser("sweep", help="run a parameter study declared in a TOML file")
     p.add_argument("study", help="study file (TOML): mechanism, base, grid / cases / sample")
     p.add_argument("--out", help="output folder (default: ./<study name>)")
-    p.add_argument("--workers", type=int, help="local worker processes (default: one per CPU; 1: in-process)")
+    p.add_argument("--workers", type=whole_number(1, MAX_WORKERS), help="local worker processes (default: one per CPU; 1: in-process)")
     p.add_argument("--scheduler", help="Dask scheduler tcp://HOST:PORT (default: $FLEXFEM_SCHEDULER)")
     p.add_argument("--retry-failed", action="store_true", help="re-run cases stored as failed")
     p.add_argument("--allow-code", action="store_true",

@@ -102,6 +102,11 @@ def pick(rows: list[dict], constraints: list[tuple], scale: dict | None = None) 
     return i, float(worst[i])
 
 
+# the spec fields each constraint's bound comes from (:func:`constraints_of`)
+BOUND_OF = {"stress": "yield / safety_factor", "frequency": "min_frequency_hz",
+            "output_stiffness": "min_output_stiffness"}
+
+
 def infeasible_message(rows: list[dict], constraints: list[tuple]) -> str:
     """Say which constraint cannot be met over the box, with its best screened value."""
     parts = []
@@ -109,7 +114,8 @@ def infeasible_message(rows: list[dict], constraints: list[tuple]) -> str:
         values = [r[key] for r in rows]
         best = max(values) if kind == ">=" else min(values)
         if (best < bound) if kind == ">=" else (best > bound):
-            parts.append(f"{name}: {key} {kind} {bound:.4g}, best over the bounds {best:.4g}")
+            parts.append(f"{name}: {key} {kind} {bound:.4g} ({BOUND_OF[name]}), best over the "
+                         f"bounds {best:.4g}")
     why = "; ".join(parts) or "each constraint can be met alone, not all together"
     return ("no design within the bounds meets the constraints within "
             f"{100 * SCREEN_TOL:.0f} % by the analytical screening ({why}); "

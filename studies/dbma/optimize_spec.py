@@ -2,6 +2,7 @@
 constraints (working-mode frequency in Hz, stress at the actuator stroke in Pa, output
 stiffness in N/m) and their margins; :mod:`.optimize` runs the search. SI units.
 """
+import itertools
 import math
 from dataclasses import dataclass, fields, replace
 
@@ -15,6 +16,7 @@ NAMES = ("b", "h", "l")
 ACTIVE_TOL = 0.01  # a constraint within 1 % of its bound is reported active
 # the response bandwidth the DBMA was built for (Abstract): the default frequency bound, Hz
 PAPER_BANDWIDTH_HZ = float(load_toml("dbma_paper.toml")["frequency"]["bandwidth_Hz"])
+MAX_EVALUATIONS = 10_000  # FEM solves of a search: hours on the search mesh
 
 
 class InfeasibleSpecError(ValueError):
@@ -26,12 +28,13 @@ class OptimizeSpec:
     """Bounds (m) and constraints of the DBMA hinge design search.
 
     b, h, l bounds (m): hinge thickness, hinge offset, hinge length; every design in the box
-    must be buildable (checked at the largest corner against DBMAParams and the layout).
+    must be buildable (checked at its eight corners against DBMAParams and the layout).
     min_frequency_hz (Hz, default 300: the paper's bandwidth, data/dbma_paper.toml), 0: none;
-    safety_factor (>= 1) against yield at the actuator stroke stroke_m (m, elongation);
-    min_output_stiffness (N/m), 0: none. max_evaluations: search-mesh FEM evaluations (>= 8:
-    COBYQA's first model needs 2 n + 1 = 7); search_size_factor / check_size_factor: meshes
-    of the search and of the final check; n_seed: Sobol points screened; seed: Sobol seed.
+    safety_factor (>= 1) against yield at the actuator stroke stroke_m (m, elongation, 1 nm
+    to 1 mm); min_output_stiffness (N/m), 0: none. max_evaluations: search-mesh FEM
+    evaluations (8 to MAX_EVALUATIONS; COBYQA's first model needs 2 n + 1 = 7);
+    search_size_factor / check_size_factor: meshes of the search and of the final check;
+    n_seed: Sobol points screened; seed: Sobol seed.
     """
 
     b_min: float = 0.3e-3
@@ -66,14 +69,17 @@ class OptimizeSpec:
                 raise ValueError(f"OptimizeSpec: {name} = {getattr(self, name)!r} must be >= 0 (0: no constraint)")
         if not self.safety_factor >= 1:
             raise ValueError(f"OptimizeSpec: safety_factor = {self.safety_factor!r} must be >= 1")
-        if not 0 < self.stroke_m <= 1e-3:
-            raise ValueError(f"OptimizeSpec: stroke_m = {self.stroke_m!r} must be > 0 and at "
-                             "most 1 mm (m: a piezo stack's elongation is tens of um, and the "
+        if not 1e-9 <= self.stroke_m <= 1e-3:
+            raise ValueError(f"OptimizeSpec: stroke_m = {self.stroke_m!r} must be from 1 nm to "
+                             "1 mm (m: a piezo stack's elongation is tens of um, and the "
                              "amplifier's linear model holds for small strokes)")
         for name, low in (("max_evaluations", 8), ("n_seed", 16), ("seed", 0)):
             v = getattr(self, name)
             if not (isinstance(v, int) and v >= low):
                 raise ValueError(f"OptimizeSpec: {name} = {v!r} must be an integer >= {low}")
+        if self.max_evaluations > MAX_EVALUATIONS:
+            raise ValueError(f"OptimizeSpec: max_evaluations = {self.max_evaluations!r} must be "
+                             f"an integer from 8 to {MAX_EVALUATIONS} (each is a FEM solve)")
         for name in ("search_size_factor", "check_size_factor"):
             if not 0.05 <= getattr(self, name) <= 20:
                 raise ValueError(f"OptimizeSpec: {name} = {getattr(self, name)!r} must be in [0.05, 20]")
@@ -95,12 +101,17 @@ def quick_spec(spec: OptimizeSpec) -> OptimizeSpec:
 
 def check_box(spec: OptimizeSpec, base: DBMAParams) -> None:
     """ValueError unless every (b, h, l) in the box builds a DBMA: the limits (h + b < c, h + b
-    < ls, b < a, l < e, ll > 2 c + b + arm_gap) bind at the largest corner."""
-    try:
-        check_layout(replace(base, b=spec.b_max, h=spec.h_max, l=spec.l_max), DBMALayout())
-    except ValueError as error:
-        raise ValueError(f"OptimizeSpec: the corner (b_max, h_max, l_max) = ({spec.b_max!r}, "
-                         f"{spec.h_max!r}, {spec.l_max!r}) m cannot be built: {error}") from None
+    < ls, b < a, l < e, ll > 2 c + b + arm_gap) bind at the largest corner, DBMAParams' ranges
+    and slenderness limits (10 nm <= h, ll / b <= 10^4, ...) at the others: all eight are
+    checked, the largest first."""
+    for ends in itertools.product(("max", "min"), repeat=3):
+        names = [f"{n}_{end}" for n, end in zip(NAMES, ends)]
+        b, h, l = (getattr(spec, name) for name in names)
+        try:
+            check_layout(replace(base, b=b, h=h, l=l), DBMALayout())
+        except ValueError as error:
+            raise ValueError(f"OptimizeSpec: the corner ({', '.join(names)}) = ({b!r}, {h!r}, "
+                             f"{l!r}) m cannot be built: {error}") from None
 
 
 def constraints_of(spec: OptimizeSpec, yield_strength: float) -> list[tuple]:

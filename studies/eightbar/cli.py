@@ -1,19 +1,36 @@
 """``flexfem linkage trace NAME``, ``flexfem eightbar trace`` (rigid-body straight-line paths),
 ``flexfem eightbar analyze`` (FEM of the flexure suspension), ``flexfem eightbar driving`` (the
 driving linkage) and ``flexfem eightbar mesh OUT``; ``--model beam`` on analyze and driving."""
+import argparse
+
 from ...fem import write_mesh
 from ...geometry.eightbar.flexure import EightBarFlexureParams, mesh_eightbar_flexure
 from ...geometry.straight_line import CLASSIC_LINKAGES
 from .analysis import analyze_eightbar, summary_row
 from ...geometry.eightbar.flexure import THESIS_TRAVEL
 from ...geometry.eightbar.rigid import EightBarParams
-from ..options import positive
+from ..options import positive, whole_number
 from .beam import analyze_eightbar_beam
 from .driving_models import analyze_driving
 from .path import eightbar_path_summary, trace_classic
 from .stage import stage_study
 
 LINKAGE_CHOICES = ["watt", "roberts", "chebyshev", "peaucellier", "modified_peaucellier"]
+# points along a traced path: each costs ~2 ms (twice: the resolution check), 10,000 ~40 s;
+# the tracer refuses fewer than 3 and a sampling too coarse for the path
+points = whole_number(1, 10_000)
+
+
+def travel(text: str) -> float:
+    """An end-to-end travel (m) the eight-bar's linkage can trace: refused before meshing
+    (EightBarParams' range; a travel too small against the links' size makes the
+    large-deflection solve fail to converge, minutes later)."""
+    value = positive(text)
+    try:
+        EightBarParams(travel=value)
+    except ValueError as error:
+        raise argparse.ArgumentTypeError(str(error)) from None
+    return value
 
 
 def _run_linkage_trace(args) -> dict:
@@ -135,12 +152,12 @@ def add_eightbar_commands(eb_sub) -> None:
     p = eb_sub.add_parser("trace", help="trace the rigid-body eight-bar's end-effector path")
     p.add_argument("--travel", type=positive, default=THESIS_TRAVEL,
                    help="end-effector stroke traced, m (default the thesis' 33.1 mm, Ch. 5)")
-    p.add_argument("--points", type=int, default=251, help="points along the travel")
+    p.add_argument("--points", type=points, default=251, help="points along the travel")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(run=_run_eightbar_trace, summarize=_summarize_eightbar_trace)
     p = eb_sub.add_parser("analyze", help="FEM of the flexure suspension: stiffness, stress, "
                           "large-deflection path")
-    p.add_argument("--travel", type=float, default=None,
+    p.add_argument("--travel", type=travel, default=None,
                    help="end-to-end travel in m (default 0.0331, the thesis')")
     p.add_argument("--quick", action="store_true", help="coarse mesh, half stroke mirrored")
     p.add_argument("--model", choices=("continuum", "beam"), default="continuum",
@@ -156,7 +173,8 @@ def add_eightbar_commands(eb_sub) -> None:
     p.add_argument("--model", choices=("continuum", "beam"), default="continuum",
                    help="continuum: 2-D FEM (default); beam: the reduced beam model (~0.1 s)")
     p.add_argument("--quick", action="store_true", help="continuum: 2x coarser mesh")
-    p.add_argument("--modes", type=int, default=3, help="natural frequencies computed")
+    p.add_argument("--modes", type=whole_number(0, 100), default=3,
+                   help="natural frequencies computed")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(run=_run_eightbar_driving, summarize=_summarize_eightbar_driving)
     p = eb_sub.add_parser("stage", help="the suspension as a stage: compliance, support "
@@ -180,7 +198,7 @@ def register(subparsers) -> None:
     lk_sub = lk.add_subparsers(dest="linkage_command", required=True)
     p = lk_sub.add_parser("trace", help="trace a straight-line linkage and report its deviation")
     p.add_argument("name", choices=sorted(set(LINKAGE_CHOICES) & set(CLASSIC_LINKAGES)))
-    p.add_argument("--points", type=int, default=201, help="points along the input range")
+    p.add_argument("--points", type=points, default=201, help="points along the input range")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(run=_run_linkage_trace, summarize=_summarize_linkage_trace)
 

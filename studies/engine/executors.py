@@ -152,6 +152,9 @@ class DaskExecutor:
                 self._client.cancel(list(futures))
 
 
+MAX_WORKERS = 1024  # local processes; each imports numpy, scipy and gmsh
+
+
 def make_executor(workers: int | None = None, scheduler: str | None = None):
     """The executor for a study: Dask when ``scheduler`` (or the FLEXFEM_SCHEDULER variable)
     gives an address, else local processes, in-process when ``workers`` is 1.
@@ -160,6 +163,7 @@ def make_executor(workers: int | None = None, scheduler: str | None = None):
     if scheduler:
         return DaskExecutor(scheduler)
     workers = (os.cpu_count() or 1) if workers is None else workers
-    if int(workers) < 1:
-        raise ValueError(f"workers = {workers!r} must be >= 1")
+    if not 1 <= int(workers) <= MAX_WORKERS:
+        raise ValueError(f"workers = {workers!r} must be from 1 to {MAX_WORKERS} local processes "
+                         "(more: a Dask scheduler)")
     return InProcessExecutor() if int(workers) == 1 else LocalProcessExecutor(workers)

@@ -105,8 +105,9 @@ def test_cli_mesh_writes_a_file(tmp_path, capsys, suffix):
 
 
 def test_cli_bad_travel_exits_2(capsys):
-    assert main(["eightbar", "analyze", "--quick", "--travel", "-1"]) == 2
-    assert "travel" in capsys.readouterr().err
+    with pytest.raises(SystemExit) as refused:  # the option's type refuses it
+        main(["eightbar", "analyze", "--quick", "--travel", "-1"])
+    assert refused.value.code == 2 and "travel" in capsys.readouterr().err
 
 
 # -- root fillets: the stress at a filleted root converges, at a sharp one it does not ----------
