@@ -20,7 +20,9 @@ import os
 import sqlite3
 import sys
 import threading
+import warnings
 
+from ..topopt import cli as topopt_cli
 from . import run_cli
 from .engine.serialize import jsonable
 from .mechanisms import command_modules, optimizers
@@ -46,6 +48,7 @@ def build_parser() -> argparse.ArgumentParser:
         module.register(subparsers)
     register_optimize(subparsers)
     run_cli.register(subparsers)
+    topopt_cli.register(subparsers)
     return parser
 
 
@@ -94,9 +97,15 @@ def _interrupted(command: str) -> int:
     return 130
 
 
+# numpy's floating-point warnings (an overflow on the way to a refused non-finite result)
+# would print lines of library internals before the one-line refusal that names the quantity
+FLOATING_POINT = r".*(overflow|invalid value|divide by zero|underflow) encountered"
+
+
 def main(argv=None) -> int:
-    parser = build_parser()
-    args = parser.parse_args(argv)
+    """Run one command; returns its exit status (2: a user error)."""
+    args = build_parser().parse_args(argv)  # a bad command line: SystemExit(2), one line
+    warnings.filterwarnings("ignore", FLOATING_POINT, RuntimeWarning)
     try:
         _output(args, run_interruptibly(args.run, args))
     except BrokenPipeError:  # the reader went away (| head -1): nothing more to say

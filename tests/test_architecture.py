@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
-PACKAGES = ("fem", "geometry", "studies", "data")
+PACKAGES = ("fem", "geometry", "studies", "data", "topopt")
 MAX_MODULE_LINES = 400
 MAX_FUNCTION_LINES = 80
 

@@ -1,0 +1,92 @@
+"""Time flexfem.topopt on 200 x 100 grids beside a port of top88 (tests/topopt/top88_port.py)
+at the same settings. Not a test: prints one JSON line a row (times in seconds).
+
+    .venv/bin/python benchmarks/bench_topopt.py                    # 300 iterations a row
+    .venv/bin/python benchmarks/bench_topopt.py --iterations 50 --rows mbb-flexfem mbb-top88
+
+Rows: the MBB beam (volume 0.5, SIMP p = 3, sensitivity filter of radius 3 elements, OC with
+move 0.2) by flexfem and by the port, each made to run exactly ``--iterations`` iterations;
+the force inverter (volume 0.3, density filter of radius 3, MMA) by flexfem alone (top88 has
+no mechanism). Each row runs in its own process, after its imports.
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+NELX, NELY, RMIN = 200, 100, 3.0
+
+
+def mbb_flexfem(iterations: int) -> dict:
+    from flexfem.topopt import (Constraint, Grid, Load, Optimizer, Problem, Region, Response,
+                                Support, optimize)
+    problem = Problem(Grid(NELX, NELY, float(NELX), float(NELY)), Response("compliance"),
+                      filter_kind="sensitivity", radius=RMIN,
+                      supports=(Support(Region("edge", "left"), ("x",)),
+                                Support(Region("point", (float(NELX), 0.0)), ("y",))),
+                      loads=(Load(Region("point", (0.0, float(NELY))), (0.0, -1.0)),),
+                      constraints=(Constraint(Response("volume"), upper=0.5),),
+                      optimizer=Optimizer("oc", 0.2, iterations, 1e-12))
+    start = time.perf_counter()
+    result = optimize(problem)
+    return {"seconds": time.perf_counter() - start, "iterations": result.iterations,
+            "objective": float(result.history[-1, 0])}
+
+
+def mbb_top88(iterations: int) -> dict:
+    sys.path.insert(0, str(ROOT / "tests" / "topopt"))
+    from top88_port import top88
+    start = time.perf_counter()
+    c, loop, _ = top88(NELX, NELY, 0.5, 3.0, RMIN, 1, max_loop=iterations)
+    return {"seconds": time.perf_counter() - start, "iterations": loop, "objective": float(c)}
+
+
+def inverter_flexfem(iterations: int) -> dict:
+    from flexfem.topopt import (Constraint, Grid, Load, Optimizer, Problem, Region, Response,
+                                Spring, Support, optimize)
+    problem = Problem(Grid(NELX, NELY, float(NELX), float(NELY)),
+                      Response("displacement", "output"), filter_kind="density", radius=RMIN,
+                      supports=(Support(Region("edge", "bottom"), ("y",)),
+                                Support(Region("box", ((0.0, NELY - 5.0), (0.0, float(NELY)))),
+                                        ("x", "y"))),
+                      loads=(Load(Region("point", (0.0, 0.0)), (1.0, 0.0)),),
+                      springs=(Spring("input", Region("point", (0.0, 0.0)), "x", 0.1),
+                               Spring("output", Region("point", (float(NELX), 0.0)), "x", 0.1)),
+                      constraints=(Constraint(Response("volume"), upper=0.3),),
+                      optimizer=Optimizer("mma", 0.2, iterations, 1e-12))
+    start = time.perf_counter()
+    result = optimize(problem)
+    return {"seconds": time.perf_counter() - start, "iterations": result.iterations,
+            "objective": result.objective}
+
+
+ROWS = {"mbb-flexfem": mbb_flexfem, "mbb-top88": mbb_top88, "inverter-flexfem": inverter_flexfem}
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--iterations", type=int, default=300)
+    parser.add_argument("--rows", nargs="+", choices=sorted(ROWS), default=list(ROWS))
+    parser.add_argument("--row", help=argparse.SUPPRESS)
+    args = parser.parse_args()
+    if args.row:
+        print(json.dumps({"row": args.row, **ROWS[args.row](args.iterations)}))
+        return
+    times = {}
+    for row in args.rows:
+        out = subprocess.run([sys.executable, __file__, "--row", row, "--iterations",
+                              str(args.iterations)], capture_output=True, text=True, check=True,
+                             env={**os.environ, "PYTHONHASHSEED": "0"})
+        line = json.loads(out.stdout.strip().splitlines()[-1])
+        times[row] = line["seconds"]
+        print(json.dumps(line), flush=True)
+    if "mbb-flexfem" in times and "mbb-top88" in times:
+        print(json.dumps({"mbb flexfem / top88 port": times["mbb-flexfem"] / times["mbb-top88"]}))
+
+
+if __name__ == "__main__":
+    main()

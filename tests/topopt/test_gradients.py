@@ -1,0 +1,55 @@
+"""Every objective's and constraint's gradient against central finite differences, on a
+6 x 4 grid with the density filter active (the sensitivity filter is a heuristic, not a
+gradient), for SIMP and RAMP, with passive elements and symmetry."""
+import numpy as np
+import pytest
+from problems import inverter, mbb
+
+from flexfem.topopt import Constraint, Interpolation, Passive, Region, Response
+from flexfem.topopt.model import Discrete
+
+CONSTRAINTS = (Constraint(Response("volume"), upper=0.4),
+               Constraint(Response("displacement", "input"), upper=5.0),
+               Constraint(Response("compliance"), upper=10.0),
+               Constraint(Response("displacement", "output"), lower=-2.0))
+
+
+def _fd_check(problem, seed=0):
+    d = Discrete(problem)
+    rng = np.random.default_rng(seed)
+    z = np.clip(0.3 + 0.5 * rng.random(d.n_variables), d.lower, d.upper)
+    ev = d.evaluate(z)
+    sign = 1.0 if problem.sense == "min" else -1.0
+    h = 1e-6
+    fd0, fdc = np.zeros(z.size), np.zeros((len(ev.constraints), z.size))
+    for j in range(z.size):
+        zp, zm = z.copy(), z.copy()
+        zp[j] += h
+        zm[j] -= h
+        ep, em = d.evaluate(zp), d.evaluate(zm)
+        fd0[j] = sign * (ep.objective - em.objective) / (2 * h)
+        fdc[:, j] = (ep.constraints - em.constraints) / (2 * h)
+    scale = np.max(np.abs(fd0))
+    assert np.max(np.abs(ev.objective_grad - fd0)) < 1e-5 * scale
+    for k in range(len(ev.constraints)):
+        scale = max(np.max(np.abs(fdc[k])), 1e-12)
+        assert np.max(np.abs(ev.constraint_grads[k] - fdc[k])) < 1e-5 * scale, k
+
+
+@pytest.mark.parametrize("kind", ["simp", "ramp"])
+def test_compliance_and_volume_gradients(kind):
+    _fd_check(mbb(6, 4, "density", 1.5, interpolation=Interpolation(kind, 3.0)))
+
+
+@pytest.mark.parametrize("kind", ["simp", "ramp"])
+@pytest.mark.parametrize("sense", ["min", "max"])
+def test_mechanism_gradients_of_every_response(kind, sense):
+    _fd_check(inverter(6, 4, "density", constraints=CONSTRAINTS, sense=sense,
+                       interpolation=Interpolation(kind, 3.0)))
+
+
+def test_gradients_with_passive_regions_and_symmetry():
+    passive = (Passive(Region("box", ((0.0, 0.0), (1.0, 1.0))), "solid"),
+               Passive(Region("box", ((5.0, 3.0), (6.0, 4.0))), "void"))
+    _fd_check(mbb(6, 4, "density", 1.5, passive=passive, symmetry=("y",)))
+    _fd_check(inverter(6, 4, "none", constraints=CONSTRAINTS, symmetry=("x",)))

@@ -1,0 +1,32 @@
+"""From densities to an outline: holes kept, islands dropped, thin members measured, and
+the DXF re-imports with the same rings."""
+import ezdxf
+import numpy as np
+
+from flexfem.topopt import Grid
+from flexfem.topopt.outline import extract_outline, write_dxf
+
+
+def _frame_and_island(grid):
+    ix, iy = np.divmod(np.arange(grid.n_elements), grid.nely)
+    frame = ((ix < 20) & (iy < 12) & ~((ix >= 4) & (ix < 16) & (iy >= 4) & (iy < 8)))
+    island = (ix >= 26) & (ix < 29) & (iy >= 4) & (iy < 7)
+    thin = (ix >= 20) & (ix < 30) & (iy == 11)  # one element thick
+    return np.where(frame | island | thin, 1.0, 0.0)
+
+
+def test_outline_keeps_holes_drops_islands_and_flags_thin_members(tmp_path):
+    grid = Grid(30, 12, 0.03, 0.012)   # 1 mm elements
+    out = extract_outline(_frame_and_island(grid), grid, anchors=[(0.0, 0.0)],
+                          min_member=0.002)
+    assert len(out.parts) == 1 and len(out.parts[0].interiors) == 1
+    assert len(out.islands) == 1 and abs(out.islands[0] - 9e-6) < 3e-6
+    assert out.thin_area > 0.5 * 10 * 1e-6  # the one-element strip
+    frame_area = 20 * 12 - 12 * 4 + 10
+    assert abs(out.shape.area / 1e-6 - frame_area) < 0.05 * frame_area
+    path = tmp_path / "design.dxf"
+    assert write_dxf(out, path) == 2
+    polylines = list(ezdxf.readfile(path).modelspace().query("LWPOLYLINE"))
+    assert len(polylines) == 2 and all(p.closed for p in polylines)
+    xs = [x for p in polylines for x, *_ in p.get_points()]
+    assert 0.0 - 0.6 <= min(xs) and max(xs) <= 30.0 + 0.6   # mm

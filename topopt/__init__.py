@@ -1,0 +1,19 @@
+"""flexfem.topopt: density-based topology optimisation of 2-D plane-stress structures and
+compliant mechanisms on a structured grid of bilinear quads (SIMP or RAMP, sensitivity or
+density filter, optimality criteria or MMA).
+
+    problem = load_problem("examples/topopt/mbb.toml")
+    result = optimize(problem, out_dir="mbb_out")    # resumable: rerun to continue
+    result.objective, result.iterations, result.summary()
+"""
+from .grid import Grid
+from .interpolation import Interpolation
+from .optimize import Result, optimize
+from .problem import (Constraint, Load, Optimizer, Passive, Problem, Response, Spring,
+                      Support)
+from .problem_file import load_problem, problem_from_dict
+from .regions import Region
+
+__all__ = ["Constraint", "Grid", "Interpolation", "Load", "Optimizer", "Passive", "Problem",
+           "Region", "Response", "Result", "Spring", "Support", "load_problem", "optimize",
+           "problem_from_dict"]

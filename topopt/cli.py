@@ -1,0 +1,48 @@
+"""``flexfem topopt PROBLEM.toml [--json] [--out DIR]``: optimise the design a problem file
+describes; the state after every iteration, the densities and the result go into DIR, and a
+rerun with the same DIR continues where the last one stopped."""
+from pathlib import Path
+import sys
+
+HELP = "topology optimisation of a 2-D structure or compliant mechanism from a problem file"
+
+
+def register(subparsers) -> None:
+    parser = subparsers.add_parser("topopt", help=HELP, description=__doc__.splitlines()[0])
+    parser.add_argument("problem", help="problem file (TOML; see docs/topopt.md)")
+    parser.add_argument("--out", default=None,
+                        help="output folder (default: PROBLEM's name + '_topopt' here)")
+    parser.add_argument("--json", action="store_true", help="print one JSON object")
+    parser.set_defaults(run=run, summarize=summarize)
+
+
+def _progress(iteration, objective, volume, change) -> None:
+    print(f"  it {iteration:4d}  objective {objective: .5g}  volume {volume:.4f}  "
+          f"change {change:.4f}", file=sys.stderr, flush=True)
+
+
+def run(args) -> dict:
+    from .optimize import optimize
+    from .outputs import write_outputs
+    from .problem_file import load_problem
+
+    problem = load_problem(args.problem)
+    out = Path(args.out) if args.out else Path(Path(args.problem).stem + "_topopt")
+    progress = _progress if sys.stderr.isatty() else None
+    result = optimize(problem, out_dir=out, progress=progress)
+    summary = result.summary()
+    summary["files"] = write_outputs(result, out)
+    summary["out"] = str(out)
+    return summary
+
+
+def summarize(result: dict) -> str:
+    lines = [f"objective ({result['objective_kind']}): {result['objective']:.6g}",
+             f"iterations: {result['iterations']}"
+             f" ({'converged' if result['converged'] else 'not converged'})",
+             f"volume fraction: {result['volume_fraction']:.4f}"]
+    for key in ("u_in", "u_out"):
+        if key in result:
+            lines.append(f"{key}: {result[key]:.6g} m")
+    lines.append(f"written: {', '.join(result['files'])} in {result['out']}")
+    return "\n".join(lines)

@@ -1,0 +1,38 @@
+"""The bilinear plane-stress quadrilateral (Q4) of a structured grid."""
+import numpy as np
+
+# node order: bottom-left, bottom-right, top-right, top-left; DOFs (x, y) per node
+_CORNERS = np.array([(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)])
+_GAUSS = np.array([-1.0, 1.0]) / np.sqrt(3.0)
+
+
+def plane_stress_matrix(E: float, nu: float) -> np.ndarray:
+    """The 3x3 plane-stress elasticity matrix (Pa), Voigt order xx, yy, xy (engineering)."""
+    return E / (1.0 - nu**2) * np.array([[1.0, nu, 0.0], [nu, 1.0, 0.0],
+                                         [0.0, 0.0, (1.0 - nu) / 2.0]])
+
+
+def strain_displacement(dx: float, dy: float, xi: float, eta: float) -> np.ndarray:
+    """B (3x8, 1/m) of a dx x dy (m) rectangle at the natural point (xi, eta)."""
+    dN_dxi = _CORNERS[:, 0] * (1.0 + _CORNERS[:, 1] * eta) / 4.0
+    dN_deta = _CORNERS[:, 1] * (1.0 + _CORNERS[:, 0] * xi) / 4.0
+    dN_dx, dN_dy = dN_dxi * 2.0 / dx, dN_deta * 2.0 / dy
+    B = np.zeros((3, 8))
+    B[0, 0::2] = dN_dx
+    B[1, 1::2] = dN_dy
+    B[2, 0::2] = dN_dy
+    B[2, 1::2] = dN_dx
+    return B
+
+
+def element_stiffness(dx: float = 1.0, dy: float = 1.0, E: float = 1.0, nu: float = 0.3,
+                      thickness: float = 1.0) -> np.ndarray:
+    """KE (8x8, N/m) of a dx x dy (m) rectangle, 2x2 Gauss (exact for Q4). For a unit square
+    with E = 1 it is top88's ``lk()``."""
+    D = plane_stress_matrix(E, nu)
+    KE = np.zeros((8, 8))
+    for xi in _GAUSS:
+        for eta in _GAUSS:
+            B = strain_displacement(dx, dy, xi, eta)
+            KE += B.T @ D @ B * (dx * dy / 4.0)
+    return KE * thickness

@@ -1,0 +1,194 @@
+"""A topology optimisation problem as data: grid, material, supports, loads, springs,
+objective, constraints, filter, interpolation, optimiser. Lengths in m, forces in N,
+stiffnesses in N/m, moduli in Pa (top88's problems: E = 1, elements of size 1)."""
+from dataclasses import dataclass, field
+import hashlib
+
+import numpy as np
+
+from .filters import KINDS as FILTERS
+from .grid import Grid
+from .interpolation import Interpolation
+from .regions import Region
+
+DOFS = ("x", "y")
+RESPONSES = ("compliance", "volume", "displacement")
+OPTIMIZERS = ("oc", "mma")
+
+
+@dataclass(frozen=True)
+class Support:
+    """DOFs ``fix`` ('x', 'y') held at zero on every node of ``where``."""
+
+    where: Region
+    fix: tuple = ("x", "y")
+
+
+@dataclass(frozen=True)
+class Load:
+    """A force (fx, fy), N, shared equally by the nodes of ``where``."""
+
+    where: Region
+    force: tuple
+
+
+@dataclass(frozen=True)
+class Spring:
+    """A grounded spring of ``stiffness`` N/m along ``dof``, shared equally by the nodes of
+    ``where``; its displacement is their mean (m). Named 'input' and 'output', the springs
+    of a mechanism give ``u_in`` and ``u_out``."""
+
+    name: str
+    where: Region
+    dof: str
+    stiffness: float
+
+
+@dataclass(frozen=True)
+class Response:
+    """'compliance' (f.u, J), 'volume' (solid fraction) or 'displacement' (the mean
+    displacement of spring ``spring`` along its DOF, m)."""
+
+    kind: str
+    spring: str = ""
+
+
+@dataclass(frozen=True)
+class Constraint:
+    """``response`` <= ``upper`` and/or >= ``lower`` (in the response's units)."""
+
+    response: Response
+    upper: float | None = None
+    lower: float | None = None
+
+
+@dataclass(frozen=True)
+class Passive:
+    """Elements whose centre lies in ``where`` held ``value`` 'solid' (1) or 'void' (0)."""
+
+    where: Region
+    value: str
+
+
+@dataclass(frozen=True)
+class Optimizer:
+    """``kind`` 'oc' (optimality criteria, top88: compliance under a volume limit) or 'mma'
+    (mmapy's MMA: any objective and constraints); ``move``: largest density change per
+    iteration; stops when the largest change is below ``tolerance`` or at
+    ``max_iterations``."""
+
+    kind: str = "oc"
+    move: float = 0.2
+    max_iterations: int = 200
+    tolerance: float = 0.01
+
+
+@dataclass(frozen=True)
+class Problem:
+    """Everything that defines a design problem; see docs/topopt.md."""
+
+    grid: Grid
+    objective: Response
+    sense: str = "min"
+    nu: float = 0.3
+    thickness: float = 1.0
+    interpolation: Interpolation = field(default_factory=Interpolation)
+    filter_kind: str = "sensitivity"
+    radius: float = 1.5
+    supports: tuple = ()
+    loads: tuple = ()
+    springs: tuple = ()
+    constraints: tuple = ()
+    passive: tuple = ()
+    symmetry: tuple = ()
+    optimizer: Optimizer = field(default_factory=Optimizer)
+    initial: float | None = None
+
+    def __post_init__(self):
+        check_problem(self)
+
+    def spring(self, name: str) -> Spring:
+        for s in self.springs:
+            if s.name == name:
+                return s
+        raise ValueError(f"spring = {name!r}: no spring of that name "
+                         f"(springs: {[s.name for s in self.springs]})")
+
+    @property
+    def volume_limit(self) -> float | None:
+        """The upper bound of the volume constraint, if any."""
+        return next((c.upper for c in self.constraints if c.response.kind == "volume"), None)
+
+    def digest(self) -> str:
+        """What the design depends on (the optimiser's limits excluded), for resuming."""
+        limits = Optimizer(self.optimizer.kind, self.optimizer.move, 0, 0.0)
+        text = repr((self.grid, self.objective, self.sense, self.nu, self.thickness,
+                     self.interpolation, self.filter_kind, self.radius, self.supports,
+                     self.loads, self.springs, self.constraints, self.passive, self.symmetry,
+                     limits, self.initial))
+        return hashlib.sha256(text.encode()).hexdigest()[:16]
+
+
+def _positive(value, key: str) -> None:
+    if not (isinstance(value, (int, float)) and np.isfinite(value) and value > 0):
+        raise ValueError(f"{key} = {value!r}: must be a number > 0")
+
+
+def check_problem(p: Problem) -> None:
+    """ValueError naming the first inconsistent key of ``p``."""
+    if not (isinstance(p.nu, (int, float)) and -1.0 < p.nu < 0.5):
+        raise ValueError(f"material.nu = {p.nu!r}: must be in (-1, 0.5)")
+    _positive(p.thickness, "domain.thickness")
+    if p.sense not in ("min", "max"):
+        raise ValueError(f"objective.sense = {p.sense!r}: choose 'min' or 'max'")
+    names = [s.name for s in p.springs]
+    if len(set(names)) != len(names):
+        raise ValueError(f"spring names must differ: {names}")
+    for s in p.springs:
+        if s.dof not in DOFS:
+            raise ValueError(f"spring {s.name!r}: dof = {s.dof!r}: choose 'x' or 'y'")
+        _positive(s.stiffness, f"spring {s.name!r}: stiffness")
+    for r in [p.objective] + [c.response for c in p.constraints]:
+        if r.kind not in RESPONSES:
+            raise ValueError(f"kind = {r.kind!r}: choose one of {list(RESPONSES)}")
+        if r.kind == "displacement":
+            p.spring(r.spring)
+    if not p.supports or not p.loads:
+        raise ValueError("support, load: give at least one [[support]] and one [[load]]")
+    for s in p.supports:
+        if not s.fix or not set(s.fix) <= set(DOFS):
+            raise ValueError(f"support.fix = {list(s.fix)!r}: give DOFs among 'x', 'y'")
+    if p.filter_kind not in FILTERS:
+        raise ValueError(f"filter.kind = {p.filter_kind!r}: choose one of {list(FILTERS)}")
+    if p.filter_kind != "none" and not (isinstance(p.radius, (int, float)) and p.radius > 1):
+        raise ValueError(f"filter.radius = {p.radius!r}: must be > 1 (elements)")
+    if p.objective.kind == "volume":
+        raise ValueError("objective.kind = 'volume': optimise compliance or a displacement")
+    for c in p.constraints:
+        if c.upper is None and c.lower is None:
+            raise ValueError(f"constraint {c.response.kind!r}: give max or min")
+    if p.symmetry and not set(p.symmetry) <= set(DOFS):
+        raise ValueError(f"symmetry = {list(p.symmetry)!r}: give axes among 'x', 'y'")
+    _check_optimizer(p)
+
+
+def _check_optimizer(p: Problem) -> None:
+    o = p.optimizer
+    if o.kind not in OPTIMIZERS:
+        raise ValueError(f"optimizer.kind = {o.kind!r}: choose one of {list(OPTIMIZERS)}")
+    if not (isinstance(o.move, (int, float)) and 0 < o.move <= 1):
+        raise ValueError(f"optimizer.move = {o.move!r}: must be in (0, 1]")
+    if not isinstance(o.max_iterations, int) or o.max_iterations < 0:
+        raise ValueError(f"optimizer.max_iterations = {o.max_iterations!r}: must be an "
+                         "integer >= 0")
+    _positive(o.tolerance, "optimizer.tolerance")
+    if o.kind == "oc":
+        only_volume = [c.response.kind for c in p.constraints] == ["volume"]
+        if p.objective.kind != "compliance" or p.sense != "min" or not only_volume:
+            raise ValueError("optimizer.kind = 'oc' applies to minimum compliance under one "
+                             "volume constraint; use 'mma'")
+    vol = p.volume_limit
+    if vol is not None and not 0 < vol <= 1:
+        raise ValueError(f"volume max = {vol!r}: must be a fraction in (0, 1]")
+    if p.initial is not None and not 0 < p.initial <= 1:
+        raise ValueError(f"optimizer.initial = {p.initial!r}: must be in (0, 1]")
