@@ -17,15 +17,15 @@ def plot_frf(out: dict, curves: list, path: Path) -> dict:
     plt = pyplot()
     fig, (ax, ax2) = plt.subplots(2, 1, figsize=(7, 5.5), sharex=True)
     for c in curves:
-        label = f"zeta = {100 * c['damping']:.3g} %"
+        label = rf"$\zeta$ = {100 * c['damping']:.3g} %"
         ax.semilogy(c["frf_frequencies_hz"], np.array(c["amplitude_m_per_n"]) * 1e6, label=label)
         ax2.plot(c["frf_frequencies_hz"], np.degrees(c["phase_rad"]), label=label)
     p = out["paper"]
     for a in (ax, ax2):
-        a.axvline(p["fn_measured_hz"], color="k", ls=":", lw=1, label="paper: measured f_n")
+        a.axvline(p["fn_measured_hz"], color="k", ls=":", lw=1, label=r"paper: measured $f_n$")
         a.axvline(p["bandwidth_hz"], color="gray", ls="--", lw=1, label="paper: bandwidth")
-    ax.set_ylabel(axis_label("output / actuator force", "um/N"))
-    ax2.set_ylabel(axis_label("phase", "deg"))
+    ax.set_ylabel(r"$|H|$ = output / actuator force ($\mu$m/N)")
+    ax2.set_ylabel(r"phase of $H$ (deg)")
     ax2.set_xlabel(axis_label("frequency", "Hz"))
     legend_outside(ax)
     return save(fig, path, (
@@ -48,9 +48,10 @@ def comparisons(out: dict) -> list[Comparison]:
         C("DBMA: resonance of output / actuator force (actuator rod in place)",
           out["resonance_hz"], p["fn_measured_hz"], "Hz", "Section 5, Fig. 18 (measured)",
           tolerance=0.1, headline=True,
-          note=f"rod {out['actuator_stiffness']:.2g} N/m (assumed, not in the paper); with the "
-               f"pads held (a rigid actuator) {out['working_frequency_pads_held_hz']:.0f} Hz; "
-               f"the paper's FEM {p['fn_fem_hz']:.5g} Hz"),
+          note=f"the paper gives no actuator stiffness: an assumed {out['actuator_stiffness']:.2g}"
+               " N/m rod holds only the pads' mean motion; pads held over their faces give "
+               f"{out['working_frequency_pads_held_hz']:.0f} Hz (paper's FEM "
+               f"{p['fn_fem_hz']:.5g} Hz)"),
         C("DBMA: -3 dB bandwidth (|H| below |H(0)|/sqrt 2 past the resonance)",
           out["bandwidth_minus3db_hz"], p["bandwidth_hz"], "Hz",
           "Abstract and Conclusions: 'response bandwidth up to 300 Hz'", tolerance=0.1,

@@ -174,7 +174,9 @@ def comparisons(p: DBMAParams) -> list[Comparison]:
     return [
         C("R, Eq. 7 vs the theory value implied by FEM 15.3 and '6.06 %'", m["R_eq7"],
           R_theory_from_fem, "-", "Sec. 4", "derived", SAME_FORMULA,
-          "the paper's theory value is not printed", headline=True),
+          "no reading of Eq. 7's garbled symbols reaches the theory value the paper implies "
+          "(not printed): kept as printed (docs/dbma-analytical.md, section 3)",
+          headline=True),
         C("R, Eq. 7 vs the theory value implied by test 15.43 and '3.56 %'", m["R_eq7"],
           R_theory_from_test, "-", "Sec. 5", "derived", SAME_FORMULA,
           "the two implied theory values differ (16.29 vs 16.00)"),
@@ -192,7 +194,8 @@ def comparisons(p: DBMAParams) -> list[Comparison]:
           amp["R_fem"], "-", "Fig. 14", note="the two arms share the stroke: R = r"),
         C("fn, Eq. 20 (own arm masses) vs Eq. 20 as printed", m["fn_eq20"], freq["fn_eq20_Hz"],
           "Hz", "Eq. 20", tolerance=SAME_FORMULA,
-          note="arm masses reconstructed from Table 1, m4 = 0: see docs", headline=True),
+          note="the arm masses are reconstructed from Table 1 (it gives no arm 4 dimension, "
+               "m4 = 0): 293.9 Hz needs a lighter equivalent mass than this reading gives"),
         C("fn, Eq. 20 vs paper FEM (4th mode)", m["fn_eq20"], freq["fn_fem_Hz"], "Hz", "Sec. 4",
           tolerance=tol),
         C("fn, Eq. 20 vs measured", m["fn_eq20"], freq["fn_measured_Hz"], "Hz", "Fig. 18",

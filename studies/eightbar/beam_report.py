@@ -28,7 +28,8 @@ def metrics_of(params, beam: dict, cont: dict) -> list:
     rows = [Metric("k_x (along the motion)", "N/m", k_prbm, beam["k_x"], cont["k_x"]),
             Metric("k_y (across the motion)", "N/m", NAN, beam["k_y"], cont["k_y"])]
     for k, (mb, mc) in enumerate(zip(beam["modes"], cont["modes"])):
-        rows.append(Metric(f"mode {k + 1} frequency", "Hz", NAN, mb["f_hz"], mc["f_hz"]))
+        rows.append(Metric(f"mode {k + 1} frequency: {mode_kind(mc, cont['modes'])}", "Hz",
+                           NAN, mb["f_hz"], mc["f_hz"]))
     rows += [
         Metric(f"max stress, linear, x = {travel / 2 * 1e3:.3g} mm", "Pa", s_prbm,
                beam["max_von_mises"], cont["max_von_mises"], STRESS_TOL,
@@ -41,6 +42,18 @@ def metrics_of(params, beam: dict, cont: dict) -> list:
         Metric("drive force at the end of the stroke", "N", k_prbm * travel / 2,
                beam["end_force_n"], cont["end_force_n"])]
     return rows
+
+
+def mode_kind(mode: dict, modes: list) -> str:
+    """What a continuum mode is, from its effective masses (kg): along the axis that carries
+    the most, or internal (under 1 % of the largest effective mass of the modes)."""
+    masses = {a: mode.get(f"m_eff_{a}_kg", 0.0) for a in "xyz"}
+    largest = max(m.get(f"m_eff_{a}_kg", 0.0) for m in modes for a in "xyz")
+    axis = max(masses, key=masses.get)
+    if masses[axis] < 0.01 * largest:
+        return "internal (links against each other, no net motion of the mass)"
+    what = "the drive mode, " if axis == "x" else ""
+    return f"{what}along {axis} (eff. mass {masses[axis] * 1e3:.3g} g)"
 
 
 def driving_metrics(beam: dict, cont: dict) -> list:

@@ -16,14 +16,28 @@ def display(value: float, unit: str) -> tuple[float, str]:
     return value, unit
 
 
+def wrap_degrees(value: float) -> tuple[float, int]:
+    """(angle in (-180, 180] deg, whole turns): value = angle + 360 turns."""
+    angle = value - 360.0 * math.floor(value / 360.0)  # [0, 360)
+    angle = angle - 360.0 if angle > 180.0 else angle
+    return angle, round((value - angle) / 360.0)
+
+
+def _turns(turns: int) -> str:
+    return f" {'+' if turns > 0 else '-'} {abs(turns)} turn{'s' if abs(turns) > 1 else ''}"
+
+
 def number(value, unit: str = "") -> str:
     """A value to 4 significant digits (no exponent between 1e-3 and 1e6), with its unit
-    (lengths and stresses rescaled, see ``display``); '-' for None, NaN or infinity; other
-    types as text."""
+    (lengths and stresses rescaled, see ``display``; angles wrapped to (-180, 180] deg, the
+    whole turns written beside them); '-' for None, NaN or infinity; other types as text."""
     if isinstance(value, bool) or not isinstance(value, (int, float)):
         return "-" if value is None else str(value)
     if not math.isfinite(value):
         return "-"
+    if unit == "deg" and not -180.0 < value <= 180.0:
+        angle, turns = wrap_degrees(value)
+        return number(angle, unit) + _turns(turns)
     value, unit = display(value, unit) if value != 0 else (value, unit)
     if isinstance(value, int) or float(value).is_integer() and abs(value) < 1e6:
         text = f"{int(value)}"
@@ -38,16 +52,39 @@ def _absolute(row: dict) -> bool:
     return row.get("difference_kind") == "absolute"
 
 
+def margin_text(row: dict) -> str:
+    """How far a value judged against a limit lies from it: '47.1x the limit' / '43x below
+    the limit' where the ratio is 2 or more, else the signed distance in the row's unit
+    ('+1.6 Hz above the limit')."""
+    value, limit, unit = row.get("flexfem"), row.get("reference"), row.get("unit", "")
+    if not all(isinstance(v, (int, float)) and math.isfinite(v) for v in (value, limit)):
+        return "-"
+    if limit > 0 and value > 0:
+        ratio = value / limit
+        if ratio >= 2:
+            return f"{ratio:.3g}x the limit"
+        if ratio <= 0.5:
+            return f"{1 / ratio:.3g}x below the limit"
+    gap = value - limit
+    where = "above" if gap > 0 else "below"
+    text = number(abs(gap), "" if unit == "-" else unit)
+    return f"{'+' if gap > 0 else '-'}{text} {where} the limit"
+
+
 def difference_text(row: dict) -> str:
-    """'+1.2 %' (relative) or '+0.3 deg' / '+1.5 pp' (absolute) or '-'."""
+    """'+1.2 %' (relative) or '+0.3 deg' / '+1.5 pp' (absolute) or '-'; for a row judged
+    against a limit, its margin (:func:`margin_text`), never a percentage."""
+    if row.get("limit"):
+        return margin_text(row)
     d = row.get("difference")
     if not isinstance(d, (int, float)) or not math.isfinite(d):
         return "-"
     if _absolute(row):
         unit = "pp" if row.get("unit") == "%" else row.get("unit", "")
+        if unit == "deg" and abs(d) > 180:
+            angle, turns = wrap_degrees(d)
+            return f"{angle:+.3g} deg{_turns(turns)}"
         return f"{d:+.3g} {unit}"
-    if row.get("limit"):
-        return f"{100 * d:+.1f} %"
     return f"{100 * d:+.2f} %" if abs(d) < 0.01 else f"{100 * d:+.1f} %"
 
 

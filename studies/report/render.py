@@ -1,14 +1,18 @@
 """The reproduction report: report.md, index.html and summary.json from the sections' summaries.
 
-The report answers first and justifies second: a design summary per source document (its
-headline comparisons with their verdicts and what they mean), then the audit (every section:
-what was done, its figures with captions, its comparisons and links to its full tables).
+The report answers first and justifies second: a design summary of one screen per source
+document (:mod:`.summary`: one sentence, the headline comparisons with their verdicts and
+reasons, the stroke limits, one figure), then the audit (every section: what was done and how
+the models were built, its figures with captions, its comparisons and links to its full
+tables).
 
 A section summary is a dict with "comparisons" (rows of :class:`~.comparison.Comparison`),
 "figures" ({"file", "caption"} entries), "tables" (CSV files inside the
 section folder: linked, not printed), optional "paragraph" (what was done and what it means),
 "key_tables" ({"title", "columns", "rows"}: small tables printed rounded), "notes" (list of
-str) and, for a failed section, "error".
+str), "lead" (the design summary's clause on what the document's results are),
+"summary_figure" (the file of the one figure the design summary shows), "stroke_limits"
+(:func:`.stroke.stroke_limits` entries) and, for a failed section, "error".
 """
 import html
 import json
@@ -17,6 +21,7 @@ from pathlib import Path
 from ...data import load_toml
 from ..engine.serialize import jsonable
 from .format import difference_text, is_image, number, tolerance_text
+from .summary import html_block, markdown_block
 
 VERDICT_CLASSES = {"agrees": "agrees", "within limit": "agrees", "differs": "differs",
                    "beyond limit": "differs", "calibrated": "calibrated"}
@@ -64,7 +69,7 @@ def headline_groups(report: dict) -> list[tuple[str, dict, list, list, list]]:
 
 def _md_table(header, rows) -> str:
     lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
-    lines += ["| " + " | ".join(str(c).replace("|", "/") for c in row) + " |" for row in rows]
+    lines += ["| " + " | ".join(str(c).replace("|", "\\|") for c in row) + " |" for row in rows]
     return "\n".join(lines)
 
 
@@ -89,19 +94,21 @@ def _md_section(s: dict) -> list[str]:
     return out
 
 
+def run_line(report: dict) -> str:
+    """flexfem and Python versions, CPUs, the run's size and its time, in one line."""
+    env, settings = report["environment"], report["settings"]
+    size = "quick" if settings.get("quick") else "full" if settings.get("full") else "default"
+    return (f"flexfem {env['flexfem']}, Python {env['python']}, {env['cpus']} CPUs; {size} "
+            f"run, {report['wall_time_s']:.0f} s.")
+
+
 def render_markdown(report: dict) -> str:
-    env = report["environment"]
-    out = ["# flexfem reproduction report", "",
-           f"flexfem {env['flexfem']}, Python {env['python']}, {env['cpus']} CPUs, settings "
-           f"{json.dumps(report['settings'])}, total {report['wall_time_s']:.0f} s.", "",
-           "## Design summary", ""]
-    for _, doc, paragraphs, rows, calibrated in headline_groups(report):
-        out += [f"### {doc['title']}", "", citation(doc), ""] + [p + "\n" for p in paragraphs]
-        out += [_md_table(HEADLINE_COLUMNS, [comparison_cells(r) for r in rows]), ""]
-        if calibrated:
-            out += ["Calibrated on the source (shown apart, not agreement):", "",
-                    _md_table(HEADLINE_COLUMNS, [comparison_cells(r) for r in calibrated]), ""]
-    out += ["## Audit", ""]
+    out = ["# flexfem reproduction report", "", run_line(report), "", "## Design summary", ""]
+    for key, doc, _, rows, _ in headline_groups(report):
+        out += markdown_block(doc, citation(doc), report, key, rows, _md_table)
+    out += ["## Audit", "", "How each result was obtained, section by section: the models, "
+            "their figures, every comparison (calibrations shown apart) and the full tables.",
+            ""]
     for s in report["sections"]:
         out += _md_section(s)
     return "\n".join(out)
@@ -134,8 +141,9 @@ def _html_section(s: dict) -> list[str]:
     for fig in s.get("figures", []):
         src, caption = f"{s['section']}/{html.escape(fig['file'])}", html.escape(fig["caption"])
         if is_image(fig["file"]):
-            parts.append(f"<figure><img src='{src}' alt='{caption}'><figcaption>{caption}"
-                         "</figcaption></figure>")
+            wide = " class='wide'" if fig.get("wide") else ""
+            parts.append(f"<figure{wide}><img src='{src}' alt='{caption}'><figcaption>"
+                         f"{caption}</figcaption></figure>")
         else:  # e.g. a VTU field for ParaView: a link, not an <img>
             parts.append(f"<p>Field file: <a href='{src}'>{html.escape(fig['file'])}</a>: {caption}</p>")
     if s.get("comparisons"):
@@ -151,32 +159,27 @@ def _html_section(s: dict) -> list[str]:
 
 
 def _contents(groups, sections) -> str:
-    docs = "".join(f"<li><a href='#doc-{key}'>{html.escape(doc['title'])}</a></li>"
-                   for key, doc, *_ in groups)
-    audit = "".join(f"<li><a href='#{s['section']}'>{html.escape(s['title'])}</a></li>"
-                    for s in sections)
-    return (f"<nav><h2>Contents</h2><ol><li><a href='#summary'>Design summary</a><ol>{docs}</ol>"
-            f"</li><li><a href='#audit'>Audit</a><ol>{audit}</ol></li></ol></nav>")
+    """One line of links: the documents' screens, then the audit's sections."""
+    docs = " · ".join(f"<a href='#doc-{key}'>{html.escape(doc['title'][:48])}...</a>"
+                      for key, doc, *_ in groups)
+    audit = " · ".join(f"<a href='#{s['section']}'>{html.escape(s['section'])}</a>"
+                       for s in sections)
+    return f"<nav><b>Summary:</b> {docs}<br><b>Audit:</b> {audit}</nav>"
 
 
 def render_html(report: dict) -> str:
-    env, groups = report["environment"], headline_groups(report)
+    groups = headline_groups(report)
     parts = ["<!DOCTYPE html><html><head><meta charset='utf-8'>",
              "<title>flexfem reproduction report</title>", f"<style>{STYLE}</style>",
              CHECK_SCRIPT, "</head><body>", "<h1>flexfem reproduction report</h1>",
-             f"<p class='run'>flexfem {html.escape(env['flexfem'])}, Python {env['python']}, "
-             f"{env['cpus']} CPUs, settings {html.escape(json.dumps(report['settings']))}, "
-             f"total {report['wall_time_s']:.0f} s.</p>",
-             _contents(groups, report["sections"]), "<h2 id='summary'>Design summary</h2>"]
-    for key, doc, paragraphs, rows, calibrated in groups:
-        parts += [f"<h3 id='doc-{key}'>{html.escape(doc['title'])}</h3>",
-                  f"<p class='citation'>{html.escape(citation(doc).replace('*', ''))}</p>"]
-        parts += [f"<p>{html.escape(p)}</p>" for p in paragraphs]
-        parts.append(_verdict_table(rows, "headline"))
-        if calibrated:
-            parts += ["<p>Calibrated on the source (shown apart, not agreement):</p>",
-                      _verdict_table(calibrated, "calibrated")]
-    parts.append("<h2 id='audit'>Audit</h2>")
+             f"<p class='run'>{html.escape(run_line(report))}</p>",
+             "<h2 id='summary'>Design summary</h2>"]
+    for key, doc, _, rows, _ in groups:
+        parts += html_block(key, doc, citation(doc).replace("*", ""), report, rows)
+    parts += ["<h2 id='audit'>Audit</h2>", _contents(groups, report["sections"]),
+              "<p class='run'>How each result was obtained, section by section: the models, "
+              "their figures, every comparison (calibrations shown apart) and the full "
+              "tables.</p>"]
     for s in report["sections"]:
         parts += _html_section(s)
     parts.append("</body></html>")
@@ -193,19 +196,32 @@ def write_report(out: Path, report: dict) -> None:
 
 STYLE = """
 body{font-family:sans-serif;max-width:62em;margin:auto;padding:0 1em;line-height:1.35}
+h1{font-size:1.6em;margin:.4em 0 .1em}h2{margin:.8em 0 .3em}h3{margin:.8em 0 .2em}
 .table{max-width:100%;overflow-x:auto}
 table{border-collapse:collapse;margin:.6em 0;width:100%}
 td,th{border:1px solid #ccc;padding:2px 5px;font-size:85%;vertical-align:top;
       overflow-wrap:break-word}
 td:first-child{width:34%}
+table.headline td:first-child{width:22%}table.headline td:last-child{width:34%}
 th{background:#f2f2f2;text-align:left}
 td.agrees{color:#060}td.differs{color:#a00;font-weight:bold}td.calibrated{color:#555}
 figure{margin:.8em 0}figure img{max-width:100%;max-height:28em}
+figure.summary{margin:.3em 0}figure.summary img{max-height:15em}
 figcaption{font-size:85%;color:#333}
-.error{color:#b00}.citation{font-style:italic}.run,.tables{font-size:85%;color:#444}
-@media print{body{max-width:none;font-size:9pt}td,th{font-size:7pt;padding:1px 3px}
-  figure{page-break-inside:avoid}
-  figure img{max-height:8cm}h2,h3{page-break-after:avoid}nav{page-break-after:always}}
+.error{color:#b00}.citation{font-style:italic;font-size:85%;margin:.1em 0}
+.lead{font-weight:bold;margin:.3em 0}.stroke{margin:.2em 0;font-size:92%}
+.run,.tables{font-size:85%;color:#444}nav{font-size:85%;line-height:1.5}
+section.doc{border-bottom:1px solid #ddd;padding-bottom:.4em}
+@media print{@page{size:A4;margin:1cm}
+  body{max-width:none;font-size:8pt;line-height:1.25}td,th{font-size:6.2pt;padding:0 2px}
+  h1{font-size:14pt}h2{font-size:12pt}h3{font-size:9.5pt;margin:.5em 0 .15em}
+  h4{font-size:8pt;margin:.3em 0}p,ul{margin:.25em 0}nav{display:none}
+  figure{display:inline-block;width:49%;margin:.2em 0;vertical-align:top;
+    page-break-inside:avoid}
+  figure img{max-height:5cm}figcaption{font-size:6.5pt}
+  figure.summary{display:block;width:auto}figure.summary img{max-height:5.5cm}
+  figure.wide{display:block;width:auto}figure.wide img{max-height:10cm}
+  table{margin:.3em 0}td,th{line-height:1.15}h2,h3{page-break-after:avoid}}
 """
 
 # On load the page counts its images that decoded, its tables that have rows and the tables

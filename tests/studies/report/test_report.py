@@ -72,9 +72,11 @@ def test_the_design_summary_comes_first_with_verdicts_and_without_inputs(tmp_pat
     summary, audit = page.split("## Audit")
     # the source document is cited; its headline rows carry their verdicts
     assert "Double-Row Bow-Type" in summary and "10.3390/mi11030312" in summary
-    assert "| y(2) | 4 m | 4.1 m | Table 9 | -2.4 % | ±5 % | agrees |" in summary
-    # an angle is compared by its absolute difference, in degrees, never relatively
-    assert "| angle | 10 deg | 12.5 deg | Fig. 3 | -2.5 deg | ±1 deg | differs |" in summary
+    assert "| y(2) | 4 m | 4.1 m (Table 9) | -2.4 % | agrees (±5 %) | - |" in summary
+    # an angle is compared by its absolute difference, in degrees, never relatively; a
+    # "differs" without a reason says so in its row
+    assert ("| angle | 10 deg | 12.5 deg (Fig. 3) | -2.5 deg | differs (±1 deg) | "
+            "(no reason given) |") in summary
     # an input compared with itself is no headline
     assert "input length" not in summary and "input length" in audit
 
@@ -127,6 +129,15 @@ def rendered_counts(index_html: Path, width: int = 1280) -> dict:
     body = re.search(r"<body([^>]*)>", dom)
     assert body, "chromium returned no document"
     return {k: int(v) for k, v in re.findall(r'data-([a-z-]+)="(\d+)"', body.group(1))}
+
+
+def printed_pages(index_html: Path) -> int:
+    """The number of pages headless Chromium prints ``index_html`` on (A4: the report's
+    print style sets the page size)."""
+    pdf = index_html.parent / "report.pdf"
+    subprocess.run(_chromium_args(index_html) + [f"--print-to-pdf={pdf}", index_html.as_uri()],
+                   capture_output=True, timeout=180)
+    return len(re.findall(rb"/Type\s*/Page[^s]", pdf.read_bytes()))
 
 
 def test_html_renders_in_chromium(tmp_path, fake_sections):
@@ -193,12 +204,8 @@ def test_quick_reproduction_report_renders(quick_report):
         "--window-size=1280,4000", f"--screenshot={out / 'screenshot.png'}",
         (out / "index.html").as_uri()], capture_output=True, timeout=120)
     assert (out / "screenshot.png").stat().st_size > 10_000
-    # printed, it fits a few pages per source document (13 pages for three when written)
-    subprocess.run(_chromium_args(out / "index.html") + [
-        f"--print-to-pdf={out / 'report.pdf'}", (out / "index.html").as_uri()],
-        capture_output=True, timeout=120)
-    pages = len(re.findall(rb"/Type\s*/Page[^s]", (out / "report.pdf").read_bytes()))
-    assert 0 < pages <= 8 * 3
+    # printed on A4 it fits 12 pages (20 before the one-screen summary, 11 after)
+    assert 0 < printed_pages(out / "index.html") <= 12
 
 
 @pytest.mark.slow
@@ -218,3 +225,44 @@ def test_quick_report_prints_every_number_it_printed_before(quick_report):
         if not np.any(np.isclose(near, value, rtol=1e-5, atol=1e-8)):
             missing.append(f"{path} = {value}")
     assert missing == []
+
+
+def _summary_screens(page: str) -> dict:
+    """{document key: its design-summary HTML} of a rendered index.html."""
+    summary = page.split("<h2 id='audit'>")[0]
+    return dict(re.findall(r"<h3 id='doc-(\w+)'>(.*?)</section>", summary, re.S))
+
+
+@pytest.mark.slow
+def test_quick_report_answers_in_one_screen_per_source(quick_report):
+    """Each source's screen: one sentence, at most 6 headline rows, every "differs" or
+    "beyond limit" with its reason in its row, a limit's margin instead of a percentage, no
+    unwrapped angle, no "None", at most one figure; the stroke limits of every built-in
+    mechanism with the source of its fatigue data in the audit."""
+    out, report = quick_report
+    page = (out / "index.html").read_text()
+    screens = _summary_screens(page)
+    assert set(screens) == {"dbma", "eightbar", "balancing"}
+    for key, screen in screens.items():
+        rows = re.findall(r"<tr>(.*?)</tr>", screen.split("<tbody>")[1], re.S)
+        assert 0 < len(rows) <= 6, key
+        assert screen.count("<img") <= 1 and screen.count("class='lead'") == 1, key
+        for row in rows:
+            cells = re.findall(r"<td[^>]*>(.*?)</td>", row, re.S)
+            if cells[4].startswith(("differs", "beyond limit")):
+                assert cells[5] not in ("-", "(no reason given)"), (key, cells)
+            if cells[4].startswith(("within limit", "beyond limit")):
+                assert "limit" in cells[3] and "%" not in cells[3], (key, cells)
+        assert "Stroke limits" in screen and "before yield" in screen, key
+    assert "None" not in re.sub(r"<[^>]+>", " ", page)
+    for value in re.findall(r"(-?\d+(?:\.\d+)?) deg\b", re.sub(r"<[^>]+>", " ", page)):
+        assert -180 < float(value) <= 180, value
+    by_name = {s["section"]: s for s in report["sections"]}
+    for name in ("dbma_fem", "eightbar_fem", "balancing"):
+        limits = by_name[name]["stroke_limits"]
+        assert limits and all(s["stroke_limit_yield"] > 0 for s in limits), name
+        assert all(s["stroke_limit_fatigue_goodman"] > 0 and s["fatigue_source"]
+                   for s in limits), name
+        table = next(t for t in by_name[name]["key_tables"] if t["title"].startswith("Stroke"))
+        assert len(table["rows"]) == len(limits)
+    assert page.count("Fatigue data: ") >= 3
