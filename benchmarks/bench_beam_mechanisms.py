@@ -123,7 +123,7 @@ def dbma_beam_point(p, layout=None):
 def _fresh_patches(fn, *args, **kwargs):
     """``fn(*args, **kwargs)`` with the DBMA's member patches computed anew, as for a new
     member shape."""
-    from flexfem.geometry.dbma import member_patch
+    from flexfem.reduced import dbma_member_patch as member_patch
     member_patch._unit_patch.cache_clear()
     return fn(*args, **kwargs)
 
@@ -175,7 +175,7 @@ def strokes(rows, steps=8):
 
 def sweep_one(x):
     """Beam-model linear design point of one sweep design (worker)."""
-    from flexfem.geometry.eightbar.beam import unchecked_params
+    from flexfem.reduced.eightbar import unchecked_params
     design = dict(zip(RANGES, map(float, x)))
     cpu = time.process_time()
     try:

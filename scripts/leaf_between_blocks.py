@@ -65,9 +65,9 @@ def beam(t, l, w, H, Lb, j_factor: float) -> np.ndarray:
     """The lifted beam model of the specimen (``leaf_between_blocks``), the leaf's J times
     ``j_factor``."""
     from flexfem.fem.beam3d import Fixed, compliance3d
-    from flexfem.geometry.spatial_beam import lifted_model
+    from flexfem.reduced.spatial import lifted_model
     from flexfem.studies.dbma.beam_slenderness import leaf_between_blocks
-    from flexfem.studies.modes3d import TorsionScaled
+    from flexfem.reduced.torsion import TorsionScaled
 
     planar, root, tip, leaf = leaf_between_blocks(t, l, w, H, Lb)
     factors = np.ones(len(planar.elements))
@@ -77,7 +77,7 @@ def beam(t, l, w, H, Lb, j_factor: float) -> np.ndarray:
 
 
 def main(argv) -> None:
-    from flexfem.studies.modes3d import vlasov_factor
+    from flexfem.reduced.torsion import vlasov_factor
 
     for spec in argv:
         t, l, w, H, Lb = (float(v) * 1e-3 for v in spec.split(","))

@@ -1,5 +1,5 @@
 """Write data/notch_factors.toml: a circular notch's 2-D correction of its beam model
-(flexfem.geometry.hinge_patch.patch_factors) over t/R and Poisson's ratio.
+(flexfem.reduced.hinge_patch.patch_factors) over t/R and Poisson's ratio.
 
     .venv/bin/python scripts/notch_factor_table.py      # about a minute
 
@@ -19,7 +19,7 @@ FIELDS = ("bending", "shear", "axial", "kt_bending", "kt_tension")
 
 
 def main() -> None:
-    from flexfem.geometry.hinge_patch import patch_factors
+    from flexfem.reduced.hinge_patch import patch_factors
 
     start = time.perf_counter()
     rows = {name: [] for name in FIELDS}
@@ -33,7 +33,7 @@ def main() -> None:
     fmt = lambda values: "[" + ", ".join(f"{v:.9g}" for v in values) + "]"
     lines = [
         "# A circular notch hinge's 2-D correction of its beam model, computed by flexfem:",
-        "# scripts/notch_factor_table.py (flexfem.geometry.hinge_patch.patch_factors), not a",
+        "# scripts/notch_factor_table.py (flexfem.reduced.hinge_patch.patch_factors), not a",
         "# published source. The notch with a stub of its end height (as long) at each end, rigid",
         "# beyond, in plane stress (P2 triangles, "
         f"{NECK_ELEMENTS_TABLE} across the local thickness, finer at",

@@ -10,7 +10,6 @@ exactly 0 or 1). Within each family the k-th continuum mode is paired with the k
 import numpy as np
 from scipy.spatial import cKDTree
 
-from ..fem.beam3d import Beam3DModel, rect_torsion_constant
 
 SPLIT = 0.5  # out-of-plane share above which a mode is out of plane
 
@@ -43,31 +42,6 @@ def working_index(out: dict) -> int:
     """0-based index of the mode (of a beam_modes3d / continuum_modes3d output) with the
     largest effective mass fraction along y, the output axis."""
     return int(np.argmax(np.asarray(out["mass_fraction"])[:, 1]))
-
-
-def vlasov_factor(length: float, depth: float, width: float, nu: float) -> float:
-    """Torsional stiffness of a rectangular depth x width (m, depth << width) bar of
-    ``length`` (m) with warping restrained at both ends over its Saint-Venant one (Vlasov):
-    1 / (1 - 2 tanh(lambda L / 2) / (lambda L)), lambda^2 = G J / (E Gamma), Gamma =
-    width^3 depth^3 / 144."""
-    lam = np.sqrt(rect_torsion_constant(depth, width) / (2 * (1 + nu))
-                  / (width**3 * depth**3 / 144))
-    x = lam * length
-    return float(1 / (1 - 2 * np.tanh(x / 2) / x))
-
-
-class TorsionScaled(Beam3DModel):
-    """A beam model whose elements' J are multiplied by ``factors`` (n_elements,)."""
-
-    def __init__(self, base: Beam3DModel, factors):
-        super().__init__(base.nodes, base.elements, base.sections, base.material,
-                         rigid_links=base.rigid_links, point_masses=base.point_masses)
-        self.j_factors = np.asarray(factors, dtype=float)
-
-    def section_at(self, xi) -> dict:
-        out = super().section_at(xi)
-        out["J"] = out["J"] * self.j_factors[:, None]
-        return out
 
 
 def pair_modes(beam: dict, continuum: dict, split: float = SPLIT) -> list:

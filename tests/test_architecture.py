@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
-PACKAGES = ("fem", "geometry", "studies", "data", "topopt")
+PACKAGES = ("fem", "geometry", "studies", "data", "topopt", "reduced")
 MAX_MODULE_LINES = 400
 MAX_FUNCTION_LINES = 80
 
@@ -112,6 +112,47 @@ def test_fem_knows_no_mechanism_and_the_engine_no_mechanism_by_name():
             named = {t for t in targets if t.startswith("studies.")
                      and not t.startswith(("studies.engine", "studies.report", "studies.mechanisms"))}
             assert not named, f"{module} imports mechanisms {sorted(named)}"
+
+
+# what geometry/ may use of fem: meshes, gmsh, materials and the mesh budget, never a solver
+DRAWING_MODULES = {"fem.gmsh_session", "fem.mesh", "fem.materials", "fem.budget"}
+DRAWING_NAMES = {"FEMesh", "gmsh_session", "mesh_from_gmsh", "read_mesh", "facets_where",
+                 "drop_unused_vertices", "Material", "material", "material_names"}
+
+
+def solver_imports(sources) -> list[str]:
+    """The imports of ``sources`` ((path, text) pairs) that reach a solver: a fem module
+    beyond meshes, gmsh, materials and the budget (or a solver's name from flexfem.fem), or
+    the reduced models."""
+    found = []
+    for path, text in sources:
+        for node in ast.walk(ast.parse(text)):
+            if not (isinstance(node, ast.ImportFrom) and node.level):
+                continue
+            target = _resolve(path, node)
+            names = {a.name for a in node.names}
+            modules = {f"{target}.{n}" for n in names} if target == "fem" else {target}
+            solving = (target.startswith("reduced") or target.startswith("studies")
+                       or target.startswith("fem") and not (
+                           target in DRAWING_MODULES
+                           or target == "fem" and names <= DRAWING_NAMES | {
+                               m.split(".")[1] for m in DRAWING_MODULES})
+                       or target == "fem" and modules & {"fem.beam", "fem.beam3d"})
+            if solving:
+                found.append(f"{path.relative_to(ROOT)}:{node.lineno} {target} {sorted(names)}")
+    return found
+
+
+def test_geometry_draws_and_never_solves():
+    paths = sorted((ROOT / "geometry").rglob("*.py"))
+    assert solver_imports((p, p.read_text()) for p in paths) == []
+
+
+def test_the_solver_import_finder_finds_one():
+    probe = (ROOT / "geometry" / "probe.py",
+             "from ..fem import solve_static\nfrom ..fem.mesh import FEMesh\n"
+             "from ..reduced.layout import ROOT_EXTENSION\n")
+    assert [f.split()[1] for f in solver_imports([probe])] == ["fem", "reduced.layout"]
 
 
 def test_imports_inside_the_package_are_relative():

@@ -52,7 +52,7 @@ class Section:
     none); A = w t, I = w t^3 / 12, c = t / 2. General: area ``A`` (m^2), second moment
     ``I`` (m^4) and outer-fibre distance ``c`` (m, None: no stress). ``shear_factor`` kappa
     (shear area kappa A); ``bending_factor`` and ``axial_factor`` multiply E I and E A in
-    the stiffness only (1: beam theory; geometry/hinge_patch.py sets them on a notch from
+    the stiffness only (1: beam theory; reduced/hinge_patch.py sets them on a notch from
     its 2-D model), not in the mass or the stress; ``mass_factor`` multiplies the mass (0: a
     root extension, inside a body whose own model carries that material)."""
 

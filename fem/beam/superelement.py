@@ -10,7 +10,7 @@ class Superelement:
     """A linear part condensed onto the DOFs (x, y, theta) of ``nodes`` (two or more, in that
     order): ``stiffness`` and ``mass`` (3k x 3k, symmetric; N/m, N/rad, N m/rad and kg, kg m,
     kg m^2), e.g. a 2-D continuum patch of a block too deep for a beam
-    (:mod:`flexfem.fem.patch2d`). It is linear: a model with one takes linear statics,
+    (:mod:`flexfem.reduced.patch2d`). It is linear: a model with one takes linear statics,
     compliance and modes; the nonlinear solver refuses it."""
 
     nodes: tuple

@@ -73,7 +73,7 @@ class Section:
     keeps its depths along local y and z (m; None for a general section: no stress).
     ``factors`` (bending, shear, axial, bending_y) multiply E Iz, G Ay, E A and E Iy in the
     stiffness only (a planar model's notch correction or root extension, carried into 3-D by
-    geometry/spatial_beam.py), not the mass; ``mass_factor`` multiplies
+    reduced/spatial.py), not the mass; ``mass_factor`` multiplies
     the mass (0: a root extension)."""
 
     A: float

@@ -1,6 +1,6 @@
 """The planar beam model of a :class:`~.description.Mechanism`, as the
 :class:`~flexfem.geometry.user_model.beam_tables.BeamSpec` the beam model builder takes
-(geometry/user_model/beam_model.py): every flexure a beam on its centre line over its free
+(reduced/model_file.py): every flexure a beam on its centre line over its free
 span, with its thickness profile (a leaf's root fillets, a notch's circle), every body a rigid
 block holding the flexures' roots and standing for its group at the centroid of its outline
 where no flexure meets it (:meth:`Mechanism.outline_centre`: the continuum's force on the

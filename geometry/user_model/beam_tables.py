@@ -74,9 +74,9 @@ class RigidBody:
 class BeamSpec:
     """The beam model of a model file: beams, rigid bodies and options (elements per segment
     by default, Timoshenko shear, root extension x root thickness at joined ends, crossings
-    "rigid" (the leaves' solid joint, geometry/user_model/crossings.py) or "weld", oblique roots
-    at the "acute_edge" (geometry/user_model/roots.py) or the "centre_line"'s meeting with the
-    face), and each straight notch corrected by its own 2-D model (geometry/hinge_patch.py)
+    "rigid" (the leaves' solid joint, reduced/crossings.py) or "weld", oblique roots
+    at the "acute_edge" (reduced/roots.py) or the "centre_line"'s meeting with the
+    face), and each straight notch corrected by its own 2-D model (reduced/hinge_patch.py)
     unless ``notch_correction`` is false)."""
 
     beams: tuple

@@ -107,7 +107,7 @@ def reproduce(out_dir, quick: bool = False) -> dict:
     worst = max(abs(m.beam / m.continuum - 1) for m in metrics)
     beam_s, fem_s = sum(t[0] for t in times), sum(t[1] for t in times)
     paragraph = (
-        "The balancing robot's pivots as beam models (geometry/pivot_beam.py): the leaves of a "
+        "The balancing robot's pivots as beam models (reduced/pivot.py): the leaves of a "
         "cross-spring pivot crossing without touching, the hub rigid and free to translate; "
         "the compressed leaf under its dead preload. The 2-D model clamps the leaf end faces "
         "(rigid blocks), where beam theory is exact, so no root extension applies here. Over "

@@ -1,6 +1,6 @@
 """Beam-model checks of the balancing robot's flexure pivots, the outputs of the 2-D FEM
 checks (:func:`.pivot_fem.pivot_fem_check`, :func:`.negative_pivot_study.negative_pivot_fem_check`)
-from the reduced beam model (:func:`flexfem.geometry.pivot_beam.pivot_beam_model`).
+from the reduced beam model (:func:`flexfem.reduced.pivot.pivot_beam_model`).
 
 Cross-spring pivot: the base roots clamped, the hub a rigid body free to translate; a pure
 moment gives the small-angle stiffness, the hub rotation prescribed to theta_max (co-rotational
@@ -15,7 +15,7 @@ import numpy as np
 
 from ...fem.beam import (Fixed, NodalLoad, Prescribed, solve_beam_nonlinear, solve_beam_static)
 from ...geometry.flexure_pivot import PivotGeometry
-from ...geometry.pivot_beam import pivot_beam_model
+from ...reduced.pivot import pivot_beam_model
 from .pivot_fem import pivot_geometry
 from .pivots import leaf_bending_stress, pivot_stiffness_beam_theory
 

@@ -193,7 +193,7 @@ def evaluate(params_dict: dict | None = None, dim: int = 2, size_factor: float =
     dofs, the analytical metrics, and with ``modes`` fn_working (Hz) and working_mode; the
     continuum's h (hinge element size, m). ``dim``, ``size_factor`` and ``max_dofs`` (the
     mesh budget, None: the machine's) are the continuum's; ``root_extension`` (default
-    geometry/beam_layout.py's) the beam's; each model ignores the other's."""
+    reduced/layout.py's) the beam's; each model ignores the other's."""
     p = params_from_dict(params_dict or {})
     layout = DBMALayout(hinge_profile=hinge_profile)
     fe, peak = build(p, layout, model, dim, size_factor, max_dofs, root_extension)

@@ -4,7 +4,7 @@ beam model's report-level results.
     model, peak = beam_model(paper_design())        # the groups of the continuum's mesh
     static_response(model, 100.0, peak)             # the same analysis as the continuum's
 
-The beam model (:func:`flexfem.geometry.dbma.beam.dbma_beam_model`) carries the mesh's groups
+The beam model (:func:`flexfem.reduced.dbma.dbma_beam_model`) carries the mesh's groups
 ("fixed", "input_a", "input_b", "input", "output"), so the continuum's loadings apply as they
 are (:mod:`flexfem.fem.beam.face`): the pads pushed apart with member 11 held; the output
 pushed with the pads held along x (a pad face spans y, so its rotation is held too, as the
@@ -18,7 +18,7 @@ import math
 
 import numpy as np
 
-from ...geometry.beam_layout import ROOT_EXTENSION
+from ...reduced.layout import ROOT_EXTENSION
 from ...geometry.dbma.drawing import DBMALayout
 from ...geometry.dbma.params import DBMAParams
 from .analysis import evaluate, modal_response, output_stiffness, static_response

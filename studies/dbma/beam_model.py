@@ -1,7 +1,7 @@
 """The DBMA's reduced beam model as a builder for its analyses (:mod:`.analysis`): the planar
 beam model with the continuum mesh's groups, and the stress at its hinges' roots."""
-from ...geometry.beam_layout import ROOT_EXTENSION
-from ...geometry.dbma.beam import dbma_beam_model
+from ...reduced.layout import ROOT_EXTENSION
+from ...reduced.dbma import dbma_beam_model
 from ...geometry.dbma.drawing import DBMALayout
 from ...geometry.dbma.params import DBMAParams
 from .beam_stress import dbma_fillet_stress, dbma_notch_stress

@@ -104,12 +104,12 @@ def reproduce(out_dir, quick: bool = False) -> dict:
     err = {m.quantity.split(",")[0].split(" (")[0]: 100 * (m.beam / m.continuum - 1)
            for m in metrics}
     paragraph = (
-        "The beam model of the DBMA is generated from its parameters (geometry/dbma/beam.py): "
+        "The beam model of the DBMA is generated from its parameters (reduced/dbma.py): "
         "16 hinges from their profiles, elastic arms and members, the common root extension "
         "(0.38 b per root, with the root's axial compliance); where each pad bears on its "
         "input member, the member is as deep as it is long and no beam, so that part and its "
         "pad are a 2-D plane-stress patch condensed onto the member's beams "
-        f"(geometry/dbma/member_patch.py). For the paper's design (l/b = "
+        f"(reduced/dbma_member_patch.py). For the paper's design (l/b = "
         f"{p.l / p.b:.2f}) it solves in {beam['time_s'] * 1e3:.0f} ms against "
         f"{cont['time_s']:.1f} s for the 2-D FEM ({cont['dofs']} DOFs"
         f"{', a 2x coarser mesh in this quick run' if quick else ''}). Beam against continuum: "
@@ -121,7 +121,7 @@ def reproduce(out_dir, quick: bool = False) -> dict:
         f"the continuum from l/b = {leaf_from:g} for a sharp-cornered leaf, in bending and "
         "axially; without it, it is too stiff by ~b / l. A circular notch's beam is "
         "corrected by the notch's own 2-D model (its stiffness and its neck's K_t, "
-        "geometry/hinge_patch.py)"
+        "reduced/hinge_patch.py)"
         + ("" if quick else
            f": in bending it stays within 3 % from l/b = {trusted_from(rows, 'circular'):g} "
            "(t/R = 2 b / l), while axially the notch's junction with the specimen's blocks, "

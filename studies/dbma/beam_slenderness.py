@@ -5,10 +5,10 @@ The specimen is :func:`flexfem.geometry.hinge_profiles.mesh_hinge_specimen` (b =
 w = 5 mm, blocks 10 mm tall and 5 mm long, P2 elements, 4 across the neck): the left block's
 end clamped, a unit force on the right block's end, sideways (bending: the hinge's working
 compliance) and along the hinge (axial: what carries the DBMA's output load). The beam model
-is the hinge from its profile (:func:`flexfem.geometry.beam_layout.profile_beam`, the blocks as
+is the hinge from its profile (:func:`flexfem.reduced.layout.profile_beam`, the blocks as
 Timoshenko beams), with the common root extension (0.38 x root thickness, axial root
 compliance for the block height) and a circular notch's 2-D correction
-(:mod:`flexfem.geometry.hinge_patch`), as the mechanisms' models have them, and the bare beam
+(:mod:`flexfem.reduced.hinge_patch`), as the mechanisms' models have them, and the bare beam
 without either (plain beam theory of the profile). SI units.
 """
 import math
@@ -18,8 +18,8 @@ import numpy as np
 from ...fem import Fixed as FEFixed, Force, Material, Model, PlaneStress, solve_static
 from ...fem.beam import (BeamModel, Fixed, NodalLoad, RigidLink, Section, beam_chain,
                          solve_beam_static)
-from ...geometry.beam_layout import ROOT_EXTENSION, profile_beam
-from ...geometry.hinge_patch import notch_factors
+from ...reduced.layout import ROOT_EXTENSION, profile_beam
+from ...reduced.hinge_patch import notch_factors
 from ...geometry.hinge_profiles import mesh_hinge_specimen, profile_thickness
 from ..report.figures import axis_label, legend_outside, pyplot, save
 

@@ -3,7 +3,7 @@ stress-concentration factor K_t. A filleted hinge's is the published factor of t
 fillet where its straight part meets the body (data/stress_concentration.toml: Roark's Table
 17.1, case 17, fits to Peterson's charts; docs/beam_validation.md, "DBMA: peak stress at the fillets");
 a circular notch's is its neck's, from the notch's 2-D model
-(:func:`flexfem.geometry.hinge_patch.notch_factors`).
+(:func:`flexfem.reduced.hinge_patch.notch_factors`).
 
     sigma_peak = K_t,tension |N| / (w b) + K_t,bending 6 |M| / (w b^2)
 
@@ -106,8 +106,8 @@ def dbma_fillet_stress(p, layout, model, state) -> dict:
 
 def dbma_notch_stress(p, layout, model, info, state) -> dict:
     """The DBMA's circular-notch peak stress (Pa) from a beam state: the neck's K_t of both
-    loads (:func:`flexfem.geometry.hinge_patch.notch_factors`); dbma_fillet_stress's keys."""
-    from ...geometry.hinge_patch import notch_factors
+    loads (:func:`flexfem.reduced.hinge_patch.notch_factors`); dbma_fillet_stress's keys."""
+    from ...reduced.hinge_patch import notch_factors
 
     f = notch_factors("circular", p.l, p.b, layout.hinge_fillet_radius, p.nu)
     peak, e = end_peak_stress(model, state, info["hinge_elements"], f.kt_tension,

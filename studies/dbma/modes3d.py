@@ -1,6 +1,6 @@
 """The DBMA's modes in 3-D: the solid continuum (the 2-D drawing extruded through the plate
 thickness d in layers of quadratic hexahedra) beside the spatial beam model
-(:func:`flexfem.geometry.dbma.beam.dbma_beam3d_model`), paired by shape.
+(:func:`flexfem.reduced.dbma.dbma_beam3d_model`), paired by shape.
 
     out = compare_modes3d(paper_design(), n_modes=10)
     out["rows"]                # family, k, beam_hz, continuum_hz, diff_pct, mass fractions
@@ -17,12 +17,12 @@ import numpy as np
 
 from ...fem import solve_modes
 from ...fem.beam3d import Fixed, Prescribed, solve_beam3d_modes
-from ...geometry.beam_layout import ROOT_EXTENSION
-from ...geometry.dbma.beam import dbma_beam3d_model
+from ...reduced.layout import ROOT_EXTENSION
+from ...reduced.dbma import dbma_beam3d_model
 from ...geometry.dbma.drawing import DBMALayout
 from ...geometry.dbma.params import DBMAParams, paper_design
-from ..modes3d import (SPLIT, TorsionScaled, mirror_vertices, out_of_plane_share, pair_modes,
-                       vlasov_factor)
+from ...reduced.torsion import TorsionScaled, vlasov_factor
+from ..modes3d import (SPLIT, mirror_vertices, out_of_plane_share, pair_modes)
 from .analysis import build_model, modal_supports
 
 PAD_DOFS = ("x", "ry", "rz")  # what the actuator holds on a pad face
@@ -33,7 +33,7 @@ def beam_modes3d(p: DBMAParams, layout: DBMALayout | None = None, n_modes: int =
                  member_patch: bool = True) -> dict:
     """The spatial beam model's first ``n_modes``: {"f_hz", "mass_fraction" (n, 3),
     "out_of_plane_share" (of the nodes' translations), "total_mass_kg"}. ``warping``: each
-    hinge's J times :func:`~flexfem.studies.modes3d.vlasov_factor` for its l x b x d strip
+    hinge's J times :func:`~flexfem.reduced.torsion.vlasov_factor` for its l x b x d strip
     (the arms and members it enters hold its ends against warping, which Saint-Venant
     torsion leaves out); leaf hinges only. The spatial model lifts the planar one with block
     input members; its in-plane and out-of-plane modes do not couple (a plate symmetric about
@@ -62,7 +62,7 @@ def beam_modes3d(p: DBMAParams, layout: DBMALayout | None = None, n_modes: int =
 def _planar_family(out: dict, p, layout, root_extension, n_modes: int) -> dict:
     """``out`` with its in-plane modes replaced by the planar beam model's (member patches
     on), merged by frequency, the first ``n_modes`` kept."""
-    from ...geometry.dbma.beam import dbma_beam_model
+    from ...reduced.dbma import dbma_beam_model
     from .analysis import modal_response
 
     model, _ = dbma_beam_model(p, layout, root_extension)

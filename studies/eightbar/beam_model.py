@@ -3,7 +3,7 @@
 
     out = analyze_eightbar(model="beam")        # the continuum's analyses, in milliseconds
 
-The beam model (:func:`flexfem.geometry.eightbar.beam.eightbar_beam_model`) carries the
+The beam model (:func:`flexfem.reduced.eightbar.eightbar_beam_model`) carries the
 mesh's groups "fixed" and "end_effector" (a node on the face's centroid, with the face's
 extent), so the continuum's loadings apply as they are (:mod:`flexfem.fem.beam.face`): k_x
 with the end-effector's x prescribed (y and rotation free: the face is horizontal), k_y with
@@ -14,8 +14,8 @@ peak includes the fillet's stress concentration, which beam theory has not). SI 
 """
 import numpy as np
 
-from ...geometry.beam_layout import ROOT_EXTENSION
-from ...geometry.eightbar.beam import eightbar_beam_model
+from ...reduced.layout import ROOT_EXTENSION
+from ...reduced.eightbar import eightbar_beam_model
 from ...geometry.eightbar.flexure import EightBarFlexureParams
 from .places import Places
 

@@ -138,7 +138,7 @@ def reproduce(out_dir, quick: bool = False) -> dict:
     worst = max(abs(m.beam / m.continuum - 1) for m in metrics)
     paragraph = (
         "The beam model of the eight-bar suspension is generated from the same planar layout "
-        "as the continuum mesh (geometry/eightbar/beam.py): ten flexures as beams through their "
+        "as the continuum mesh (reduced/eightbar.py): ten flexures as beams through their "
         "root fillets, the links rigid with their masses, the common root extension. It gives "
         f"the whole analysis (stiffnesses, {len(beam['modes'])} modes, the nonlinear stroke) "
         f"in {t_beam:.2f} s against {t_cont:.0f} s for the 2-D FEM ({cont['dofs']} DOFs"
@@ -147,7 +147,7 @@ def reproduce(out_dir, quick: bool = False) -> dict:
         f"{100 * (metrics[0].prbm / metrics[0].continuum - 1):+.1f} % (it neglects the "
         "flexures' shear and axial compliance and the links' shape) and has no k_y or modes. "
         "The driving linkage (two lambdas and the two suspensions, 34 flexures; "
-        "geometry/eightbar/driving_beam.py, from the same flexure layout as its mesh) by the "
+        "reduced/driving.py, from the same flexure layout as its mesh) by the "
         f"beam model in {t_d_beam:.2f} s against {t_d_cont:.0f} s for its 2-D FEM "
         f"({d_cont['dofs']} DOFs): input stiffness "
         f"{100 * (d_beam['stiffness_n_per_m'] / d_cont['stiffness_n_per_m'] - 1):+.1f} %, "

@@ -1,6 +1,6 @@
 """The driving linkage (thesis Ch. 6) by either model, with one analysis: the continuum FEM
 (:func:`flexfem.studies.eightbar.driving.build_model`) or the reduced beam model
-(:func:`flexfem.geometry.eightbar.driving_beam.driving_beam_model`), both with the groups
+(:func:`flexfem.reduced.driving.driving_beam_model`), both with the groups
 "fixed", "input", "ee_L" and "ee_R".
 
     out = analyze_driving(model="beam")      # or model="continuum"
@@ -19,9 +19,9 @@ import math
 from typing import Literal
 
 from ...fem import Fixed, solve_modes
-from ...geometry.beam_layout import ROOT_EXTENSION
+from ...reduced.layout import ROOT_EXTENSION
 from ...geometry.eightbar.driving import DrivingParams
-from ...geometry.eightbar.driving_beam import driving_beam_model, driving_prbm_stiffness
+from ...reduced.driving import driving_beam_model, driving_prbm_stiffness
 from ...geometry.eightbar.flexure import EightBarFlexureParams
 from .driving import build_model, linear_drive
 

@@ -11,9 +11,9 @@ from dataclasses import replace
 import numpy as np
 
 from ...fem.beam import Fixed, Prescribed, solve_beam_nonlinear
-from ...geometry.beam_layout import ROOT_EXTENSION
+from ...reduced.layout import ROOT_EXTENSION
 from ...geometry.eightbar.driving import DrivingParams, trace_driving
-from ...geometry.eightbar.driving_beam import driving_beam_model
+from ...reduced.driving import driving_beam_model
 from ...geometry.straight_line import straight_line_deviation
 from .driving import NEWTON_TOL, build_model, nonlinear_drive
 from .driving_models import MODELS, default_flexure

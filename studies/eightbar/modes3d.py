@@ -1,6 +1,6 @@
 """The eight-bar suspension's modes in 3-D: the solid continuum (the 2-D drawing extruded
 through its thickness, quadratic tetrahedra) beside the spatial beam model
-(:func:`flexfem.geometry.eightbar.beam3d.eightbar_beam3d_model`), paired by shape.
+(:func:`flexfem.reduced.eightbar3d.eightbar_beam3d_model`), paired by shape.
 
     out = compare_modes(EightBarFlexureParams(), n_modes=10)
     out["rows"]  # family, k, beam_hz, continuum_hz, diff_pct, effective mass fractions
@@ -20,11 +20,11 @@ from ...fem import Fixed, solve_modes
 from ...fem.beam3d import solve_beam3d_modes
 from ...fem.beam3d import Fixed as BeamFixed
 from ...fem.beam3d.energy import strain_energy_share
-from ...geometry.beam_layout import ROOT_EXTENSION
-from ...geometry.eightbar.beam3d import eightbar_beam3d_model
+from ...reduced.layout import ROOT_EXTENSION
+from ...reduced.eightbar3d import eightbar_beam3d_model
 from ...geometry.eightbar.flexure import EightBarFlexureParams
-from ..modes3d import (TorsionScaled, mirror_vertices, out_of_plane_share, pair_modes,
-                       vlasov_factor)
+from ...reduced.torsion import TorsionScaled, vlasov_factor
+from ..modes3d import mirror_vertices, out_of_plane_share, pair_modes
 from .continuum_model import build_model
 
 
@@ -66,7 +66,7 @@ def beam_modes(params: EightBarFlexureParams, n_modes: int = 10, warping: bool =
     "mass_fraction", "out_of_plane_share" (of the nodes' translations), "total_mass_kg",
     "links_energy_share" (strain energy outside the flexures: links and anchors; 0 with
     rigid links)}. ``links``: "flexible" (link plates and anchors as beams) or "rigid"
-    (:func:`~flexfem.geometry.eightbar.beam3d.eightbar_beam3d_model`). ``warping``: each
+    (:func:`~flexfem.reduced.eightbar3d.eightbar_beam3d_model`). ``warping``: each
     flexure's J times its :func:`vlasov_factor` (the beam's Saint-Venant torsion leaves the
     roots' warping restraint out)."""
     model, info = eightbar_beam3d_model(params, root_extension=root_extension, links=links)

@@ -9,7 +9,7 @@ from ...fem import (Fixed, Force, Model, PlaneStrain, PlaneStress, Prescribed, S
                     Traction, compliance_matrix, solve_buckling, solve_harmonic, solve_modes,
                     solve_nonlinear, solve_static)
 from ...geometry.user_model import ModelSpec, load_spec, mesh_geometry
-from ...geometry.user_model.beam_model import beam_model
+from ...reduced.model_file import beam_model
 from .beam_analysis import check_beam_analyses, lifted_outputs, planar_twin, spatial_modes
 from .outputs import check_finite, groups_of as _groups, stiffness
 from .stroke import stroke_limits
@@ -73,7 +73,7 @@ def _in_context(spec: ModelSpec, error: ValueError) -> ValueError:
 def build(spec: ModelSpec, model: str = "continuum", size_factor: float = 1.0,
           max_dofs: int | None = None) -> tuple:
     """(model, h) of the model file: the continuum FEM (:func:`build_model`; h its mean edge
-    length, m) or its beam model (:func:`~flexfem.geometry.user_model.beam_model.beam_model`,
+    length, m) or its beam model (:func:`~flexfem.reduced.model_file.beam_model`,
     with the file's groups; h the mean element length, m; size_factor unused)."""
     if model == "continuum":
         fe = build_model(spec, size_factor, max_dofs)

@@ -1,5 +1,5 @@
 """The spatial beam model of bodies and flexures (``--model beam --dim 3``): the planar beam
-model lifted out of the plane by the mechanism's depth (geometry/spatial_beam.py), its bodies'
+model lifted out of the plane by the mechanism's depth (reduced/spatial.py), its bodies'
 masses with their out-of-plane rotary inertias, for the modes out of the plane as well as in
 it. The statics stay the planar model's (in-plane loads). SI units."""
 from dataclasses import replace
@@ -7,7 +7,7 @@ from dataclasses import replace
 import numpy as np
 
 from ...fem.beam3d import Fixed, solve_beam3d_modes
-from ...geometry.spatial_beam import lifted_model
+from ...reduced.spatial import lifted_model
 from ...geometry.user_model.tables import Section
 
 

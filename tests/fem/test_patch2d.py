@@ -1,4 +1,4 @@
-"""Plane-stress patches condensed onto beam nodes (flexfem.fem.patch2d): a prismatic strip
+"""Plane-stress patches condensed onto beam nodes (flexfem.reduced.patch2d): a prismatic strip
 condenses to the Timoshenko beam, a held face carries a pure moment and a pull as plane
 sections do, and bad input names the problem."""
 import numpy as np
@@ -6,7 +6,7 @@ import pytest
 from flexfem.fem.beam import BeamModel, Fixed, Section, beam_chain
 from flexfem.fem.beam.compliance import compliance
 from flexfem.fem.materials import Material
-from flexfem.fem.patch2d import TensorPatch, cell_edges, held_face, section
+from flexfem.reduced.patch2d import TensorPatch, cell_edges, held_face, section
 
 NU = 0.3
 

@@ -1,4 +1,4 @@
-"""The notch hinge's 2-D correction of its beam (flexfem.geometry.hinge_patch)."""
+"""The notch hinge's 2-D correction of its beam (flexfem.reduced.hinge_patch)."""
 import math
 
 import numpy as np
@@ -9,8 +9,8 @@ from flexfem.fem import (Fixed as FEFixed, Material, Model, PlaneStress, gmsh_se
 from flexfem.fem.beam import BeamModel, Fixed, Section, beam_chain
 from flexfem.fem.beam.compliance import compliance
 from flexfem.fem.compliance import compliance_matrix
-from flexfem.geometry.beam_layout import profile_beam
-from flexfem.geometry.hinge_patch import NotchFactors, notch_factors, patch_factors, tabulated
+from flexfem.reduced.layout import profile_beam
+from flexfem.reduced.hinge_patch import NotchFactors, notch_factors, patch_factors, tabulated
 from flexfem.geometry.hinge_profiles import profile_thickness
 
 
@@ -33,7 +33,7 @@ def _notched_bar(b, R, stub, nu, neck_elements):
     notch length 2 R), ``stub`` (m) of bar beyond the notch at each end, plane stress, the
     near end clamped, the far end a rigid face (its centre); Poisson's ratio ``nu``; P2
     triangles about t(x) / ``neck_elements`` across the local thickness, three times finer at
-    the neck's surface. Drawn and meshed here, not by flexfem.geometry.hinge_patch."""
+    the neck's surface. Drawn and meshed here, not by flexfem.reduced.hinge_patch."""
     l, h = 2 * R, b + 2 * R
     x0, x1 = -stub, l + stub
     thickness = lambda x: h - 2 * math.sqrt(max(R ** 2 - (min(max(x, 0.0), l) - R) ** 2, 0.0))
@@ -193,7 +193,7 @@ def test_a_sampled_profile_gives_the_exact_arcs_factors():
     circular notch at t/R = 0.4 it gives the exact arcs' factors (patch_factors) within 3e-4
     (measured 5e-5) and their K_t within 0.5 % (measured 0.24 %); for a filleted leaf its
     stiffness factors."""
-    from flexfem.geometry.hinge_patch import has_notch, profile_factors
+    from flexfem.reduced.hinge_patch import has_notch, profile_factors
 
     b, l = 1e-3, 5e-3
     thickness = lambda s: float(profile_thickness("circular", l, b, b, s))
@@ -223,6 +223,6 @@ def test_a_sampled_profile_gives_the_exact_arcs_factors():
     (lambda s: 1e-3 * (1 + 4 * (s / 5e-3 - 0.5) ** 2), True),       # a parabolic notch
 ])
 def test_what_is_a_notch(profile, expected):
-    from flexfem.geometry.hinge_patch import has_notch
+    from flexfem.reduced.hinge_patch import has_notch
 
     assert has_notch(profile, 5e-3) is expected

@@ -1,4 +1,4 @@
-"""A root's axial compliance (flexfem.geometry.beam_layout.axial_root_compliance) against the
+"""A root's axial compliance (flexfem.reduced.layout.axial_root_compliance) against the
 quantity it models: a sharp-cornered leaf pulled between two blocks, in flexfem's 2-D
 plane-stress continuum on a converged mesh (the fit's own specimen: nu = 0.3, l/t = 10,
 blocks 2 H long; docs/beam_validation.md, "Root extension and the roots' axial
@@ -10,7 +10,7 @@ from flexfem.fem import Fixed as ContinuumFixed
 from flexfem.fem import Force, Material, Model, PlaneStress, solve_static
 from flexfem.fem.beam import BeamModel, Fixed, Section, beam_chain
 from flexfem.fem.beam.compliance import compliance
-from flexfem.geometry.beam_layout import profile_beam
+from flexfem.reduced.layout import profile_beam
 from flexfem.geometry.hinge_profiles import mesh_hinge_specimen
 
 E, NU, W = 200e9, 0.3, 5e-3
@@ -60,7 +60,7 @@ def test_a_leaf_pulled_between_blocks_has_the_continuums_extension(height):
 
 
 @pytest.mark.xfail(strict=True, reason=(
-    "axial_root_compliance (geometry/beam_layout.py, AXIAL_ROOT) meets its documented 0.03 "
+    "axial_root_compliance (reduced/layout.py, AXIAL_ROOT) meets its documented 0.03 "
     "/ (E w) a root only on the specimen's default mesh (4 triangles across the leaf: "
     "-0.017 at H/t = 20); on a converged mesh its residual is -0.038 (-0.040 extrapolated; "
     "-0.037 at H/t = 5): the fit needs redoing on a converged mesh"))

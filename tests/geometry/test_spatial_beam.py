@@ -1,4 +1,4 @@
-"""A planar beam model lifted into 3-D (flexfem.geometry.spatial_beam): a leaf's roots keep
+"""A planar beam model lifted into 3-D (flexfem.reduced.spatial): a leaf's roots keep
 their planar compliance in the plane, and about the strong axis each slice of the leaf's
 width enters its block as the planar root does (its axial compliance)."""
 import numpy as np
@@ -7,7 +7,7 @@ from flexfem.fem.beam import Fixed as PlanarFixed
 from flexfem.fem.beam.compliance import compliance
 from flexfem.fem.beam3d import Fixed, compliance3d
 from flexfem.fem.materials import Material
-from flexfem.geometry.spatial_beam import lifted_model
+from flexfem.reduced.spatial import lifted_model
 
 E, L, T, W, H = 200e9, 5e-3, 0.5e-3, 8e-3, 6e-3  # leaf length, thickness, width; block height
 STEEL = Material("steel", E, 0.3, 7800.0)

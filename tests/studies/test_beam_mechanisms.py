@@ -5,7 +5,7 @@ import json
 
 import pytest
 
-from flexfem.geometry.beam_layout import axial_root_compliance, check_root_extension
+from flexfem.reduced.layout import axial_root_compliance, check_root_extension
 from flexfem.geometry.dbma.params import paper_design
 from flexfem.studies.cli import main
 from flexfem.studies.mechanisms import get_evaluator
@@ -213,7 +213,7 @@ def test_optimize_cli_has_the_screen_option():
 
 
 def test_link_inertia_is_the_union_of_overlapping_rectangles():
-    from flexfem.geometry.beam_layout import link_inertia
+    from flexfem.reduced.layout import link_inertia
     from flexfem.geometry.flexure_linkage import Part
 
     # an L of two 1 x 0.2 bars overlapping in a 0.2 x 0.2 corner square, and a third bar
@@ -231,7 +231,7 @@ def test_link_inertia_is_the_union_of_overlapping_rectangles():
 
 
 def test_unchecked_params_skips_only_the_checks():
-    from flexfem.geometry.eightbar.beam import unchecked_params
+    from flexfem.reduced.eightbar import unchecked_params
     from flexfem.geometry.eightbar.flexure import EightBarFlexureParams
 
     base = EightBarFlexureParams()

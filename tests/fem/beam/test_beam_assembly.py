@@ -13,7 +13,7 @@ from flexfem.fem.beam import (BeamMesh, Fixed, Prescribed, Section, beam_chain,
                               solve_beam_nonlinear)
 from flexfem.fem.beam.assembly import Assembler, _parity, global_matrix
 from flexfem.fem.beam.pattern import Pattern
-from flexfem.geometry.beam_layout import _line_mesh, filleted_thickness, profile_beam
+from flexfem.reduced.layout import _line_mesh, filleted_thickness, profile_beam
 
 
 def deformed_guide(steel):

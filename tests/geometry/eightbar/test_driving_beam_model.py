@@ -1,11 +1,11 @@
 """The driving linkage's beam model generated from its flexure layout
-(geometry/eightbar/driving_beam.py) and its pseudo-rigid-body input stiffness."""
+(reduced/driving.py) and its pseudo-rigid-body input stiffness."""
 import numpy as np
 import pytest
 
 from flexfem.geometry.eightbar.driving import (DrivingParams, driving_layout,
                                               mesh_driving_flexure)
-from flexfem.geometry.eightbar.driving_beam import (driving_beam_model, driving_joint_rates,
+from flexfem.reduced.driving import (driving_beam_model, driving_joint_rates,
                                                     driving_prbm_stiffness)
 from flexfem.geometry.eightbar.flexure import EightBarFlexureParams
 

@@ -8,9 +8,9 @@ import pytest
 from flexfem.fem import beam as planar
 from flexfem.fem.beam3d import Fixed, compliance3d, solve_beam3d_modes
 from flexfem.fem.beam3d.inertia import mass_properties
-from flexfem.geometry.beam_layout import link_inertia
-from flexfem.geometry.eightbar.beam import eightbar_beam_model
-from flexfem.geometry.eightbar.beam3d import eightbar_beam3d_model, link_plate_inertia
+from flexfem.reduced.layout import link_inertia
+from flexfem.reduced.eightbar import eightbar_beam_model
+from flexfem.reduced.eightbar3d import eightbar_beam3d_model, link_plate_inertia
 from flexfem.geometry.eightbar.flexure import EightBarFlexureParams, eightbar_layout
 
 IN_PLANE = [0, 1, 5]  # x, y, r_z of the spatial DOFs

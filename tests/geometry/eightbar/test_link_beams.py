@@ -7,7 +7,7 @@ import pytest
 from flexfem.fem import material
 from flexfem.fem.beam3d import Beam3DModel, Section, solve_beam3d_modes
 from flexfem.fem.beam3d.inertia import mass_properties
-from flexfem.geometry.beam_layout import link_moments
+from flexfem.reduced.layout import link_moments
 from flexfem.geometry.eightbar.link_beams import link_skeleton, mesh_skeleton
 from flexfem.geometry.flexure_linkage import Part
 

@@ -7,9 +7,9 @@ import numpy as np
 import pytest
 
 from flexfem.geometry.user_model import load_spec
-from flexfem.geometry.user_model.beam_model import beam_model
+from flexfem.reduced.model_file import beam_model
 from flexfem.geometry.user_model.beam_tables import evaluate_expression
-from flexfem.geometry.user_model.crossings import crossings
+from flexfem.reduced.crossings import crossings
 
 EXAMPLES = Path(__file__).resolve().parents[3] / "examples"
 W_GUIDE = 0.01  # the guide's out-of-plane width ([section] thickness), m
@@ -94,7 +94,7 @@ def test_weld_option_and_shallow_crossing_refused():
 
 
 def test_block_height_is_the_blocks_chord_across_the_beam():
-    from flexfem.geometry.user_model.beam_model import _block_height
+    from flexfem.reduced.model_file import _block_height
     block = ((-0.01, 0.0), (0.02, 0.005))
     up = np.array([0.0, 1.0])
     assert _block_height((0.0, 0.0), up, [block]) == pytest.approx(0.03)  # on its face
@@ -108,7 +108,7 @@ def test_axial_root_compliance_where_the_block_is_declared():
     """The guide's leaves enter base and stage (31 mm across) end-on: each root extension
     element carries the root's axial compliance (axial_root_compliance) / (E w), by its
     stiffness factor; its area, and so its mass, stay the root's own w t."""
-    from flexfem.geometry.beam_layout import axial_root_compliance
+    from flexfem.reduced.layout import axial_root_compliance
     spec = load_spec(EXAMPLES / "parallel_guide" / "guide.toml")
     p = spec.constants
     model, _ = beam_model(spec)
@@ -125,7 +125,7 @@ def test_axial_root_compliance_where_the_block_is_declared():
 def test_root_offset_is_where_the_whole_section_has_left_the_face():
     """(t/2) cot(phi) along the beam from its centre line's meeting with the face: where its
     acute edge meets the face (constructed here from the edge line's intersection)."""
-    from flexfem.geometry.user_model.roots import root_offset
+    from flexfem.reduced.roots import root_offset
     block, t, tol = [((-1.0, -1.0), (1.0, 0.0))], 1e-3, 1e-12  # the face y = 0
     for phi in np.radians([15, 30, 45, 60, 90, 120]):
         d = np.array([math.cos(phi), math.sin(phi)])

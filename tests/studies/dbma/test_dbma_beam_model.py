@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 from flexfem.fem import Material
 from flexfem.fem.beam import BeamModel, Fixed, NodalLoad, solve_beam_static
-from flexfem.geometry.beam_layout import ROOT_EXTENSION
-from flexfem.geometry.dbma import beam as gb
+from flexfem.reduced.layout import ROOT_EXTENSION
+from flexfem.reduced import dbma as gb
 from flexfem.geometry.dbma.drawing import DBMALayout, quarter_rects
 from flexfem.geometry.dbma.params import paper_design
 
@@ -114,7 +114,7 @@ def test_dbma_with_circular_notches_against_the_continuum(params):
     fitted down to H/t = 1.1, a notch's end being half the arm's height), its peak stress (the
     neck's K_t times the nominal) within 10 % (0.4-0.6 %); bare beam theory of the notch was
     4.6-8.6 % stiff in k_in."""
-    from flexfem.geometry.dbma.beam import dbma_beam_model
+    from flexfem.reduced.dbma import dbma_beam_model
     from flexfem.studies.dbma.analysis import static_response
     from flexfem.studies.dbma.beam import analyze_dbma_beam
     from flexfem.studies.dbma.beam_report import continuum_metrics
@@ -207,7 +207,7 @@ def test_the_member_patch_does_not_depend_on_where_it_is_cut(params):
     differ; at 0.2 a, still in the deep part, 2e-3)."""
     from unittest import mock
 
-    from flexfem.geometry.dbma import member_patch
+    from flexfem.reduced import dbma_member_patch as member_patch
 
     p, layout = dataclasses.replace(paper_design(), **params), DBMALayout()
     edge = layout.pad_height / 2
@@ -228,7 +228,7 @@ def test_the_member_patch_is_converged_at_the_default_cells():
     patch of a new member shape is computed once and reused."""
     from unittest import mock
 
-    from flexfem.geometry.dbma import member_patch
+    from flexfem.reduced import dbma_member_patch as member_patch
 
     p = paper_design()
     member_patch._unit_patch.cache_clear()

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 from flexfem.fem import Fixed as FEFixed, Force, Material, Model, PlaneStress, solve_static
 from flexfem.fem.beam import BeamModel, Fixed, NodalLoad, Section, beam_chain, solve_beam_static
-from flexfem.geometry.beam_layout import profile_beam
+from flexfem.reduced.layout import profile_beam
 from flexfem.geometry.hinge_profiles import mesh_hinge_specimen, profile_thickness
 from flexfem.studies.dbma.beam_stress import filleted_peak_stress, shoulder_fillet_kt
 
@@ -126,7 +126,7 @@ def test_dbma_fillet_stress_against_the_continuum(params):
     """The DBMA with filleted hinges (r_f = 0.5 mm) under the actuator's 100 N: the beam's
     peak with K_t within 10 % of the continuum's peak von Mises (size_factor 1), and closer
     than the nominal stress (11-23 % low on these designs); R and k_in within 3 % (measured
-    within 1.0 %: each hinge corrected by its own 2-D model, geometry/hinge_patch.py)."""
+    within 1.0 %: each hinge corrected by its own 2-D model, reduced/hinge_patch.py)."""
     from flexfem.geometry.dbma.drawing import DBMALayout
     from flexfem.geometry.dbma.params import paper_design
     from flexfem.studies.dbma import analysis as fem

@@ -4,7 +4,7 @@ modes pair by shape (docs/beam_validation.md, "The DBMA's out-of-plane modes")."
 import numpy as np
 import pytest
 
-from flexfem.geometry.dbma.beam import dbma_beam_model
+from flexfem.reduced.dbma import dbma_beam_model
 from flexfem.geometry.dbma.drawing import DBMALayout
 from flexfem.geometry.dbma.params import paper_design
 from flexfem.studies.dbma.analysis import modal_response
@@ -158,7 +158,7 @@ def test_filleted_hinges_compare_with_saint_venant_torsion():
 
 
 def test_a_model_with_superelements_is_not_lifted():
-    from flexfem.geometry.spatial_beam import lifted_model
+    from flexfem.reduced.spatial import lifted_model
 
     with pytest.raises(ValueError, match="no out-of-plane part"):
         lifted_model(dbma_beam_model(paper_design())[0], 0.01)

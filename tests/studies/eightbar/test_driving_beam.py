@@ -1,4 +1,4 @@
-"""The driving linkage's beam model (geometry/eightbar/driving_beam.py), generated from the same
+"""The driving linkage's beam model (reduced/driving.py), generated from the same
 flexure layout as its continuum mesh: against the pseudo-rigid-body model and the rigid
 linkage where hinges are short (closed forms), against the 2-D FEM of the same design (slow),
 and through the CLI and the study entry with model = "beam"."""

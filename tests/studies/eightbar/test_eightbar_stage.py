@@ -83,7 +83,7 @@ def test_beam_modes_lanczos_dense_and_arpack_paths_agree():
     singular mass (tiny rotary inertias)."""
     import flexfem.fem.beam.modal as beam_modal
     from flexfem.fem.beam import Fixed
-    from flexfem.geometry.eightbar.beam import eightbar_beam_model
+    from flexfem.reduced.eightbar import eightbar_beam_model
 
     model, info = eightbar_beam_model(EightBarFlexureParams(), n_per_flexure=12)
     supports = [Fixed(tuple(info["ground"]))]

@@ -86,10 +86,10 @@ def test_guide_beam_against_continuum(guide_both):
 @pytest.mark.parametrize("beta, leaf_mesh, k_cont", [(math.pi / 4, 0.000125, 5.692),
                                                      (math.pi / 6, 0.0000625, 5.996)])
 def test_pivot_beam_against_continuum(beta, leaf_mesh, k_cont):
-    """The leaves' solid joint where they cross (geometry/user_model/crossings.py) against
+    """The leaves' solid joint where they cross (reduced/crossings.py) against
     the point weld, beside the continuum (leaf mesh t/4 and t/8, N m/rad: t/2, t/4, t/8 give
     5.721, 5.692, 5.682 at 90 degrees, 6.060, 6.023, 5.996 at 60), with the leaves' oblique
-    roots (geometry/user_model/roots.py): 90 and 60 degree crossings within 1 %; the weld is
+    roots (reduced/roots.py): 90 and 60 degree crossings within 1 %; the weld is
     lower (it has no joint, which grows as the crossing gets shallower)."""
     spec = load_spec(PIVOT, {"beta": beta, "lc_leaf": leaf_mesh})
     arm = spec.constants["arm"]
@@ -101,7 +101,7 @@ def test_pivot_beam_against_continuum(beta, leaf_mesh, k_cont):
     assert set(beam) == set(analyze_model(load_spec(PIVOT), model="beam"))
     ratio, ratio_weld = (pivot_stiffness(r, arm) / cont for r in (beam, weld))
     # measured 0.992 (90 deg), 1.003 (60 deg); 0.976, 0.973 with the leaves' roots at their
-    # centre lines' meeting with the faces (before geometry/user_model/roots.py)
+    # centre lines' meeting with the faces (before reduced/roots.py)
     assert abs(ratio - 1) < 0.01, ratio
     assert ratio_weld < ratio - 0.01, (ratio_weld, ratio)  # 0.976, 0.939
 
@@ -119,7 +119,7 @@ def leaf_stiffness(result, p):
 def test_oblique_roots_against_the_continuum(degrees):
     """One leaf (L/t = 30) under a couple, leaving its blocks at phi to their faces: the beam
     begins where its whole section has left the block, (t/2) cot(phi) along it
-    (geometry/user_model/roots.py), then the common root extension. Beam theory with that
+    (reduced/roots.py), then the common root extension. Beam theory with that
     length, K = E I / (L - t cot(phi) + 2 x 0.38 t) (pure moment: exact for the beam model);
     against the continuum (leaf mesh t/4; t/8 within 0.1 %), K and f1 (measured +0.11, +1.40,
     +1.52, +1.65 % and +0.15, +0.86, +0.91, +0.98 %; roots at the centre line's meeting with
@@ -265,10 +265,10 @@ NOTCH = EXAMPLES / "notch_hinge" / "notch.toml"
 
 def test_a_notch_beam_is_corrected_by_its_2d_model():
     """The example's notch (an expression profile, t/R = 0.2) carries its 2-D correction on
-    every element (geometry/hinge_patch.py: profile_factors); the bar's uniform ends carry
+    every element (reduced/hinge_patch.py: profile_factors); the bar's uniform ends carry
     none; notch_correction = false leaves plain beam theory."""
-    from flexfem.geometry.hinge_patch import profile_factors
-    from flexfem.geometry.user_model.beam_model import beam_model
+    from flexfem.reduced.hinge_patch import profile_factors
+    from flexfem.reduced.model_file import beam_model
 
     spec = load_spec(NOTCH)
     model, _ = beam_model(spec)

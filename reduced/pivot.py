@@ -11,15 +11,15 @@ body (master node on the centroid of the leaves' hub ends: where the 2-D model's
 acts). Root extension: the 2-D pivot model with ``block_length = 0`` clamps the leaf end faces
 themselves (rigid blocks), where beam theory is exact, so the default extension is 0 there;
 with elastic blocks (``block_length > 0``) the common ROOT_EXTENSION (0.38 x t per root,
-:mod:`flexfem.geometry.beam_layout`) applies. Lengths in m.
+:mod:`flexfem.reduced.layout`) applies. Lengths in m.
 """
 import math
 
 import numpy as np
 
 from ..fem.beam import BeamModel, RigidLink, Section, beam_chain
-from .beam_layout import ROOT_EXTENSION, check_root_extension
-from .flexure_pivot import PivotGeometry
+from .layout import ROOT_EXTENSION, check_root_extension
+from ..geometry.flexure_pivot import PivotGeometry
 
 
 def pivot_beam_model(g: PivotGeometry, width: float, material, n_per_leaf: int = 20,

@@ -5,7 +5,7 @@
 An input member is as deep (a) as its span from the pad to the first hinge row, and its pad
 bears on part of its inner face: a 2-D elasticity problem, which no beam rule reproduces
 (docs/beam_validation.md, "DBMA: the input member's patch"). So the member over |y| <= y_cut and its pad
-are a plane-stress patch (:mod:`flexfem.fem.patch2d`), joined to the member's beams at the two
+are a plane-stress patch (:mod:`flexfem.reduced.patch2d`), joined to the member's beams at the two
 cuts by beam sections and to the actuator's end cap at the pad's face (held along x over the
 face, as the continuum holds it), and condensed onto those three nodes. The cuts lie half a
 member depth beyond the pad's edges (or halfway to the inner arms' centre lines, where that
@@ -18,10 +18,10 @@ import functools
 
 import numpy as np
 
-from ...fem.beam import Superelement
-from ...fem.patch2d import TensorPatch, cell_edges, held_face, section
-from .drawing import DBMALayout
-from .params import DBMAParams
+from ..fem.beam import Superelement
+from .patch2d import TensorPatch, cell_edges, held_face, section
+from ..geometry.dbma.drawing import DBMALayout
+from ..geometry.dbma.params import DBMAParams
 
 # Q2 cells across the member's depth (and as tall), halved GRADING times towards the pad's
 # re-entrant corners (x = 0, y = +-pad_height / 2), where the stress is singular: ~700 DOFs,

@@ -7,23 +7,23 @@ beams that share a point are joined there (welded). Each [[rigid]] is a rigid bo
 (:class:`flexfem.fem.beam.RigidLink`) carrying the beam points it joins, one node per group it
 names (where the continuum's supports and loads act) and the mass of its blocks (on a node at
 their centroid). A beam end joined to a rigid body is extended into it by root_extension x its
-thickness (:func:`flexfem.geometry.beam_layout.root_section`: the root's compliance, which
+thickness (:func:`flexfem.reduced.layout.root_section`: the root's compliance, which
 beam theory has not; docs/beam.md, "Joints and slenderness"), axially too where the body
 declares the block it enters (its chord across the beam is the block height H). A beam
 leaving a declared block's face at an angle begins where its whole section has left the block,
 (t/2) cot(phi) along it (:mod:`.roots`), and is extended from there. Where two beams cross
 they are joined by a rigid joint (:mod:`.crossings`). A straight beam whose profile is a notch
-or a filleted leaf (:func:`flexfem.geometry.hinge_patch.has_notch`) is corrected by its own
-2-D model (:func:`flexfem.geometry.hinge_patch.profile_factors`: its stiffness in rotation,
+or a filleted leaf (:func:`flexfem.reduced.hinge_patch.has_notch`) is corrected by its own
+2-D model (:func:`flexfem.reduced.hinge_patch.profile_factors`: its stiffness in rotation,
 shear and extension), unless ``[beam_model] notch_correction = false``. Lengths in m.
 """
 import math
 
 import numpy as np
 
-from ...fem.beam import BeamMesh, BeamModel, RigidLink, beam_chain, beam_from_profile
-from ..beam_layout import corrected_sections, root_section
-from ..hinge_patch import has_notch, profile_factors
+from ..fem.beam import BeamMesh, BeamModel, RigidLink, beam_chain, beam_from_profile
+from .layout import corrected_sections, root_section
+from .hinge_patch import has_notch, profile_factors
 from .crossings import crossings
 from .roots import root_offset
 

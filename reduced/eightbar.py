@@ -8,16 +8,16 @@ Built from the same planar layout as the 2-D continuum model
 beam of its length, in-plane width and root fillets (a tapered section through the fillets),
 out-of-plane width ``thickness``; the links (cranks, rockers, couplers, end-effector) are
 rigid bodies with their masses; flexures O, C are clamped at their anchors. Root extension:
-see :mod:`flexfem.geometry.beam_layout` (0.38 x root thickness per root by default).
+see :mod:`flexfem.reduced.layout` (0.38 x root thickness per root by default).
 """
 from dataclasses import fields
 import functools
 
 import numpy as np
 
-from ...fem.materials import material as material_named
-from ..beam_layout import ROOT_EXTENSION, layout_beam_model
-from .flexure import EightBarFlexureParams, eightbar_layout
+from ..fem.materials import material as material_named
+from .layout import ROOT_EXTENSION, layout_beam_model
+from ..geometry.eightbar.flexure import EightBarFlexureParams, eightbar_layout
 
 EE_LINK = "end_effector"
 # the material library is a data file read on each lookup; a sweep builds thousands of models

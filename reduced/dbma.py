@@ -8,7 +8,7 @@ Same reconstruction as the continuum mesh (:func:`flexfem.geometry.dbma.drawing.
 mirrored into four quarters): each of the 16 hinges is a beam following its profile t(s)
 (leaf, filleted or circular notch: :func:`flexfem.geometry.hinge_profiles.profile_thickness`
 through :func:`flexfem.fem.beam.beam_from_profile`; a notch or filleted one corrected by its
-own 2-D model, :mod:`flexfem.geometry.hinge_patch`), each inclined arm an elastic Timoshenko
+own 2-D model, :mod:`flexfem.reduced.hinge_patch`), each inclined arm an elastic Timoshenko
 beam of width c along its centre line, joined to its two hinges (offset +-h/2 across it) by
 rigid offsets; the input members (width a) and output members 4 and 11 (width ls) are elastic
 beams along their centre lines, member 11 clamped at its bottom (the mounting face); each input
@@ -17,22 +17,22 @@ member's beams and the pad face's node (:mod:`.member_patch`; docs/beam_validati
 member's patch"). The spatial model lifts the planar one with block members instead (each pad
 with the part of its member it spans a rigid block, which the member's halves enter with the
 common root extension; docs/beam_validation.md, "Before the patch: the pad block").
-Root extension: see :mod:`flexfem.geometry.beam_layout` (0.38 x root thickness per root by
+Root extension: see :mod:`flexfem.reduced.layout` (0.38 x root thickness per root by
 default, with the root's axial compliance for a block of height c at both ends: the arm's
 width; the members' faces around a hinge are about as tall). Lengths in m.
 """
 import numpy as np
 
-from ...fem.beam import (BeamGroup, BeamMesh, BeamModel, RigidLink, Section,
+from ..fem.beam import (BeamGroup, BeamMesh, BeamModel, RigidLink, Section,
                          beam_chain)
-from ...fem.materials import Material
-from ..beam_layout import ROOT_EXTENSION, check_root_extension, profile_beam
-from ..hinge_patch import notch_factors
-from ..hinge_profiles import profile_thickness
-from ..spatial_beam import lifted_model
-from .drawing import DBMALayout, check_layout, quarter_rects
-from .member_patch import member_cut, member_superelement
-from .params import DBMAParams
+from ..fem.materials import Material
+from .layout import ROOT_EXTENSION, check_root_extension, profile_beam
+from .hinge_patch import notch_factors
+from ..geometry.hinge_profiles import profile_thickness
+from .spatial import lifted_model
+from ..geometry.dbma.drawing import DBMALayout, check_layout, quarter_rects
+from .dbma_member_patch import member_cut, member_superelement
+from ..geometry.dbma.params import DBMAParams
 
 QUARTERS = ((1, 1), (-1, 1), (1, -1), (-1, -1))
 # elements a hinge: a leaf is uniform (each element exact in statics) and light, so 8 give the
@@ -142,7 +142,7 @@ def dbma_beam_model(p: DBMAParams, layout: DBMALayout | None = None,
     their root extensions included). elements_per_hinge: default LEAF_ELEMENTS for a leaf,
     PROFILE_ELEMENTS for a notch or filleted profile. ``notch_correction``: a notch or
     filleted hinge's beam corrected by its own 2-D model
-    (:func:`flexfem.geometry.hinge_patch.notch_factors`; False: plain beam theory).
+    (:func:`flexfem.reduced.hinge_patch.notch_factors`; False: plain beam theory).
     ``member_patch``: the input members where their pads bear on them as 2-D patches
     (:mod:`.member_patch`; a linear superelement each); False: as rigid blocks on short pad
     beams (the model the spatial beam lifts). ``material``: default E, nu, rho of ``p``."""

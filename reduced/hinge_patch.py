@@ -13,7 +13,7 @@ is computed, not fitted to a mechanism: the hinge with a stub of its end height,
 that height, at each end (the least body it can enter), rigid beyond the stubs, in plane
 stress (flexfem's P2 continuum, ``NECK_ELEMENTS`` triangles across the local thickness, finer
 at the neck's surface), against the same hinge and stubs as beams
-(:func:`~flexfem.geometry.beam_layout.profile_beam` without root extension). Three factors on
+(:func:`~flexfem.reduced.layout.profile_beam` without root extension). Three factors on
 the hinge's beam elements, multiplying E I, kappa G A and E A, reproduce the patch's end
 compliance (rotation under a moment, deflection under a force, extension under a pull; a
 symmetric profile has no other independent entry). The patch's neck stress under a moment and
@@ -41,8 +41,8 @@ from ..fem.beam.compliance import compliance as beam_compliance
 from ..fem.compliance import compliance_matrix
 from ..fem.gmsh_session import gmsh_session
 from ..fem.mesh import mesh_from_gmsh
-from .beam_layout import profile_beam
-from .hinge_profiles import ARC_ELEMENTS, add_hinge_surface, check_hinge_profile, profile_thickness
+from .layout import profile_beam
+from ..geometry.hinge_profiles import ARC_ELEMENTS, add_hinge_surface, check_hinge_profile, profile_thickness
 
 NECK_ELEMENTS = 12  # P2 triangles across the local thickness: the factors to 0.3 % (24: table)
 NECK_REFINEMENT = 3  # at the neck's surface the triangles are b / (3 NECK_ELEMENTS): its K_t

@@ -4,7 +4,7 @@
     model, info = eightbar_beam3d_model(EightBarFlexureParams(), links="rigid")
 
 Built from the planar beam model of the same parameters
-(:func:`flexfem.geometry.eightbar.beam.eightbar_beam_model`): the same flexure nodes (in the
+(:func:`flexfem.reduced.eightbar.eightbar_beam_model`): the same flexure nodes (in the
 plane z = 0), elements and clamps, with the out-of-plane properties added: every section
 becomes the t x w rectangle of its in-plane depth t (tapered as the planar element's through
 the root fillets) and the out-of-plane width w = ``thickness``, with I_y = t w^3 / 12 and the
@@ -16,12 +16,12 @@ thickness w) about its centroid.
 """
 import numpy as np
 
-from ...fem.beam3d import Beam3DModel, RigidLink, Section
-from ..beam_layout import ROOT_EXTENSION, link_moments
-from ..spatial_beam import lifted_model, spatial_sections
-from .beam import EE_LINK, eightbar_beam_model
-from .flexure import EightBarFlexureParams, eightbar_layout
-from .link_beams import link_skeleton, mesh_skeleton
+from ..fem.beam3d import Beam3DModel, RigidLink, Section
+from .layout import ROOT_EXTENSION, link_moments
+from .spatial import lifted_model, spatial_sections
+from .eightbar import EE_LINK, eightbar_beam_model
+from ..geometry.eightbar.flexure import EightBarFlexureParams, eightbar_layout
+from ..geometry.eightbar.link_beams import link_skeleton, mesh_skeleton
 
 LINKS = ("flexible", "rigid")
 

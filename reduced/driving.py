@@ -6,7 +6,7 @@
 Built from the same flexure layout as the continuum mesh
 (:func:`flexfem.geometry.eightbar.driving.driving_layout`): every flexure (the lambdas', the
 bars', the two suspensions') a beam, every link rigid with its mass
-(:func:`flexfem.geometry.beam_layout.layout_beam_model`); the shuttle's master node on its
+(:func:`flexfem.reduced.layout.layout_beam_model`); the shuttle's master node on its
 "input" face, the end-effectors' on their "ee_L", "ee_R" faces, so that loads and supports
 act where the continuum's faces are. Sharp roots: the continuum's mesh
 (:func:`~flexfem.geometry.eightbar.driving.mesh_driving_flexure`) draws none of the
@@ -19,9 +19,9 @@ from dataclasses import replace
 
 import numpy as np
 
-from ...fem.materials import material as material_named
-from ..beam_layout import ROOT_EXTENSION, layout_beam_model
-from .driving import DrivingParams, driving_layout, trace_driving
+from ..fem.materials import material as material_named
+from .layout import ROOT_EXTENSION, layout_beam_model
+from ..geometry.eightbar.driving import DrivingParams, driving_layout, trace_driving
 
 FACES = {"input": "shuttle", "ee_L": "susL_end_effector", "ee_R": "susR_end_effector"}
 # root fillet radius (m) of the driving linkage as drawn: mesh_driving_flexure calls
