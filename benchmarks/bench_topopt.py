@@ -6,8 +6,9 @@ at the same settings. Not a test: prints one JSON line a row (times in seconds).
 
 Rows: the MBB beam (volume 0.5, SIMP p = 3, sensitivity filter of radius 3 elements, OC with
 move 0.2) by flexfem and by the port, each made to run exactly ``--iterations`` iterations;
-the force inverter (volume 0.3, density filter of radius 3, MMA) by flexfem alone (top88 has
-no mechanism). Each row runs in its own process, after its imports.
+the force inverter (volume 0.3, density filter of radius 3, MMA with move 0.2) by flexfem and
+by the educational-style port (tests/topopt/inverter_port.py: top88's loop, spsolve, mmapy's
+``mmasub`` as the MMA codes call it). Each row runs in its own process, after its imports.
 """
 import argparse
 import json
@@ -61,10 +62,19 @@ def inverter_flexfem(iterations: int) -> dict:
     start = time.perf_counter()
     result = optimize(problem)
     return {"seconds": time.perf_counter() - start, "iterations": result.iterations,
-            "objective": result.objective}
+            "objective": float(result.history[-1, 0])}
 
 
-ROWS = {"mbb-flexfem": mbb_flexfem, "mbb-top88": mbb_top88, "inverter-flexfem": inverter_flexfem}
+def inverter_port(iterations: int) -> dict:
+    sys.path.insert(0, str(ROOT / "tests" / "topopt"))
+    from inverter_port import inverter88
+    start = time.perf_counter()
+    c, loop, _ = inverter88(NELX, NELY, 0.3, 3.0, RMIN, iterations, clamp=5)
+    return {"seconds": time.perf_counter() - start, "iterations": loop, "objective": float(c)}
+
+
+ROWS = {"mbb-flexfem": mbb_flexfem, "mbb-top88": mbb_top88, "inverter-flexfem": inverter_flexfem,
+        "inverter-port": inverter_port}
 
 
 def main() -> None:
@@ -84,8 +94,10 @@ def main() -> None:
         line = json.loads(out.stdout.strip().splitlines()[-1])
         times[row] = line["seconds"]
         print(json.dumps(line), flush=True)
-    if "mbb-flexfem" in times and "mbb-top88" in times:
-        print(json.dumps({"mbb flexfem / top88 port": times["mbb-flexfem"] / times["mbb-top88"]}))
+    for name, ours, port in (("mbb", "mbb-flexfem", "mbb-top88"),
+                             ("inverter", "inverter-flexfem", "inverter-port")):
+        if ours in times and port in times:
+            print(json.dumps({f"{name} flexfem / port": times[ours] / times[port]}))
 
 
 if __name__ == "__main__":

@@ -1,6 +1,6 @@
 """flexfem.topopt: density-based topology optimisation of 2-D plane-stress structures and
 compliant mechanisms on a structured grid of bilinear quads (SIMP or RAMP, sensitivity or
-density filter, optimality criteria or MMA).
+density filter, Heaviside projection, optimality criteria or MMA).
 
     problem = load_problem("examples/topopt/mbb.toml")
     result = optimize(problem, out_dir="mbb_out")    # resumable: rerun to continue
@@ -12,8 +12,9 @@ from .optimize import Result, optimize
 from .problem import (Constraint, Load, Optimizer, Passive, Problem, Response, Spring,
                       Support)
 from .problem_file import load_problem, problem_from_dict
+from .projection import Projection
 from .regions import Region
 
 __all__ = ["Constraint", "Grid", "Interpolation", "Load", "Optimizer", "Passive", "Problem",
-           "Region", "Response", "Result", "Spring", "Support", "load_problem", "optimize",
-           "problem_from_dict"]
+           "Projection", "Region", "Response", "Result", "Spring", "Support", "load_problem",
+           "optimize", "problem_from_dict"]

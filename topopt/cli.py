@@ -24,14 +24,20 @@ def _progress(iteration, objective, volume, change) -> None:
 def run(args) -> dict:
     from .optimize import optimize
     from .outputs import write_outputs
-    from .problem_file import load_problem
+    from .problem_file import load_problem, read_problem_file
+    from .shape import shape_options, write_shape
 
+    options = shape_options(read_problem_file(args.problem))
     problem = load_problem(args.problem)
     out = Path(args.out) if args.out else Path(Path(args.problem).stem + "_topopt")
     progress = _progress if sys.stderr.isatty() else None
     result = optimize(problem, out_dir=out, progress=progress)
     summary = result.summary()
     summary["files"] = write_outputs(result, out)
+    if options is not None:
+        shape = write_shape(result, out, options)
+        summary["files"] += shape.pop("files")
+        summary["shape"] = shape
     summary["out"] = str(out)
     return summary
 
@@ -44,5 +50,10 @@ def summarize(result: dict) -> str:
     for key in ("u_in", "u_out"):
         if key in result:
             lines.append(f"{key}: {result[key]:.6g} m")
+    tol = result.get("shape", {}).get("tolerance")
+    if tol:
+        fitted = result["shape"]["body_fitted"][tol["spring"]]
+        lines.append(f"body-fitted u_{tol['spring']}: {fitted:.6g} m (density model "
+                     f"{tol['u']:.6g} m, tolerance {tol['tolerance']:.3g} m)")
     lines.append(f"written: {', '.join(result['files'])} in {result['out']}")
     return "\n".join(lines)

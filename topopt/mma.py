@@ -1,8 +1,21 @@
 """One step of the method of moving asymptotes (Svanberg 1987) through mmapy's ``mmasub``;
-the asymptotes and the last two designs are the state a resumed run needs."""
+the asymptotes and the last two designs are the state a resumed run needs.
+
+mmapy's subproblem solver multiplies (n, 1) by (1, 1) arrays thousands of times a step; with
+OpenBLAS's threads each product waits on a thread hand-off, eight times the whole step's
+single-threaded time at 20,000 variables, so ``mmasub`` runs with one BLAS thread."""
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
+
+
+@lru_cache(maxsize=1)
+def _threadpools():
+    """threadpoolctl's view of the loaded BLAS libraries, found once (3 ms a search)."""
+    from threadpoolctl import ThreadpoolController
+
+    return ThreadpoolController()
 
 
 @dataclass
@@ -31,10 +44,11 @@ def mma_update(state: MMAState, iteration: int, z, f0, df0, fvals, dfdx, lower, 
     dfdx = np.asarray(dfdx, dtype=float).reshape(len(fvals), n) if len(fvals) else np.zeros((1, n))
     xcol = z.reshape(-1, 1)
     zeros, ones = np.zeros((n, 1)), np.ones((n, 1))  # pinned variables are clipped after
-    xmma, *_, low, upp = mmasub(
-        m, n, iteration, xcol, zeros, ones, state.xold1, state.xold2,
-        float(f0), np.asarray(df0, dtype=float).reshape(-1, 1), fval, dfdx, state.low, state.upp,
-        1.0, np.zeros((m, 1)), np.full((m, 1), 1000.0), np.ones((m, 1)), move=move)
+    with _threadpools().limit(limits=1, user_api="blas"):
+        xmma, *_, low, upp = mmasub(
+            m, n, iteration, xcol, zeros, ones, state.xold1, state.xold2, float(f0),
+            np.asarray(df0, dtype=float).reshape(-1, 1), fval, dfdx, state.low, state.upp,
+            1.0, np.zeros((m, 1)), np.full((m, 1), 1000.0), np.ones((m, 1)), move=move)
     state.xold2, state.xold1 = state.xold1, xcol.copy()
     state.low, state.upp = low, upp
     return np.clip(xmma.ravel(), lower, upper)

@@ -9,6 +9,7 @@ from .element import element_stiffness
 from .fea import System
 from .filters import Filter
 from .problem import Problem
+from .projection import project, project_derivative
 
 AXIS = {"x": 0, "y": 1}
 
@@ -66,6 +67,7 @@ class Discrete:
         self.filter = Filter(g, p.filter_kind, p.radius)
         self.P = design_map(g, p.symmetry)
         self.lower, self.upper = self._bounds()
+        self.beta = p.projection.beta if p.projection else None
 
     def _bounds(self):
         """Bounds of the design variables: passive elements pinned at 0 or 1."""
@@ -91,10 +93,21 @@ class Discrete:
         return np.clip(np.full(self.n_variables, float(start)), self.lower, self.upper)
 
     def physical(self, z: np.ndarray) -> np.ndarray:
-        """Physical densities of the elements from design variables z."""
+        """Physical densities of the elements from design variables z (filtered, then
+        projected at ``self.beta`` where the problem has a projection)."""
         rho = self.filter.physical(self.P @ z)
+        if self.beta is not None:
+            rho = project(rho, self.beta, self.problem.projection.eta)
         rho[self.solid], rho[self.void] = 1.0, 0.0
         return rho
+
+    def back(self, x: np.ndarray, g: np.ndarray, objective: bool = False) -> np.ndarray:
+        """The gradient with respect to the design variables of a function whose gradient
+        with respect to the physical densities is g (x: the element design densities)."""
+        if self.beta is not None:
+            g = g * project_derivative(self.filter.physical(x), self.beta,
+                                       self.problem.projection.eta)
+        return self.P.T @ self.filter.back(x, g, objective=objective)
 
     def evaluate(self, z: np.ndarray) -> Evaluation:
         """All responses at z, one factorisation for the state and every adjoint."""
@@ -124,11 +137,11 @@ class Discrete:
 
         f0, g0 = value_grad(p.objective)
         sign = 1.0 if p.sense == "min" else -1.0
-        g0 = self.P.T @ self.filter.back(x, sign * g0, objective=True)
+        g0 = self.back(x, sign * g0, objective=True)
         values, grads = [], []
         for c in p.constraints:
             v, g = value_grad(c.response)
             values.append(v)
-            grads.append(self.P.T @ self.filter.back(x, g))
+            grads.append(self.back(x, g))
         grads = np.array(grads).reshape(len(values), self.n_variables)
         return Evaluation(f0, g0, np.array(values), grads, rho, u, disp)

@@ -57,10 +57,11 @@ def _normalised(problem, values, grads):
 
 
 def _resume(discrete, out_dir):
-    """(z, iteration, change, history, mma state, scale) from out_dir, or a fresh start."""
+    """(z, iteration, change, history, mma state, scale, beta, iterations at beta) from
+    out_dir, or a fresh start."""
     p = discrete.problem
     z = discrete.initial()
-    fresh = (z, 0, np.inf, np.zeros((0, 2)), MMAState.start(z), 0.0)
+    fresh = (z, 0, np.inf, np.zeros((0, 2)), MMAState.start(z), 0.0, discrete.beta, 0)
     state = load_state(out_dir) if out_dir is not None else None
     if state is None:
         return fresh
@@ -68,8 +69,30 @@ def _resume(discrete, out_dir):
         raise ValueError(f"--out {out_dir}: its state.npz belongs to another problem; "
                          "choose another folder or delete the file")
     mma = MMAState(*(state[k] for k in ("xold1", "xold2", "low", "upp")))
+    beta = float(state["beta"]) if p.projection else None
     return (state["z"], int(state["iteration"]), float(state["change"]), state["history"], mma,
-            float(state["scale"]))
+            float(state["scale"]), beta, int(state["at_beta"]) if p.projection else 0)
+
+
+def _done(projection, change, tolerance, beta, at_beta) -> bool:
+    """Converged: the change below tolerance, with a projection at its largest beta after
+    at least one iteration there."""
+    if projection is None:
+        return change <= tolerance
+    return change <= tolerance and beta >= projection.beta_max and at_beta > 0
+
+
+def _step(discrete, ev, z, it, mma, scale):
+    """The next design variables by OC or MMA; (z_new, objective scale)."""
+    p, opt = discrete.problem, discrete.problem.optimizer
+    if opt.kind == "oc":
+        return oc_update(z, ev.objective_grad, ev.constraint_grads[0], p.volume_limit,
+                         discrete.physical, discrete.lower, discrete.upper, opt.move), scale
+    scale = scale or float(np.max(np.abs(ev.objective_grad)) or 1.0)
+    sign = 1.0 if p.sense == "min" else -1.0
+    f, df = _normalised(p, ev.constraints, ev.constraint_grads)
+    return mma_update(mma, it, z, sign * ev.objective / scale, ev.objective_grad / scale, f, df,
+                      discrete.lower, discrete.upper, opt.move), scale
 
 
 def optimize(problem: Problem, out_dir=None, progress=None) -> Result:
@@ -78,31 +101,31 @@ def optimize(problem: Problem, out_dir=None, progress=None) -> Result:
     after each iteration."""
     discrete = Discrete(problem)
     p, opt = problem, problem.optimizer
-    z, it, change, history, mma, scale = _resume(discrete, out_dir)
-    while change > opt.tolerance and it < opt.max_iterations:
+    z, it, change, history, mma, scale, beta, at_beta = _resume(discrete, out_dir)
+    proj = p.projection
+    while not _done(proj, change, opt.tolerance, beta, at_beta) and it < opt.max_iterations:
         it += 1
+        discrete.beta = beta
         ev = discrete.evaluate(z)
-        if opt.kind == "oc":
-            znew = oc_update(z, ev.objective_grad, ev.constraint_grads[0], p.volume_limit,
-                             discrete.physical, discrete.lower, discrete.upper, opt.move)
-        else:
-            scale = scale or float(np.max(np.abs(ev.objective_grad)) or 1.0)
-            sign = 1.0 if p.sense == "min" else -1.0
-            f, df = _normalised(p, ev.constraints, ev.constraint_grads)
-            znew = mma_update(mma, it, z, sign * ev.objective / scale, ev.objective_grad / scale,
-                              f, df, discrete.lower, discrete.upper, opt.move)
+        znew, scale = _step(discrete, ev, z, it, mma, scale)
         change = float(np.max(np.abs(znew - z)))
         z = znew
         history = np.vstack([history, [ev.objective, ev.physical.mean()]])
+        if proj:
+            at_beta += 1
+            beta = proj.next_beta(beta, at_beta, change, opt.tolerance)
+            at_beta = 0 if beta != discrete.beta else at_beta
         if out_dir is not None:
             save_state(out_dir, z=z, iteration=it, change=change, history=history,
                        xold1=mma.xold1, xold2=mma.xold2, low=mma.low, upp=mma.upp, scale=scale,
-                       digest=p.digest())
+                       digest=p.digest(), beta=beta if proj else 0.0, at_beta=at_beta)
         if progress is not None:
             progress(it, ev.objective, float(ev.physical.mean()), change)
+    discrete.beta = beta
     final = discrete.evaluate(z)
     names = [c.response.kind + (f"_{c.response.spring}" if c.response.spring else "")
              for c in p.constraints]
-    return Result(final.objective, it, float(final.physical.mean()), change <= opt.tolerance,
+    converged = _done(proj, change, opt.tolerance, beta, at_beta)
+    return Result(final.objective, it, float(final.physical.mean()), converged,
                   change, final.physical, final.displacements,
                   dict(zip(names, map(float, final.constraints))), history, p)

@@ -43,16 +43,21 @@ def _rings(density: np.ndarray, grid: Grid, threshold: float) -> list:
 
 
 def extract_outline(density, grid: Grid, anchors=(), threshold: float = 0.5,
-                    min_member: float = 0.0, simplify: float | None = None) -> Outline:
+                    min_member: float = 0.0, simplify: float | None = None,
+                    close: float = 0.0) -> Outline:
     """The outline of ``density > threshold``. ``anchors``: points (m) the mechanism must
     reach (supports, loads, springs): a part touching none is an island, dropped;
     ``min_member`` (m): members thinner than this are measured as ``thin_area``;
-    ``simplify`` (m, default a quarter element): the outline's tolerance."""
+    ``simplify`` (m, default a quarter element): the outline's tolerance; ``close`` (m): a
+    morphological closing of that radius (grown, then shrunk), which joins elements that
+    touch at a corner (one-node hinges) by a neck and rounds concave corners."""
     import shapely
     from shapely.geometry import MultiPolygon, Point, Polygon, box
 
     polys = [Polygon(r).buffer(0) for r in _rings(np.asarray(density), grid, threshold)]
     solid = reduce(lambda a, b: a.symmetric_difference(b), polys, Polygon())
+    if close > 0:
+        solid = solid.buffer(close, 16).buffer(-close, 16)
     solid = solid.intersection(box(0.0, 0.0, grid.lx, grid.ly))
     tol = 0.25 * min(grid.dx, grid.dy) if simplify is None else simplify
     solid = shapely.make_valid(solid.simplify(tol)).buffer(0)

@@ -9,6 +9,7 @@ import numpy as np
 from .filters import KINDS as FILTERS
 from .grid import Grid
 from .interpolation import Interpolation
+from .projection import Projection
 from .regions import Region
 
 DOFS = ("x", "y")
@@ -103,6 +104,7 @@ class Problem:
     symmetry: tuple = ()
     optimizer: Optimizer = field(default_factory=Optimizer)
     initial: float | None = None
+    projection: Projection | None = None
 
     def __post_init__(self):
         check_problem(self)
@@ -125,7 +127,7 @@ class Problem:
         text = repr((self.grid, self.objective, self.sense, self.nu, self.thickness,
                      self.interpolation, self.filter_kind, self.radius, self.supports,
                      self.loads, self.springs, self.constraints, self.passive, self.symmetry,
-                     limits, self.initial))
+                     limits, self.initial) + ((self.projection,) if self.projection else ()))
         return hashlib.sha256(text.encode()).hexdigest()[:16]
 
 
@@ -162,6 +164,9 @@ def check_problem(p: Problem) -> None:
         raise ValueError(f"filter.kind = {p.filter_kind!r}: choose one of {list(FILTERS)}")
     if p.filter_kind != "none" and not (isinstance(p.radius, (int, float)) and p.radius > 1):
         raise ValueError(f"filter.radius = {p.radius!r}: must be > 1 (elements)")
+    if p.projection is not None and p.filter_kind == "sensitivity":
+        raise ValueError("projection: needs filter.kind 'density' (or 'none'), not "
+                         "'sensitivity'")
     if p.objective.kind == "volume":
         raise ValueError("objective.kind = 'volume': optimise compliance or a displacement")
     for c in p.constraints:

@@ -7,6 +7,7 @@ from .grid import Grid
 from .interpolation import Interpolation
 from .problem import (Constraint, Load, Optimizer, Passive, Problem, Response, Spring,
                       Support)
+from .projection import Projection
 from .regions import parse_region
 
 TABLES = {
@@ -16,6 +17,8 @@ TABLES = {
     "filter": {"kind", "radius"},
     "objective": {"kind", "spring", "sense"},
     "optimizer": {"kind", "move", "max_iterations", "tolerance", "initial"},
+    "projection": {"beta", "eta", "beta_max", "every"},
+    "shape": {"rho", "yield_strength", "min_member"},
 }
 LISTS = {
     "support": {"where", "fix"},
@@ -103,6 +106,17 @@ def _optimizer(o: dict) -> Optimizer:
                      _number(o.get("tolerance", 0.01), "optimizer.tolerance"))
 
 
+def _projection(data: dict, t: dict) -> Projection | None:
+    if "projection" not in data:
+        return None
+    d = t["projection"]
+    every = d.get("every", 50)
+    if isinstance(every, bool) or not isinstance(every, int):
+        raise ValueError(f"projection.every = {every!r}: must be an integer >= 1")
+    return Projection(*(_number(d.get(k, v), f"projection.{k}")
+                        for k, v in (("beta", 1.0), ("eta", 0.5), ("beta_max", 32.0))), every)
+
+
 def problem_from_dict(data: dict) -> Problem:
     """The Problem a parsed problem file describes."""
     unknown = sorted(set(data) - set(TABLES) - set(LISTS))
@@ -134,14 +148,19 @@ def problem_from_dict(data: dict) -> Problem:
         passive=tuple(_passive(k, r) for k, r in enumerate(_rows(data, "passive"))),
         symmetry=tuple(symmetry),
         optimizer=_optimizer(o),
-        initial=_number(o["initial"], "optimizer.initial") if "initial" in o else None)
+        initial=_number(o["initial"], "optimizer.initial") if "initial" in o else None,
+        projection=_projection(data, t))
+
+
+def read_problem_file(path) -> dict:
+    """The parsed TOML of a problem file."""
+    path = Path(path)
+    try:
+        return tomllib.loads(path.read_text())
+    except tomllib.TOMLDecodeError as error:
+        raise ValueError(f"{path.name}: not valid TOML: {error}") from None
 
 
 def load_problem(path) -> Problem:
     """Read and check a problem file."""
-    path = Path(path)
-    try:
-        data = tomllib.loads(path.read_text())
-    except tomllib.TOMLDecodeError as error:
-        raise ValueError(f"{path.name}: not valid TOML: {error}") from None
-    return problem_from_dict(data)
+    return problem_from_dict(read_problem_file(path))

@@ -52,9 +52,11 @@ def _supports(problem, mesh, reach):
     return mesh.with_groups(boundaries=groups), supports
 
 
-def verify_mechanism(problem, outline: Outline, E: float | None = None, size=None) -> dict:
-    """The body-fitted shape's mean displacement of every spring along its DOF (m), with the
-    problem's supports, loads (at their nodes) and springs; ``E`` defaults to the problem's."""
+def verify_mechanism(problem, outline: Outline, E: float | None = None, size=None,
+                     springs: bool = True) -> dict:
+    """The body-fitted shape's displacement of every spring point along its DOF (m), with the
+    problem's supports, loads (at their nodes) and, with ``springs``, its springs; ``E``
+    defaults to the problem's, ``size`` (m) to half an element."""
     g = problem.grid
     h = min(g.dx, g.dy)
     mesh = mesh_outline(outline, size or h / 2)
@@ -73,6 +75,8 @@ def verify_mechanism(problem, outline: Outline, E: float | None = None, size=Non
                          for v, s in zip(vertices, problem.springs)])
 
     u0 = spring_u(solve_static(model, supports, loads))
+    if not springs:
+        return {s.name: float(v) for s, v in zip(problem.springs, u0)}
     C = np.column_stack([spring_u(solve_static(model, supports, [PointForce(
         tuple(p), tuple(1.0 if a == AXIS[s.dof] else 0.0 for a in (0, 1)))]))
         for p, s in zip(points, problem.springs)])

@@ -32,6 +32,7 @@ def test_mbb_example_through_the_command(capsys, tmp_path):
                                                      "density.png"}
 
 
+@pytest.mark.slow
 def test_inverter_example_through_the_command(capsys, tmp_path):
     code, out, _ = _run(capsys, EXAMPLES / "inverter.toml", "--json", "--out", tmp_path)
     result = json.loads(out)
@@ -39,6 +40,19 @@ def test_inverter_example_through_the_command(capsys, tmp_path):
     code, out, _ = _run(capsys, EXAMPLES / "inverter.toml", "--out", tmp_path)
     assert code == 0 and "u_out" in out  # the rerun resumes the finished state: no iteration
     assert load_state(tmp_path)["iteration"] == result["iterations"]
+
+
+@pytest.mark.slow
+def test_a_shape_table_writes_the_outline_and_a_model_file(capsys, tmp_path):
+    code, out, _ = _run(capsys, EXAMPLES / "inverter_mm.toml", "--json", "--out", tmp_path)
+    result = json.loads(out)
+    assert code == 0 and result["converged"] and result["u_out"] < 0
+    assert {"outline.dxf", "outline.step", "design.geo", "design.toml"} <= {
+        p.name for p in tmp_path.iterdir()}
+    shape, tol = result["shape"], result["shape"]["tolerance"]
+    assert shape["parts"] == 1 and shape["islands"] == []
+    assert abs(shape["body_fitted"]["output"] - result["u_out"]) <= tol["tolerance"]
+    assert abs(shape["body_fitted"]["output"] / result["u_out"] - 1) < 0.1
 
 
 def test_a_resumed_run_ends_where_an_uninterrupted_one_does(tmp_path):

@@ -1,11 +1,12 @@
 """Every objective's and constraint's gradient against central finite differences, on a
 6 x 4 grid with the density filter active (the sensitivity filter is a heuristic, not a
-gradient), for SIMP and RAMP, with passive elements and symmetry."""
+gradient), for SIMP and RAMP, with passive elements and symmetry, and through the Heaviside
+projection at several beta."""
 import numpy as np
 import pytest
 from problems import inverter, mbb
 
-from flexfem.topopt import Constraint, Interpolation, Passive, Region, Response
+from flexfem.topopt import Constraint, Interpolation, Passive, Projection, Region, Response
 from flexfem.topopt.model import Discrete
 
 CONSTRAINTS = (Constraint(Response("volume"), upper=0.4),
@@ -14,8 +15,9 @@ CONSTRAINTS = (Constraint(Response("volume"), upper=0.4),
                Constraint(Response("displacement", "output"), lower=-2.0))
 
 
-def _fd_check(problem, seed=0):
+def _fd_check(problem, seed=0, beta=None):
     d = Discrete(problem)
+    d.beta = beta if beta is not None else d.beta
     rng = np.random.default_rng(seed)
     z = np.clip(0.3 + 0.5 * rng.random(d.n_variables), d.lower, d.upper)
     ev = d.evaluate(z)
@@ -53,3 +55,12 @@ def test_gradients_with_passive_regions_and_symmetry():
                Passive(Region("box", ((5.0, 3.0), (6.0, 4.0))), "void"))
     _fd_check(mbb(6, 4, "density", 1.5, passive=passive, symmetry=("y",)))
     _fd_check(inverter(6, 4, "none", constraints=CONSTRAINTS, symmetry=("x",)))
+
+
+@pytest.mark.parametrize("beta", [1.0, 8.0])
+def test_gradients_through_the_heaviside_projection(beta):
+    projection = Projection(beta=1.0, eta=0.4, beta_max=64.0)
+    _fd_check(mbb(6, 4, "density", 1.5, projection=projection), beta=beta)
+    _fd_check(inverter(6, 4, "density", constraints=CONSTRAINTS, projection=projection,
+                       passive=(Passive(Region("box", ((0.0, 0.0), (1.0, 1.0))), "solid"),)),
+              beta=beta)

@@ -30,3 +30,15 @@ def test_outline_keeps_holes_drops_islands_and_flags_thin_members(tmp_path):
     assert len(polylines) == 2 and all(p.closed for p in polylines)
     xs = [x for p in polylines for x, *_ in p.get_points()]
     assert 0.0 - 0.6 <= min(xs) and max(xs) <= 30.0 + 0.6   # mm
+
+
+def test_a_closing_joins_a_one_node_hinge_by_a_neck():
+    grid = Grid(4, 4, 0.004, 0.004)    # two 2 x 2 mm blocks touching at (2, 2) mm
+    ix, iy = np.divmod(np.arange(grid.n_elements), grid.nely)
+    density = np.where(((ix < 2) & (iy < 2)) | ((ix >= 2) & (iy >= 2)), 1.0, 0.0)
+    assert len(extract_outline(density, grid).parts) == 2
+    closed = extract_outline(density, grid, close=0.5e-3)
+    assert len(closed.parts) == 1
+    from shapely import LineString
+    neck = LineString([(0.0, 0.004), (0.004, 0.0)]).intersection(closed.shape).length
+    assert abs(neck - 2 * 0.5e-3 * (np.sqrt(2) - 1)) < 0.1e-3   # m, the neck's width

@@ -8,35 +8,19 @@ from scipy.sparse import coo_matrix
 from scipy.sparse.linalg import spsolve
 
 
-def top88(nelx, nely, volfrac, penal, rmin, ft, max_loop=None):
-    """Returns (c, loop, xPhys) of the MBB half-beam; ft = 1 sensitivity, 2 density filter."""
-    # MATERIAL PROPERTIES
-    E0 = 1.0
-    Emin = 1e-9
-    nu = 0.3
-    # PREPARE FINITE ELEMENT ANALYSIS
+def lk(nu):
+    """top88's element stiffness of a unit square, E = 1."""
     A11 = np.array([[12, 3, -6, -3], [3, 12, 3, 0], [-6, 3, 12, -3], [-3, 0, -3, 12]])
     A12 = np.array([[-6, -3, 0, 3], [-3, -6, -3, -6], [0, -3, -6, 3], [3, -6, 3, -6]])
     B11 = np.array([[-4, 3, -2, 9], [3, -4, -9, 4], [-2, -9, -4, -3], [9, 4, -3, -4]])
     B12 = np.array([[2, -3, 4, -9], [-3, 2, 9, -2], [4, 9, 2, 3], [-9, -2, 3, 2]])
     KE = 1 / (1 - nu**2) / 24 * (np.block([[A11, A12], [A12.T, A11]])
                                  + nu * np.block([[B11, B12], [B12.T, B11]]))
-    nodenrs = np.arange(1, (1 + nelx) * (1 + nely) + 1).reshape(1 + nelx, 1 + nely).T
-    edofVec = (2 * nodenrs[:-1, :-1] + 1).reshape(nelx * nely, order="F")
-    edofMat = (np.tile(edofVec[:, None], (1, 8))
-               + np.array([0, 1, 2 * nely + 2, 2 * nely + 3, 2 * nely, 2 * nely + 1, -2, -1]))
-    edofMat = edofMat - 1  # 0-based
-    iK = np.kron(edofMat, np.ones((8, 1), dtype=int)).T.reshape(-1, order="F")
-    jK = np.kron(edofMat, np.ones((1, 8), dtype=int)).T.reshape(-1, order="F")
-    # DEFINE LOADS AND SUPPORTS (HALF MBB-BEAM)
-    ndof = 2 * (nely + 1) * (nelx + 1)
-    F = np.zeros(ndof)
-    F[1] = -1
-    U = np.zeros(ndof)
-    fixeddofs = np.union1d(np.arange(0, 2 * (nely + 1), 2), [2 * (nelx + 1) * (nely + 1) - 1])
-    alldofs = np.arange(ndof)
-    freedofs = np.setdiff1d(alldofs, fixeddofs)
-    # PREPARE FILTER
+    return KE
+
+
+def prepare_filter(nelx, nely, rmin):
+    """top88's filter matrix H and its row sums Hs."""
     iH = np.ones(nelx * nely * (2 * (int(np.ceil(rmin)) - 1) + 1) ** 2, dtype=int)
     jH = np.ones(iH.shape, dtype=int)
     sH = np.zeros(iH.shape)
@@ -55,6 +39,34 @@ def top88(nelx, nely, volfrac, penal, rmin, ft, max_loop=None):
                     k = k + 1
     H = coo_matrix((sH[:k], (iH[:k] - 1, jH[:k] - 1)), shape=(nelx * nely, nelx * nely)).tocsr()
     Hs = np.asarray(H.sum(axis=1)).ravel()
+    return H, Hs
+
+
+def top88(nelx, nely, volfrac, penal, rmin, ft, max_loop=None):
+    """Returns (c, loop, xPhys) of the MBB half-beam; ft = 1 sensitivity, 2 density filter."""
+    # MATERIAL PROPERTIES
+    E0 = 1.0
+    Emin = 1e-9
+    nu = 0.3
+    # PREPARE FINITE ELEMENT ANALYSIS
+    KE = lk(nu)
+    nodenrs = np.arange(1, (1 + nelx) * (1 + nely) + 1).reshape(1 + nelx, 1 + nely).T
+    edofVec = (2 * nodenrs[:-1, :-1] + 1).reshape(nelx * nely, order="F")
+    edofMat = (np.tile(edofVec[:, None], (1, 8))
+               + np.array([0, 1, 2 * nely + 2, 2 * nely + 3, 2 * nely, 2 * nely + 1, -2, -1]))
+    edofMat = edofMat - 1  # 0-based
+    iK = np.kron(edofMat, np.ones((8, 1), dtype=int)).T.reshape(-1, order="F")
+    jK = np.kron(edofMat, np.ones((1, 8), dtype=int)).T.reshape(-1, order="F")
+    # DEFINE LOADS AND SUPPORTS (HALF MBB-BEAM)
+    ndof = 2 * (nely + 1) * (nelx + 1)
+    F = np.zeros(ndof)
+    F[1] = -1
+    U = np.zeros(ndof)
+    fixeddofs = np.union1d(np.arange(0, 2 * (nely + 1), 2), [2 * (nelx + 1) * (nely + 1) - 1])
+    alldofs = np.arange(ndof)
+    freedofs = np.setdiff1d(alldofs, fixeddofs)
+    # PREPARE FILTER
+    H, Hs = prepare_filter(nelx, nely, rmin)
     # INITIALIZE ITERATION
     x = np.full((nely, nelx), volfrac)
     xPhys = x.copy()

@@ -1,0 +1,96 @@
+"""A displacement amplifier designed in the DBMA's envelope (geometry/dbma: the paper's
+design, its layout), as its quarter: the actuator's pad pushed along +x, the output face on
+top pushed along +y, the symmetry lines x = 0 and y = 0 held normal to themselves; the
+actuator's room (|y| below the DBMA's arm gap, inside the pads) kept void, the pad and the
+output face solid. R = u_out / u_in of the quarter is the full part's output over the
+actuator's elongation (the DBMA's R_fem)."""
+from .grid import Grid
+from .interpolation import Interpolation
+from .problem import (Constraint, Load, Optimizer, Passive, Problem, Response, Spring,
+                      Support)
+from .projection import Projection
+from .regions import Region
+
+
+def dbma_envelope(params=None, layout=None) -> dict:
+    """The DBMA's quarter (m): ``width``, ``height``, ``pad`` ((x0, x1), (y0, y1)),
+    ``output`` ((x0, x1), y), ``gap`` (the actuator's room, y), ``thickness``, ``E``, ``nu``."""
+    from ..geometry.dbma.drawing import DBMALayout, quarter_rects
+    from ..geometry.dbma.params import paper_design
+
+    p = params or paper_design()
+    layout = layout or DBMALayout()
+    member, pad, out = quarter_rects(p, layout)[:3]
+    return {"width": member.x1, "height": member.y1, "pad": ((pad.x0, pad.x1), (0.0, pad.y1)),
+            "output": ((0.0, out.x1), out.y1), "gap": layout.arm_gap, "thickness": p.d,
+            "E": p.E, "nu": p.nu}
+
+
+def amplifier_problem(force: float, k_in_min: float, k_actuator: float, k_output: float,
+                      element: float = 1e-3, volume: float = 0.3, iterations: int = 300,
+                      radius: float = 3.0, envelope: dict | None = None) -> Problem:
+    """Maximise the output's displacement. ``force`` (N): the actuator's push on one pad
+    (the quarter carries half); ``k_in_min`` (N/m): the least input stiffness (force over
+    elongation, the DBMA's k_in), a limit on u_in; ``k_actuator``, ``k_output`` (N/m): the
+    input and output springs of the full part; ``element`` (m): grid size; ``volume``: the
+    solid fraction of the quarter; ``radius`` (elements): the density filter's."""
+    env = envelope or dbma_envelope()
+    nelx, nely = round(env["width"] / element), round(env["height"] / element)
+    dx, h = env["width"] / nelx, env["height"] / nely
+    (px0, px1), (_, py1) = env["pad"]
+    px0, px1, py1 = round(px0 / dx) * dx, round(px1 / dx) * dx, round(py1 / h) * h
+    (_, ox1), top = env["output"]
+    ox1 = round(ox1 / dx) * dx
+    f = force / 2
+    return Problem(
+        Grid(nelx, nely, env["width"], env["height"]), Response("displacement", "output"),
+        sense="max", nu=env["nu"], thickness=env["thickness"],
+        interpolation=Interpolation("simp", 3.0, env["E"], 1e-9 * env["E"]),
+        filter_kind="density", radius=radius,
+        supports=(Support(Region("edge", "left"), ("x",)),
+                  Support(Region("edge", "bottom"), ("y",))),
+        loads=(Load(Region("box", ((px0, 0.0), (px0, py1))), (f, 0.0)),),
+        springs=(Spring("input", Region("box", ((px0, 0.0), (px0, py1))), "x", k_actuator),
+                 Spring("output", Region("box", ((0.0, top), (ox1, top))), "y",
+                        k_output / 2)),
+        constraints=(Constraint(Response("volume"), upper=volume),
+                     Constraint(Response("displacement", "input"), upper=f / k_in_min)),
+        passive=(Passive(Region("box", ((0.0, 0.0), (px0, env["gap"]))), "void"),
+                 Passive(Region("box", ((px0, 0.0), (px1, py1))), "solid"),
+                 Passive(Region("box", ((0.0, top - 2 * h), (ox1, top))), "solid")),
+        optimizer=Optimizer("mma", 0.2, iterations, 0.01),
+        projection=Projection(beta=1.0, beta_max=16.0, every=40))
+
+
+def _spring_free(problem) -> Problem:
+    """The problem with its springs made negligible (1e-9 of their stiffness)."""
+    from dataclasses import replace
+
+    springs = tuple(replace(s, stiffness=1e-9 * s.stiffness) for s in problem.springs)
+    return replace(problem, springs=springs, constraints=problem.constraints[:1])
+
+
+def verify_amplifier(result, threshold: float = 0.3, neck: float = 0.6e-3,
+                     size: float | None = None) -> dict:
+    """R = u_out / u_in of a finished amplifier: the density model's and the body-fitted
+    shape's (the outline of ``density > threshold``, one-node hinges closed into necks of
+    ``neck`` m, meshed at ``size`` m, default half an element), each under the actuator's
+    force alone (as the DBMA's R_fem) and with the springs; and the outline's parts."""
+    from .model import Discrete
+    from .outline import extract_outline, problem_anchors
+    from .verify import verify_mechanism
+
+    problem = result.problem
+    d = Discrete(_spring_free(problem))
+    u = d.system.solve(problem.interpolation.modulus(result.density), d.force)[:, 0]
+    free = {name: float(v @ u) for name, v in d.spring_vectors.items()}
+    outline = extract_outline(result.density, problem.grid, problem_anchors(problem),
+                              threshold=threshold, close=neck / (2 * (2 ** 0.5 - 1)))
+    fitted_free = verify_mechanism(problem, outline, size=size, springs=False)
+    fitted = verify_mechanism(problem, outline, size=size)
+    dens = result.displacements
+    return {"R_density": free["output"] / free["input"],
+            "R_density_springs": dens["output"] / dens["input"],
+            "R_fitted": fitted_free["output"] / fitted_free["input"],
+            "R_fitted_springs": fitted["output"] / fitted["input"],
+            "u_in_fitted_springs": fitted["input"], "parts": len(outline.parts)}

@@ -1,0 +1,54 @@
+"""A finished design as a mechanism, for the command: the outline (DXF, STEP), a model file
+(design.geo, design.toml) that ``flexfem analyze`` reads, the body-fitted re-solve of the
+springs and the derived tolerance. Asked for by a problem file's ``[shape]`` table."""
+from pathlib import Path
+
+from .export import write_step
+from .model_file import write_model
+from .outline import extract_outline, problem_anchors, write_dxf
+from .tolerance import body_fitted_tolerance
+from .verify import verify_mechanism
+
+KEYS = {"rho", "yield_strength", "min_member"}
+
+
+def shape_options(data: dict) -> dict | None:
+    """The checked ``[shape]`` table of a parsed problem file (None without one):
+    ``rho`` (kg/m^3) and ``yield_strength`` (Pa) for the model file, ``min_member`` (m)."""
+    if "shape" not in data:
+        return None
+    table = data["shape"]
+    if not isinstance(table, dict):
+        raise ValueError(f"shape: must be a table, not {table!r}")
+    unknown = sorted(set(table) - KEYS)
+    if unknown:
+        raise ValueError(f"shape: unknown key {unknown[0]!r} (known: {sorted(KEYS)})")
+    out = {}
+    for key in ("rho", "yield_strength", "min_member"):
+        value = table.get(key, 0.0 if key == "min_member" else None)
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or not (
+                value > 0 or (key == "min_member" and value == 0)):
+            raise ValueError(f"shape.{key} = {value!r}: must be a number > 0")
+        out[key] = float(value)
+    return out
+
+
+def write_shape(result, folder, options: dict) -> dict:
+    """Write outline.dxf, outline.step, design.geo and design.toml into ``folder``; returns
+    {files, parts, islands (m^2), thin_area (m^2), body_fitted {spring: m}, tolerance}."""
+    problem, folder = result.problem, Path(folder)
+    outline = extract_outline(result.density, problem.grid, problem_anchors(problem),
+                              min_member=options["min_member"])
+    write_dxf(outline, folder / "outline.dxf")
+    write_step(outline, folder / "outline.step")
+    write_model(problem, outline, folder, rho=options["rho"],
+                yield_strength=options["yield_strength"])
+    out = {"files": ["outline.dxf", "outline.step", "design.geo", "design.toml"],
+           "parts": len(outline.parts), "islands": list(outline.islands),
+           "thin_area": outline.thin_area}
+    if problem.springs:
+        out["body_fitted"] = verify_mechanism(problem, outline)
+        name = problem.objective.spring or problem.springs[-1].name
+        out["tolerance"] = {"spring": name, **body_fitted_tolerance(problem, result.density,
+                                                                     name)}
+    return out
