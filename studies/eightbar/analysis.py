@@ -205,6 +205,7 @@ def analyze_eightbar(params: EightBarFlexureParams | None = None, travel: float 
     if not (math.isfinite(travel) and 0 < travel < params.rigid.ground_spacing):
         raise ValueError(f"travel = {travel!r} m must be in (0, ground_spacing = "
                          f"{params.rigid.ground_spacing} m)")
+    replace(params.rigid, travel=travel)  # the linkage's own range, before meshing
     options = {"n_per_flexure": n_per_flexure, "root_extension": root_extension}
     fe, places, facts = build(params, model, size_factor, max_dofs, dim, **options)
     lin = linear_analysis(fe, travel / 2, places)

@@ -104,6 +104,16 @@ def test_cli_mesh_writes_a_file(tmp_path, capsys, suffix):
     assert "end_effector" in out["groups"]
 
 
+def test_a_travel_no_mesh_resolves_is_refused_before_meshing():
+    """The Python API applies the linkage's own range (EightBarParams) as the CLI does: a
+    travel 1e4 times smaller than the links is refused at once, not after minutes of a
+    large-deflection solve that cannot converge."""
+    from flexfem.studies.eightbar.analysis import analyze_eightbar
+
+    with pytest.raises(ValueError, match="10000 times travel"):
+        analyze_eightbar(travel=1e-6, n_modes=0, nonlinear=False)
+
+
 def test_cli_bad_travel_exits_2(capsys):
     with pytest.raises(SystemExit) as refused:  # the option's type refuses it
         main(["eightbar", "analyze", "--quick", "--travel", "-1"])
