@@ -54,8 +54,8 @@ def cross_pivot(length: float, thickness: float, depth: float, angle_deg: float 
     """A pivot of two leaves ``length`` long at ``angle_deg`` to each other.
 
     ``crossing``: the leaves cross at their middles, L cos(angle / 2) / 2 above the ground, and
-    are joined there (a planar, monolithic cross pivot: four half-leaves from a rigid joint,
-    K = 8 E I / L). Otherwise the leaves meet neither each other nor the pivot: they run from
+    are joined there (the planar, monolithic "cartwheel" pivot: four half-leaves from a rigid
+    joint, K = 8 E I / L). Otherwise the leaves meet neither each other nor the pivot: they run from
     the ground to the stage on the lines through the pivot (0, 1.25 L cos(angle / 2)), each
     from 1.25 L to 0.25 L before it (a remote-centre pivot: the stage turns about that point,
     K = 2 :func:`pivot_stiffness` (EI, L, -0.25))."""
