@@ -13,6 +13,7 @@ from .engine.convergence import (
 )
 from .engine.store import case_key, export_csv, export_parquet, flexfem_version, parquet_available
 from .engine.sweep import Study, plot_metric
+from .engine.tolerance import confirm_extremes
 from .mechanisms import (
     check_mechanism,
     coarsest_size_factor,
@@ -84,6 +85,11 @@ def sweep(study, out_dir=None, workers: int | None = None, scheduler: str | None
         tables.append("tolerances.json")
         if extra["tolerances"]["metrics"]:
             figures.append(plot_tolerances(extra["tolerances"], out / "tolerances.png").name)
+        if study.tolerances.confirm is not None:  # the extremes re-run by the confirming model
+            extra["tolerances"]["confirm"] = confirm_extremes(study, lambda s: run_study(
+                s, out / "results.sqlite", allow_code=allow_code, workers=workers,
+                scheduler=scheduler, progress=progress, max_cases=max_cases))
+            (out / "tolerances.json").write_text(json.dumps(extra["tolerances"], indent=1))
     return {**extra, "name": study.name, "mechanism": study.mechanism, "out": str(out),
             "store": str(result.store_path), "executor": result.executor,
             "cases": len(result.cases), "computed": result.computed, "reused": result.reused,

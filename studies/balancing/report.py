@@ -11,7 +11,7 @@ from ...fem import material
 from ..engine.tables import write_rows
 from ..report.comparison import Comparison, rows as comparison_rows
 from ..report.figures import pyplot, save
-from ..report.stroke import fatigue_note, stroke_limits, stroke_table
+from ..report.stroke import fatigue_note, plot_stroke_limits, stroke_limits, stroke_table
 from .calibration import calibrate_workspace, calibration_comparisons
 from .design import (METHODS, PAPER_TABLES, balance_robot, beyond_paper, default_workspace,
                      paper_table, pivot_designs, sensitivity_rows)
@@ -207,6 +207,8 @@ def reproduce(out_dir: Path, quick: bool = False) -> dict:
               f"RMS reduction {r['rms_reduction_leaf_fem_pct']:.1f} % (ideal torsion spring "
               f"{r['rms_reduction_ideal_torsion_pct']:.1f} %)" for r in negative["rows"]]
     limits = pivot_stroke_limits(pivot_fem["rows"])
+    if limits and not quick:  # the quick report keeps to its pages; the table says the same
+        figures.append(plot_stroke_limits(limits, out_dir / "balancing_stroke_limits.png"))
     return {"paragraph": paragraph(fit), "calibration": fit, "comparisons": rows, "figures": figures, "tables": tables,
             "notes": notes + ([fatigue_note(limits)] if limits else []),
             "stroke_limits": limits, "key_tables": [stroke_table(limits)] if limits else [],

@@ -15,14 +15,30 @@ A study file declares, beside its base design::
 standard deviations (99.7 % of parts inside nominal +- tolerance), for "uniform" the band's
 half-width (every value equally likely). The designs are ordinary cases of the study: stored
 as they complete, resumable, on local workers or Dask. SI units.
+
+Two optional keys::
+
+    [tolerances]
+    metrics = ["k_x", "f1_hz"]   # the outputs analysed (default: every varying one)
+    [tolerances.confirm]         # options of a confirming model, over the study's options
+    model = "continuum"
+
+:func:`summarize` gives the spread and indices from the study's stored cases. With
+``confirm``, :func:`confirm_extremes` re-runs the designs at the extremes of each
+analysed output (its lowest and highest sample) with the confirming model, as cases of the
+same store (resumable, local or Dask), and reports the screening model's value beside the
+confirming one's at each: the beam model screens the Monte Carlo, the continuum re-checks
+where the scatter ends.
 """
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 import math
 
 import numpy as np
 
+from .store import case_key, flexfem_version
+
 DISTRIBUTIONS = ("normal", "uniform")
-KEYS = ("n", "seed", "parameters")
+KEYS = ("n", "seed", "parameters", "metrics", "confirm")
 
 
 @dataclass(frozen=True)
@@ -60,6 +76,8 @@ class Tolerances:
     parameters: dict = field(default_factory=dict)
     n: int = 256
     seed: int = 0
+    metrics: tuple = ()
+    confirm: dict | None = None
 
     def __post_init__(self):
         if not self.parameters:
@@ -69,6 +87,13 @@ class Tolerances:
                              "(Sobol' sequences balance only there)")
         if not (isinstance(self.seed, int) and self.seed >= 0):
             raise ValueError(f"tolerances.seed = {self.seed!r} must be an integer >= 0")
+        if not (isinstance(self.metrics, (list, tuple))
+                and all(isinstance(m, str) and m for m in self.metrics)):
+            raise ValueError(f"tolerances.metrics = {self.metrics!r} must be a list of "
+                             "metric names")
+        if self.confirm is not None and not (isinstance(self.confirm, dict) and self.confirm):
+            raise ValueError(f"[tolerances.confirm] = {self.confirm!r} must be a table of the "
+                             "confirming model's options, e.g. { model = \"continuum\" }")
 
     @property
     def problem(self) -> dict:
@@ -94,12 +119,16 @@ class Tolerances:
 
         names = self.problem["names"]
         metrics = sorted(set.intersection(*(set(o) for o in outputs)))
+        if self.metrics:
+            metrics = [m for m in self.metrics if m in metrics]
         out = {}
         for metric in metrics:
             y = np.array([o[metric] for o in outputs], dtype=float)
             if not np.all(np.isfinite(y)) or np.ptp(y) == 0:
                 continue
-            s = sobol.analyze(self.problem, y, calc_second_order=False, seed=self.seed)
+            # SALib seeds its bootstrap only for a truthy seed (0 would draw at random):
+            # seed + 1 makes the confidence intervals reproducible for every study seed
+            s = sobol.analyze(self.problem, y, calc_second_order=False, seed=self.seed + 1)
             total = dict(zip(names, map(float, s["ST"])))
             out[metric] = {
                 "mean": float(y.mean()), "std": float(y.std(ddof=1)),
@@ -134,4 +163,118 @@ def tolerances_from_dict(table) -> Tolerances:
             parameters[name] = Tolerance(**spec)
         except (TypeError, ValueError) as error:
             raise ValueError(f"tolerances.parameters.{name}: {error}") from None
-    return Tolerances(parameters, table.get("n", 256), table.get("seed", 0))
+    metrics = table.get("metrics", ())
+    return Tolerances(parameters, table.get("n", 256), table.get("seed", 0),
+                      tuple(metrics) if isinstance(metrics, list) else metrics,
+                      table.get("confirm"))
+
+
+def varying(outputs: list) -> list:
+    """The metrics every design with a result (not None) returns as a finite number that is
+    not the same for all: those :meth:`Tolerances.analyze` would analyse."""
+    done = [o for o in outputs if o is not None]
+    if not done:
+        return []
+    out = []
+    for metric in sorted(set.intersection(*(set(o) for o in done))):
+        values = [o[metric] for o in done]
+        if all(isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+               for v in values) and max(values) > min(values):
+            out.append(metric)
+    return out
+
+
+def extreme_designs(points: list, outputs: list, metrics) -> dict:
+    """{metric: {"low": i, "high": i}}: the indices of the designs with the lowest and the
+    highest value of each metric among ``outputs`` (None: a design without a result);
+    metrics that no design returns as a number are left out."""
+    out = {}
+    for metric in metrics:
+        values = [(o[metric], i) for i, o in enumerate(outputs) if o is not None
+                  and isinstance(o.get(metric), (int, float)) and math.isfinite(o[metric])]
+        if values:
+            out[metric] = {"low": min(values)[1], "high": max(values)[1]}
+    return out
+
+
+def summarize(study, cases) -> dict:
+    """The tolerance analysis of ``study`` (a sweep Study with tolerances) from its stored
+    ``cases`` (CaseResult, keyed with the study's options as run): {"n_designs", "failed"
+    (designs without a result: no indices then), "parameters" {name: {nominal, tolerance,
+    distribution}}, "metrics" {metric: spread and Sobol indices, see
+    :meth:`Tolerances.analyze`}}."""
+    by_key = {c.key: c for c in cases}
+    version = flexfem_version()
+    outputs, failed = [], 0
+    for point in study.tolerances.points():
+        case = by_key.get(case_key(study.mechanism, {**study.base, **point}, study.options,
+                                   version))
+        if case is None or not case.ok:
+            failed += 1
+        else:
+            outputs.append(case.metrics)
+    parameters = {k: vars(v) for k, v in study.tolerances.parameters.items()}
+    metrics = study.tolerances.analyze(outputs) if not failed else {}
+    return {"n_designs": len(outputs) + failed, "failed": failed, "parameters": parameters,
+            "metrics": metrics}
+
+
+def confirm_extremes(study, run) -> dict:
+    """Re-check the extremes of a study's tolerances with its ``[tolerances.confirm]`` model.
+
+    ``study``: a sweep Study whose tolerances declare ``confirm``; ``run(study) ->
+    StudyResult`` runs a study into the store that holds (or will hold) its screening cases,
+    e.g. ``lambda s: run_study(s, store, evaluate, workers=2)`` (engine/sweep.py: local
+    workers or Dask, resumable). The screening cases are taken from it (those missing are
+    computed first); per analysed metric (``metrics``, default those that vary, see
+    :func:`varying`), the lowest and the highest design are evaluated again with the study's
+    options updated by ``confirm``, as cases of the same store. Returns {"options" (the
+    confirming model's), "designs" (how many distinct designs were re-run), "failed" (those
+    the confirming model could not evaluate), "computed" (cases computed by this call,
+    screening and confirming), "metrics" {metric: {"low" | "high": {"params" (the toleranced
+    values), "screen", "confirm", "rel_diff" ((confirm - screen) / |screen|)},
+    "spread_screen", "spread_confirm" (high - low by each model), "spread_ratio" (confirm /
+    screen)}}}; a design that failed has confirm and rel_diff None."""
+    tolerances = study.tolerances
+    if tolerances is None or tolerances.confirm is None:
+        raise ValueError("the study declares no [tolerances.confirm]: nothing to re-check")
+    screened = run(study)
+    version = flexfem_version()
+    by_key = {c.key: c for c in screened.cases}
+    points = tolerances.points()
+    outputs = []
+    for point in points:
+        case = by_key.get(case_key(study.mechanism, {**study.base, **point},
+                                   screened.study.options, version))
+        outputs.append(case.metrics if case is not None and case.ok else None)
+    extremes = extreme_designs(points, outputs, list(tolerances.metrics) or varying(outputs))
+    chosen = sorted({i for ends in extremes.values() for i in ends.values()})
+    check = replace(study, name=f"{study.name}_confirm", grid={}, sample=None, plots=(),
+                    tolerances=None, options={**screened.study.options, **tolerances.confirm},
+                    cases=tuple(points[i] for i in chosen))
+    confirmed = run(check) if chosen else None
+    results = {c.key: c for c in confirmed.cases} if confirmed is not None else {}
+    out = {}
+    failed = set()
+    for metric, ends in extremes.items():
+        row = {}
+        for end, i in ends.items():
+            case = results.get(case_key(study.mechanism, {**study.base, **points[i]},
+                                        confirmed.study.options, version))
+            screen = outputs[i][metric]
+            value = (case.metrics.get(metric) if case is not None and case.ok else None)
+            if value is None:
+                failed.add(i)
+            row[end] = {"params": dict(points[i]), "screen": screen, "confirm": value,
+                        "rel_diff": (None if value is None or screen == 0
+                                     else (value - screen) / abs(screen))}
+        lo, hi = row["low"], row["high"]
+        row["spread_screen"] = hi["screen"] - lo["screen"]
+        row["spread_confirm"] = (None if None in (hi["confirm"], lo["confirm"])
+                                 else hi["confirm"] - lo["confirm"])
+        row["spread_ratio"] = (None if row["spread_confirm"] is None or row["spread_screen"] == 0
+                               else row["spread_confirm"] / row["spread_screen"])
+        out[metric] = row
+    computed = screened.computed + (confirmed.computed if confirmed is not None else 0)
+    return {"options": dict(tolerances.confirm), "designs": len(chosen), "failed": len(failed),
+            "computed": computed, "metrics": out}

@@ -93,3 +93,53 @@ def stroke_sentence(limits: list) -> str:
              f"({s['material']})" for s in limits]
     return ("Stroke limits (before yield; fatigue amplitude, Goodman, fully reversed; stress "
             "basis and fatigue data in the audit): " + " | ".join(parts) + ".")
+
+
+def fatigue_stress(limits: dict):
+    """The stress amplitude (Pa) the fatigue-limited stroke reaches (Goodman), or None."""
+    amplitude = limits["stroke_limit_fatigue_goodman"]
+    return None if amplitude is None else limits["stress_per_stroke"] * amplitude
+
+
+def plot_stroke_limits(limits: list, path, caption: str | None = None) -> dict:
+    """Peak stress against stroke for each stroke of ``limits`` (one panel each, at most
+    three; linear scaling: stress = stress_per_stroke x stroke) up to 1.25 times the
+    yield-limited stroke, with the yield strength and the fatigue-limited stress amplitude
+    (Goodman) drawn across and their strokes marked. Returns the figure entry."""
+    from .figures import axis_label, pyplot, save
+
+    plt = pyplot()
+    shown = limits[:3]
+    fig, axes = plt.subplots(1, len(shown), figsize=(4.2 * len(shown), 3.0), squeeze=False)
+    for ax, s in zip(axes[0], shown):
+        scale, unit = (180 / math.pi, "deg") if s["unit"] == "rad" else (1e6, "um")
+        if s["unit"] == "m" and s["stroke_limit_yield"] > 2e-3:
+            scale, unit = 1e3, "mm"
+        top = 1.25 * s["stroke_limit_yield"]
+        ax.plot([0, top * scale], [0, s["stress_per_stroke"] * top / 1e6], "-",
+                label="peak stress (linear)")
+        ax.axhline(s["yield_strength"] / 1e6, color="tab:red", lw=1,
+                   label=f"yield {s['yield_strength'] / 1e6:.0f} MPa")
+        ax.axvline(s["stroke_limit_yield"] * scale, color="tab:red", ls=":", lw=1)
+        stress = fatigue_stress(s)
+        if stress is not None:
+            cycles = f"{s['fatigue_cycles']:.0e}".replace("e+0", "e").replace("e+", "e")
+            ax.axhline(stress / 1e6, color="tab:green", lw=1,
+                       label=f"fatigue amplitude {stress / 1e6:.0f} MPa ({cycles} cycles)")
+            ax.axvline(s["stroke_limit_fatigue_goodman"] * scale, color="tab:green", ls=":",
+                       lw=1)
+        ax.set_xlabel(axis_label(s["stroke"], unit), fontsize=8)
+        ax.set_ylabel(axis_label("peak von Mises", "MPa"), fontsize=8)
+        ax.set_xlim(0, top * scale)
+        ax.set_ylim(0, None)
+        ax.tick_params(labelsize=7)
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=6.5, loc="upper left")
+    fig.tight_layout()
+    return save(fig, path, caption or (
+        "Stroke limits: the peak stress grows with the stroke (linear scaling of the "
+        "section's solve) until it reaches the yield strength (red) or, cycled fully "
+        "reversed, the fatigue-limited amplitude (Goodman, green); dotted: the strokes "
+        "where each is reached (" + "; ".join(f"{s['stroke']}: {s['basis']}"
+                                              for s in shown) + ")."))
+

@@ -76,3 +76,55 @@ def test_the_eightbar_tolerance_study_names_the_tolerance_that_matters(tmp_path)
     assert {"k_x", "f1_hz", "fem_deviation_pct"} <= set(metrics)
     assert metrics["k_x"]["dominant"] in ("flexure_width", "base_flexure_width")
     assert metrics["k_x"]["total_order"]["root_fillet_radius"] < 0.2
+
+
+def _example(name: str) -> dict:
+    return tomllib.loads(next(p for p in TOP if p.name == name).read_text())
+
+
+@pytest.mark.parametrize("module, name", [("eightbar.report", "eightbar_tolerances.toml"),
+                                          ("dbma.report", "dbma_tolerances.toml")])
+def test_the_report_runs_the_example_tolerance_study(module, name):
+    """The report's tolerance study is the example file's (its sample size aside)."""
+    import importlib
+
+    table = importlib.import_module(f"flexfem.studies.{module}").TOLERANCES
+    assert {k: v for k, v in table.items() if k != "name"} == \
+        {k: v for k, v in _example(name).items() if k != "name"}
+
+
+def test_the_report_searches_the_example_front():
+    from flexfem.studies.dbma.optimize_output import FRONT
+    assert FRONT == _example("dbma_front.toml")
+
+
+@pytest.mark.slow
+def test_the_dbma_tolerance_study_names_the_hinge_tolerances_that_matter(tmp_path):
+    """The example with a smaller Monte Carlo (n = 16: 80 designs by the beam model): R
+    scatters with the hinge offset h (R ~ l / h for a bow amplifier), the working mode with
+    the hinge thickness b (its stiffness ~ b^3); the length l matters little for either; the
+    continuum re-checks the extremes of both."""
+    from dataclasses import replace
+
+    from flexfem.studies.engine.sweep import run_study
+    from flexfem.studies.engine.tolerance import confirm_extremes
+    from flexfem.studies.mechanisms import get_evaluator
+    from flexfem.studies.run import sweep
+    study = load_study(next(p for p in EXAMPLES if p.name == "dbma_tolerances.toml"))
+    study = replace(study, tolerances=replace(study.tolerances, n=16))
+    result = sweep(study, tmp_path / "out", workers=1, progress=False)
+    assert result["failed"] == 0 and result["cases"] == 16 * 5
+    metrics = result["tolerances"]["metrics"]
+    assert set(metrics) == {"R_fem_per_side", "fn_working"}
+    assert metrics["R_fem_per_side"]["dominant"] == "h"
+    assert metrics["fn_working"]["dominant"] == "b"
+    assert all(m["total_order"]["l"] < 0.2 for m in metrics.values())
+    assert 0 < 3 * metrics["R_fem_per_side"]["std"] / metrics["R_fem_per_side"]["mean"] < 0.01
+    store = tmp_path / "out" / "results.sqlite"
+    checked = confirm_extremes(study, lambda s: run_study(s, store, get_evaluator("dbma"),
+                                                          workers=1, progress=False))
+    assert checked["failed"] == 0 and 2 <= checked["designs"] <= 4
+    for row in checked["metrics"].values():
+        for end in ("low", "high"):  # the beam model within 3 % of the 2-D FEM
+            assert abs(row[end]["rel_diff"]) < 0.03
+        assert row["spread_confirm"] > 0  # the continuum orders the extremes alike
