@@ -118,6 +118,18 @@ class _Stepper:
         return np.linalg.norm(dz) <= math.sqrt(self.tol) * max(np.linalg.norm(z), 1e-14)
 
 
+def step_failure(t, dt, lam, cuts, failure) -> NonConvergenceError:
+    """The error of a beam solve whose step from fraction ``t`` by ``dt`` (last converged load
+    factor ``lam``) failed at the smallest step allowed (planar and spatial alike)."""
+    return NonConvergenceError(
+        f"no convergence beyond step fraction {t:.6g} (load factor {lam:.6g}; trying "
+        f"{t + dt:.6g}) after {cuts} cuts: {failure.reason}; relative residuals "
+        f"{', '.join(f'{h:.2e}' for h in failure.history) or 'none'}. Use more steps or a "
+        "smaller min_step; under load control a limit point (buckling, snap-through) cannot "
+        "be passed: use control=(node, dof, value)", lam, t + dt, len(failure.history),
+        failure.history)
+
+
 def solve_beam_nonlinear(model: BeamModel, supports, loads=(), steps: int = 10,
                          control=None, max_iterations: int = 30, tol: float = 1e-9,
                          min_step: float = 1e-4) -> BeamNonlinearResult:
@@ -154,16 +166,8 @@ def solve_beam_nonlinear(model: BeamModel, supports, loads=(), steps: int = 10,
         its.append(n_it)
         return False
 
-    def failed(t, dt, cuts, failure):
-        return NonConvergenceError(
-            f"no convergence beyond step fraction {t:.6g} (load factor {path['lam']:.6g}; "
-            f"trying {t + dt:.6g}) after {cuts} cuts: {failure.reason}; relative "
-            f"residuals {', '.join(f'{h:.2e}' for h in failure.history) or 'none'}. "
-            "Use more steps or a smaller min_step; under load control a limit point "
-            "(buckling, snap-through) cannot be passed: use control=(node, dof, value)",
-            path["lam"], t + dt, len(failure.history), failure.history)
-
-    cuts = march(advance, steps, min_step, failed)
+    cuts = march(advance, steps, min_step,
+                 lambda t, dt, cuts, failure: step_failure(t, dt, path["lam"], cuts, failure))
     return BeamNonlinearResult(model=model, load_factors=np.array(lams), states=states,
                                iterations=its, info={"step_cuts": cuts, "n_unknowns": asm.space.n,
                                      "definiteness_changes": crossings})

@@ -15,7 +15,8 @@ import math
 import numpy as np
 
 from ..beam.assembly import Factor, SingularBeamError
-from ..newton import NonConvergenceError, check_step_arguments
+from ..beam.nonlinear import step_failure
+from ..newton import NonConvergenceError, check_step_arguments  # noqa: F401 (public here)
 from ..stepping import StepFailed as _StepFailed
 from ..stepping import march
 from .assembly import Assembler
@@ -137,16 +138,8 @@ def solve_beam3d_nonlinear(model: Beam3DModel, supports, loads=(), steps: int = 
         its.append(n_it)
         return False
 
-    def failed(t, dt, cuts, failure):
-        return NonConvergenceError(
-            f"no convergence beyond step fraction {t:.6g} (load factor {path['lam']:.6g}; "
-            f"trying {t + dt:.6g}) after {cuts} cuts: {failure.reason}; relative "
-            f"residuals {', '.join(f'{h:.2e}' for h in failure.history) or 'none'}. "
-            "Use more steps or a smaller min_step; under load control a limit point "
-            "cannot be passed: use control=(node, dof, value)",
-            path["lam"], t + dt, len(failure.history), failure.history)
-
-    cuts = march(advance, steps, min_step, failed)
+    cuts = march(advance, steps, min_step,
+                 lambda t, dt, cuts, failure: step_failure(t, dt, path["lam"], cuts, failure))
     return Beam3DNonlinearResult(model=model, load_factors=np.array(lams), states=states,
                                  iterations=its, info={"step_cuts": cuts,
                                                        "n_unknowns": asm.space.n})
