@@ -303,3 +303,20 @@ def test_notch_hinge_example_against_the_continuum(t):
     assert beam == pytest.approx(cont, rel=0.01)
     assert f_beam == pytest.approx(f_cont, rel=0.01)
     assert np.all(bare / cont - 1 < -0.05)
+
+
+def test_the_harmonic_response_of_the_beam_model_beside_the_continuum(tmp_path):
+    """[analysis] harmonic runs on the beam model through the same analysis: its static
+    response is the inverse of its stiffness, and its resonance is its first mode."""
+    from pathlib import Path
+
+    source = Path(__file__).parents[3] / "examples" / "bodies" / "guide.toml"
+    text = source.read_text().replace("[analysis]\nmodes = 3", "[analysis]\nmodes = 3\n"
+                                      "harmonic = { group = \"stage\", component = \"x\", "
+                                      "f_max = 400.0, points = 201, damping = 0.02 }")
+    path = tmp_path / "guide.toml"
+    path.write_text(text)
+    out = analyze_model(load_spec(path), model="beam")
+    h = out["harmonic"]
+    assert h["static"] == pytest.approx(1.0 / out["stiffness"]["stage"]["x"], rel=1e-9)
+    assert h["resonances_hz"][0] == pytest.approx(out["frequencies_hz"][0], rel=2e-3)
