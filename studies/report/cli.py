@@ -11,7 +11,7 @@ def register(subparsers):
     p = subparsers.add_parser("reproduce", help="regenerate every comparison with the source documents")
     p.add_argument("--out", default="report", help="report folder (default: ./report)")
     size = p.add_mutually_exclusive_group()
-    size.add_argument("--quick", action="store_true", help="smoke run, coarse meshes (< 2 min)")
+    size.add_argument("--quick", action="store_true", help="smoke run, coarse meshes (a few minutes on two cores)")
     size.add_argument("--full", action="store_true", help="the finest meshes")
     p.add_argument("--resume", action="store_true", help="keep sections already finished in --out")
     p.add_argument("--section", action="append", choices=[s.folder for _, s in report_sections()],
