@@ -11,9 +11,9 @@ from .engine.convergence import (
     parse_tolerance,
     plot_convergence,
 )
-from .engine.store import case_key, export_csv, export_parquet, flexfem_version, parquet_available
+from .engine.store import export_csv, export_parquet, parquet_available
 from .engine.sweep import Study, plot_metric
-from .engine.tolerance import confirm_extremes
+from .engine.tolerance import confirm_extremes, summarize
 from .mechanisms import (
     check_mechanism,
     coarsest_size_factor,
@@ -80,7 +80,7 @@ def sweep(study, out_dir=None, workers: int | None = None, scheduler: str | None
                                    units).name)
     extra = {}
     if study.tolerances is not None:
-        extra["tolerances"] = tolerance_summary(study, result.cases)
+        extra["tolerances"] = summarize(study, result.cases)
         (out / "tolerances.json").write_text(json.dumps(extra["tolerances"], indent=1))
         tables.append("tolerances.json")
         if extra["tolerances"]["metrics"]:
@@ -99,26 +99,6 @@ def sweep(study, out_dir=None, workers: int | None = None, scheduler: str | None
             "failures": [{"params": c.params, "status": c.status, "error": c.error}
                          for c in result.failed],
             "results": [c.to_row() for c in result.cases]}
-
-
-def tolerance_summary(study: Study, cases) -> dict:
-    """The study's tolerance analysis (engine/tolerance.py) from its stored cases: {"n_designs",
-    "failed" (designs without a result: no indices then), "parameters" {name: {nominal,
-    tolerance, distribution}}, "metrics" {metric: spread and Sobol indices}}."""
-    by_key = {c.key: c for c in cases}
-    version = flexfem_version()
-    outputs, failed = [], 0
-    for point in study.tolerances.points():
-        params = {**study.base, **point}
-        case = by_key.get(case_key(study.mechanism, params, study.options, version))
-        if case is None or not case.ok:
-            failed += 1
-        else:
-            outputs.append(case.metrics)
-    parameters = {k: vars(v) for k, v in study.tolerances.parameters.items()}
-    metrics = study.tolerances.analyze(outputs) if not failed else {}
-    return {"n_designs": len(outputs) + failed, "failed": failed, "parameters": parameters,
-            "metrics": metrics}
 
 
 def plot_tolerances(summary: dict, path) -> Path:

@@ -175,6 +175,7 @@ class BeamPath:
     result: BeamNonlinearResult
     supported: tuple = ()
     faces: tuple = ()
+    applied: dict = field(default_factory=dict)  # {face: (F_x, F_y, M)} at load factor 1
 
     @property
     def load_factors(self) -> np.ndarray:
@@ -216,13 +217,9 @@ class BeamPath:
             row = {}
             for f in self.faces:
                 node = group(self.model, f).nodes[0]
-                row[f] = s.reactions.get(node, np.zeros(3)) + lam * self._applied.get(f, 0.0)
+                row[f] = s.reactions.get(node, np.zeros(3)) + lam * self.applied.get(f, 0.0)
             out.append(row)
         return out
-
-    @property
-    def _applied(self) -> dict:
-        return self.result.info.get("face_loads", {})
 
     def stress_at_step(self, k: int) -> tuple:
         """(stress, stress) per element (Pa) at step ``k``: the continuum's (nodal, element
@@ -270,9 +267,8 @@ def solve_nonlinear(model: BeamModel, supports, loads, steps: int = 10,
     result = solve_beam_nonlinear(model, node_supports(model, supports) + held,
                                   node_loads(model, loads) + applied_loads, steps=steps,
                                   max_iterations=max_iterations, tol=tol, min_step=min_step)
-    result.info["face_loads"] = applied
     return BeamPath(model, result, tuple(_supported(supports)),
-                    tuple(f.group for f in rigid_faces))
+                    tuple(f.group for f in rigid_faces), applied)
 
 
 def compliance_matrix(model: BeamModel, supports, face, point=None, angle: float = 0.0,

@@ -1,7 +1,9 @@
 """Problems shared by the topology optimisation tests (imported by name, as tests/fem's
 meshes.py is: pytest puts this folder on the path)."""
+import pytest
+
 from flexfem.topopt import (Constraint, Grid, Load, Optimizer, Problem, Region, Response,
-                            Spring, Support)
+                            Spring, Support, optimize)
 
 
 def mbb(nelx=60, nely=20, filter_kind="sensitivity", radius=1.5, **kw) -> Problem:
@@ -27,3 +29,13 @@ def inverter(nelx=40, nely=20, filter_kind="density", iterations=150, **kw) -> P
                             Spring("output", Region("point", (float(nelx), 0.0)), "x", 0.1)),
                    constraints=kw.pop("constraints", (Constraint(Response("volume"), upper=0.3),)),
                    optimizer=Optimizer("mma", 0.2, iterations, 0.01), **kw)
+
+
+def interrupt_at(problem: Problem, out_dir, iteration: int) -> None:
+    """Run ``problem`` into ``out_dir`` and stop it with Ctrl-C at ``iteration``."""
+    def stop(k, *_):
+        if k == iteration:
+            raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        optimize(problem, out_dir=out_dir, progress=stop)

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from problems import inverter
+from problems import interrupt_at, inverter
 
 from flexfem.studies.cli import main
 from flexfem.topopt import load_problem, optimize, problem_from_dict
@@ -58,13 +58,7 @@ def test_a_shape_table_writes_the_outline_and_a_model_file(capsys, tmp_path):
 def test_a_resumed_run_ends_where_an_uninterrupted_one_does(tmp_path):
     problem = inverter(16, 8, iterations=30)
     whole = optimize(problem)
-
-    def stop(iteration, *_):
-        if iteration == 7:
-            raise KeyboardInterrupt
-
-    with pytest.raises(KeyboardInterrupt):
-        optimize(problem, out_dir=tmp_path, progress=stop)
+    interrupt_at(problem, tmp_path, 7)
     assert int(load_state(tmp_path)["iteration"]) == 7
     resumed = optimize(problem, out_dir=tmp_path)
     assert resumed.iterations == whole.iterations

@@ -2,7 +2,7 @@
 with it (near-binary), a resumed run mid-continuation, and the problem file's table."""
 import numpy as np
 import pytest
-from problems import inverter
+from problems import interrupt_at, inverter
 
 from flexfem.topopt import Projection, optimize, problem_from_dict
 from flexfem.topopt.projection import project, project_derivative
@@ -46,13 +46,7 @@ def test_a_run_resumed_mid_continuation_ends_where_an_uninterrupted_one_does(tmp
     problem = inverter(16, 8, iterations=40,
                        projection=Projection(beta=1.0, beta_max=4.0, every=5))
     whole = optimize(problem)
-
-    def stop(iteration, *_):
-        if iteration == 7:
-            raise KeyboardInterrupt
-
-    with pytest.raises(KeyboardInterrupt):
-        optimize(problem, out_dir=tmp_path, progress=stop)
+    interrupt_at(problem, tmp_path, 7)
     assert float(load_state(tmp_path)["beta"]) == 2.0
     resumed = optimize(problem, out_dir=tmp_path)
     assert resumed.iterations == whole.iterations
