@@ -5,6 +5,7 @@ Every piece of the reduced model lives here: the builders from a mechanism's lay
 :mod:`.model_file`), the spatial lift (:mod:`.spatial`, :mod:`.eightbar3d`), the corrections
 from small 2-D models (a notch's, :mod:`.hinge_patch`; a member's patch, :mod:`.patch2d` and
 :mod:`.dbma_member_patch`), the oblique roots and crossings of a model file's beams
-(:mod:`.roots`, :mod:`.crossings`) and Vlasov's torsion (:mod:`.torsion`). The solvers are
+(:mod:`.roots`, :mod:`.crossings`), Vlasov's torsion (:mod:`.torsion`) and the hinge
+specimen that checks them against the continuum (:mod:`.specimen`). The solvers are
 flexfem.fem.beam and flexfem.fem.beam3d; geometry/ draws and never solves.
 """

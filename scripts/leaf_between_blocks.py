@@ -66,7 +66,7 @@ def beam(t, l, w, H, Lb, j_factor: float) -> np.ndarray:
     ``j_factor``."""
     from flexfem.fem.beam3d import Fixed, compliance3d
     from flexfem.reduced.spatial import lifted_model
-    from flexfem.studies.dbma.beam_slenderness import leaf_between_blocks
+    from flexfem.reduced.specimen import leaf_between_blocks
     from flexfem.reduced.torsion import TorsionScaled
 
     planar, root, tip, leaf = leaf_between_blocks(t, l, w, H, Lb)

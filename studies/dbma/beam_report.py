@@ -13,8 +13,8 @@ from ..report.three_way import (STRESS_TOL, Metric, beam_comparisons, key_table,
                                 three_way_rows)
 from . import analysis as fem
 from .beam import analyze_dbma_beam
-from .beam_slenderness import (dbma_slenderness_rows, plot_slenderness, slenderness_rows,
-                               trusted_from)
+from ...reduced.specimen import slenderness_rows, trusted_from
+from .beam_slenderness import dbma_slenderness_rows, plot_slenderness
 
 FORCE = 100.0  # N, the actuator force of the linear solves
 

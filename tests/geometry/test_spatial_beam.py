@@ -17,7 +17,7 @@ def _leaf_between_blocks():
     """(planar BeamModel, its lifted Beam3DModel, near block's end node, far block's end node)
     of the leaf L x T, W wide, between two blocks H tall and 2 H long, joined as the DBMA's
     hinges to their arms (the blocks as beams, the leaf with its root extensions)."""
-    from flexfem.studies.dbma.beam_slenderness import leaf_between_blocks
+    from flexfem.reduced.specimen import leaf_between_blocks
 
     planar, root, tip, _ = leaf_between_blocks(T, L, W, H, 2 * H, STEEL)
     return planar, lifted_model(planar, W), root, tip
@@ -97,7 +97,7 @@ def _specimen_beam(t, l, w, H, Lb, slices=True):
     from dataclasses import replace
 
     from flexfem.fem.beam3d import Beam3DModel
-    from flexfem.studies.dbma.beam_slenderness import leaf_between_blocks
+    from flexfem.reduced.specimen import leaf_between_blocks
 
     planar, root, tip, _ = leaf_between_blocks(t, l, w, H, Lb)
     model = lifted_model(planar, w)

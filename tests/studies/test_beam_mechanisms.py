@@ -90,7 +90,7 @@ def test_root_extension_rules():
 
 
 def test_leaf_hinge_within_3_percent_of_the_continuum_over_slenderness():
-    from flexfem.studies.dbma.beam_slenderness import slenderness_rows
+    from flexfem.reduced.specimen import slenderness_rows
 
     rows = slenderness_rows((3.0, 10.0), ("leaf",))
     for r in rows:
@@ -108,7 +108,7 @@ def test_the_root_axial_compliance_fits_a_leaf_between_tall_blocks(height):
     5 % stiff at H/t = 1.5."""
     from unittest import mock
 
-    from flexfem.studies.dbma import beam_slenderness as bs
+    from flexfem.reduced import specimen as bs
 
     specimen = {"b": 1e-3, "H": height * 1e-3, "block": max(5e-3, 2 * height * 1e-3)}
     with mock.patch.dict(bs.SPECIMEN, specimen):

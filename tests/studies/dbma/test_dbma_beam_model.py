@@ -141,7 +141,7 @@ def test_the_notch_correction_brings_a_notch_between_blocks_into_the_band():
     rule gives: the beam is within 8 %, the accuracy documented for a notch entering a much
     taller block (docs/beam_validation.md, "Notch hinges: the 2-D patch": 3-7.4 % stiff;
     measured -6.9 % at l/b = 3, -3.0 % at 10; -7.3 and -3.3 % converged)."""
-    from flexfem.studies.dbma.beam_slenderness import TRUST_LIMIT, slenderness_rows
+    from flexfem.reduced.specimen import TRUST_LIMIT, slenderness_rows
 
     for row in slenderness_rows((3.0, 10.0), ("circular",)):
         assert row["bending_error_bare"] < -2 * TRUST_LIMIT
