@@ -1,4 +1,5 @@
-"""The analysis functions of flexfem.fem, for a continuum Model and a planar BeamModel alike.
+"""The analysis functions of flexfem.fem, for a continuum Model, a planar BeamModel and a
+spatial Beam3DModel alike.
 
     result = solve_static(model, [Fixed("ground")], [Force("stage", (1.0, 0.0))])
     result.mean_displacement("stage"), result.reactions["ground"], result.max_von_mises
@@ -6,16 +7,25 @@
 Each takes the supports and loads of :mod:`.boundary` by group name and returns results with
 the same names whichever model it is given: a continuum :class:`.model.Model` is solved by
 the continuum's function (:mod:`.static`, :mod:`.modal`, ...), a beam model with named groups
-(:class:`.beam.BeamModel`) by :mod:`.beam.face` (what a group is on a beam model, and what
-its stress means, is there). Options that only the continuum has (a rigid face, a prestress,
+by :mod:`.beam.face` (planar :class:`.beam.BeamModel`) or :mod:`.beam3d.face` (spatial
+:class:`.beam3d.Beam3DModel`); what a group is on a beam model, and what its stress means,
+is there. Options that only the continuum has (a rigid face, a prestress,
 arc-length control, buckling) raise a TypeError or ValueError naming them on a beam model.
 """
 from . import buckling, compliance, harmonic, modal, nonlinear, static
 from .beam import face as beam_face
 from .beam.model import BeamModel
+from .beam3d import face as beam3d_face
+from .beam3d.model import Beam3DModel
+
+BEAM_MODELS = (BeamModel, Beam3DModel)
 
 
 def _pick(model, continuum, beam):
+    """The function for ``model``: the continuum's, the planar beam face's (``beam``) or the
+    spatial beam face's function of the same name."""
+    if isinstance(model, Beam3DModel):
+        return getattr(beam3d_face, beam.__name__)
     return beam if isinstance(model, BeamModel) else continuum
 
 
@@ -44,7 +54,7 @@ def solve_harmonic(model, supports, loads, frequencies_hz, **options):
 
 
 def solve_buckling(model, supports, loads, n: int = 3):
-    if isinstance(model, BeamModel):
+    if isinstance(model, BEAM_MODELS):
         raise ValueError("solve_buckling: the beam model has no linearised buckling; solve "
                          "the continuum, or follow the beam's load path with solve_nonlinear")
     return buckling.solve_buckling(model, supports, loads, n)
@@ -54,7 +64,8 @@ def _describe(function, continuum, beam=None) -> None:
     """The face's docstring: the continuum's, then what the beam model does."""
     text = continuum.__doc__ or ""
     if beam is not None:
-        text += f"\n\n    On a beam model (:mod:`flexfem.fem.beam.face`): {beam.__doc__}"
+        text += (f"\n\n    On a beam model (:mod:`flexfem.fem.beam.face`, "
+                 f":mod:`flexfem.fem.beam3d.face` in space): {beam.__doc__}")
     function.__doc__ = text
 
 

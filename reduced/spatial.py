@@ -8,6 +8,7 @@ from dataclasses import replace
 
 import numpy as np
 
+from ..fem.beam.groups import BeamGroup
 from ..fem.beam3d import Beam3DModel, RigidLink, Section, rect_torsion_constant
 
 
@@ -43,11 +44,15 @@ def spatial_sections(planar_model, out_of_plane: float) -> list:
 def lifted_model(planar, out_of_plane: float, point_masses=None) -> Beam3DModel:
     """The spatial model of ``planar`` (a BeamModel) extruded by ``out_of_plane`` (m): its
     nodes at z = 0, its rigid links as spatial ones, :func:`spatial_sections`, and
-    ``point_masses`` {node: (m, J_x, J_y, J_z)} (default none)."""
+    ``point_masses`` {node: (m, J_x, J_y, J_z)} (default none), and the planar model's groups
+    (a group that stands for a face of some extent spans the depth too)."""
     if planar.superelements:
         raise ValueError("lifted_model: the planar model has superelements, which have no "
                          "out-of-plane part; lift a model without them")
     nodes = np.column_stack([planar.nodes, np.zeros(planar.n_nodes)])
     rigid = [RigidLink(k.master, k.slaves) for k in planar.rigid_links]
+    groups = {name: BeamGroup(g.nodes, (*g.span, out_of_plane if any(g.span) else 0.0))
+              for name, g in planar.groups.items()}
     return Beam3DModel(nodes, planar.elements, spatial_sections(planar, out_of_plane),
-                       planar.material, rigid_links=rigid, point_masses=point_masses or {})
+                       planar.material, rigid_links=rigid, point_masses=point_masses or {},
+                       groups=groups)

@@ -14,6 +14,7 @@ import math
 
 import numpy as np
 
+from ..beam.groups import BeamGroup
 from ..beam.model import RigidLink, link_masters, positive
 from ..materials import Material
 
@@ -198,10 +199,12 @@ class Beam3DModel:
     """Spatial beam model. nodes (n, 3) m; elements (n_e, 2) node indices; sections: one
     Section or one per element; material: Material (E, nu, rho); orientation: local z
     reference (see element_frames); rigid_links: RigidLink sequence; point_masses:
-    {node: (mass kg, Jx, Jy, Jz kg m^2 about global axes through the node)}."""
+    {node: (mass kg, Jx, Jy, Jz kg m^2 about global axes through the node)}; groups:
+    {name: BeamGroup or node indices}, the named places of the analysis face
+    (:mod:`.face`; :meth:`add_group`)."""
 
     def __init__(self, nodes, elements, sections, material: Material, orientation=None,
-                 rigid_links=(), point_masses=None):
+                 rigid_links=(), point_masses=None, groups=None):
         self.nodes = np.asarray(nodes, dtype=float)
         if self.nodes.ndim != 2 or self.nodes.shape[1] != 3 or not np.all(np.isfinite(self.nodes)):
             raise ValueError(f"nodes must be a finite (n, 3) array, got shape {self.nodes.shape}")
@@ -225,6 +228,14 @@ class Beam3DModel:
         self.rigid_links = tuple(rigid_links)
         self.point_masses = dict(point_masses or {})
         self._check_links()
+        self.groups = {}
+        for name, g in (groups or {}).items():
+            self.add_group(name, g)
+
+    def add_group(self, name: str, nodes, span=(0.0, 0.0, 0.0)) -> None:
+        """Name ``nodes`` (masters of rigid bodies) a group standing for a face of extent
+        ``span`` (dx, dy, dz; m): where the analysis face's supports and loads act."""
+        self.groups[name] = BeamGroup.of(name, nodes, span, self.n_nodes)
 
     def _check_links(self):
         n = len(self.nodes)

@@ -1,0 +1,301 @@
+"""The continuum's analysis face on a spatial beam model with named groups.
+
+The spatial twin of :mod:`flexfem.fem.beam.face`: a group is one or more nodes, each the
+master of a rigid body, and the extent (dx, dy, dz) of the face it stands for (m). The
+supports and loads of :mod:`flexfem.fem.boundary` apply as they do to a 3-D continuum:
+
+- ``Fixed(group)`` holds all six DOFs of every node of the group: a clamped rigid face;
+- ``Prescribed(group, x=..., y=..., z=...)`` holds those translations at the values; a
+  translation i held on a face that spans along j (j != i) holds its rotation about the third
+  axis too (every point of a rigid face having the same u_i means it does not turn about
+  e_i x e_j), as the continuum's every-node constraint does;
+- ``Force(group, vector)`` is the group's total force (N; (F_x, F_y) or (F_x, F_y, F_z)),
+  shared equally by its nodes.
+
+Results carry the continuum's names: ``mean_displacement(group)`` (3,), ``reactions[group]``
+(N), ``max_von_mises`` (the rectangular sections' von Mises bound, Pa; no stress
+concentration) with ``max_von_mises_location``, ``frequencies_hz`` and ``effective_mass``
+(n, 3), and a 6 x 6 :class:`~flexfem.fem.compliance.Compliance`. SI units.
+"""
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..boundary import Fixed, Force, Prescribed
+from ..compliance import Compliance, moved_compliance, rotation_frame
+from ..harmonic import FRF, _check_frequencies, _damping_ratios
+from .modal import Beam3DModes, solve_beam3d_modes
+from .model import Beam3DModel
+from .model import Fixed as NodeFixed
+from .model import NodalLoad
+from .model import Prescribed as NodePrescribed
+from .nonlinear import Beam3DNonlinearResult, solve_beam3d_nonlinear
+from .static import Beam3DState, compliance3d, solve_beam3d_static
+
+AXES = ("x", "y", "z")
+ROTATIONS = ("rx", "ry", "rz")
+
+
+def group(model: Beam3DModel, name):
+    """The model's group ``name``; ValueError naming the known groups."""
+    if name not in model.groups:
+        raise ValueError(f"group {name!r} is not one of the spatial beam model's groups "
+                         f"{sorted(model.groups)}")
+    return model.groups[name]
+
+
+def held_rotations(axis: int, span) -> list:
+    """The rotations (0 x, 1 y, 2 z) a translation along ``axis`` held uniformly on a rigid
+    face of extent ``span`` (dx, dy, dz; m) holds with it: about e_axis x e_j for every j the
+    face spans."""
+    return sorted(3 - axis - j for j in range(3) if j != axis and span[j] > 0.0)
+
+
+def node_supports(model: Beam3DModel, supports) -> list:
+    """The spatial model's node supports for group supports (Fixed, Prescribed)."""
+    out = []
+    for s in supports:
+        if isinstance(s, (NodeFixed, NodePrescribed)):
+            out.append(s)
+        elif isinstance(s, Fixed):
+            out.append(NodeFixed(group(model, s.group).nodes))
+        elif isinstance(s, Prescribed):
+            g = group(model, s.group)
+            values = s.components()
+            if any(callable(v) for v in values.values()):
+                raise ValueError(f"Prescribed({s.group!r}): the spatial beam model takes "
+                                 "numbers for x, y and z (m)")
+            span = tuple(g.span) + (0.0,) * (3 - len(g.span))
+            turns = sorted({k for axis in values for k in held_rotations(axis, span)})
+            for n in g.nodes:
+                out += [NodePrescribed(n, AXES[axis], float(v)) for axis, v in values.items()]
+                out += [NodePrescribed(n, ROTATIONS[k], 0.0) for k in turns]
+        else:
+            raise ValueError(f"supports: {s!r}: the spatial beam model takes Fixed and "
+                             "Prescribed")
+    return out
+
+
+def node_loads(model: Beam3DModel, loads) -> list:
+    """NodalLoads for group forces (Force: the total, shared equally by the group's nodes)."""
+    out = []
+    for load in loads:
+        if isinstance(load, NodalLoad):
+            out.append(load)
+        elif isinstance(load, Force):
+            if len(load.vector) not in (2, 3):
+                raise ValueError(f"Force({load.group!r}): the spatial beam model takes (F_x, "
+                                 "F_y) or (F_x, F_y, F_z) in N")
+            nodes = group(model, load.group).nodes
+            f = np.zeros(3)
+            f[:len(load.vector)] = np.asarray(load.vector, dtype=float) / len(nodes)
+            out += [NodalLoad(n, *f) for n in nodes]
+        else:
+            raise ValueError(f"loads: {type(load).__name__} on the spatial beam model: it "
+                             "takes forces (Force, the group's total in N)")
+    return out
+
+
+def _supported(supports) -> tuple:
+    return tuple(s.group for s in supports if isinstance(s, (Fixed, Prescribed)))
+
+
+@dataclass(frozen=True, eq=False)
+class Beam3DResult:
+    """A spatial beam state read by group: the continuum StaticResult's names. ``state``:
+    the Beam3DState (u, rotations, reactions, element forces)."""
+
+    model: Beam3DModel
+    state: Beam3DState
+    supported: tuple = ()
+    solver: str = "beam3d"
+
+    @property
+    def displacement(self) -> np.ndarray:
+        """(n_nodes, 3) displacement, m."""
+        return self.state.u
+
+    def mean_displacement(self, name: str) -> np.ndarray:
+        """(3,) mean displacement of the group's nodes, m."""
+        return self.state.u[list(group(self.model, name).nodes)].mean(axis=0)
+
+    def rotation(self, name: str) -> np.ndarray:
+        """(3,) mean rotation vector of the group's nodes, rad."""
+        return self.state.rotation[list(group(self.model, name).nodes)].mean(axis=0)
+
+    @property
+    def reactions(self) -> dict:
+        """{group: (F_x, F_y, F_z) N} of every supported group, summed over its nodes."""
+        return {name: np.sum([self.state.reactions.get(n, np.zeros(6))[:3]
+                              for n in group(self.model, name).nodes], axis=0)
+                for name in self.supported}
+
+    @property
+    def max_von_mises(self) -> float:
+        """Largest von Mises bound of the rectangular sections, Pa."""
+        return self.state.max_stress
+
+    @property
+    def max_von_mises_location(self) -> np.ndarray:
+        """Where max_von_mises is, m (on the element's centre line)."""
+        from .stress import peak_stress
+
+        _, e, xi = peak_stress(self.model, self.state.local_forces)
+        a, b = self.model.nodes[self.model.elements[e]]
+        return a + xi * (b - a)
+
+
+def solve_static(model: Beam3DModel, supports, loads=(), **options) -> Beam3DResult:
+    """Linear static solve of a grouped spatial beam model (the continuum's supports and
+    loads)."""
+    _no_options("solve_static", options, ("solver",))
+    state = solve_beam3d_static(model, node_supports(model, supports),
+                                node_loads(model, loads))
+    return Beam3DResult(model, state, _supported(supports))
+
+
+def _at_zero(support):
+    if isinstance(support, NodePrescribed):
+        return NodePrescribed(support.node, support.dof, 0.0)
+    return support
+
+
+def solve_modes(model: Beam3DModel, n: int = 6, supports=(), **options) -> Beam3DModes:
+    """The ``n`` lowest natural frequencies (Hz) and shapes, supports held at zero (their
+    values ignored, as the continuum's); effective_mass (n, 3) kg."""
+    _no_options("solve_modes", options, ("shift_hz",))
+    held = [_at_zero(s) for s in node_supports(model, supports)]
+    return solve_beam3d_modes(model, held, n=n)
+
+
+@dataclass(frozen=True, eq=False)
+class Beam3DPath:
+    """Converged steps of a large-rotation spatial solve, read by group."""
+
+    model: Beam3DModel
+    result: Beam3DNonlinearResult
+    supported: tuple = ()
+
+    @property
+    def load_factors(self) -> np.ndarray:
+        return self.result.load_factors
+
+    @property
+    def iterations(self) -> list:
+        return self.result.iterations
+
+    def step(self, k: int = -1) -> Beam3DResult:
+        """Step ``k`` as a Beam3DResult."""
+        return Beam3DResult(self.model, self.result.states[k], self.supported)
+
+    def mean_displacement(self, name: str, step: int = -1) -> np.ndarray:
+        """(3,) mean displacement of the group's nodes at ``step``, m."""
+        return self.step(step).mean_displacement(name)
+
+    def path(self, name: str) -> np.ndarray:
+        """(n_steps + 1, 3) mean displacement of the group over the steps, m."""
+        return np.array([self.mean_displacement(name, k) for k in range(len(self.load_factors))])
+
+    @property
+    def reactions(self) -> list:
+        """Per step {group: (F_x, F_y, F_z) N}."""
+        return [self.step(k).reactions for k in range(len(self.load_factors))]
+
+    @property
+    def max_von_mises(self) -> float:
+        """Largest von Mises bound at the last step, Pa."""
+        return self.result.final.max_stress
+
+
+def solve_nonlinear(model: Beam3DModel, supports, loads, steps: int = 10,
+                    max_iterations: int = 30, tol: float = 1e-9, min_step: float = 1e-4,
+                    **options) -> Beam3DPath:
+    """Large-rotation (co-rotational) static solve, the loads and prescribed values scaled
+    0 -> 1 in ``steps`` increments (halved on failure down to ``min_step``)."""
+    _no_options("solve_nonlinear", options, ("solver", "check_stability"))
+    result = solve_beam3d_nonlinear(model, node_supports(model, supports),
+                                    node_loads(model, loads), steps=steps,
+                                    max_iterations=max_iterations, tol=tol, min_step=min_step)
+    return Beam3DPath(model, result, _supported(supports))
+
+
+def compliance_matrix(model: Beam3DModel, supports, face, point=None, frame=None,
+                      **options) -> Compliance:
+    """6 x 6 compliance of the group ``face`` (one node: the master of its rigid body) under
+    ``supports``, at ``point`` (m; default that node), in the axes ``frame`` (columns; default
+    global), as the continuum's compliance_matrix."""
+    _no_options("compliance_matrix", options, ())
+    nodes = group(model, face).nodes
+    if len(nodes) != 1:
+        raise ValueError(f"compliance_matrix: group {face!r} has {len(nodes)} nodes; a "
+                         "compliance is of one rigid body (a group of one node)")
+    C = compliance3d(model, node_supports(model, supports), nodes[0])
+    centre = model.nodes[nodes[0]].copy()
+    return moved_compliance(face, C, centre, point, rotation_frame(3, 0.0, frame))
+
+
+@dataclass(frozen=True, eq=False)
+class Beam3DHarmonic:
+    """Steady-state amplitudes: frequencies_hz (n,); u (n, n_nodes, 3) complex (m)."""
+
+    model: Beam3DModel
+    frequencies_hz: np.ndarray
+    u: np.ndarray
+    modes: Beam3DModes
+
+    def mean_displacement(self, name: str) -> np.ndarray:
+        """(n, 3) complex mean displacement amplitude of the group, m."""
+        return self.u[:, list(group(self.model, name).nodes)].mean(axis=1)
+
+    def frf(self, name: str, component) -> FRF:
+        """Response of the group's mean displacement along ``component`` (0-2 or x, y, z)."""
+        i = {"x": 0, "y": 1, "z": 2}.get(component, component)
+        if i not in (0, 1, 2):
+            raise ValueError(f"component = {component!r} must be 'x', 'y', 'z', 0, 1 or 2")
+        return FRF(self.frequencies_hz, self.mean_displacement(name)[:, i])
+
+
+def solve_harmonic(model: Beam3DModel, supports, loads, frequencies_hz, damping=0.0,
+                   n_modes: int = 20, **options) -> Beam3DHarmonic:
+    """Steady-state response to the loads (amplitudes, N) by modal superposition of
+    ``n_modes`` modes plus the static correction (exact at 0 Hz), as the continuum's 'modal'
+    method: damping a modal damping ratio (one, or one per mode) or Rayleigh(alpha, beta)."""
+    _no_options("solve_harmonic", options, ("method",))
+    f_hz = _check_frequencies(frequencies_hz)
+    held = [_at_zero(s) for s in node_supports(model, supports)]
+    nodal = node_loads(model, loads)
+    modes = solve_beam3d_modes(model, held, n=n_modes)
+    static = solve_beam3d_static(model, held, nodal)
+    f = np.zeros((model.n_nodes, 6))
+    for load in nodal:
+        f[load.node] += load.vector
+    q = modal_superposition(modes.frequencies_hz, modes.shapes, f, static.q, f_hz, damping)
+    return Beam3DHarmonic(model, f_hz, q.reshape(len(f_hz), model.n_nodes, 6)[..., :3], modes)
+
+
+def modal_superposition(modes_hz, shapes, f, static, f_hz, damping) -> np.ndarray:
+    """(n_f, n_dofs) complex amplitudes: the modes (Hz; mass-normalised ``shapes``, one row
+    of DOFs each) driven by ``f`` plus the static residual ``static`` - sum phi p / w^2."""
+    w_r = 2 * np.pi * np.asarray(modes_hz)
+    zeta = _damping_ratios(damping, w_r)
+    phi = shapes.reshape(len(w_r), -1)
+    p = phi @ f.ravel()
+    residual = static.ravel() - phi.T @ (p / w_r ** 2)
+    omega = 2 * np.pi * f_hz
+    with np.errstate(divide="ignore", invalid="ignore"):
+        h = 1.0 / (w_r[None, :] ** 2 - omega[:, None] ** 2 + 2j * zeta * w_r * omega[:, None])
+    return (h * p) @ phi + residual
+
+
+def _no_options(what: str, options: dict, ignored: tuple) -> None:
+    """Options of the continuum's function that mean nothing on a beam model: those in
+    ``ignored`` are accepted, any other is a TypeError naming it."""
+    unknown = sorted(set(options) - set(ignored))
+    if unknown:
+        raise TypeError(f"{what}: option(s) {unknown} are the continuum's; the spatial beam "
+                        "model takes none of them")
+
+
+__all__ = ["Beam3DHarmonic", "Beam3DPath", "Beam3DResult", "compliance_matrix",
+           "node_loads", "node_supports", "solve_harmonic", "solve_modes",
+           "solve_nonlinear", "solve_static"]
