@@ -27,7 +27,8 @@ def register(subparsers):
     c.add_argument("--metric", required=True, help="metric returned by the mechanism's evaluate")
     c.add_argument("--tol", default="0.5%", type=tolerance,
                    help="relative tolerance, '0.5%%' or 0.005 (default 0.5%%)")
-    c.add_argument("--levels", type=int, default=4, help="refinement levels, >= 3 (default 4)")
+    c.add_argument("--levels", type=whole_number(3, 12), default=4,
+                   help="refinement levels, 3 to 12 (default 4)")
     c.add_argument("--ratio", type=float, default=2.0, help="refinement ratio between levels (default 2)")
     c.add_argument("--start", type=float, default=None,
                    help="size_factor of the coarsest level (default: the mechanism's, 4 for dbma)")

@@ -18,7 +18,7 @@ from .stage import stage_study
 LINKAGE_CHOICES = ["watt", "roberts", "chebyshev", "peaucellier", "modified_peaucellier"]
 # points along a traced path: each costs ~2 ms (twice: the resolution check), 10,000 ~40 s;
 # the tracer refuses fewer than 3 and a sampling too coarse for the path
-points = whole_number(1, 10_000)
+points = whole_number(3, 10_000)  # a path needs 3 points to have a deviation
 
 
 def travel(text: str) -> float:
