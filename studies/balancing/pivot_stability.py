@@ -52,7 +52,7 @@ from .pivot_fem import pivot_geometry, pivot_model, positive_stiffness_pivots
 def leaf_state(model, P: float, theta: float, steps: int) -> dict:
     """The compressed leaf with the hub turned by ``theta`` (rad) under the dead preload P
     (N): moment (N m), tangent dM/dtheta (N m/rad, hub forces free), stable with the
-    rotation held, hub translation (m)."""
+    rotation held, hub translation (m), peak von Mises (Pa, nodal)."""
     face = RigidFace("hub", rotation=theta, force=(-P, 0.0))
     result = solve_nonlinear(model, [Fixed("fixed")], [], steps=steps, rigid_faces=[face],
                              check_stability=True)
@@ -62,7 +62,8 @@ def leaf_state(model, P: float, theta: float, steps: int) -> dict:
             "tangent_stiffness_Nm_per_rad": 1.0 / float(c.matrix[2, 2]),
             "stable_rotation_held": bool(result.stable[-1]),
             "negative_eigenvalues": result.negative_eigenvalues[-1],
-            "hub_dx_m": float(motion[0]), "hub_dy_m": float(motion[1])}
+            "hub_dx_m": float(motion[0]), "hub_dy_m": float(motion[1]),
+            "stress_fem_peak_nodal_Pa": float(result.max_von_mises)}
 
 
 def hermite_extremum(theta, moment, slope) -> tuple[float, float]:

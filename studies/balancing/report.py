@@ -11,13 +11,16 @@ from ...fem import material
 from ..engine.tables import write_rows
 from ..report.comparison import Comparison, rows as comparison_rows
 from ..report.figures import pyplot, save
-from ..report.stroke import fatigue_note, plot_stroke_limits, stroke_limits, stroke_table
+from ..report.stroke import (curve_stroke_limits, fatigue_note, plot_stroke_limits,
+                             stroke_limits, stroke_table)
+from ..report.tolerances import one_blas_thread
 from .calibration import calibrate_workspace, calibration_comparisons
 from .design import (METHODS, PAPER_TABLES, balance_robot, beyond_paper, default_workspace,
                      paper_table, pivot_designs, sensitivity_rows)
 from .gravity import Workspace, load_robot, workspace_torques
-from .negative_pivot_study import negative_pivot_study
+from .negative_pivot_study import _leaf_model, negative_pivot_designs, negative_pivot_study
 from .pivot_fem import pivot_fem_study
+from .pivot_stability import leaf_state
 
 
 TABLES = {"spring": "Table III", "torsion": "Table IV", "counterweight": "Table V"}
@@ -98,6 +101,17 @@ def paragraph(fit: dict) -> str:
             "as compressed-leaf pivots, checked by FEM.")
 
 
+STROKE_CAPTION = (
+    "Stroke limits of the flexure pivots: peak von Mises against pivot rotation, the "
+    "cross-spring pivots' FEM at theta_max scaled linearly (lines), the compressed leaves' "
+    "large-deflection states at the design preload (circles, interpolated), up to yield (x) "
+    "and the fatigue-limited amplitude about the working position (diamond; Goodman, the "
+    "leaves' compressive preload mean by Shigley's rule, fem/fatigue.py); the bases are in "
+    "the stroke-limit table.")
+STROKE_TITLE = ("Stroke limits (cross-spring pivots: linear scaling; compressed leaves: "
+                "large-deflection states)")
+
+
 def pivot_stroke_limits(pivot_rows: list) -> list:
     """The cross-spring pivots' rotation limits, from the FEM's peak von Mises at theta_max
     (plane stress) scaled linearly (the moment is within 1.4 % of linear there)."""
@@ -114,6 +128,52 @@ def pivot_stroke_limits(pivot_rows: list) -> list:
             f"peak von Mises of the FEM at theta_max = {math.degrees(r['theta_max_rad']):.3g} "
             "deg (the leaves clamped in rigid blocks), scaled linearly"))
     return out
+
+
+# The pivot stability study's rotations (fractions of theta_max) and load steps, quick or not
+# (pivot_stability_study): the compressed leaves' stroke limits use its states.
+LEAF_STATES = {True: ((0.5, 1.0, 3.0, 5.0, 6.0), 2),
+               False: ((0.25, 0.5, 1.0, 2.0, 3.0, 4.0, 4.5, 5.0, 5.5, 6.0), 3)}
+
+
+def leaf_stress_curve(pivot, quick: bool = False, P: float | None = None) -> dict:
+    """The compressed leaf's peak von Mises (Pa, nodal) at the pivot stability study's
+    rotations (rad, :data:`LEAF_STATES`) under the preload P (N, default the design's), in
+    order up to the first state at or above the yield strength: {theta_rad, stress_Pa, P_N}."""
+    fractions, steps = LEAF_STATES[quick]
+    model = _leaf_model(pivot, "plane_stress", 2, None)
+    P = pivot.P if P is None else float(P)
+    theta, stress = [], []
+    for f in fractions:
+        state = leaf_state(model, P, f * pivot.theta_max, steps)
+        theta.append(state["theta_rad"])
+        stress.append(state["stress_fem_peak_nodal_Pa"])
+        if stress[-1] >= pivot.material.yield_strength:
+            break
+    return {"theta_rad": theta, "stress_Pa": stress, "P_N": P}
+
+
+def leaf_stroke_limits(pivot, motor: int, curve: dict) -> dict:
+    """A compressed-leaf pivot's rotation limits from its ``curve`` (:func:`leaf_stress_curve`):
+    yield where the peak von Mises reaches S_y, fatigue about the straight leaf with the
+    preload's compressive mean -P / (w t) (fem/fatigue.py)."""
+    mean = -curve["P_N"] / (pivot.w * pivot.t)
+    states = ", ".join(f"{t / pivot.theta_max:g}" for t in curve["theta_rad"])
+    return curve_stroke_limits(
+        curve["theta_rad"], curve["stress_Pa"], pivot.material,
+        f"motor {motor} compressed-leaf pivot's rotation", "rad",
+        f"peak von Mises of the large-deflection FEM at the preload P = {curve['P_N']:.0f} N, "
+        f"at {states} theta_max (theta_max = {math.degrees(pivot.theta_max):.3g} deg; the "
+        "pivot stability study's states), interpolated; fatigue about the straight leaf with "
+        f"the preload's compressive mean {mean / 1e6:.2g} MPa", preload_stress=mean)
+
+
+def negative_pivot_stroke_limits(designs: list, quick: bool = False) -> list:
+    """The compressed-leaf pivots' rotation limits (:func:`leaf_stroke_limits`) of
+    ``designs`` (:func:`.negative_pivot_study.negative_pivot_designs` entries)."""
+    with one_blas_thread():  # small solves: ~3x faster so than on BLAS's threads
+        return [leaf_stroke_limits(pivot, motor, leaf_stress_curve(pivot, quick))
+                for motor, _, _, _, _, pivot in designs]
 
 
 def _flat(d: dict, prefix="") -> dict:
@@ -206,12 +266,15 @@ def reproduce(out_dir: Path, quick: bool = False) -> dict:
               f"{r['fem_stiffness_closed_Nm_per_rad']:.4g}), peak von Mises {r['fem_stress_fem_peak_nodal_Pa'] / 1e6:.0f} MPa, "
               f"RMS reduction {r['rms_reduction_leaf_fem_pct']:.1f} % (ideal torsion spring "
               f"{r['rms_reduction_ideal_torsion_pct']:.1f} %)" for r in negative["rows"]]
-    limits = pivot_stroke_limits(pivot_fem["rows"])
-    if limits and not quick:  # the quick report keeps to its pages; the table says the same
-        figures.append(plot_stroke_limits(limits, out_dir / "balancing_stroke_limits.png"))
+    limits = (pivot_stroke_limits(pivot_fem["rows"])
+              + negative_pivot_stroke_limits(negative_pivot_designs(ws), quick))
+    if limits:
+        figures.append(plot_stroke_limits(limits, out_dir / "balancing_stroke_limits.png",
+                                          STROKE_CAPTION, together=True))
     return {"paragraph": paragraph(fit), "calibration": fit, "comparisons": rows, "figures": figures, "tables": tables,
             "notes": notes + ([fatigue_note(limits)] if limits else []),
-            "stroke_limits": limits, "key_tables": [stroke_table(limits)] if limits else [],
+            "stroke_limits": limits,
+            "key_tables": [stroke_table(limits, STROKE_TITLE)] if limits else [],
             "summary_figure": "balancing_fig10.png", "lead": lead(fit, predicted),
             "pivot_fem": pivot_fem["rows"], "negative_pivot": negative["rows"],
             "n_samples": result["n_samples"], "results": result["results"],

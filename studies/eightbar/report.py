@@ -194,9 +194,11 @@ def plot_force(out: dict, path: Path, limits: dict | None = None) -> dict:
         cycles = f"{limits['fatigue_cycles']:.0e}".replace("e+0", "e").replace("e+", "e")
         b.axhline(amplitude / 1e6, color="g", ls="--",
                   label=f"fatigue amplitude (Goodman, {cycles} cycles)")
+    if limits:
+        mark_stroke_limits(b, limits, 1e3)
     b.set_xlabel(axis_label("x", "mm"))
     b.set_ylabel(axis_label("von Mises stress", "MPa"))
-    b.legend(fontsize=8)
+    b.legend(fontsize=7, loc="upper center", framealpha=0.9)
     b.grid(alpha=0.3)
     fig.tight_layout()
     return save(fig, path, "Drive force against stroke (nonlinear FEM beside the linear and "
@@ -204,7 +206,26 @@ def plot_force(out: dict, path: Path, limits: dict | None = None) -> dict:
                 "against the yield strength" + (" and the stress amplitude the material "
                                                 "endures for its fatigue life (Goodman, fully "
                                                 "reversed about the middle)"
-                                                if amplitude is not None else "") + ".")
+                                                if amplitude is not None else "")
+                + ("; dashed: the linear solve scaled, to the stroke limits (x: yield, "
+                   "diamond: fatigue-limited amplitude)" if limits else "") + ".")
+
+
+def mark_stroke_limits(ax, limits: dict, scale: float) -> None:
+    """On a stress (MPa) against stroke axes (stroke x ``scale``): the linear scaling of
+    ``limits`` (:func:`..report.stroke.stroke_limits`) out to 1.1 times its yield-limited
+    stroke each way, and the yield (x) and fatigue-limited (diamond) strokes marked."""
+    top = 1.1 * limits["stroke_limit_yield"]
+    ax.plot(np.array([-top, 0, top]) * scale,
+            np.array([top, 0, top]) * limits["stress_per_stroke"] / 1e6, color="0.4", ls="--",
+            lw=1, label="linear scaling (stroke limits)")
+    marks = [(limits["stroke_limit_yield"], "x", "tab:red", "yield-limited stroke")]
+    if limits["stroke_limit_fatigue_goodman"] is not None:
+        marks.append((limits["stroke_limit_fatigue_goodman"], "D", "tab:green",
+                      "fatigue-limited amplitude"))
+    for at, marker, color, label in marks:
+        ax.plot(np.array([-at, at]) * scale, [limits["stress_per_stroke"] * at / 1e6] * 2,
+                marker, color=color, mfc="none", mew=1.5, ms=7, ls="none", label=label)
 
 
 def comparisons(out: dict, mems: dict) -> list[Comparison]:
@@ -273,16 +294,28 @@ TOLERANCE_LABELS = {"flexure_width": "flexure width", "base_flexure_width": "bas
                     "root_fillet_radius": "root fillet radius"}
 
 
-def tolerance_study(out_dir: Path, quick: bool = False, full: bool = False) -> dict:
+# Outside --quick the report re-checks the designs at the extremes of the outputs it shows by
+# the 2-D continuum FEM with its large-deflection path (engine/tolerance.py: confirm_extremes;
+# at most 6 designs, ~20 s each on one core), as the DBMA's [tolerances.confirm] does; the
+# example file screens by the beam model only.
+TOLERANCE_CONFIRM = {"model": "continuum", "size_factor": 2.0}
+
+
+def tolerance_study(out_dir: Path, quick: bool = False, full: bool = False,
+                    n: int | None = None) -> dict:
     """The eight-bar's tolerance study (:data:`TOLERANCES`) into ``out_dir``/tolerances: n =
-    8 (40 designs, ~25 s) with ``quick``, 16 by default, 64 (the example's) with ``full``."""
-    return tolerance_report(TOLERANCES, evaluate, Path(out_dir) / "tolerances",
+    8 (40 designs, ~25 s) with ``quick``, 16 by default, 64 (the example's) with ``full``
+    (or ``n``); the extremes re-checked by :data:`TOLERANCE_CONFIRM` unless ``quick``."""
+    table = TOLERANCES if quick else {**TOLERANCES, "tolerances": {
+        **TOLERANCES["tolerances"], "metrics": list(TOLERANCE_OUTPUTS),
+        "confirm": TOLERANCE_CONFIRM}}
+    return tolerance_report(table, evaluate, Path(out_dir) / "tolerances",
                             TOLERANCE_OUTPUTS, TOLERANCE_LABELS,
                             "a wire-EDM shop's tolerances on the eight-bar's "
-                            "flexures", n=8 if quick else (64 if full else 16),
+                            "flexures", n=n or (8 if quick else (64 if full else 16)),
                             # 40 designs: in this process (~0.55 s of CPU each) beats
                             # starting workers; the larger samples use every CPU
-                            workers=1 if quick else None,
+                            workers=1 if quick else None, confirm=not quick,
                             figure="eightbar_tolerances.png", prefix="tolerances/")
 
 

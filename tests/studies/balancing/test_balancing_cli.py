@@ -47,8 +47,13 @@ def test_spring_and_counterweight_reductions_coincide():
 def test_reproduce_quick_writes_tables_and_figure(tmp_path, section_contract):
     summary = reproduce(tmp_path, quick=True)
     section_contract(tmp_path, summary)
-    assert {"balancing_fig10.png", "balancing_pivot_fem.png"} <= {
+    assert {"balancing_fig10.png", "balancing_pivot_fem.png", "balancing_stroke_limits.png"} <= {
         f["file"] for f in summary["figures"]}
+    # stroke limits beside the cross-spring pivots' for the compressed leaves of motors 2 and 4
+    leaves = [s for s in summary["stroke_limits"] if "compressed-leaf" in s["stroke"]]
+    assert [s["stroke"][:7] for s in leaves] == ["motor 2", "motor 4"]
+    assert all(s["stroke_limit_yield_reached"] and s["stroke_limit_fatigue_reached"]
+               for s in leaves)
     assert all(r["safety_factor_fem"] > 1.0 for r in summary["pivot_fem"])  # below yield
     fitted = [r for r in summary["comparisons"] if r["quantity"].startswith("fitted workspace")]
     rows = [r for r in summary["comparisons"] if r not in fitted]

@@ -8,7 +8,8 @@ import pytest
 from flexfem.fem import material
 from flexfem.studies.report.format import difference_text, margin_text, number, wrap_degrees
 from flexfem.studies.report.modes import describe_mode, mode_table
-from flexfem.studies.report.stroke import stroke_limits, stroke_sentence, stroke_table
+from flexfem.studies.report.stroke import (curve_stroke_limits, fatigue_note, fatigue_stress,
+                                           stroke_limits, stroke_sentence, stroke_table)
 
 
 def _limit_row(value, reference, unit, limit):
@@ -59,6 +60,30 @@ def test_stroke_limits_by_hand():
     table = stroke_table([limits])
     assert "None" not in str(table) and "±" in table["rows"][0][3]
     assert "before yield" in stroke_sentence([limits]) and "1e6 cycles" in stroke_sentence([limits])
+
+
+def test_a_preloaded_flexure_from_its_states():
+    """Peak stress |sigma_p| + s x at three states, a compressive preload sigma_p = -100 MPa:
+    yield where the peak reaches Sy, fatigue where s x reaches min(Se, Sy - 100 MPa) (250 -
+    100 = 150 MPa for structural steel); a stronger material's yield is not reached by the
+    states, and the text says so instead of extrapolating."""
+    steel = material("structural_steel")
+    s, strokes = 1e9, [0.05, 0.15, 0.30]
+    peaks = [100e6 + s * x for x in strokes]
+    limits = curve_stroke_limits(strokes, peaks, steel, "leaf rotation", "m", "states",
+                                 preload_stress=-100e6)
+    assert limits["stroke_limit_yield"] == pytest.approx(0.150)
+    assert limits["stroke_limit_fatigue_goodman"] == pytest.approx(0.150)
+    assert fatigue_stress(limits) == pytest.approx(250e6)
+    row = stroke_table([limits])["rows"][0]
+    assert "preload's mean -100 MPa" in row[1] and ">" not in row[2]
+    assert "9th ed., Section 6-12" in fatigue_note([limits])
+    assert "compressive" not in fatigue_note([stroke_limits(s, steel, "x", "m", "linear")])
+    strong = curve_stroke_limits(strokes, [p / 4 for p in peaks], steel, "rotation", "m",
+                                 "states", preload_stress=-25e6)
+    assert not strong["stroke_limit_yield_reached"] and strong["stroke_limit_yield"] == 0.30
+    assert "rotation > 0.3 m (last computed state); > ±0.3 m (last" in stroke_sentence([strong])
+    assert "None" not in str(stroke_table([strong]))
 
 
 def test_silicon_has_no_fatigue_limit_and_the_text_says_so():
