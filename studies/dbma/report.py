@@ -239,6 +239,22 @@ FIG13_LABELS = {"R_fem": "FEM, output / elongation", "R_fem_per_side": "FEM, out
                 "R_eq7": "Eq. 7", "R_enhanced": "elastic-beam model"}
 
 
+def add_stroke_limits(summary: dict, hinge_rows: list, out: Path) -> None:
+    """The section's stroke limits (summary["stroke_limits"]), their key table, fatigue note
+    and figure, from the hinge study's rows."""
+    limits = dbma_stroke_limits(hinge_rows)
+    summary["stroke_limits"] = limits
+    if not limits:
+        return
+    summary["key_tables"].append(stroke_table(limits))
+    summary["notes"].append(fatigue_note(limits))
+    summary["figures"].append(plot_stroke_limits(limits, out / "dbma_stroke_limits.png", (
+        "Stroke limits: peak von Mises at the hinges' root fillets against the actuator "
+        "elongation and the output stroke (the hinge study's solve scaled linearly), up "
+        "to yield (x) and, cycled fully reversed, the fatigue-limited amplitude (Goodman, "
+        "diamond)."), together=True))
+
+
 def reproduce(out_dir, quick: bool = False) -> dict:
     """Tables (CSV, markdown) and figures (PNG) of the DBMA study into ``out_dir``: the
     comparison with the paper, Fig. 13 and Fig. 14 studies, modes, mesh convergence."""
@@ -304,20 +320,11 @@ def reproduce(out_dir, quick: bool = False) -> dict:
     summary["hinge_profiles"] = hinges["rows"]
     summary.setdefault("notes", []).extend(hinges.get("notes", []))
     add_reasons(rows, hinges["rows"])
-    limits = dbma_stroke_limits(hinges["rows"])
-    summary["stroke_limits"] = limits
     summary["key_tables"] = [mode_table(
         result["frequencies_hz"], result["effective_mass"], result["total_mass"],
         "xyz"[:result["dim"]], f"DBMA modes ({result['dim']}-D; mounting face held, pads held "
         "along x)", result["working_mode"], "working mode (the output's motion)")]
-    if limits:
-        summary["key_tables"].append(stroke_table(limits))
-        summary["notes"].append(fatigue_note(limits))
-        figures.append(plot_stroke_limits(limits, out / "dbma_stroke_limits.png", (
-            "Stroke limits: peak von Mises at the hinges' root fillets against the actuator "
-            "elongation and the output stroke (the hinge study's solve scaled linearly), up "
-            "to yield (x) and, cycled fully reversed, the fatigue-limited amplitude (Goodman, "
-            "diamond)."), together=True))
+    add_stroke_limits(summary, hinges["rows"], out)
     summary["tolerances"] = add_to_section(summary, tolerance_study(out, quick))
     summary["wall_time_s"] = time.perf_counter() - start
     return summary
