@@ -36,7 +36,7 @@ def test_cli_eightbar_trace(capsys):
 
 def test_cli_bad_point_count_is_exit_code_2(capsys):
     assert main(["linkage", "trace", "watt", "--points", "2"]) == 2
-    assert "n = 2" in capsys.readouterr().err
+    assert "--points: '2' must be a whole number from 3" in capsys.readouterr().err
 
 
 def _band_about_best_fit_line(path_csv) -> tuple[float, float]:
