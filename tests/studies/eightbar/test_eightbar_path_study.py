@@ -35,7 +35,9 @@ def test_cli_eightbar_trace(capsys):
 
 
 def test_cli_bad_point_count_is_exit_code_2(capsys):
-    assert main(["linkage", "trace", "watt", "--points", "2"]) == 2
+    with pytest.raises(SystemExit) as refused:
+        main(["linkage", "trace", "watt", "--points", "2"])
+    assert refused.value.code == 2
     assert "--points: '2' must be a whole number from 3" in capsys.readouterr().err
 
 
