@@ -1,5 +1,6 @@
 """Time flexfem.topopt on 200 x 100 grids beside a port of top88 (tests/topopt/top88_port.py)
-at the same settings. Not a test: prints one JSON line a row (times in seconds).
+at the same settings. Not a test: prints one JSON line a row (wall and CPU times in seconds,
+the load average at its start and end: on a shared machine read the times beside the load).
 
     .venv/bin/python benchmarks/bench_topopt.py                    # 300 iterations a row
     .venv/bin/python benchmarks/bench_topopt.py --iterations 50 --rows mbb-flexfem mbb-top88
@@ -22,13 +23,24 @@ ROOT = Path(__file__).resolve().parents[1]
 NELX, NELY, RMIN = 200, 100, 3.0
 
 
+def _timed(run) -> dict:
+    """run() -> (iterations, objective), timed: seconds (wall), cpu_seconds (this process,
+    all its threads) and the load average (1 min) at the start and the end."""
+    load, start, cpu = os.getloadavg()[0], time.perf_counter(), time.process_time()
+    iterations, objective = run()
+    return {"seconds": time.perf_counter() - start, "cpu_seconds": time.process_time() - cpu,
+            "iterations": iterations, "objective": float(objective),
+            "load": [round(load, 2), round(os.getloadavg()[0], 2)]}
+
+
 def timed_optimize(problem) -> dict:
-    """flexfem's optimisation of ``problem``: seconds, iterations, final objective."""
+    """flexfem's optimisation of ``problem``, :func:`_timed`."""
     from flexfem.topopt import optimize
-    start = time.perf_counter()
-    result = optimize(problem)
-    return {"seconds": time.perf_counter() - start, "iterations": result.iterations,
-            "objective": float(result.history[-1, 0])}
+
+    def run():
+        result = optimize(problem)
+        return result.iterations, result.history[-1, 0]
+    return _timed(run)
 
 
 def mbb_flexfem(iterations: int) -> dict:
@@ -47,9 +59,7 @@ def mbb_flexfem(iterations: int) -> dict:
 def mbb_top88(iterations: int) -> dict:
     sys.path.insert(0, str(ROOT / "tests" / "topopt"))
     from top88_port import top88
-    start = time.perf_counter()
-    c, loop, _ = top88(NELX, NELY, 0.5, 3.0, RMIN, 1, max_loop=iterations)
-    return {"seconds": time.perf_counter() - start, "iterations": loop, "objective": float(c)}
+    return _timed(lambda: top88(NELX, NELY, 0.5, 3.0, RMIN, 1, max_loop=iterations)[1::-1])
 
 
 def inverter_flexfem(iterations: int) -> dict:
@@ -71,9 +81,7 @@ def inverter_flexfem(iterations: int) -> dict:
 def inverter_port(iterations: int) -> dict:
     sys.path.insert(0, str(ROOT / "tests" / "topopt"))
     from inverter_port import inverter88
-    start = time.perf_counter()
-    c, loop, _ = inverter88(NELX, NELY, 0.3, 3.0, RMIN, iterations, clamp=5)
-    return {"seconds": time.perf_counter() - start, "iterations": loop, "objective": float(c)}
+    return _timed(lambda: inverter88(NELX, NELY, 0.3, 3.0, RMIN, iterations, clamp=5)[1::-1])
 
 
 ROWS = {"mbb-flexfem": mbb_flexfem, "mbb-top88": mbb_top88, "inverter-flexfem": inverter_flexfem,

@@ -1,6 +1,8 @@
 """flexfem.topopt: density-based topology optimisation of 2-D plane-stress structures and
-compliant mechanisms on a structured grid of bilinear quads (SIMP or RAMP, sensitivity or
-density filter, Heaviside projection, optimality criteria or MMA).
+compliant mechanisms on a structured grid of bilinear quads (SIMP or RAMP, sensitivity,
+density or Helmholtz filter, Heaviside projection, several load cases, compliance,
+displacement, volume, lowest-eigenfrequency and stress-norm responses, optimality criteria
+or MMA).
 
     problem = load_problem("examples/topopt/mbb.toml")
     result = optimize(problem, out_dir="mbb_out")    # resumable: rerun to continue

@@ -50,6 +50,12 @@ def summarize(result: dict) -> str:
     for key in ("u_in", "u_out"):
         if key in result:
             lines.append(f"{key}: {result[key]:.6g} m")
+    if "compliances" in result:
+        lines.append("compliance by load case: "
+                     + ", ".join(f"{c:.6g} J" for c in result["compliances"]))
+    for key, unit in (("frequency", "Hz"), ("stress", "Pa")):
+        if key in result["constraints"]:
+            lines.append(f"{key}: {result['constraints'][key]:.6g} {unit}")
     tol = result.get("shape", {}).get("tolerance")
     if tol:
         fitted = result["shape"]["body_fitted"][tol["spring"]]

@@ -36,3 +36,19 @@ def element_stiffness(dx: float = 1.0, dy: float = 1.0, E: float = 1.0, nu: floa
             B = strain_displacement(dx, dy, xi, eta)
             KE += B.T @ D @ B * (dx * dy / 4.0)
     return KE * thickness
+
+
+def element_mass(dx: float = 1.0, dy: float = 1.0, thickness: float = 1.0) -> np.ndarray:
+    """The consistent mass matrix (8x8, kg per kg/m^3) of a dx x dy (m) rectangle of unit
+    mass density: rho t dx dy / 36 [4 2 1 2; 2 4 2 1; 1 2 4 2; 2 1 2 4] for x and y each."""
+    m4 = np.array([[4.0, 2.0, 1.0, 2.0], [2.0, 4.0, 2.0, 1.0], [1.0, 2.0, 4.0, 2.0],
+                   [2.0, 1.0, 2.0, 4.0]]) * (dx * dy * thickness / 36.0)
+    return np.kron(m4, np.eye(2))
+
+
+def von_mises_matrix(dx: float, dy: float, E: float, nu: float) -> np.ndarray:
+    """S (8x8, Pa^2 per m^2) with u_e^T S u_e = the von Mises stress squared at the centre of
+    a dx x dy (m) rectangle of modulus E (Pa) in plane stress."""
+    DB = plane_stress_matrix(E, nu) @ strain_displacement(dx, dy, 0.0, 0.0)
+    V = np.array([[1.0, -0.5, 0.0], [-0.5, 1.0, 0.0], [0.0, 0.0, 3.0]])
+    return DB.T @ V @ DB

@@ -27,13 +27,15 @@ class System:
         cols = reduced[np.tile(edofs, (1, 8))].ravel()
         vals = np.tile(KE.ravel(), grid.n_elements)
         elems = np.repeat(np.arange(grid.n_elements), 64)
+        local = np.tile(np.arange(64), grid.n_elements)
         keep = (rows >= 0) & (cols >= 0) & ((rows <= cols) if self.upper else True)
         rows, cols, vals, elems = rows[keep], cols[keep], vals[keep], elems[keep]
         n = self.free.size
         keys, slot = np.unique(rows.astype(np.int64) * n + cols, return_inverse=True)
         rows, self._indices = np.divmod(keys, n)
         self._indptr = np.concatenate([[0], np.cumsum(np.bincount(rows, minlength=n))])
-        self._map = sp.csr_matrix((vals, (slot.ravel(), elems)), shape=(keys.size, grid.n_elements))
+        self._entries = (slot.ravel(), elems, local[keep], keys.size)
+        self._map = self.element_map(KE)
         self.solver = PatternSolver(self._indptr, self._indices, n)
         self._spring = np.zeros(keys.size)
         for dof, k in springs.items():
@@ -41,21 +43,34 @@ class System:
             if r >= 0:
                 self._spring[np.searchsorted(keys, np.int64(r) * n + r)] += k
 
-    def matrix(self, E: np.ndarray) -> sp.csr_matrix:
-        """The reduced K (CSR; its upper triangle only where PARDISO factorises it)."""
-        data = self._map @ E + self._spring
+    def element_map(self, ME: np.ndarray) -> sp.csr_matrix:
+        """The sparse map from element factors to the values of sum_e factor_e ME (8 x 8)
+        in the reduced matrix's pattern."""
+        slot, elems, local, size = self._entries
+        return sp.csr_matrix((ME.ravel()[local], (slot, elems)),
+                             shape=(size, self.grid.n_elements))
+
+    def matrix(self, E: np.ndarray, element_map=None) -> sp.csr_matrix:
+        """The reduced K(E) (CSR; its upper triangle only where PARDISO factorises it), or
+        with ``element_map`` the reduced sum_e E_e ME of its matrix ME (without springs)."""
+        data = self._map @ E + self._spring if element_map is None else element_map @ E
         n = self.free.size
         return sp.csr_matrix((data, self._indices, self._indptr), shape=(n, n))
 
     def solve(self, E: np.ndarray, rhs: np.ndarray) -> np.ndarray:
         """Solutions (n_dofs, k) of K(E) u = rhs[:, j], one factorisation for all k."""
+        self.solver.factor(self._map @ E + self._spring)
+        return self.resolve(rhs)
+
+    def resolve(self, rhs: np.ndarray) -> np.ndarray:
+        """Solutions (n_dofs, k) with the last factorisation (of the last ``solve``)."""
         rhs = np.asarray(rhs, dtype=float).reshape(self.grid.n_dofs, -1)
         out = np.zeros_like(rhs)
-        self.solver.factor(self._map @ E + self._spring)
         out[self.free] = self.solver.solve(rhs[self.free]).reshape(self.free.size, -1)
         return out
 
-    def element_products(self, a: np.ndarray, b: np.ndarray) -> np.ndarray:
-        """a_e^T KE b_e for every element (the unit-modulus energy products)."""
+    def element_products(self, a: np.ndarray, b: np.ndarray, ME=None) -> np.ndarray:
+        """a_e^T KE b_e for every element (the unit-modulus energy products), or with an
+        8 x 8 ME a_e^T ME b_e."""
         ae, be = a[self.grid.edofs], b[self.grid.edofs]
-        return np.einsum("ei,ij,ej->e", ae, self.KE, be)
+        return np.einsum("ei,ij,ej->e", ae, self.KE if ME is None else ME, be)

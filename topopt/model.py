@@ -1,15 +1,17 @@
 """A problem made numeric: the stiffness system, load vector, filter, design map and the
 responses with their gradients (one factorisation per design, state and adjoints together)."""
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 import scipy.sparse as sp
 
-from .element import element_stiffness
+from .element import element_mass, element_stiffness, von_mises_matrix
 from .fea import System
 from .filters import Filter
 from .problem import Problem
 from .projection import project, project_derivative
+from .responses import RESPONSES, State
 
 AXIS = {"x": 0, "y": 1}
 
@@ -39,8 +41,9 @@ class Evaluation:
     constraints: np.ndarray       # each response's value, in its own units
     constraint_grads: np.ndarray  # (n_constraints, n_variables)
     physical: np.ndarray
-    u: np.ndarray
-    displacements: dict
+    u: np.ndarray                 # load case 1's displacements (m)
+    displacements: dict           # each spring's, load case 1
+    compliances: np.ndarray       # f_k.u_k of every load case (J)
 
 
 class Discrete:
@@ -59,11 +62,13 @@ class Discrete:
                 springs[dof] = springs.get(dof, 0.0) + s.stiffness / dofs.size
             self.spring_vectors[s.name] = np.bincount(dofs, minlength=g.n_dofs) / dofs.size
         self.system = System(g, KE, np.array(fixed, dtype=int), springs)
-        self.force = np.zeros(g.n_dofs)
+        self.forces = np.zeros((g.n_dofs, p.n_cases))
         for load in p.loads:
             nodes = load.where.nodes(g)
             for axis in (0, 1):
-                np.add.at(self.force, 2 * nodes + axis, load.force[axis] / nodes.size)
+                np.add.at(self.forces[:, load.case - 1], 2 * nodes + axis,
+                          load.force[axis] / nodes.size)
+        self.force = self.forces[:, 0]
         self.filter = Filter(g, p.filter_kind, p.radius)
         self.P = design_map(g, p.symmetry)
         self.lower, self.upper = self._bounds()
@@ -82,6 +87,23 @@ class Discrete:
         count = np.asarray(self.P.sum(axis=0)).ravel()
         return (self.P.T @ lo) / count, (self.P.T @ hi) / count
 
+    @cached_property
+    def ME(self) -> np.ndarray:
+        """The element mass matrix of unit mass density (8 x 8, kg per kg/m^3)."""
+        g = self.grid
+        return element_mass(g.dx, g.dy, self.problem.thickness)
+
+    @cached_property
+    def mass_map(self):
+        """Element mass factors to the reduced mass matrix's values (System.element_map)."""
+        return self.system.element_map(self.ME)
+
+    @cached_property
+    def S(self) -> np.ndarray:
+        """u_e^T S u_e: the squared von Mises stress (Pa^2) at a solid element's centre."""
+        p = self.problem
+        return von_mises_matrix(self.grid.dx, self.grid.dy, p.interpolation.E0, p.nu)
+
     @property
     def n_variables(self) -> int:
         return self.P.shape[1]
@@ -92,56 +114,73 @@ class Discrete:
         start = p.initial or p.volume_limit or 0.5
         return np.clip(np.full(self.n_variables, float(start)), self.lower, self.upper)
 
-    def physical(self, z: np.ndarray) -> np.ndarray:
+    def physical(self, z: np.ndarray, filtered: np.ndarray | None = None) -> np.ndarray:
         """Physical densities of the elements from design variables z (filtered, then
-        projected at ``self.beta`` where the problem has a projection)."""
-        rho = self.filter.physical(self.P @ z)
+        projected at ``self.beta`` where the problem has a projection); ``filtered``: the
+        filtered densities of z, if known."""
+        rho = self.filter.physical(self.P @ z) if filtered is None else filtered.copy()
         if self.beta is not None:
             rho = project(rho, self.beta, self.problem.projection.eta)
         rho[self.solid], rho[self.void] = 1.0, 0.0
         return rho
 
-    def back(self, x: np.ndarray, g: np.ndarray, objective: bool = False) -> np.ndarray:
-        """The gradient with respect to the design variables of a function whose gradient
-        with respect to the physical densities is g (x: the element design densities)."""
+    @cached_property
+    def _volume_weights(self):
+        """(w, c): the volume fraction is w @ z + c where the filter is linear and there is
+        no projection."""
+        free = ~(self.solid | self.void)
+        w = self.P.T @ self.filter.back(None, free / free.size)
+        return w, float(np.sum(self.solid)) / free.size
+
+    def volume(self, z: np.ndarray) -> float:
+        """The volume fraction (mean physical density) of design variables z."""
         if self.beta is not None:
-            g = g * project_derivative(self.filter.physical(x), self.beta,
-                                       self.problem.projection.eta)
+            return float(self.physical(z).mean())
+        w, c = self._volume_weights
+        return float(w @ z) + c
+
+    def back(self, x: np.ndarray, g: np.ndarray, objective: bool = False,
+             filtered: np.ndarray | None = None) -> np.ndarray:
+        """The gradient with respect to the design variables of a function whose gradient
+        with respect to the physical densities is g (x: the element design densities;
+        ``filtered``: their filtered values, if known)."""
+        if self.beta is not None:
+            filtered = self.filter.physical(x) if filtered is None else filtered
+            g = g * project_derivative(filtered, self.beta, self.problem.projection.eta)
         return self.P.T @ self.filter.back(x, g, objective=objective)
 
     def evaluate(self, z: np.ndarray) -> Evaluation:
-        """All responses at z, one factorisation for the state and every adjoint."""
+        """All responses at z, one factorisation for the states of every load case and
+        every adjoint."""
         p, x = self.problem, self.P @ z
-        rho = self.physical(z)
+        filtered = self.filter.physical(x)
+        rho = self.physical(z, filtered)
         interp = p.interpolation
         responses = [p.objective] + [c.response for c in p.constraints]
-        adjoint = {r.spring for r in responses if r.kind == "displacement"}
-        names = sorted(adjoint)
-        rhs = np.column_stack([self.force] + [self.spring_vectors[n] for n in names])
-        sol = self.system.solve(interp.modulus(rho), rhs)
-        u = sol[:, 0]
-        dE = interp.derivative(rho)
+        names = sorted({r.spring for r in responses if r.kind == "displacement"})
+        rhs = np.column_stack([self.forces] + [self.spring_vectors[n] for n in names])
+        E = interp.modulus(rho)
+        sol = self.system.solve(E, rhs)
+        cases = self.forces.shape[1]
+        state = State(rho, E, interp.derivative(rho), sol[:, :cases],
+                      dict(zip(names, sol[:, cases:].T)))
         pinned = self.solid | self.void
+        u = sol[:, 0]
         disp = {n: float(v @ u) for n, v in self.spring_vectors.items()}
 
         def value_grad(r):
-            if r.kind == "volume":
-                g = np.full(rho.size, 1.0 / rho.size)
-                g[pinned] = 0.0
-                return float(rho.mean()), g
-            lam = u if r.kind == "compliance" else sol[:, 1 + names.index(r.spring)]
-            value = float(self.force @ u) if r.kind == "compliance" else disp[r.spring]
-            g = -dE * self.system.element_products(lam, u)
+            value, g = RESPONSES[r.kind](self, state, r)
             g[pinned] = 0.0
             return value, g
 
         f0, g0 = value_grad(p.objective)
         sign = 1.0 if p.sense == "min" else -1.0
-        g0 = self.back(x, sign * g0, objective=True)
+        g0 = self.back(x, sign * g0, objective=True, filtered=filtered)
         values, grads = [], []
         for c in p.constraints:
             v, g = value_grad(c.response)
             values.append(v)
-            grads.append(self.back(x, g))
+            grads.append(self.back(x, g, filtered=filtered))
         grads = np.array(grads).reshape(len(values), self.n_variables)
-        return Evaluation(f0, g0, np.array(values), grads, rho, u, disp)
+        compliances = np.einsum("ik,ik->k", self.forces, state.U)
+        return Evaluation(f0, g0, np.array(values), grads, rho, u, disp, compliances)

@@ -14,7 +14,7 @@ def groups_of(problem) -> list:
     """(group name, region, kind) of every support ('support<k>'), load ('load<k>') and
     spring (its name)."""
     out = [(f"support{k}", s.where, "support") for k, s in enumerate(problem.supports)]
-    out += [(f"load{k}", ld.where, "load") for k, ld in enumerate(problem.loads)]
+    out += [(f"load{k}", ld.where, "load") for k, ld in enumerate(problem.case_loads(1))]
     return out + [(s.name, s.where, "spring") for s in problem.springs]
 
 
@@ -98,7 +98,7 @@ def _toml_text(problem, geo_name: str, material: dict) -> str:
     for k, s in enumerate(problem.supports):
         fixed = "".join(f"{a} = 0.0\n" for a in s.fix) if len(s.fix) < 2 else ""
         out.append(f'[[supports]]\ngroup = "support{k}"\n{fixed}')
-    for k, ld in enumerate(problem.loads):
+    for k, ld in enumerate(problem.case_loads(1)):
         out.append(f'[[loads]]\ngroup = "load{k}"\nforce = [{ld.force[0]!r}, {ld.force[1]!r}]\n')
     for s in problem.springs:
         out.append(f'[[loads]]          # no force: its mean displacement is reported\n'
@@ -113,8 +113,9 @@ def write_model(problem, outline: Outline, folder, *, rho: float, yield_strength
     """Write ``folder/name.geo`` and ``folder/name.toml``; returns the .toml's path. ``rho``
     (kg/m^3), ``yield_strength`` (Pa) and ``E`` (Pa, default the problem's) are the model
     file's material, SI as ``flexfem analyze`` requires (E >= 1 kPa); ``size`` (m, default
-    half an element): the mesh. The springs are not in the file (the format has none): each
-    becomes a force-free load group whose mean displacement ``flexfem analyze`` reports."""
+    half an element): the mesh. The loads are those of load case 1. The springs are not in
+    the file (the format has none): each becomes a force-free load group whose mean
+    displacement ``flexfem analyze`` reports."""
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
     g = problem.grid

@@ -13,7 +13,7 @@ from .projection import Projection
 from .regions import Region
 
 DOFS = ("x", "y")
-RESPONSES = ("compliance", "volume", "displacement")
+RESPONSES = ("compliance", "volume", "displacement", "frequency", "stress")
 OPTIMIZERS = ("oc", "mma")
 
 
@@ -27,10 +27,12 @@ class Support:
 
 @dataclass(frozen=True)
 class Load:
-    """A force (fx, fy), N, shared equally by the nodes of ``where``."""
+    """A force (fx, fy), N, shared equally by the nodes of ``where``, in load case ``case``
+    (1, 2, ...: the loads of a case act together, each case is solved on its own)."""
 
     where: Region
     force: tuple
+    case: int = 1
 
 
 @dataclass(frozen=True)
@@ -47,11 +49,19 @@ class Spring:
 
 @dataclass(frozen=True)
 class Response:
-    """'compliance' (f.u, J), 'volume' (solid fraction) or 'displacement' (the mean
-    displacement of spring ``spring`` along its DOF, m)."""
+    """'compliance' (sum over load cases of weights[k] f_k.u_k, J; ``weights`` default 1
+    each), 'volume' (solid fraction), 'displacement' (the mean displacement of spring
+    ``spring`` along its DOF in load case ``case``, m), 'frequency' (the lowest
+    eigenfrequency, Hz) or 'stress' (the p-norm, exponent ``pnorm``, of the elements'
+    relaxed von Mises stresses rho^relaxation sigma_vm(solid) at their centres over all load
+    cases, Pa)."""
 
     kind: str
     spring: str = ""
+    case: int = 1
+    weights: tuple = ()
+    pnorm: float = 8.0
+    relaxation: float = 0.5
 
 
 @dataclass(frozen=True)
@@ -74,9 +84,9 @@ class Passive:
 @dataclass(frozen=True)
 class Optimizer:
     """``kind`` 'oc' (optimality criteria, top88: compliance under a volume limit) or 'mma'
-    (mmapy's MMA: any objective and constraints); ``move``: largest density change per
-    iteration; stops when the largest change is below ``tolerance`` or at
-    ``max_iterations``."""
+    (Svanberg's MMA as mmapy takes it: any objective and constraints); ``move``: largest
+    density change per iteration; stops when the largest change is below ``tolerance`` or
+    at ``max_iterations``."""
 
     kind: str = "oc"
     move: float = 0.2
@@ -93,6 +103,7 @@ class Problem:
     sense: str = "min"
     nu: float = 0.3
     thickness: float = 1.0
+    mass_density: float = 1.0   # kg/m^3, for 'frequency'
     interpolation: Interpolation = field(default_factory=Interpolation)
     filter_kind: str = "sensitivity"
     radius: float = 1.5
@@ -117,6 +128,15 @@ class Problem:
                          f"(springs: {[s.name for s in self.springs]})")
 
     @property
+    def n_cases(self) -> int:
+        """The number of load cases."""
+        return max(load.case for load in self.loads)
+
+    def case_loads(self, case: int = 1) -> tuple:
+        """The loads of load case ``case``."""
+        return tuple(load for load in self.loads if load.case == case)
+
+    @property
     def volume_limit(self) -> float | None:
         """The upper bound of the volume constraint, if any."""
         return next((c.upper for c in self.constraints if c.response.kind == "volume"), None)
@@ -125,9 +145,10 @@ class Problem:
         """What the design depends on (the optimiser's limits excluded), for resuming."""
         limits = Optimizer(self.optimizer.kind, self.optimizer.move, 0, 0.0)
         text = repr((self.grid, self.objective, self.sense, self.nu, self.thickness,
-                     self.interpolation, self.filter_kind, self.radius, self.supports,
-                     self.loads, self.springs, self.constraints, self.passive, self.symmetry,
-                     limits, self.initial) + ((self.projection,) if self.projection else ()))
+                     self.mass_density, self.interpolation, self.filter_kind, self.radius,
+                     self.supports, self.loads, self.springs, self.constraints, self.passive,
+                     self.symmetry, limits, self.initial)
+                    + ((self.projection,) if self.projection else ()))
         return hashlib.sha256(text.encode()).hexdigest()[:16]
 
 
@@ -150,13 +171,11 @@ def check_problem(p: Problem) -> None:
         if s.dof not in DOFS:
             raise ValueError(f"spring {s.name!r}: dof = {s.dof!r}: choose 'x' or 'y'")
         _positive(s.stiffness, f"spring {s.name!r}: stiffness")
-    for r in [p.objective] + [c.response for c in p.constraints]:
-        if r.kind not in RESPONSES:
-            raise ValueError(f"kind = {r.kind!r}: choose one of {list(RESPONSES)}")
-        if r.kind == "displacement":
-            p.spring(r.spring)
     if not p.supports or not p.loads:
         raise ValueError("support, load: give at least one [[support]] and one [[load]]")
+    _check_cases(p)
+    for r in [p.objective] + [c.response for c in p.constraints]:
+        _check_response(p, r)
     for s in p.supports:
         if not s.fix or not set(s.fix) <= set(DOFS):
             raise ValueError(f"support.fix = {list(s.fix)!r}: give DOFs among 'x', 'y'")
@@ -165,16 +184,48 @@ def check_problem(p: Problem) -> None:
     if p.filter_kind != "none" and not (isinstance(p.radius, (int, float)) and p.radius > 1):
         raise ValueError(f"filter.radius = {p.radius!r}: must be > 1 (elements)")
     if p.projection is not None and p.filter_kind == "sensitivity":
-        raise ValueError("projection: needs filter.kind 'density' (or 'none'), not "
-                         "'sensitivity'")
-    if p.objective.kind == "volume":
-        raise ValueError("objective.kind = 'volume': optimise compliance or a displacement")
+        raise ValueError("projection: needs filter.kind 'density', 'helmholtz' or 'none', "
+                         "not 'sensitivity'")
+    if p.objective.kind not in ("compliance", "displacement"):
+        raise ValueError(f"objective.kind = {p.objective.kind!r}: optimise compliance or a "
+                         "displacement (volume, frequency and stress are constraints)")
+    _positive(p.mass_density, "material.rho")
     for c in p.constraints:
         if c.upper is None and c.lower is None:
             raise ValueError(f"constraint {c.response.kind!r}: give max or min")
     if p.symmetry and not set(p.symmetry) <= set(DOFS):
         raise ValueError(f"symmetry = {list(p.symmetry)!r}: give axes among 'x', 'y'")
     _check_optimizer(p)
+
+
+def _check_cases(p: Problem) -> None:
+    cases = {load.case for load in p.loads}
+    for load in p.loads:
+        if isinstance(load.case, bool) or not isinstance(load.case, int) or load.case < 1:
+            raise ValueError(f"load.case = {load.case!r}: must be an integer >= 1")
+    if cases != set(range(1, len(cases) + 1)):
+        raise ValueError(f"load.case: the cases must be 1, 2, ... without a gap, not "
+                         f"{sorted(cases)}")
+
+
+def _check_response(p: Problem, r: Response) -> None:
+    if r.kind not in RESPONSES:
+        raise ValueError(f"kind = {r.kind!r}: choose one of {list(RESPONSES)}")
+    if r.kind == "displacement":
+        p.spring(r.spring)
+    if not (isinstance(r.case, int) and 1 <= r.case <= p.n_cases):
+        raise ValueError(f"{r.kind}: case = {r.case!r}: must be a load case, 1 to {p.n_cases}")
+    if r.weights:
+        if r.kind != "compliance":
+            raise ValueError(f"{r.kind}: weights apply to kind 'compliance' only")
+        ok = all(isinstance(w, (int, float)) and np.isfinite(w) and w >= 0 for w in r.weights)
+        if len(r.weights) != p.n_cases or not ok or not any(r.weights):
+            raise ValueError(f"compliance: weights = {list(r.weights)!r}: give one number "
+                             f">= 0 per load case ({p.n_cases}), not all zero")
+    if not (isinstance(r.pnorm, (int, float)) and 1 <= r.pnorm <= 64):
+        raise ValueError(f"stress: pnorm = {r.pnorm!r}: must be in [1, 64]")
+    if not (isinstance(r.relaxation, (int, float)) and 0 < r.relaxation <= 1):
+        raise ValueError(f"stress: relaxation = {r.relaxation!r}: must be in (0, 1]")
 
 
 def _check_optimizer(p: Problem) -> None:

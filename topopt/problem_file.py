@@ -12,19 +12,19 @@ from .regions import parse_region
 
 TABLES = {
     "domain": {"nelx", "nely", "size", "thickness", "symmetry"},
-    "material": {"E", "nu", "Emin"},
+    "material": {"E", "nu", "Emin", "rho"},
     "interpolation": {"kind", "penal"},
     "filter": {"kind", "radius"},
-    "objective": {"kind", "spring", "sense"},
+    "objective": {"kind", "spring", "sense", "case", "weights"},
     "optimizer": {"kind", "move", "max_iterations", "tolerance", "initial"},
     "projection": {"beta", "eta", "beta_max", "every"},
     "shape": {"rho", "yield_strength", "min_member"},
 }
 LISTS = {
     "support": {"where", "fix"},
-    "load": {"where", "force"},
+    "load": {"where", "force", "case"},
     "spring": {"name", "where", "dof", "stiffness"},
-    "constraint": {"kind", "spring", "max", "min"},
+    "constraint": {"kind", "spring", "max", "min", "case", "weights", "pnorm", "relaxation"},
     "passive": {"where", "value"},
 }
 
@@ -72,12 +72,40 @@ def _support(k, r) -> Support:
     return Support(parse_region(r.get("where"), f"support[{k}].where"), tuple(fix))
 
 
+def _integer(value, key: str) -> int:
+    if isinstance(value, bool) or not isinstance(value, int) or value < 1:
+        raise ValueError(f"{key} = {value!r}: must be an integer >= 1")
+    return value
+
+
 def _load(k, r) -> Load:
     force = r.get("force")
     if not isinstance(force, list) or len(force) != 2:
         raise ValueError(f"load[{k}].force = {force!r}: give [fx, fy] (N)")
     return Load(parse_region(r.get("where"), f"load[{k}].where"),
-                tuple(_number(f, f"load[{k}].force") for f in force))
+                tuple(_number(f, f"load[{k}].force") for f in force),
+                _integer(r.get("case", 1), f"load[{k}].case"))
+
+
+# the keys of [objective] and [[constraint]] that only some kinds take
+KIND_KEYS = {"spring": ("displacement",), "case": ("displacement",),
+             "weights": ("compliance",), "pnorm": ("stress",), "relaxation": ("stress",)}
+
+
+def _response(r: dict, name: str) -> Response:
+    """The Response of an [objective] or [[constraint]] table named ``name``."""
+    kind = r.get("kind")
+    for key, kinds in KIND_KEYS.items():
+        if key in r and kind not in kinds:
+            raise ValueError(f"{name}.{key}: applies to kind {' or '.join(map(repr, kinds))}, "
+                             f"not {kind!r}")
+    weights = r.get("weights", [])
+    if not isinstance(weights, list):
+        raise ValueError(f"{name}.weights = {weights!r}: give a list, one per load case")
+    return Response(kind, r.get("spring", ""), _integer(r.get("case", 1), f"{name}.case"),
+                    tuple(_number(w, f"{name}.weights") for w in weights),
+                    _number(r.get("pnorm", 8.0), f"{name}.pnorm"),
+                    _number(r.get("relaxation", 0.5), f"{name}.relaxation"))
 
 
 def _spring(k, r) -> Spring:
@@ -88,8 +116,7 @@ def _spring(k, r) -> Spring:
 
 def _constraint(k, r) -> Constraint:
     bounds = {b: _number(r[b], f"constraint[{k}].{b}") for b in ("max", "min") if b in r}
-    return Constraint(Response(r.get("kind"), r.get("spring", "")), bounds.get("max"),
-                      bounds.get("min"))
+    return Constraint(_response(r, f"constraint[{k}]"), bounds.get("max"), bounds.get("min"))
 
 
 def _passive(k, r) -> Passive:
@@ -132,10 +159,11 @@ def problem_from_dict(data: dict) -> Problem:
         raise ValueError(f"domain.symmetry = {symmetry!r}: give a list of 'x', 'y'")
     return Problem(
         grid=_grid(t["domain"]),
-        objective=Response(t["objective"]["kind"], t["objective"].get("spring", "")),
+        objective=_response(t["objective"], "objective"),
         sense=t["objective"].get("sense", "min"),
         nu=_number(m.get("nu", 0.3), "material.nu"),
         thickness=_number(t["domain"].get("thickness", 1.0), "domain.thickness"),
+        mass_density=_number(m.get("rho", 1.0), "material.rho"),
         interpolation=Interpolation(i.get("kind", "simp"),
                                     _number(i.get("penal", 3.0), "interpolation.penal"), E,
                                     _number(m.get("Emin", 1e-9 * E), "material.Emin")),

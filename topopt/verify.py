@@ -55,8 +55,8 @@ def _supports(problem, mesh, reach):
 def verify_mechanism(problem, outline: Outline, E: float | None = None, size=None,
                      springs: bool = True) -> dict:
     """The body-fitted shape's displacement of every spring point along its DOF (m), with the
-    problem's supports, loads (at their nodes) and, with ``springs``, its springs; ``E``
-    defaults to the problem's, ``size`` (m) to half an element."""
+    problem's supports, loads of load case 1 (at their nodes) and, with ``springs``, its
+    springs; ``E`` defaults to the problem's, ``size`` (m) to half an element."""
     g = problem.grid
     h = min(g.dx, g.dy)
     mesh = mesh_outline(outline, size or h / 2)
@@ -66,7 +66,7 @@ def verify_mechanism(problem, outline: Outline, E: float | None = None, size=Non
                   order=2)
     loads = [PointForce(tuple(g.nodes[n]), tuple(ld.force[a] / len(ld.where.nodes(g))
                                                   for a in (0, 1)))
-             for ld in problem.loads for n in ld.where.nodes(g)]
+             for ld in problem.case_loads(1) for n in ld.where.nodes(g)]
     points = [g.nodes[s.where.nodes(g)].mean(axis=0) for s in problem.springs]
     vertices = [int(np.argmin(np.hypot(*(mesh.mesh.p - p[:, None])))) for p in points]
 

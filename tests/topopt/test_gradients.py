@@ -1,12 +1,14 @@
 """Every objective's and constraint's gradient against central finite differences, on a
 6 x 4 grid with the density filter active (the sensitivity filter is a heuristic, not a
-gradient), for SIMP and RAMP, with passive elements and symmetry, and through the Heaviside
-projection at several beta."""
+gradient), for SIMP and RAMP, with passive elements and symmetry, through the Heaviside
+projection at several beta and the Helmholtz filter; compliance over two load cases, the
+lowest eigenfrequency and the stress norm."""
 import numpy as np
 import pytest
 from problems import inverter, mbb
 
-from flexfem.topopt import Constraint, Interpolation, Passive, Projection, Region, Response
+from flexfem.topopt import (Constraint, Interpolation, Optimizer, Passive, Projection, Region,
+                            Response)
 from flexfem.topopt.model import Discrete
 
 CONSTRAINTS = (Constraint(Response("volume"), upper=0.4),
@@ -15,11 +17,11 @@ CONSTRAINTS = (Constraint(Response("volume"), upper=0.4),
                Constraint(Response("displacement", "output"), lower=-2.0))
 
 
-def _fd_check(problem, seed=0, beta=None):
+def _fd_check(problem, seed=0, beta=None, low=0.3, span=0.5):
     d = Discrete(problem)
     d.beta = beta if beta is not None else d.beta
     rng = np.random.default_rng(seed)
-    z = np.clip(0.3 + 0.5 * rng.random(d.n_variables), d.lower, d.upper)
+    z = np.clip(low + span * rng.random(d.n_variables), d.lower, d.upper)
     ev = d.evaluate(z)
     sign = 1.0 if problem.sense == "min" else -1.0
     h = 1e-6
@@ -64,3 +66,42 @@ def test_gradients_through_the_heaviside_projection(beta):
     _fd_check(inverter(6, 4, "density", constraints=CONSTRAINTS, projection=projection,
                        passive=(Passive(Region("box", ((0.0, 0.0), (1.0, 1.0))), "solid"),)),
               beta=beta)
+
+
+def test_gradients_of_weighted_compliance_over_two_load_cases():
+    weighted = Response("compliance", weights=(1.0, 2.5))
+    _fd_check(mbb(6, 4, "density", 1.5, second_load=(-0.5, -0.3), objective=weighted,
+                  optimizer=Optimizer("mma"),
+                  constraints=(Constraint(Response("volume"), upper=0.4),
+                               Constraint(Response("compliance", weights=(0.0, 1.0)),
+                                          upper=5.0))))
+
+
+def test_gradient_of_a_displacement_in_the_second_load_case():
+    _fd_check(inverter(6, 4, "density", second_load=(0.0, -1.0), constraints=(
+        Constraint(Response("displacement", "output", case=2), upper=1.0),)))
+
+
+@pytest.mark.parametrize("low", [0.3, 0.02])
+def test_gradient_of_the_lowest_eigenfrequency(low):
+    """Above and below 0.1, where the mass interpolation changes (z in [low, low + 0.5]
+    or [0.02, 0.07]: every physical density on one side)."""
+    frequency = Constraint(Response("frequency"), lower=0.01)
+    _fd_check(mbb(6, 4, "density", 1.5, mass_density=2.0, optimizer=Optimizer("mma"),
+                  constraints=(Constraint(Response("volume"), upper=0.4), frequency)),
+              low=low, span=0.5 if low > 0.1 else 0.05)
+
+
+@pytest.mark.parametrize("relaxation", [0.5, 1.0])
+def test_gradient_of_the_stress_norm(relaxation):
+    stress = Constraint(Response("stress", pnorm=8.0, relaxation=relaxation), upper=1.0)
+    _fd_check(mbb(6, 4, "density", 1.5, second_load=(-0.5, -0.3), optimizer=Optimizer("mma"),
+                  constraints=(stress,)))
+    _fd_check(inverter(6, 4, "density", constraints=(stress,),
+                       projection=Projection(beta=4.0, eta=0.5)))
+
+
+def test_gradients_through_the_helmholtz_filter():
+    _fd_check(mbb(6, 4, "helmholtz", 2.5, optimizer=Optimizer("mma")))
+    _fd_check(inverter(6, 4, "helmholtz", constraints=CONSTRAINTS,
+                       projection=Projection(beta=4.0, eta=0.5), symmetry=("x",)))
