@@ -3,6 +3,7 @@ a single leaf or a cross-spring pivot whose leaves cross without touching.
 
     model, info = pivot_beam_model(PivotGeometry("cross", 0.05, 0.5e-3), width=0.01, material=m)
     info["hub"], info["base"]      # the hub's master node, the clamped leaf roots
+    model.groups                   # "fixed" (the leaf roots) and "hub": the 2-D model's groups
 
 Each leaf is a straight beam from its base root to its hub end (width ``width`` out of the
 plane, thickness t in it); the leaves of a cross-spring pivot share no node (interleaved, as in
@@ -25,7 +26,8 @@ from ..geometry.flexure_pivot import PivotGeometry
 def pivot_beam_model(g: PivotGeometry, width: float, material, n_per_leaf: int = 20,
                      root_extension: float | None = None, shear: bool = False) -> tuple:
     """(BeamModel, info) of pivot ``g``; info: "hub" (master node), "base" (clamped nodes),
-    "leaves" [(first, last element)]. root_extension: x t per root (None: 0 with rigid blocks,
+    "leaves" [(first, last element)]; the model's groups "fixed" (the base roots) and "hub" (its
+    master), the 2-D model's names. root_extension: x t per root (None: 0 with rigid blocks,
     ROOT_EXTENSION with elastic ones)."""
     if root_extension is None:
         root_extension = 0.0 if g.block_length == 0 else ROOT_EXTENSION
@@ -60,5 +62,6 @@ def pivot_beam_model(g: PivotGeometry, width: float, material, n_per_leaf: int =
         hub = len(all_nodes)
         all_nodes = np.vstack([all_nodes, all_nodes[tips].mean(axis=0)[None, :]])
         links = [RigidLink(hub, tuple(tips))]
-    model = BeamModel(all_nodes, elements, sections, material, shear=shear, rigid_links=links)
+    model = BeamModel(all_nodes, elements, sections, material, shear=shear, rigid_links=links,
+                      groups={"fixed": base, "hub": [hub]})
     return model, {"hub": hub, "base": base, "leaves": spans}

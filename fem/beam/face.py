@@ -103,6 +103,12 @@ class BeamResult:
     state: BeamState
     supported: tuple = ()
     solver: str = "beam"
+    faces: tuple = ()  # the groups of the solve's rigid_faces
+
+    @property
+    def face_motion(self) -> dict:
+        """{face: (c_x, c_y, theta)} (m, m, rad) of each rigid face's node."""
+        return {f: self.state.q[group(self.model, f).nodes[0]].copy() for f in self.faces}
 
     @property
     def displacement(self) -> np.ndarray:
@@ -143,11 +149,17 @@ class BeamResult:
         return np.asarray(self.state.max_stress_location[2], dtype=float)
 
 
-def solve_static(model: BeamModel, supports, loads=(), **options) -> BeamResult:
-    """Linear static solve of a grouped beam model (the continuum's supports and loads)."""
+def solve_static(model: BeamModel, supports, loads=(), rigid_faces=(),
+                 **options) -> BeamResult:
+    """Linear static solve of a grouped beam model (the continuum's supports and loads;
+    ``rigid_faces``: RigidFace on one-node groups, a prescribed x, y or rotation held, a free
+    one carrying the face's force or moment; face_motion reads them)."""
     _no_options("solve_static", options, ("solver",))
-    state = solve_beam_static(model, node_supports(model, supports), node_loads(model, loads))
-    return BeamResult(model, state, tuple(_supported(supports)))
+    held, face_loads, _ = rigid_face_conditions(model, rigid_faces)
+    state = solve_beam_static(model, node_supports(model, supports) + held,
+                              node_loads(model, loads) + face_loads)
+    return BeamResult(model, state, tuple(_supported(supports)),
+                      faces=tuple(f.group for f in rigid_faces))
 
 
 def solve_modes(model: BeamModel, n: int = 6, supports=(), **options) -> BeamModes:

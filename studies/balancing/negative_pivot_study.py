@@ -7,8 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ...fem import Fixed, RigidFace, material as library_material
-from ...fem.nonlinear import solve_nonlinear
+from ...fem import material as library_material
 from ...geometry.flexure_pivot import PivotGeometry
 from ..engine.tables import write_rows
 from ..report.figures import axis_label, pyplot, save
@@ -24,7 +23,7 @@ from .negative_pivot import (
     size_negative_pivot,
 )
 from .optimum import optimal_torsion_spring, rms_reduction_pct
-from .pivot_fem import pivot_model
+from .pivot_fem import hub_state, pivot_model
 
 
 # ---------------------------------------------------------------- FEM check (large deflection)
@@ -33,17 +32,6 @@ def _leaf_model(pivot: CompressedLeafPivot, formulation, elements_through_thickn
 
     geometry = PivotGeometry("single", pivot.L, pivot.t)
     return pivot_model(pivot, formulation, elements_through_thickness, nu, geometry)
-
-
-def _hub_state(model, P, theta, steps):
-    """(moment (N m), (dx, dy) (m), result) with the hub turned by theta under the dead load P;
-    preload and rotation grow together (a conservative system: the end state is that of
-    preloading first, on the branch the Jacobi test shows to be the only stable one)."""
-
-    result = solve_nonlinear(model, [Fixed("fixed")], [], steps=steps,
-                             rigid_faces=[RigidFace("hub", rotation=theta, force=(-P, 0.0))])
-    motion = result.face_motion[-1]["hub"]
-    return float(result.face_reactions[-1]["hub"][2]), (float(motion[0]), float(motion[1])), result
 
 
 def negative_pivot_fem_check(pivot: CompressedLeafPivot, fractions=(0.5, 1.0), steps=4,
@@ -74,7 +62,7 @@ def negative_pivot_fem_check(pivot: CompressedLeafPivot, fractions=(0.5, 1.0), s
     P = pivot.P if P is None else float(P)
     I, L = pivot.I, pivot.L
     k_closed = beam_column_rotational_stiffness(E, I, L, P)
-    m_small, _, _ = _hub_state(model, P, small_angle, 2)
+    m_small, _, _ = hub_state(model, P, small_angle, 2)
     out = {"formulation": formulation, "L_m": L, "t_m": pivot.t, "w_m": pivot.w, "P_N": P,
            "kL": L * math.sqrt(P / (E * I)), "nu": model.material.nu,
            "n_dofs": int(model.n_dofs), "EI_over_L_Nm_per_rad": E * I / L,
@@ -88,7 +76,7 @@ def negative_pivot_fem_check(pivot: CompressedLeafPivot, fractions=(0.5, 1.0), s
     last = None
     for f in sorted(fractions, key=abs):
         theta = f * pivot.theta_max
-        moment, (_, dy), result = _hub_state(model, P, theta, steps)
+        moment, (_, dy), result = hub_state(model, P, theta, steps)
         ela = compressed_leaf_elastica(E, I, L, P, theta)
         for key, value in zip(curve, (theta, moment, ela.moment, dy, ela.dy, ela.stable)):
             curve[key].append(value)

@@ -1,6 +1,8 @@
-"""Beam-model checks of the balancing robot's flexure pivots, the outputs of the 2-D FEM
-checks (:func:`.pivot_fem.pivot_fem_check`, :func:`.negative_pivot_study.negative_pivot_fem_check`)
-from the reduced beam model (:func:`flexfem.reduced.pivot.pivot_beam_model`).
+"""Beam-model checks of the balancing robot's flexure pivots: the FEM checks' own analyses
+(:func:`.pivot_fem.linear_moment_solve`, :func:`.pivot_fem.hub_rotation_curve`,
+:func:`.pivot_fem.hub_state`: the same supports, rigid face and loads by group name) on the
+reduced beam model (:func:`flexfem.reduced.pivot.pivot_beam_model`, groups "fixed" and
+"hub") instead of the 2-D continuum.
 
 Cross-spring pivot: the base roots clamped, the hub a rigid body free to translate; a pure
 moment gives the small-angle stiffness, the hub rotation prescribed to theta_max (co-rotational
@@ -11,12 +13,9 @@ it, both growing together (as the FEM check does). The leaf width w is out of th
 """
 import math
 
-import numpy as np
-
-from ...fem.beam import (Fixed, NodalLoad, Prescribed, solve_beam_nonlinear, solve_beam_static)
 from ...geometry.flexure_pivot import PivotGeometry
 from ...reduced.pivot import pivot_beam_model
-from .pivot_fem import pivot_geometry
+from .pivot_fem import hub_rotation_curve, hub_state, linear_moment_solve, pivot_geometry
 from .pivots import leaf_bending_stress, pivot_stiffness_beam_theory
 
 
@@ -27,22 +26,14 @@ def pivot_beam_check(pivot, theta_max: float | None = None, steps: int = 8,
     as :func:`.pivot_fem.pivot_fem_check`'s."""
     theta_max = pivot.theta_max if theta_max is None else float(theta_max)
     g = pivot_geometry(pivot, crossing_angle)
-    model, info = pivot_beam_model(g, pivot.w, pivot.material, root_extension=root_extension)
-    base, hub = [Fixed(tuple(info["base"]))], info["hub"]
-    lin = solve_beam_static(model, base, [NodalLoad(hub, m=1.0)])
-    k_linear = 1.0 / float(lin.q[hub, 2])
-    res = solve_beam_nonlinear(model, base + [Prescribed(hub, "theta", theta_max)], steps=steps)
-    thetas = res.path(hub)[:, 2]
-    moments = np.array([s.reactions[hub][2] for s in res.states])
-    peak = res.final.max_stress
+    model, _ = pivot_beam_model(g, pivot.w, pivot.material, root_extension=root_extension)
+    theta, _ = linear_moment_solve(model, 1.0)
+    curve, path = hub_rotation_curve(model, theta_max, steps)
+    peak = path.max_von_mises
     return {"n_leaves": pivot.n_leaves, "n_dofs": int(model.n_dofs),
             "theta_max_rad": theta_max,
             "stiffness_beam_Nm_per_rad": pivot_stiffness_beam_theory(pivot),
-            "stiffness_linear_Nm_per_rad": k_linear,
-            "stiffness_secant_Nm_per_rad": float(moments[-1] / thetas[-1]),
-            "stiffness_tangent_Nm_per_rad": float((moments[-1] - moments[-2])
-                                                  / (thetas[-1] - thetas[-2])),
-            "curve_theta_rad": thetas.tolist(), "curve_moment_Nm": moments.tolist(),
+            "stiffness_linear_Nm_per_rad": 1.0 / theta, **curve,
             "stress_beam_Pa": float(leaf_bending_stress(pivot.material.E, pivot.t, theta_max,
                                                         pivot.L)),
             "stress_fem_peak_Pa": peak,
@@ -54,27 +45,20 @@ def compressed_leaf_beam_check(pivot, fractions=(0.5, 1.0), steps: int = 8, P=No
     """Beam-model small-angle stiffness (N m/rad), moment-rotation curve and peak stress (Pa)
     of a CompressedLeafPivot under its preload P (N); keys as
     :func:`.negative_pivot_study.negative_pivot_fem_check`'s (the FEM ones)."""
-    g = PivotGeometry("single", pivot.L, pivot.t)
-    model, info = pivot_beam_model(g, pivot.w, pivot.material)
-    base, hub = [Fixed(tuple(info["base"]))], info["hub"]
+    model, _ = pivot_beam_model(PivotGeometry("single", pivot.L, pivot.t), pivot.w,
+                                pivot.material)
     P = pivot.P if P is None else float(P)
-
-    def state(theta, n):
-        res = solve_beam_nonlinear(model, base + [Prescribed(hub, "theta", theta)],
-                                   [NodalLoad(hub, fx=-P)], steps=n)
-        return res.final
-
-    small = state(small_angle, 2)
+    m_small, _, _ = hub_state(model, P, small_angle, 2)
     out = {"L_m": pivot.L, "t_m": pivot.t, "w_m": pivot.w, "P_N": P, "n_dofs": model.n_dofs,
-           "stiffness_fem_small_Nm_per_rad": float(small.reactions[hub][2]) / small_angle}
+           "stiffness_fem_small_Nm_per_rad": m_small / small_angle}
     thetas, moments, dys, peak = [], [], [], None
     for f in sorted(fractions, key=abs):
         theta = f * pivot.theta_max
-        end = state(theta, steps)
+        moment, (_, dy), path = hub_state(model, P, theta, steps)
         thetas.append(theta)
-        moments.append(float(end.reactions[hub][2]))
-        dys.append(float(end.q[hub, 1]))
-        peak = end.max_stress
+        moments.append(moment)
+        dys.append(dy)
+        peak = path.max_von_mises
     out.update({"curve_theta_rad": thetas, "curve_moment_fem_Nm": moments,
                 "curve_dy_fem_m": dys, "stress_fem_peak_nodal_Pa": peak,
                 "safety_factor_fem": pivot.material.yield_strength / peak})

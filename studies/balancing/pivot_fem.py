@@ -65,12 +65,42 @@ def pivot_model(pivot: FlexurePivot, formulation="plane_stress", elements_throug
     return Model(mesh, mat, plane, order=2)
 
 
-def linear_moment_solve(model: Model, moment: float = 1.0) -> tuple:
+def linear_moment_solve(model, moment: float = 1.0) -> tuple:
     """Small-deflection solve with a pure moment (N m) on the rigid, translation-free "hub"
-    and "fixed" clamped: (rotation theta (rad), DOF vector u (m))."""
+    and "fixed" clamped, of the continuum or the beam model: (rotation theta (rad), the
+    StaticResult or BeamResult)."""
     result = solve_static(model, [Fixed("fixed")], [],
                           rigid_faces=[RigidFace("hub", moment=moment)])
-    return float(result.face_motion["hub"][2]), result.u
+    return float(result.face_motion["hub"][2]), result
+
+
+def hub_rotation_curve(model, theta_max: float, steps: int) -> tuple:
+    """The hub turned to ``theta_max`` (rad) in ``steps`` large-deflection steps, "fixed"
+    clamped, the hub free to translate, on the continuum or the beam model: ({curve_theta_rad,
+    curve_moment_Nm, stiffness_secant / _tangent_Nm_per_rad at theta_max,
+    hub_centroid_shift_m, newton_iterations}, the solver's path)."""
+    result = solve_nonlinear(model, [Fixed("fixed")], [], steps=steps,
+                             rigid_faces=[RigidFace("hub", rotation=theta_max)])
+    thetas = np.array([m["hub"][2] for m in result.face_motion])
+    moments = np.array([r["hub"][2] for r in result.face_reactions])
+    hub = np.array([m["hub"][:2] for m in result.face_motion])
+    return {"curve_theta_rad": thetas.tolist(), "curve_moment_Nm": moments.tolist(),
+            "stiffness_secant_Nm_per_rad": float(moments[-1] / thetas[-1]),
+            "stiffness_tangent_Nm_per_rad": float((moments[-1] - moments[-2])
+                                                  / (thetas[-1] - thetas[-2])),
+            "hub_centroid_shift_m": float(np.linalg.norm(hub[-1])),
+            "newton_iterations": [int(i) for i in result.iterations]}, result
+
+
+def hub_state(model, P: float, theta: float, steps: int) -> tuple:
+    """(moment (N m), (dx, dy) (m), the solver's path) with the hub turned by theta (rad)
+    under the dead compressive load P (N), on the continuum or the beam model; preload and
+    rotation grow together (a conservative system: the end state is that of preloading first,
+    on the branch the Jacobi test shows to be the only stable one)."""
+    result = solve_nonlinear(model, [Fixed("fixed")], [], steps=steps,
+                             rigid_faces=[RigidFace("hub", rotation=theta, force=(-P, 0.0))])
+    motion = result.face_motion[-1]["hub"]
+    return float(result.face_reactions[-1]["hub"][2]), (float(motion[0]), float(motion[1])), result
 
 
 def _leaf_middle(model: Model, geometry: PivotGeometry):
@@ -119,9 +149,9 @@ def pivot_fem_check(pivot: FlexurePivot, theta_max: float | None = None, steps: 
     middle = _leaf_middle(model, geometry)
     k_beam = pivot_stiffness_beam_theory(pivot)
     sigma_beam = float(leaf_bending_stress(pivot.material.E, pivot.t, theta_max, pivot.L))
-    theta, u = linear_moment_solve(model, moment=k_beam * theta_max)
+    theta, linear = linear_moment_solve(model, moment=k_beam * theta_max)
     k_linear = k_beam * theta_max / theta
-    sig = model.stress(u * theta_max / theta)
+    sig = model.stress(linear.u * theta_max / theta)
     out = {"formulation": formulation, "n_leaves": pivot.n_leaves, "L_m": pivot.L,
            "t_m": pivot.t, "w_m": pivot.w, "nu": model.material.nu,
            "n_elements": int(model.mesh.mesh.t.shape[1]), "n_dofs": int(model.n_dofs),
@@ -133,17 +163,8 @@ def pivot_fem_check(pivot: FlexurePivot, theta_max: float | None = None, steps: 
                                von_mises(sig).max(axis=1), middle, "linear_stress"))
     prefix = "linear_stress"
     if steps:
-        result = solve_nonlinear(model, [Fixed("fixed")], [], steps=steps,
-                                 rigid_faces=[RigidFace("hub", rotation=theta_max)])
-        thetas = np.array([m["hub"][2] for m in result.face_motion])
-        moments = np.array([r["hub"][2] for r in result.face_reactions])
-        hub = np.array([m["hub"][:2] for m in result.face_motion])
-        out.update({"curve_theta_rad": thetas.tolist(), "curve_moment_Nm": moments.tolist(),
-                    "stiffness_secant_Nm_per_rad": float(moments[-1] / thetas[-1]),
-                    "stiffness_tangent_Nm_per_rad": float((moments[-1] - moments[-2])
-                                                          / (thetas[-1] - thetas[-2])),
-                    "hub_centroid_shift_m": float(np.linalg.norm(hub[-1])),
-                    "newton_iterations": [int(i) for i in result.iterations]})
+        curve, result = hub_rotation_curve(model, theta_max, steps)
+        out.update(curve)
         out["stiffness_error_secant"] = k_beam / out["stiffness_secant_Nm_per_rad"] - 1.0
         out["stiffness_error_tangent"] = k_beam / out["stiffness_tangent_Nm_per_rad"] - 1.0
         out.update(_stress_summary(result.von_mises_nodal, result.von_mises_element_max, middle,

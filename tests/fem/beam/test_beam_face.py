@@ -71,13 +71,27 @@ def test_harmonic_static_limit_and_resonance():
     assert rayleigh.frf("tip", 1).response[0].real == pytest.approx(L ** 3 / (3 * EI), rel=1e-9)
 
 
+def test_a_rigid_face_of_the_static_solve_carries_its_moment_and_holds_its_values():
+    """A pure moment M on the tip's rigid face turns it by M L / EI; with the face's
+    rotation held instead, a tip force bends the leaf as a guided one (12 EI / L^3)."""
+    from flexfem.fem import RigidFace
+
+    model = cantilever()
+    turned = solve_static(model, [Fixed("root")], [], rigid_faces=[RigidFace("tip", moment=1.0)])
+    assert turned.face_motion["tip"] == pytest.approx([0.0, L ** 2 / (2 * EI), L / EI],
+                                                      rel=1e-9, abs=1e-15)
+    guided = solve_static(model, [Fixed("root")], [],
+                          rigid_faces=[RigidFace("tip", rotation=0.0, force=(0.0, 1.0))])
+    assert guided.face_motion["tip"][1] == pytest.approx(L ** 3 / (12 * EI), rel=1e-9)
+
+
 def test_what_the_beam_model_cannot_take_is_named():
     model = cantilever()
     with pytest.raises(ValueError, match="'nowhere' is not one of"):
         solve_static(model, [Fixed("nowhere")], [])
     with pytest.raises(ValueError, match="continuum's"):
         solve_static(model, [Fixed("root")], [Gravity((0.0, -9.81))])
-    with pytest.raises(TypeError, match="rigid_faces"):
+    with pytest.raises(ValueError, match="takes 2-D RigidFace"):
         solve_static(model, [Fixed("root")], [], rigid_faces=[object()])
     with pytest.raises(ValueError, match="no linearised buckling"):
         solve_buckling(model, [Fixed("root")], [Force("tip", (-1.0, 0.0))])
