@@ -89,6 +89,8 @@ BUILTIN = (
                     "dynamics_report:reproduce"),
             Section("dbma_beam", "DBMA: beam model beside the closed forms and the FEM",
                     "beam_report:reproduce"),
+            Section("dbma_topopt", "DBMA: a topology-optimised amplifier in its envelope",
+                    "topopt_report:reproduce"),
         )),
     Mechanism(
         "eightbar", "Symmetric rectilinear eight-bar flexure suspension", "eightbar",
