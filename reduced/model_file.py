@@ -21,7 +21,9 @@ import math
 
 import numpy as np
 
-from ..fem.beam import BeamMesh, BeamModel, RigidLink, beam_chain, beam_from_profile
+from ..fem.beam import BeamMesh, BeamModel, RigidLink, beam_from_profile, profile_chain
+from ..fem.beam.mesh import point_distances
+from ..geometry.polygon import chord as polygon_chord, moments as polygon_moments
 from .layout import corrected_sections, root_section
 from .hinge_patch import has_notch, profile_factors
 from .crossings import crossings
@@ -58,7 +60,7 @@ def _line_mesh(line, tol, cuts=None, trim=(0.0, 0.0), factors=None) -> BeamMesh:
     stubs) shares them among its pieces by length, at least one each; ``trim`` (m): the
     lengths left out at the first and last point (an oblique root's, :mod:`.roots`);
     ``factors``: a notch's correction on every element."""
-    mesh, profile, cuts = None, line.thickness, cuts or {}
+    cuts, pieces = cuts or {}, []  # pieces: (start, end, arc length at its start, elements)
     last, before = len(line.points) - 2, 0.0  # before: arc length to the segment's start, m
     for k in range(last + 1):
         a, b = np.asarray(line.points[k], float), np.asarray(line.points[k + 1], float)
@@ -71,15 +73,33 @@ def _line_mesh(line, tol, cuts=None, trim=(0.0, 0.0), factors=None) -> BeamMesh:
                              "crossing's joint leave no length of its segment "
                              f"{list(line.points[k])} - {list(line.points[k + 1])}")
         for s0, s1 in zip(marks[:-1], marks[1:]):
-            n = max(1, round(line.elements * (s1 - s0) / length))
-            part = beam_from_profile(a + s0 / length * (b - a), a + s1 / length * (b - a),
-                                     lambda s, s0=before + s0: profile(s0 + s),
-                                     line.depth, n)
-            mesh = part if mesh is None else mesh.join(part, tol)
+            pieces.append((a + s0 / length * (b - a), a + s1 / length * (b - a), before + s0,
+                           max(1, round(line.elements * (s1 - s0) / length))))
         before += length
+    mesh = _pieces_mesh(pieces, line, tol)
     if factors is not None:
         mesh = BeamMesh(mesh.nodes, mesh.elements, corrected_sections(mesh.sections, factors),
                         mesh.point_nodes)
+    return mesh
+
+
+def _pieces_mesh(pieces, line, tol) -> BeamMesh:
+    """The line's pieces (start, end, arc length at the start, elements) as one chain
+    (:func:`flexfem.fem.beam.profile_chain`): the pieces joined one by one (each node of a
+    piece welded to one of the pieces before it within ``tol``) give the same mesh unless a
+    piece comes back to one before it, where they are joined so."""
+    starts, ends, arcs, counts = zip(*pieces)
+    chain = profile_chain(starts, ends, arcs, counts, line.thickness.at, line.depth)
+    piece = np.repeat(np.arange(len(counts)), counts)  # of each node but the first
+    piece = np.concatenate([[0], piece])
+    near = point_distances(chain.nodes, chain.nodes) <= tol
+    if not (near & (piece[:, None] != piece[None, :])).any():
+        return chain
+    mesh = None
+    for a, b, arc, n in pieces:
+        part = beam_from_profile(a, b, lambda s, arc=arc: line.thickness.at(arc + s),
+                                 line.depth, n, vectorized=True)
+        mesh = part if mesh is None else mesh.join(part, tol)
     return mesh
 
 
@@ -102,17 +122,25 @@ def _extension(line, end: int, factor: float, bodies=(), offset: float = 0.0):
     if length <= 0:
         return root, None
     height = _block_height(a, d, [r for body in bodies for r in body.blocks])
-    return root, beam_chain([root, tuple(np.add(root, length * d))],
-                            root_section(line.depth, t, length, height), 1)
+    section = root_section(line.depth, t, length, height)
+    # one element: beam_chain([root, tip], section, 1)'s mesh, without its checks
+    return root, BeamMesh(np.array([root, np.add(root, length * d)]), np.array([[0, 1]]),
+                          [section], [0, 1])
 
 
 def _block_height(point, direction, blocks) -> float | None:
     """The height H (m) of the block a beam end at ``point`` (m) enters along ``direction``:
     the longest chord, across the beam through the point, of the rectangles ``blocks`` ((2, 2)
-    opposite corners, m); None where none reaches the point."""
+    opposite corners, m) or polygons ((k, 2) vertices: the piece of the line across it that
+    holds the point); None where none reaches the point."""
     n = np.array([-direction[1], direction[0]])
     best = None
-    for (x0, y0), (x1, y1) in blocks:
+    for block in blocks:
+        if len(block) > 2:
+            length = polygon_chord(block, point, n, 1e-9 * float(np.ptp(block, axis=0).max()))
+            best = max(best or 0.0, length) if length else best
+            continue
+        (x0, y0), (x1, y1) = block
         lo, hi = -np.inf, np.inf
         for k, (low, high) in enumerate(((min(x0, x1), max(x0, x1)),
                                          (min(y0, y1), max(y0, y1)))):
@@ -166,8 +194,10 @@ def _mesh(beams, tol, nu: float) -> tuple:
     for point, root, ext in roots:  # after all beams: node numbers of the joined mesh are final
         if ext is not None:
             mesh = mesh.join(ext, tol)
-        far = ext.nodes[1] if ext is not None else root
-        ends.setdefault(tuple(point), []).append(mesh.node_at(far, tol))
+            far = mesh.point_nodes[-1]  # the extension's far end, renumbered by the join
+        else:
+            far = mesh.node_at(root, tol)
+        ends.setdefault(tuple(point), []).append(far)
     joints = []
     for crossing in found:
         stubs = []
@@ -187,7 +217,11 @@ def _rect_inertia(block, rho_t) -> tuple:
 
 
 def _body_mass(body, rho_t) -> tuple:
-    """(mass, centroid, rotary inertia about it) of the union of a body's (disjoint) blocks."""
+    """(mass, centroid, rotary inertia about it) of the union of a body's (disjoint) blocks;
+    with polygons among them, of the blocks' union (its area moments, geometry/polygon.py)."""
+    if any(len(block) > 2 for block in body.blocks):
+        area, c, (xx, yy, _) = polygon_moments(body.blocks)
+        return rho_t * area, c, rho_t * (xx + yy)
     parts = [_rect_inertia(b, rho_t) for b in body.blocks]
     m = sum(p[0] for p in parts)
     c = sum(p[0] * p[1] for p in parts) / m

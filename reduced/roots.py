@@ -18,13 +18,22 @@ import math
 
 import numpy as np
 
+from ..geometry.polygon import edge_at
+
 SHALLOWEST = 10.0  # degrees: a shallower root is refused, as a shallower crossing
 
 
 def face_normal(point, blocks, tol: float):
     """The unit normal (2,) of the face of one of the rectangles ``blocks`` ((2, 2) opposite
-    corners, m) that ``point`` (m) lies on; None where it lies on none or on a corner."""
-    for (x0, y0), (x1, y1) in blocks:
+    corners, m) or polygons ((k, 2) vertices) that ``point`` (m) lies on; None where it lies
+    on none or on a corner."""
+    for block in blocks:
+        if len(block) > 2:
+            edge = edge_at(block, point, tol, corners=False)
+            if edge is not None:
+                return np.array([-edge[1], edge[0]])
+            continue
+        (x0, y0), (x1, y1) = block
         (xl, xh), (yl, yh) = sorted((x0, x1)), sorted((y0, y1))
         inside_x = xl + tol < point[0] < xh - tol
         inside_y = yl + tol < point[1] < yh - tol

@@ -10,8 +10,8 @@
 from .assembly import SingularBeamError
 from .compliance import compliance
 from .modal import BeamModes, solve_beam_modes
-from .model import (BeamGroup, BeamMesh, BeamModel, Fixed, NodalLoad, Prescribed, RigidLink, Section,
-                    beam_chain, beam_from_profile)
+from .mesh import BeamMesh, beam_chain, beam_from_profile, profile_chain
+from .model import BeamGroup, BeamModel, Fixed, NodalLoad, Prescribed, RigidLink, Section
 from .nonlinear import BeamNonlinearResult, NonConvergenceError, solve_beam_nonlinear
 from .static import BeamState, BeamStaticResult, solve_beam_displacements, solve_beam_static
 from .superelement import Superelement
@@ -20,6 +20,6 @@ __all__ = [
     "BeamGroup", "BeamMesh", "BeamModel", "BeamModes", "BeamNonlinearResult", "BeamState",
     "BeamStaticResult", "Fixed", "NodalLoad", "NonConvergenceError", "Prescribed", "RigidLink",
     "Section", "SingularBeamError", "Superelement", "beam_chain", "beam_from_profile",
-    "compliance", "solve_beam_displacements", "solve_beam_modes", "solve_beam_nonlinear",
-    "solve_beam_static",
+    "compliance", "profile_chain", "solve_beam_displacements", "solve_beam_modes",
+    "solve_beam_nonlinear", "solve_beam_static",
 ]

@@ -13,7 +13,8 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from .element import basic_stiffness, corotational, local_mass, rotation_to_global
+from .element import (basic_stiffness, corotational, local_mass, rotation_to_global,
+                      undeformed)
 from .model import BeamModel, NodalLoad
 from .pattern import block_dofs, global_matrix
 from .space import Space
@@ -53,6 +54,17 @@ def point_mass_diagonal(model: BeamModel) -> np.ndarray:
         diag[3 * int(node):3 * int(node) + 2] += m
         diag[3 * int(node) + 2] += J
     return diag
+
+
+def point_mass_blocks(model: BeamModel, nodes) -> np.ndarray:
+    """(k, 6, 6) the point masses of ``nodes`` (k,) as blocks of the node pair (node, node):
+    mass (kg) and rotary inertia (kg m^2) on the first node's DOFs, zeros elsewhere."""
+    blocks = np.zeros((len(nodes), 6, 6))
+    for k, node in enumerate(nodes.tolist()):
+        m, J = model.point_masses[node]
+        blocks[k, 0, 0] = blocks[k, 1, 1] = m
+        blocks[k, 2, 2] = J
+    return blocks
 
 
 def mass_matrix(model: BeamModel) -> sp.csr_matrix:
@@ -107,8 +119,8 @@ class Assembler:
         to the forces and tangents; the undeformed state's is cached (the linear solves of
         a design point all start there)."""
         if not q.any():
-            return self.model.cached("undeformed", lambda: self._with_pairs(corotational(
-                self.model, self.Kb, np.zeros((self.model.n_nodes, 3)), True), q))
+            return self.model.cached("undeformed", lambda: self._with_pairs(
+                undeformed(self.model, self.Kb), q))
         return self._with_pairs(corotational(self.model, self.Kb, q, tangent), q)
 
     def _with_pairs(self, out, q) -> tuple:

@@ -7,7 +7,6 @@ LU with its column ordering. The ordering and where each stored entry lands in t
 worked out once per sparsity pattern (fem/beam/pattern.py's shared cache).
 """
 import numpy as np
-import scipy.linalg as sla
 from scipy.linalg import lapack
 import scipy.sparse as sp
 from scipy.sparse.csgraph import reverse_cuthill_mckee, shortest_path
@@ -76,8 +75,8 @@ class _Band:
         self.perm = _ordering(pattern)
         where = np.empty(n, dtype=np.int64)
         where[self.perm] = np.arange(n)
-        col = np.repeat(np.arange(n), np.diff(indptr))
-        r, c = where[indices], where[col]
+        self.col = np.repeat(np.arange(n), np.diff(indptr))  # each stored entry's column
+        r, c = where[indices], where[self.col]
         self.upper = np.flatnonzero(r <= c)
         self.bw = int((c - r)[self.upper].max()) if len(self.upper) else 0
         self.flat = (self.bw + r[self.upper] - c[self.upper]) * n + c[self.upper]
@@ -95,10 +94,7 @@ class BandedCholesky:
     mechanism, or a tangent past a limit point) or its band is too wide."""
 
     def __init__(self, K):
-        K = sp.csc_matrix(K)
-        if not K.has_canonical_format:
-            K = K.copy()
-            K.sum_duplicates()
+        K = _canonical_csc(K)
         diag = K.diagonal()
         if not np.all(np.isfinite(diag)) or np.any(diag <= 0):
             raise SingularBeamError("stiffness not positive definite: a DOF without stiffness")
@@ -107,14 +103,13 @@ class BandedCholesky:
         if band.bw > MAX_BAND_FRACTION * n and band.bw > 32:
             raise SingularBeamError(f"band too wide ({band.bw} of {n}) for a banded factor")
         self.scale = 1.0 / np.sqrt(diag)
-        col = np.repeat(np.arange(n), np.diff(K.indptr))
-        values = K.data * self.scale[K.indices] * self.scale[col]
+        values = K.data * self.scale[K.indices] * self.scale[band.col]
         ab = np.zeros((band.bw + 1) * n)
         ab[band.flat] = values[band.upper]
-        try:
-            self.cb = sla.cholesky_banded(ab.reshape(band.bw + 1, n), check_finite=False)
-        except np.linalg.LinAlgError:
-            raise SingularBeamError("stiffness not positive definite") from None
+        # LAPACK's dpbtrf itself (scipy's cholesky_banded, without its wrapper's cost)
+        self.cb, info = lapack.dpbtrf(ab.reshape(band.bw + 1, n), lower=0)
+        if info != 0:
+            raise SingularBeamError("stiffness not positive definite")
         if self.cb[-1].min() ** 2 <= PIVOT_TOL:
             raise SingularBeamError(f"nearly singular stiffness (scaled pivot "
                                     f"{self.cb[-1].min() ** 2:.1e})")
@@ -132,6 +127,16 @@ class BandedCholesky:
         x = np.empty_like(y)
         x[self.perm] = scale * y
         return x
+
+
+def _canonical_csc(K) -> sp.csc_matrix:
+    """K as a CSC matrix with sorted, unique indices (K itself where it is one)."""
+    if not (sp.issparse(K) and K.format == "csc"):
+        K = sp.csc_matrix(K)
+    if not K.has_canonical_format:
+        K = K.copy()
+        K.sum_duplicates()
+    return K
 
 
 def spd_factor(K):

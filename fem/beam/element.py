@@ -13,6 +13,8 @@ The co-rotational element (Crisfield, Non-linear Finite Element Analysis of Soli
 Structures, vol. 1, sec. 7.3) carries the basic forces (N, M1, M2) of the local element's
 natural deformations (extension, end rotations relative to the chord).
 """
+from functools import lru_cache
+
 import numpy as np
 
 from .model import AXIAL_FACTOR, BENDING_FACTOR, MASS_FACTOR
@@ -20,31 +22,58 @@ from .model import AXIAL_FACTOR, BENDING_FACTOR, MASS_FACTOR
 GAUSS_X, GAUSS_W = np.polynomial.legendre.leggauss(6)
 XI = 0.5 * (GAUSS_X + 1.0)
 WXI = 0.5 * GAUSS_W
+_MOMENT_SHAPES = np.stack([XI - 1.0, XI], axis=-1)  # (6, 2) M / (M1, M2) at the Gauss points
+_AXIAL_SHAPES = np.stack([1.0 - XI, XI], axis=-1)  # (6, 2) the bar's linear shape functions
+STRESS_POINTS = np.linspace(0.0, 1.0, 5)  # where along an element bending_stress looks
+# every fraction along an element where the functions here read its section: the Gauss
+# points and the stress points (the ends, the middle among them), one section_at for all;
+# the columns of each set read (a slice of them: no copy)
+_POINTS = np.concatenate([XI, STRESS_POINTS])
+_COLUMNS = {tuple(XI.tolist()): slice(0, 6), tuple(STRESS_POINTS.tolist()): slice(6, 11),
+            (0.0, 1.0): slice(6, 11, 4), (0.5,): slice(8, 9)}
 
 
 def bending_shape_functions(xi, L, phi):
     """IIE shape functions at xi (k,) for (n_e,) elements: N_w, dN_w/dx, N_psi, dN_psi/dx,
     each (n_e, k, 4) for DOFs (v1, theta1, v2, theta2)."""
+    Nw, Np = shape_values(xi, L, phi)
+    dNw, dNp = _shape_slopes(xi, L, phi)
+    return Nw, dNw, Np, dNp
+
+
+# the IIE shape functions' polynomials in x = xi: f (C0 + phi C1) [1, x, x^2, x^3], each row
+# scaled by (f, f L, f, f L, 6 f / L, f, 6 f / L, f), f = 1 / (1 + phi): N_w's four, N_psi's
+_SHAPE_C0 = np.array([[1, 0, -3, 2], [0, 1, -2, 1], [0, 0, 3, -2], [0, 0, -1, 1],
+                      [0, -1, 1, 0], [1, -4, 3, 0], [0, 1, -1, 0], [0, -2, 3, 0]], float)
+_SHAPE_C1 = np.array([[1, -1, 0, 0], [0, 0.5, -0.5, 0], [0, 1, 0, 0], [0, -0.5, 0.5, 0],
+                      [0, 0, 0, 0], [1, -1, 0, 0], [0, 0, 0, 0], [0, 1, 0, 0]], float)
+
+
+def shape_values(xi, L, phi):
+    """(N_w, N_psi) of :func:`bending_shape_functions`, each (n_e, k, 4), as polynomials
+    (one product for all eight: the mass needs no slopes)."""
+    f = 1.0 / (1.0 + phi)
+    scale = np.stack([f, f * L, f, f * L, 6.0 * f / L, f, 6.0 * f / L, f], axis=1)
+    powers = np.asarray(xi, dtype=float)[None, :] ** np.arange(4)[:, None]  # (4, k)
+    N = ((_SHAPE_C0 + phi[:, None, None] * _SHAPE_C1) @ powers) * scale[:, :, None]
+    N = N.transpose(0, 2, 1)  # (n_e, k, 8)
+    return N[:, :, :4], N[:, :, 4:]
+
+
+def _shape_slopes(xi, L, phi):
+    """(dN_w/dx, dN_psi/dx) of :func:`bending_shape_functions`."""
     x = xi[None, :]
     L_, p = L[:, None], phi[:, None]
     f = 1.0 / (1.0 + p)
-    Nw = np.stack([f * (2 * x**3 - 3 * x**2 - p * x + 1 + p),
-                   f * L_ * (x**3 - (2 + p / 2) * x**2 + (1 + p / 2) * x),
-                   -f * (2 * x**3 - 3 * x**2 - p * x),
-                   f * L_ * (x**3 - (1 - p / 2) * x**2 - (p / 2) * x)], axis=-1)
     dNw = np.stack([f * (6 * x**2 - 6 * x - p) / L_,
                     f * (3 * x**2 - (4 + p) * x + 1 + p / 2),
                     -f * (6 * x**2 - 6 * x - p) / L_,
                     f * (3 * x**2 - (2 - p) * x - p / 2)], axis=-1)
-    Np = np.stack([6 * f * (x**2 - x) / L_,
-                   f * (3 * x**2 - (4 + p) * x + 1 + p),
-                   -6 * f * (x**2 - x) / L_,
-                   f * (3 * x**2 - (2 - p) * x)], axis=-1)
     dNp = np.stack([6 * f * (2 * x - 1) / L_**2,
                     f * (6 * x - 4 - p) / L_,
                     -6 * f * (2 * x - 1) / L_**2,
                     f * (6 * x - 2 + p) / L_], axis=-1)
-    return Nw, dNw, Np, dNp
+    return dNw, dNp
 
 
 def _gram(weight, A, B) -> np.ndarray:
@@ -53,8 +82,21 @@ def _gram(weight, A, B) -> np.ndarray:
 
 
 def sections(model, xi):
-    """model.section_at(xi) at the fixed point sets used here (Gauss points, ends), cached."""
-    return model.cached(("section_at", tuple(xi)), lambda: model.section_at(xi))
+    """model.section_at(xi) at the fixed point sets used here (Gauss points, ends, middle,
+    stress points), cached: columns of one section_at at all of them (_POINTS) on the
+    distinct elements (the same numbers: a section's are computed point by point)."""
+    key = tuple(np.asarray(xi, dtype=float).tolist())
+    return model.cached(("section_at", key), lambda: _sections(model, key))
+
+
+def _sections(model, xi: tuple):
+    if xi not in _COLUMNS:
+        return model.section_at(np.array(xi))
+    if not isinstance(model, _Distinct):
+        distinct = _distinct(model)
+        return tuple(a[distinct.inverse] for a in sections(distinct, xi))
+    table = model.cached("section_at_points", lambda: model.section_at(_POINTS))
+    return tuple(a[:, _COLUMNS[xi]] for a in table)
 
 
 BEND = [1, 2, 4, 5]  # local DOFs (v1, theta1, v2, theta2) in (u1, v1, theta1, u2, v2, theta2)
@@ -96,13 +138,11 @@ class _Distinct:
 
     def __init__(self, model):
         key = np.column_stack([model.section_table, model.lengths])
-        key = np.nan_to_num(key, nan=-1.0)
-        mantissa, exponent = np.frexp(key)  # exactly: mantissa x 2^53 is an integer
-        key = np.column_stack([np.round(mantissa * 2.0**53), exponent]).astype(np.int64)
+        key[np.isnan(key)] = -1.0  # one NaN (no field is -1)
+        key = key.view(np.int64)  # the numbers' bits: equal rows, equal bits
         # rows grouped by a hash (np.unique by rows sorts ~10x slower), checked exactly
-        mix = np.random.default_rng(0).integers(1, 2**62, key.shape[1]) | 1
         with np.errstate(over="ignore"):
-            h = (key * mix).sum(axis=1)
+            h = key @ _mix(key.shape[1])  # wraps around as the products' sum would
         _, first, inverse = np.unique(h, return_index=True, return_inverse=True)
         if not np.array_equal(key[first][inverse.ravel()], key):  # a collision: no grouping
             first, inverse = np.arange(len(key)), np.arange(len(key))
@@ -116,6 +156,14 @@ class _Distinct:
 
     def section_at(self, xi):
         return self._model_type.section_at(self, xi)
+
+
+@lru_cache(maxsize=4)
+def _mix(width: int) -> np.ndarray:
+    """The hash's fixed odd multipliers, one per key column (read-only)."""
+    mix = np.random.default_rng(0).integers(1, 2**62, width) | 1
+    mix.setflags(write=False)
+    return mix
 
 
 def _distinct(model) -> _Distinct:
@@ -138,7 +186,7 @@ def bending_stiffness(EI, kGA, L) -> np.ndarray:
     inverse acts on the end rotations relative to the chord, theta_i - (v2 - v1) / L."""
     n = len(L)
     wdx = WXI[None, :] * L[:, None]
-    b = np.broadcast_to(np.stack([XI - 1.0, XI], axis=-1), (n, len(XI), 2))
+    b = np.broadcast_to(_MOMENT_SHAPES, (n, len(XI), 2))
     f = _gram(wdx / EI, b, b)
     if kGA is not None:
         f = f + ((wdx / kGA).sum(axis=1) / L**2)[:, None, None]
@@ -184,11 +232,10 @@ def _local_mass(model) -> np.ndarray:
     L, rho = model.lengths, model.material.rho
     phi = shear_parameter(model)
     A, I, _ = sections(model, XI)
-    Nw, _, Np, _ = bending_shape_functions(XI, L, phi)
+    Nw, Np = shape_values(XI, L, phi)
     wdx = WXI[None, :] * L[:, None]
     Mb = _gram(rho * A * wdx, Nw, Nw) + _gram(rho * I * wdx, Np, Np)
-    Nu = np.stack([1.0 - XI, XI], axis=-1)
-    Ma = np.einsum("eg,gi,gj->eij", rho * A * wdx, Nu, Nu)
+    Ma = np.einsum("eg,gi,gj->eij", rho * A * wdx, _AXIAL_SHAPES, _AXIAL_SHAPES)
     M = np.zeros((model.n_elements, 6, 6))
     M[:, np.array(BEND)[:, None], np.array(BEND)[None, :]] = Mb
     M[:, np.array(AXIAL)[:, None], np.array(AXIAL)[None, :]] = Ma
@@ -250,13 +297,31 @@ def corotational(model, Kb, q, tangent=True):
     return f, K, fb
 
 
+def undeformed(model, Kb):
+    """:func:`corotational` at q = 0, its (f, K, fb), with less work: no forces, and the
+    tangent's terms in the forces vanish (K = B^T Kb B)."""
+    e = model.elements
+    D = model.nodes[e[:, 1]] - model.nodes[e[:, 0]]
+    L = np.hypot(D[:, 0], D[:, 1])
+    c, s = D[:, 0] / L, D[:, 1] / L
+    z0 = np.zeros_like(c)
+    zv = np.stack([s, -c, z0, -s, c, z0], axis=1)
+    B = np.empty((len(c), 3, 6))
+    B[:, 0] = np.stack([-c, -s, z0, c, s, z0], axis=1)
+    B[:, 1] = B[:, 2] = -zv / L[:, None]
+    B[:, 1, 2] += 1.0
+    B[:, 2, 5] += 1.0
+    K = np.matmul(B.transpose(0, 2, 1), Kb @ B)
+    return np.zeros((len(c), 6)), K, np.zeros((len(c), 3))
+
+
 def bending_stress(model, fb, n_points: int = 5):
     """Largest |N/A| + |M| c / I (Pa) per element over ``n_points`` along it (the moment
     is linear between the ends: M(0) = -M1, M(L) = M2). Returns (sigma (n_e,), xi (n_e,))."""
-    xi = np.linspace(0.0, 1.0, n_points)
+    xi = STRESS_POINTS if n_points == len(STRESS_POINTS) else np.linspace(0.0, 1.0, n_points)
     A, I, c = sections(model, xi)
     M = -fb[:, 1:2] * (1.0 - xi) + fb[:, 2:3] * xi
     sigma = np.abs(fb[:, 0:1]) / A + np.abs(M) * c / I
-    k = np.argmax(np.nan_to_num(sigma, nan=-1.0), axis=1)
+    k = np.argmax(np.where(np.isnan(sigma), -1.0, sigma), axis=1)  # NaN: no stress (c None)
     rows = np.arange(len(k))
     return sigma[rows, k], xi[k]

@@ -24,7 +24,7 @@ from ..boundary import Fixed, Force, Prescribed
 from ..compliance import Compliance, moved_compliance, rotation_frame
 from ..harmonic import FRF, _check_frequencies, _damping_ratios
 from ..rigid_face_input import RigidFace
-from .compliance import compliance
+from .compliance import shared_compliance
 from .modal import BeamModes, solve_beam_modes
 from .model import BeamGroup, BeamModel
 from .model import Fixed as NodeFixed
@@ -293,7 +293,7 @@ def compliance_matrix(model: BeamModel, supports, face, point=None, angle: float
     if len(nodes) != 1:
         raise ValueError(f"compliance_matrix: group {face!r} has {len(nodes)} nodes; a "
                          "compliance is of one rigid body (a group of one node)")
-    C = compliance(model, node_supports(model, supports), nodes[0])
+    C = shared_compliance(model, node_supports(model, supports), nodes[0])
     centre = model.nodes[nodes[0]].copy()
     return moved_compliance(face, C, centre, point, rotation_frame(2, angle, frame))
 

@@ -7,11 +7,10 @@ the load point held in some directions) is solved on the Fixed supports' system 
 extra DOFs as constraints (Lagrange multipliers, a k x k Schur complement): one
 factorisation serves every load case of the point and the modes held by the Fixed supports.
 """
-from dataclasses import replace
-
 import numpy as np
 
-from .assembly import Assembler, SingularBeamError, element_mass, point_mass_diagonal
+from .assembly import (Assembler, Evaluation, SingularBeamError, element_mass,
+                       point_mass_blocks)
 from .banded import spd_factor
 from .model import BeamModel, Fixed
 from .space import held_values
@@ -25,12 +24,15 @@ class LinearSystem:
 
     def __init__(self, model: BeamModel, supports):
         self.asm = Assembler(model, supports, ())
-        self.space = self.asm.space
-        ev = self.asm.evaluate(np.zeros(self.space.n), 0.0, tangent=False)
+        self.space = space = self.asm.space
+        q = np.zeros((model.n_nodes, 3))
+        _, ke, _ = self.asm.elements(q)
+        w = space.weights(q)
         # K by the Space's shared pattern (~5x faster than the sparse products of a first
-        # tangent once a sweep's topology has it): every design of a sweep assembles alike
-        d = self.space.constraint_diagonal(ev.q, ev.r)[self.space.free]
-        self.ev = replace(ev, K=self.space.condensed().matrix(ev.ke, ev.w, d))
+        # tangent once a sweep's topology has it): every design of a sweep assembles alike.
+        # The undeformed state carries no force: no residual, no links' second-order term.
+        K = space.condensed().matrix(ke, w, np.zeros(space.n))
+        self.ev = Evaluation(model, q, np.zeros(model.n_dofs), np.zeros(space.n), K, w, ke)
         self._factor = self._mass = None
 
     @property
@@ -41,12 +43,15 @@ class LinearSystem:
 
     @property
     def mass(self):
-        """Reduced consistent mass T^T M T (CSR)."""
+        """Reduced consistent mass T^T M T (CSC)."""
         if self._mass is None:
-            model, space, w = self.asm.model, self.space, self.ev.w
-            elements = space.condensed().matrix(element_mass(model), w, np.zeros(space.n))
-            self._mass = (elements + space.condense_diagonal(point_mass_diagonal(model),
-                                                             w)).tocsr()
+            model, space = self.asm.model, self.space
+            # the point masses as blocks of their nodes after the elements': one assembly
+            # by a fixed pattern (a slave's lands on its master's DOFs, off the diagonal too)
+            nodes = np.array(list(model.point_masses), dtype=np.int64)
+            blocks = np.vstack([model.connectivity, np.column_stack([nodes, nodes])])
+            matrices = np.concatenate([element_mass(model), point_mass_blocks(model, nodes)])
+            self._mass = space.condensed(blocks).matrix(matrices, self.ev.w, np.zeros(space.n))
         return self._mass
 
 
@@ -55,18 +60,20 @@ def _held(model: BeamModel, supports) -> np.ndarray:
     return np.flatnonzero(~np.isnan(held_values(model, supports)))
 
 
-def linear_system(model: BeamModel, supports) -> LinearSystem:
-    """The model's cached LinearSystem for the DOFs ``supports`` hold."""
-    held = _held(model, supports)
+def linear_system(model: BeamModel, supports, held=None) -> LinearSystem:
+    """The model's cached LinearSystem for the DOFs ``supports`` hold (``held``, where the
+    caller has them)."""
+    held = _held(model, supports) if held is None else held
     return model.cached(("linear", held.tobytes()), lambda: LinearSystem(model, supports))
 
 
-def _on_fixed(model: BeamModel, supports):
+def _on_fixed(model: BeamModel, supports, held):
     """(the Fixed supports' system, the other held DOFs) where those are few and the
-    supports' own system is not cached, else None."""
-    held = _held(model, supports)
+    supports' own system (of the DOFs ``held``) is not cached, else None."""
     base = [s for s in supports if isinstance(s, Fixed)]
     if base and not model.is_cached(("linear", held.tobytes())):
+        if len(base) == len(supports):  # all Fixed: the supports' own system
+            return linear_system(model, base, held), held[:0]
         system = linear_system(model, base)
         extra = np.setdiff1d(held, system.space.held)
         if len(extra) <= MAX_EXTRA:
@@ -75,30 +82,33 @@ def _on_fixed(model: BeamModel, supports):
 
 
 def solve_linear(model: BeamModel, supports, f_ext) -> tuple:
-    """(q (n_dofs,), LinearSystem used) of K q = f_ext with the supports' values: on the
-    system of the Fixed supports with the other held DOFs as constraints where that system
-    is nonsingular and they are few, else on the supports' own system."""
+    """(q (n_dofs,), LinearSystem used, whether it holds the supports' DOFs alone) of
+    K q = f_ext with the supports' values: on the system of the Fixed supports with the
+    other held DOFs as constraints where that system is nonsingular and they are few, else
+    on the supports' own system."""
     values = held_values(model, supports)
-    on_fixed = _on_fixed(model, supports)
+    held = np.flatnonzero(~np.isnan(values))
+    on_fixed = _on_fixed(model, supports, held)
     if on_fixed is not None:
         system, extra = on_fixed
         try:
-            return _constrained(system, values, extra, f_ext), system
+            return _constrained(system, values, extra, f_ext), system, len(extra) == 0
         except SingularBeamError:
             pass
-    system = linear_system(model, supports)
-    return _constrained(system, values, np.zeros(0, dtype=np.int64), f_ext), system
+    system = linear_system(model, supports, held)
+    return _constrained(system, values, np.zeros(0, dtype=np.int64), f_ext), system, True
 
 
 def modal_system(model: BeamModel, supports) -> tuple:
     """(LinearSystem, j) for modes held by ``supports``: the Fixed supports' cached system
     with the other held DOFs' unknowns ``j`` kept at zero (:func:`held_at_zero`), where the
     static solves would use it; else the supports' own system and no ``j``."""
-    on_fixed = _on_fixed(model, supports)
+    held = _held(model, supports)
+    on_fixed = _on_fixed(model, supports, held)
     if on_fixed is not None:
         system, extra = on_fixed
         return system, system.space.col[extra, 0]
-    return linear_system(model, supports), np.zeros(0, dtype=np.int64)
+    return linear_system(model, supports, held), np.zeros(0, dtype=np.int64)
 
 
 def held_at_zero(system: LinearSystem, j):
@@ -138,7 +148,9 @@ def _constrained(system: LinearSystem, values, extra, f_ext) -> np.ndarray:
     space, ev = system.space, system.ev
     p = values[space.held]
     z0 = np.zeros(space.n)
-    rhs = space.reduce(f_ext - ev.full_times(space.expand(z0, p, ev.w)), ev.w)[0]
+    if p.any():  # the held values' forces on the unknowns
+        f_ext = f_ext - ev.full_times(space.expand(z0, p, ev.w))
+    rhs = space.reduce(f_ext, ev.w)[0]
     if len(extra) == 0:
         z = system.factor.solve(rhs)
     else:

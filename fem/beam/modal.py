@@ -5,6 +5,7 @@ supports and rigid links eliminated; about the undeformed state, or about a conv
 nonlinear state (``about=``, its tangent stiffness: stress stiffening included).
 """
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 import scipy.linalg as sla
@@ -26,13 +27,25 @@ KRYLOV_FROM = 100
 class BeamModes:
     """frequencies_hz : (n,) ascending (Hz); shapes : (n, n_nodes, 3) mass-normalised mode
     shapes (u, v, theta per node); effective_mass : (n, 2) effective modal mass (kg) in x
-    and y; total_mass : kg."""
+    and y; total_mass : kg (these two on first use: most analyses read the frequencies)."""
 
     model: BeamModel
     frequencies_hz: np.ndarray
     shapes: np.ndarray
-    effective_mass: np.ndarray
-    total_mass: float
+
+    @cached_property
+    def _masses(self) -> tuple:
+        MT = _mass_translations(self.model)
+        gamma = self.shapes.reshape(len(self.shapes), -1) @ MT
+        return gamma**2, float(MT[0::3, 0].sum())
+
+    @property
+    def effective_mass(self) -> np.ndarray:
+        return self._masses[0]
+
+    @property
+    def total_mass(self) -> float:
+        return self._masses[1]
 
     @property
     def effective_mass_fraction(self) -> np.ndarray:
@@ -142,9 +155,5 @@ def solve_beam_modes(model: BeamModel, supports, n: int = 6, about=None, loads=(
         M = space.condense_global(mass_matrix(model), ev.w)
         w2, phi = _modes(K, M, n, space.n)
     full = space.expand(phi, np.zeros(len(space.held)), ev.w).T  # (n, n_dofs)
-    MT = _mass_translations(model)
-    gamma = full @ MT
-    total = float(MT[0::3, 0].sum())
-    freq = np.sqrt(np.clip(w2, 0.0, None)) / (2.0 * np.pi)
-    return BeamModes(model=model, frequencies_hz=freq, shapes=full.reshape(n, -1, 3),
-                     effective_mass=gamma**2, total_mass=total)
+    freq = np.sqrt(np.maximum(w2, 0.0)) / (2.0 * np.pi)
+    return BeamModes(model=model, frequencies_hz=freq, shapes=full.reshape(n, -1, 3))

@@ -1,11 +1,13 @@
-"""Planar beam models: sections, nodes and elements, rigid links, supports and loads.
+"""Planar beam models: sections, rigid links, supports and loads, and the model (its mesh:
+:mod:`.mesh`).
 
     mesh = beam_chain([(0, 0), (0.05, 0)], Section.rect(0.01, 0.5e-3), n_per_segment=20)
     model = BeamModel(mesh.nodes, mesh.elements, mesh.sections, steel)
 
 DOFs per node: (u, v, theta) = x and y displacement (m) and rotation (rad, counter-clockwise).
 """
-from dataclasses import dataclass, field
+from dataclasses import dataclass
+from functools import cached_property
 import math
 import numbers
 
@@ -101,15 +103,19 @@ class Section:
     def row(self) -> tuple:
         """(is_rect, w, t0, t1, A, I, c, kappa, t_mid, bending_factor, axial_factor,
         mass_factor) with NaN for what does not apply (SECTION_COLUMNS)."""
+        return self._row
+
+    @cached_property
+    def _row(self) -> tuple:  # a model's section_table reads it once per element
         nan = math.nan
-        factors = (self.bending_factor, self.axial_factor, self.mass_factor)
-        if self.is_rect:
+        if self.width is not None:  # rectangular
             t1 = self.thickness if self.thickness_end is None else self.thickness_end
             tm = nan if self.thickness_mid is None else self.thickness_mid
             return (1.0, self.width, self.thickness, t1, nan, nan, nan, self.shear_factor, tm,
-                    *factors)
+                    self.bending_factor, self.axial_factor, self.mass_factor)
         c = nan if self.c is None else self.c
-        return (0.0, nan, nan, nan, self.A, self.I, c, self.shear_factor, nan, *factors)
+        return (0.0, nan, nan, nan, self.A, self.I, c, self.shear_factor, nan,
+                self.bending_factor, self.axial_factor, self.mass_factor)
 
 
 @dataclass(frozen=True)
@@ -132,9 +138,11 @@ class Fixed:
     dofs: tuple = ("x", "y", "theta")
 
     def prescribed(self):
-        for n in np.atleast_1d(self.nodes):
-            for d in np.atleast_1d(self.dofs):
-                yield int(n), dof_index(d.item() if hasattr(d, "item") else d), 0.0
+        nodes = np.atleast_1d(self.nodes).tolist()
+        dofs = [dof_index(d) for d in np.atleast_1d(self.dofs).tolist()] if nodes else []
+        for n in nodes:
+            for d in dofs:
+                yield int(n), d, 0.0
 
 
 @dataclass(frozen=True)
@@ -157,108 +165,6 @@ class NodalLoad:
     fx: float = 0.0
     fy: float = 0.0
     m: float = 0.0
-
-
-@dataclass
-class BeamMesh:
-    """Nodes (n, 2) m, elements (n_e, 2) node pairs, one Section per element, and
-    ``point_nodes``: the node index of each input point (beam_chain) or end (profile)."""
-
-    nodes: np.ndarray
-    elements: np.ndarray
-    sections: list
-    point_nodes: list = field(default_factory=list)
-
-    def join(self, other: "BeamMesh", tol: float = 1e-12) -> "BeamMesh":
-        """Union of two meshes, merging nodes closer than ``tol`` (m). The other mesh's
-        point_nodes are appended, renumbered."""
-        d = np.linalg.norm(other.nodes[:, None, :] - self.nodes[None, :, :], axis=2)
-        nearest = d.argmin(axis=1)
-        shared = d[np.arange(len(other.nodes)), nearest] <= tol
-        index = np.where(shared, nearest, len(self.nodes) + np.cumsum(~shared) - 1)
-        nodes = np.vstack([self.nodes, other.nodes[~shared]])
-        return BeamMesh(np.array(nodes), np.vstack([self.elements, index[other.elements]]),
-                        list(self.sections) + list(other.sections),
-                        list(self.point_nodes) + [int(index[k]) for k in other.point_nodes])
-
-    def node_at(self, point, tol: float = 1e-9) -> int:
-        """Index of the node at ``point`` (m); ValueError if none within ``tol``."""
-        d = np.linalg.norm(self.nodes - np.asarray(point, dtype=float), axis=1)
-        if d.min() > tol:
-            raise ValueError(f"point = {list(point)} is not a node (nearest {d.min():.3g} m)")
-        return int(np.argmin(d))
-
-
-def beam_chain(points, sections, n_per_segment) -> BeamMesh:
-    """Straight segments between consecutive ``points`` ((k, 2), m), each cut into
-    ``n_per_segment`` (int or one per segment) elements of its Section (one, or one per
-    segment). Point j is node ``point_nodes[j]``."""
-    pts = np.asarray(points, dtype=float)
-    if pts.ndim != 2 or pts.shape[1] != 2 or len(pts) < 2:
-        raise ValueError(f"points must be (k >= 2, 2) coordinates, got shape {pts.shape}")
-    n_seg = len(pts) - 1
-    secs = [sections] * n_seg if isinstance(sections, Section) else list(sections)
-    counts = np.broadcast_to(np.asarray(n_per_segment), (n_seg,))
-    if len(secs) != n_seg:
-        raise ValueError(f"sections: {len(secs)} given for {n_seg} segments")
-    if not all(isinstance(c, (int, np.integer)) and c >= 1 for c in counts.tolist()):
-        raise ValueError(f"n_per_segment = {n_per_segment!r} must be integers >= 1")
-    nodes, sec_list, point_nodes = [pts[0]], [], [0]
-    same = np.all(np.abs(pts[1:] - pts[:-1]) <= 1e-8 + 1e-5 * np.abs(pts[1:]), axis=1)  # allclose
-    for j in range(n_seg):
-        if same[j]:
-            raise ValueError(f"points {j} and {j + 1} coincide")
-        s = (np.arange(1, int(counts[j]) + 1) / int(counts[j]))[:, None]
-        nodes.extend(pts[j] + s * (pts[j + 1] - pts[j]))
-        nodes[-1] = pts[j + 1]  # exactly the given point
-        sec_list += [secs[j]] * int(counts[j])
-        point_nodes.append(len(nodes) - 1)
-    n = len(nodes)
-    elements = np.column_stack([np.arange(n - 1), np.arange(1, n)])
-    return BeamMesh(np.array(nodes), elements, sec_list, point_nodes)
-
-
-def rect_sections(width: float, t0, t1, tm) -> list:
-    """[Section.rect(width, t0[i], t1[i], tm[i])] for thickness arrays (m) already checked
-    finite and > 0: ``width`` checked once instead of every field of every section."""
-    width = positive("width", width)
-    out = []
-    for a, b, c in zip(np.asarray(t0).tolist(), np.asarray(t1).tolist(), np.asarray(tm).tolist()):
-        sec = object.__new__(Section)  # frozen dataclass: its fields set as __init__ would
-        sec.__dict__.update(width=width, thickness=a, thickness_end=b, thickness_mid=c, A=None,
-                            I=None, c=None, shear_factor=5.0 / 6.0, bending_factor=1.0,
-                            axial_factor=1.0, mass_factor=1.0)
-        out.append(sec)
-    return out
-
-
-def beam_from_profile(x0, x1, thickness_fn, width: float, n: int,
-                      vectorized: bool = False) -> BeamMesh:
-    """A straight flexure from ``x0`` to ``x1`` (m) whose in-plane thickness (m) is
-    ``thickness_fn(s)``, s the arc length from x0 (m): ``n`` tapered rectangular elements
-    of ``width`` (m), each quadratic through the profile's values at its ends and middle
-    (a circular notch: 3e-5 compliance error with n = 20). ``vectorized``: thickness_fn
-    takes the array of all 2 n + 1 arc lengths at once (one call instead of one a point)."""
-    a, b = np.asarray(x0, dtype=float), np.asarray(x1, dtype=float)
-    if not (isinstance(n, (int, np.integer)) and n >= 1):
-        raise ValueError(f"n = {n!r} must be an integer >= 1")
-    length = float(np.linalg.norm(b - a))
-    if length == 0:
-        raise ValueError("x0 and x1 coincide")
-    s = np.linspace(0.0, length, 2 * n + 1)
-    if vectorized:
-        t = np.asarray(thickness_fn(s), dtype=float)
-        if t.shape != s.shape:
-            raise ValueError(f"thickness_fn (vectorized) must return one thickness per arc "
-                             f"length, shape {s.shape}; got shape {t.shape}")
-    else:
-        t = np.array([float(thickness_fn(si)) for si in s.tolist()])
-    if not np.all(np.isfinite(t) & (t > 0)):
-        raise ValueError(f"thickness_fn must return finite thicknesses > 0; got {t.min()!r}")
-    nodes = a + (s[::2] / length)[:, None] * (b - a)
-    sections = rect_sections(width, t[0:-1:2], t[2::2], t[1::2])
-    elements = np.column_stack([np.arange(n), np.arange(1, n + 1)])
-    return BeamMesh(nodes, elements, sections, [0, n])
 
 
 def link_masters(rigid_links, n_nodes: int, link_type) -> np.ndarray:
@@ -390,8 +296,8 @@ class BeamModel:
             t_q = (t0[:, None] * (1 - x) * (1 - 2 * x) + 4 * tm[:, None] * x * (1 - x)
                    + t1[:, None] * x * (2 * x - 1))
             t = np.where(quadratic[:, None], t_q, t)
-        is_rect = rect[:, None] > 0
-        A_ = np.where(is_rect, w[:, None] * t, A[:, None] + 0 * xi)
-        I_ = np.where(is_rect, w[:, None] * t ** 3 / 12.0, I[:, None] + 0 * xi)
-        c_ = np.where(is_rect, t / 2.0, c[:, None] + 0 * xi)
+        is_rect = rect[:, None] > 0  # np.where broadcasts the general sections' (n_e, 1)
+        A_ = np.where(is_rect, w[:, None] * t, A[:, None])
+        I_ = np.where(is_rect, w[:, None] * t ** 3 / 12.0, I[:, None])
+        c_ = np.where(is_rect, t / 2.0, c[:, None])
         return A_, I_, c_

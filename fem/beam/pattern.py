@@ -41,7 +41,9 @@ class Pattern:
     def matrix(self, values):
         """The sparse matrix (csr_matrix or csc_matrix) of ``values``."""
         cls = sp.csr_matrix if self.fmt == "csr" else sp.csc_matrix
-        return cls((self.data(values), self.indices, self.indptr), shape=self.shape)
+        out = cls((self.data(values), self.indices, self.indptr), shape=self.shape)
+        out.has_canonical_format = True  # sorted, unique indices: no check by its users
+        return out
 
 
 def shared(key, build):

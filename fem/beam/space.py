@@ -63,10 +63,10 @@ class Space:
         index = -np.ones(n, dtype=np.int64)
         index[self.free] = np.arange(self.n)
         index[self.held] = self.n + np.arange(len(self.held))
-        self.col = np.stack([index, -np.ones(n, dtype=np.int64)], axis=1)
+        self.col = np.full((n, 2), -1, dtype=np.int64)
+        self.col[:, 0] = index
         sd, md = 3 * self.slaves, 3 * self.masters
-        for r in range(3):
-            self.col[sd + r, 0] = index[md + r]
+        self.col[slave_dofs, 0] = index[(md[:, None] + np.arange(3)).ravel()]
         self.col[sd, 1] = self.col[sd + 1, 1] = index[md + 2]
         self._base = (self.col >= 0).astype(float)
         self._base[:, 1] = 0.0
@@ -107,11 +107,12 @@ class Space:
 
     def expand(self, z, p, w) -> np.ndarray:
         """T z + T_p p (n_dofs,) or (n_dofs, k) for z (n,) or (n, k) and held values p."""
-        x = np.concatenate([z, np.broadcast_to(p.reshape(-1, *([1] * (z.ndim - 1))),
-                                               (len(p),) + z.shape[1:])])
-        x = np.concatenate([x, np.zeros((1,) + z.shape[1:])])  # col -1: the zero row
-        shape = (-1, 2) + (1,) * (z.ndim - 1)
-        return (w.reshape(shape) * x[self.col]).sum(axis=1)
+        held = np.broadcast_to(p.reshape(-1, *([1] * (z.ndim - 1))), (len(p),) + z.shape[1:])
+        x = np.concatenate([z, held, np.zeros((1,) + z.shape[1:])])  # col -1: the zero row
+        shape = (-1,) + (1,) * (z.ndim - 1)
+        # the two terms added as a sum over them would (that sum is ~4x slower)
+        return (w[:, 0].reshape(shape) * x[self.col[:, 0]]
+                + w[:, 1].reshape(shape) * x[self.col[:, 1]])
 
     def rows(self, node: int, w) -> np.ndarray:
         """(3, n) dense rows of T for ``node``'s DOFs (d(node DOFs)/dz)."""
@@ -171,12 +172,13 @@ class Space:
         d = np.zeros(self.n) if diagonal is None else diagonal[self.free]
         return self.condensed().matrix(ke, w, d)
 
-    def condensed(self) -> Condensed:
-        """The reduced matrix's fixed pattern (Condensed) of this Space's elements, shared
-        between the models of one topology and held DOFs (a sweep's designs)."""
-        if self._stiffness is None:
-            blocks = self.model.connectivity
-            key = ("condensed", self.n, self.col.tobytes(), blocks.tobytes())
-            self._stiffness = shared(key, lambda: Condensed(self.col, self.n,
-                                                            block_dofs(blocks)))
-        return self._stiffness
+    def condensed(self, blocks=None) -> Condensed:
+        """The reduced matrix's fixed pattern (Condensed) of this Space's elements (or of
+        ``blocks``, (m, 2) node pairs), shared between the models of one topology and held
+        DOFs (a sweep's designs)."""
+        if blocks is None:
+            if self._stiffness is None:
+                self._stiffness = self.condensed(self.model.connectivity)
+            return self._stiffness
+        key = ("condensed", self.n, self.col.tobytes(), blocks.tobytes())
+        return shared(key, lambda: Condensed(self.col, self.n, block_dofs(blocks)))

@@ -70,8 +70,9 @@ def beam_spec(mechanism: Mechanism, elements: int = 20, **options) -> BeamSpec:
                               mechanism.depth, elements, f.source))
         joins[f.between[0]].append(a)
         joins[f.between[1]].append(b)
-    rigid = tuple(RigidBody(tuple(joins[b.name]), {b.name: tuple(mechanism.outline_centre(b.name).tolist())},
-                            tuple(b.boxes), b.source) for b in mechanism.bodies)
+    rigid = tuple(RigidBody(tuple(joins[b.name]),
+                            {b.name: tuple(mechanism.outline_centre(b.name).tolist())},
+                            b.blocks, b.source) for b in mechanism.bodies)  # boxes, polygons
     groups = {b.name: i for i, b in enumerate(mechanism.bodies)}
     return BeamSpec(tuple(lines), rigid, elements=elements, source=mechanism.source,
                     groups=groups, **options)

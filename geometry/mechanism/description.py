@@ -1,11 +1,11 @@
 """A flexure mechanism described once: rigid bodies joined by flexures (SI units, m).
 
-:class:`Body` is a union of axis-aligned boxes; :class:`Leaf` a straight blade of constant
-thickness (with a fillet of radius ``fillet`` at both roots); :class:`Notch` a circular or
-elliptical notch hinge (a blank cut by two circles or ellipses that leave a neck of
-``thickness``). A flexure runs along its centre line from ``start`` (inside or on the
-first body it joins) to ``end`` (inside or on the second); its free span is the part between
-the bodies. :class:`Mechanism` holds them and :meth:`Mechanism.check` refuses what cannot be
+:class:`Body` (body.py) is a union of axis-aligned boxes and simple polygons; :class:`Leaf`
+a straight blade of constant thickness (with a fillet of radius ``fillet`` at both roots);
+:class:`Notch` a circular or elliptical notch hinge (a blank cut by two circles or ellipses
+that leave a neck of ``thickness``). A flexure runs along its centre line from ``start``
+(inside or on the first body it joins) to ``end`` (inside or on the second); its free span
+is the part between the bodies. :class:`Mechanism` holds them and :meth:`Mechanism.check` refuses what cannot be
 built, naming the body or flexure. The continuum (draw.py) and the beam model (beams.py) are
 both derived from this one description, with the bodies' names as their groups.
 """
@@ -14,73 +14,12 @@ import math
 
 import numpy as np
 
+from .body import Body
 from .plane import along, box_corners, convex_overlap, cross2, inside_box, side_root, subtract
 
 TOL = 1e-9  # relative to the mechanism's size: points closer than this coincide
 REACH = 1.0 / math.tan(math.radians(10))  # an oblique root's side meets the face within
 #                                          (width / 2) cot(10 deg) of the centre line
-
-
-@dataclass(frozen=True)
-class Body:
-    """A rigid body: ``name`` (its group in every model) and ``boxes`` ((lower-left,
-    upper-right) corner pairs, m)."""
-
-    name: str
-    boxes: tuple
-    source: str = ""
-
-    def __post_init__(self):
-        boxes = []
-        for box in self.boxes:
-            (x0, y0), (x1, y1) = box
-            if not all(map(math.isfinite, (x0, y0, x1, y1))) or x0 == x1 or y0 == y1:
-                raise ValueError(f"{self.source or 'body'}: body {self.name!r}: box "
-                                 f"{[list(box[0]), list(box[1])]} must be two opposite corners "
-                                 "of a rectangle of non-zero area (m)")
-            boxes.append(((min(x0, x1), min(y0, y1)), (max(x0, x1), max(y0, y1))))
-        if not boxes:
-            raise ValueError(f"{self.source or 'body'}: body {self.name!r} needs a box")
-        object.__setattr__(self, "boxes", tuple(boxes))
-
-    def contains(self, point, tol: float) -> bool:
-        """True where ``point`` (m) lies inside a box or on its outline (within ``tol``)."""
-        x, y = point
-        return any(x0 - tol <= x <= x1 + tol and y0 - tol <= y <= y1 + tol
-                   for (x0, y0), (x1, y1) in self.boxes)
-
-    def span_inside(self, a, b, tol: float) -> list:
-        """The intervals [s0, s1] of s in [0, 1] where a + s (b - a) lies in the body."""
-        out = []
-        a, d = np.asarray(a, float), np.subtract(b, a)
-        for (x0, y0), (x1, y1) in self.boxes:
-            lo, hi = 0.0, 1.0
-            for k, (low, high) in enumerate(((x0 - tol, x1 + tol), (y0 - tol, y1 + tol))):
-                if abs(d[k]) < 1e-300:
-                    if not low <= a[k] <= high:
-                        lo, hi = 1.0, 0.0
-                    continue
-                s0, s1 = sorted(((low - a[k]) / d[k], (high - a[k]) / d[k]))
-                lo, hi = max(lo, s0), min(hi, s1)
-            if hi >= lo:
-                out.append((lo, hi))
-        return sorted(out)
-
-    @property
-    def area(self) -> float:
-        """The boxes' areas summed (m^2; a body's boxes should not overlap)."""
-        return sum((x1 - x0) * (y1 - y0) for (x0, y0), (x1, y1) in self.boxes)
-
-    def face_at(self, point, tol: float):
-        """Unit direction (2,) along the box edge ``point`` lies on (inside no other box), or
-        None."""
-        x, y = point
-        for (x0, y0), (x1, y1) in self.boxes:
-            if x0 - tol <= x <= x1 + tol and (abs(y - y0) <= tol or abs(y - y1) <= tol):
-                return np.array([1.0, 0.0])
-            if y0 - tol <= y <= y1 + tol and (abs(x - x0) <= tol or abs(x - x1) <= tol):
-                return np.array([0.0, 1.0])
-        return None
 
 
 @dataclass(frozen=True)
@@ -190,7 +129,7 @@ class Mechanism:
     @property
     def size(self) -> float:
         """The diagonal of the bounding box of the bodies (m)."""
-        corners = np.array([c for b in self.bodies for box in b.boxes for c in box])
+        corners = np.concatenate([xy for b in self.bodies for xy in b.outlines])
         return float(np.linalg.norm(corners.max(axis=0) - corners.min(axis=0)))
 
     @property
@@ -253,6 +192,8 @@ class Mechanism:
         body, tol = self.body(name), self.tol
         covered = [(p0, p1) for i in range(len(self.flexures))
                    for n, p0, p1 in self.footprint(i) if n == name]
+        if body.polygons:
+            return self._union_outline_centre(body, covered)
         total, moment = 0.0, np.zeros(2)
         for box in body.boxes:
             corners = box_corners(box)
@@ -270,6 +211,32 @@ class Mechanism:
                     moment += length * (a + (lo + hi) / 2 * (b - a))
         return moment / total
 
+    def _union_outline_centre(self, body: Body, covered) -> np.ndarray:
+        """outline_centre of a body with polygons: the outline of the union of its parts
+        (its outer boundary and any holes), less the flexures' footprints."""
+        total, moment = 0.0, np.zeros(2)
+        for part in getattr(body.shape, "geoms", [body.shape]):
+            for ring in (part.exterior, *part.interiors):
+                xy = np.array(ring.coords)
+                for a, b in zip(xy[:-1], xy[1:]):
+                    cuts = [(0.0, 1.0)]
+                    for p0, p1 in covered:
+                        cuts = subtract(cuts, along(a, b, p0, p1, self.tol))
+                    for lo, hi in cuts:
+                        length = (hi - lo) * float(np.linalg.norm(b - a))
+                        total += length
+                        moment += length * (a + (lo + hi) / 2 * (b - a))
+        return moment / total
+
+    def _overlap(self, p: Body, q: Body) -> bool:
+        """True where bodies p and q overlap by more than the tolerance: boxes by the
+        separating-axis test, polygons (convex or not) by their unions shrunk by half of it."""
+        if not (p.polygons or q.polygons):
+            return any(convex_overlap(box_corners(u), box_corners(v), self.tol)
+                       for u in p.boxes for v in q.boxes)
+        return p.shape.buffer(-self.tol / 2, join_style="mitre").intersects(
+            q.shape.buffer(-self.tol / 2, join_style="mitre"))
+
     def check(self, supported=None) -> None:
         """ValueError naming the body or flexure (and the model file's line where known) for
         unknown or repeated names, overlapping bodies, a flexure end outside the body it names,
@@ -285,10 +252,9 @@ class Mechanism:
                 raise _error(b, f"body {b.name!r} is named twice; each body needs its own name")
         for i, p in enumerate(self.bodies):
             for q in self.bodies[i + 1:]:
-                if any(convex_overlap(box_corners(u), box_corners(v), self.tol) for u in p.boxes
-                       for v in q.boxes):
+                if self._overlap(p, q):
                     raise _error(q, f"bodies {p.name!r} and {q.name!r} overlap; a body is one "
-                                 "name for all its boxes")
+                                 "name for all its boxes and polygons")
         spans = [self._check_flexure(i) for i in range(len(self.flexures))]
         self._check_overlaps(spans)
         joined = {name for f in self.flexures for name in f.between}

@@ -1,14 +1,15 @@
 """The continuum of a :class:`~.description.Mechanism`: its outline drawn with gmsh's
-OpenCASCADE kernel (boxes, flexures, root fillets, notches), fragmented into one conforming
-model with a boundary group per body (its outline, where it meets no flexure), meshed with
-local refinement in every flexure; 2-D, or extruded by the depth to a solid (the group: the
-body's lateral faces). Lengths in m."""
+OpenCASCADE kernel (boxes, polygons, flexures, root fillets, notches), fragmented into one
+conforming model with a boundary group per body (its outline, where it meets no flexure),
+meshed with local refinement in every flexure; 2-D, or extruded by the depth to a solid (the
+group: the body's lateral faces). Lengths in m."""
 import math
 
 import numpy as np
 
 from ...fem import FEMesh, gmsh_session, mesh_from_gmsh
 from ...fem.budget import NODES_PER_ELEMENT, TETRAHEDRA_PER_CUBE, TRIANGLE, check_budget
+from ..polygon import inscribed_diameter
 from .description import REACH, Leaf, Mechanism, cross2
 
 
@@ -90,6 +91,7 @@ def draw(gmsh, mechanism: Mechanism, dim: int = 2) -> dict:
     for body in mechanism.bodies:
         boxes = [(2, occ.addRectangle(x0, y0, 0, x1 - x0, y1 - y0))
                  for (x0, y0), (x1, y1) in body.boxes]
+        boxes += [(2, _polygon(occ, vertices)) for vertices in body.polygons]  # ccw
         if len(boxes) > 1:
             boxes, _ = occ.fuse(boxes[:1], boxes[1:])
         body_tags.append(boxes)
@@ -164,13 +166,17 @@ FILLET_DIVISIONS = 8
 def element_sizes(mechanism: Mechanism, coarse: float | None = None) -> tuple:
     """(size in each flexure (m) list, coarse size in the bodies (m)): half a leaf's
     thickness, a quarter of a notch's neck; the bodies ``coarse`` or a twentieth of the
-    mechanism's size, at most half the shortest box side. A leaf's fillets are meshed finer
-    still (:data:`FILLET_DIVISIONS`)."""
+    mechanism's size, at most half the shortest box side or half the diameter of the
+    largest circle inside a polygon (for a rectangle its shorter side; for an L-shape about
+    its arms' width: two elements across a body's narrowest part, where a polygon's
+    shortest edge could be a tiny chamfer and its minimum rotated rectangle is blind to
+    thin arms). A leaf's fillets are meshed finer still (:data:`FILLET_DIVISIONS`)."""
     sizes = [f.thickness / 2 if isinstance(f, Leaf) else f.thickness / 4
              for f in mechanism.flexures]
     if coarse is None:
-        shortest = min(min(x1 - x0, y1 - y0) for b in mechanism.bodies
-                       for (x0, y0), (x1, y1) in b.boxes)
+        shortest = min([min(x1 - x0, y1 - y0) for b in mechanism.bodies
+                        for (x0, y0), (x1, y1) in b.boxes]
+                       + [inscribed_diameter(p) for b in mechanism.bodies for p in b.polygons])
         coarse = min(mechanism.size / 20, shortest / 2)
     return sizes, max(coarse, max(sizes))
 

@@ -35,11 +35,23 @@ class Profile:
     expression: str | None = None
     names: dict = field(default_factory=dict)
 
+    def __post_init__(self):
+        # the tables as arrays once: np.interp converting the tuples cost 8x the interpolation
+        # (a notch's profile is sampled ~600 times per beam model)
+        object.__setattr__(self, "_table", (np.asarray(self.arc, dtype=float),
+                                            np.asarray(self.values, dtype=float)))
+
     def __call__(self, s: float) -> float:
         if self.expression is None:
-            return float(np.interp(s, self.arc, self.values))
+            return float(np.interp(s, *self._table))
         return evaluate_expression(self.expression, {**self.names, "s": s},
                                    "[[beam]] thickness")
+
+    def at(self, s: np.ndarray) -> np.ndarray:
+        """t (m) at the arc lengths ``s`` (k,) m: the same values as one call a point."""
+        if self.expression is None:
+            return np.interp(s, *self._table)
+        return np.array([self(x) for x in s.tolist()])
 
     @property
     def length(self) -> float:
@@ -62,7 +74,8 @@ class BeamLine:
 class RigidBody:
     """A rigid block: the beam points it ``joins`` (m), its ``groups`` {continuum group name:
     point standing for it (m), e.g. the face's centre}, its ``blocks`` (rectangles given by
-    two opposite corners, m) whose mass it carries."""
+    two opposite corners, or, from a body's polygons, three or more vertices, m) whose mass
+    it carries."""
 
     joins: tuple
     groups: dict

@@ -2,11 +2,13 @@
 and flexures") -> :class:`flexfem.geometry.mechanism.Mechanism`. Every coordinate and size is a
 number (m) or an expression of the ``[parameters]`` (beam_tables.evaluate_expression); errors
 name the model file, the line and the body or flexure."""
+import math
+
 from ..mechanism import Body, Leaf, Mechanism, Notch
 from .beam_tables import evaluate_expression
 from .tables import Locator, check_keys
 
-BODY_KEYS = ("name", "box")
+BODY_KEYS = ("name", "box", "polygon")
 FLEXURE_KEYS = {"leaf": ("kind", "name", "between", "from", "to", "thickness", "fillet"),
                 "circular_notch": ("kind", "name", "between", "from", "to", "thickness",
                                    "radius"),
@@ -21,6 +23,9 @@ def _value(raw, names, where):
 def _point(raw, names, where) -> tuple:
     if not (isinstance(raw, list) and len(raw) == 2):
         raise ValueError(f"{where} = {raw!r} must be a point [x, y] (m)")
+    for v in raw:
+        if isinstance(v, float) and not math.isfinite(v):
+            raise ValueError(f"{where}: {raw!r} has {v}, not a finite number (m)")
     return tuple(_value(v, names, where) for v in raw)
 
 
@@ -40,21 +45,50 @@ def _boxes(raw, names, where) -> tuple:
     return tuple(out)
 
 
+def _is_point(raw) -> bool:
+    return isinstance(raw, list) and len(raw) == 2 and not any(isinstance(v, list) for v in raw)
+
+
+def _polygons(raw, names, where) -> tuple:
+    """One polygon [[x, y], [x, y], [x, y], ...] (its vertices in order around it) or a list
+    of them."""
+    if isinstance(raw, list) and raw and _is_point(raw[0]):
+        raw = [raw]
+    if not (isinstance(raw, list) and raw and all(isinstance(p, list) and p for p in raw)):
+        raise ValueError(f"{where} = {raw!r} must be the vertices [[x, y], [x, y], [x, y], ...] "
+                         "of a polygon (m, in order around it) or a list of such polygons")
+    out = []
+    for k, polygon in enumerate(raw):
+        label = f"{where} {k + 1}" if len(raw) > 1 else where
+        if not all(_is_point(p) for p in polygon):
+            raise ValueError(f"{label}: {polygon!r} must be a list of vertices [x, y] (m)")
+        out.append(tuple(_point(p, names, label) for p in polygon))
+    return tuple(out)
+
+
 def _body(entry, i, names, loc: Locator) -> Body:
     check_keys(entry, BODY_KEYS, loc, "body", i, "[[body]]")
     name = entry.get("name")
     if not isinstance(name, str) or not name.strip() or name == "solid":
         raise loc.error(f"[[body]] name = {name!r} must be a non-empty string (not 'solid'): "
                         "the body's group in every model", "body", "name", i)
-    if "box" not in entry:
-        raise loc.error(f"[[body]] {name!r} needs box = [[x0, y0], [x1, y1]] (m)", "body",
-                        None, i)
+    if "box" not in entry and "polygon" not in entry:
+        raise loc.error(f"[[body]] {name!r} needs box = [[x0, y0], [x1, y1]] or polygon = "
+                        "[[x, y], [x, y], [x, y], ...] (m)", "body", None, i)
+    parts = {}
+    for key, parse in (("box", _boxes), ("polygon", _polygons)):
+        if key in entry:
+            try:
+                parts[key] = parse(entry[key], names, f"[[body]] {name!r} {key}")
+            except ValueError as error:
+                raise loc.error(str(error), "body", key, i) from None
     try:
-        return Body(name, _boxes(entry["box"], names, f"[[body]] {name!r} box"),
-                    loc.at("body", "name", i))
+        return Body(name, parts.get("box", ()), loc.at("body", "name", i),
+                    parts.get("polygon", ()))
     except ValueError as error:
+        key = "polygon" if f"body {name!r}: polygon" in str(error) else "box"
         raise loc.error(str(error).removeprefix(loc.at("body", "name", i) + ": "), "body",
-                        "box", i) from None
+                        key, i) from None
 
 
 def _flexure(entry, i, names, loc: Locator):

@@ -7,6 +7,7 @@ from dataclasses import replace
 import numpy as np
 
 from ...fem.beam3d import Fixed, solve_beam3d_modes
+from ...geometry.polygon import moments as polygon_moments
 from ...reduced.spatial import lifted_model
 from ...geometry.user_model.tables import Section
 
@@ -22,7 +23,14 @@ def planar_twin(spec):
 
 
 def _box_inertias(body, rho: float, depth: float) -> tuple:
-    """(mass, centroid (2,), (J_x, J_y, J_z) about it) of a body's boxes extruded by depth."""
+    """(mass, centroid (2,), (J_x, J_y, J_z) about it) of a body's boxes extruded by depth;
+    with polygons, of the union of its boxes and polygons (its area moments: the same centroid
+    as the planar model's mass node, reduced/model_file.py)."""
+    if body.polygons:
+        area, c, (xx, yy, _) = polygon_moments(body.blocks)
+        m = rho * area * depth
+        return m, c, (rho * depth * yy + m * depth * depth / 12,
+                      rho * depth * xx + m * depth * depth / 12, rho * depth * (xx + yy))
     parts = []
     for (x0, y0), (x1, y1) in body.boxes:
         w, h = x1 - x0, y1 - y0

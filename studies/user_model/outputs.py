@@ -1,4 +1,6 @@
 """Outputs shared by the continuum and the beam analyses of a model file."""
+import math
+
 import numpy as np
 
 _AXES = ("x", "y", "z")
@@ -43,17 +45,40 @@ def check_finite(result: dict, source: str) -> dict:
     """``result`` unchanged if every number in it is finite; else ValueError naming the first
     quantity that is not (an overflow of extreme inputs: a 1e300 N load, a 1e-300 m
     thickness), so that nothing non-finite is printed or stored as a result."""
-    def walk(value, key):
-        if isinstance(value, dict):
-            for k, v in value.items():
-                walk(v, f"{key}.{k}" if key else str(k))
-        elif isinstance(value, (list, tuple)):
-            for i, v in enumerate(value):
-                walk(v, f"{key}[{i}]")
-        elif isinstance(value, (float, np.floating)) and not np.isfinite(value):
-            raise ValueError(f"{source}: {key} = {value}: the inputs are beyond what double "
-                             "precision can solve (check the loads, sizes and material for "
-                             "extreme values and units: lengths in m, forces in N, moduli in "
-                             "Pa)")
-    walk(result, "")
+    path = _non_finite(result)
+    if path is not None:
+        key = "".join(f"[{k}]" if index else f".{k}" if i else str(k)
+                      for i, (k, index) in enumerate(path))
+        raise ValueError(f"{source}: {key} = {_at(result, path)}: the inputs are beyond what "
+                         "double precision can solve (check the loads, sizes and material for "
+                         "extreme values and units: lengths in m, forces in N, moduli in Pa)")
+    return result
+
+
+def _non_finite(value):
+    """The keys [(key, whether a list index)] down to the first non-finite float in
+    ``value`` ([] for ``value`` itself), None where there is none."""
+    if isinstance(value, (float, np.floating)):
+        return None if np.isfinite(value) else []
+    if isinstance(value, dict):
+        items, index = value.items(), False
+    elif isinstance(value, (list, tuple)):
+        try:  # a list of numbers at once (most of a result); else item by item
+            if all(map(math.isfinite, value)):
+                return None
+        except (TypeError, OverflowError):  # not all numbers, or an int beyond a float
+            pass
+        items, index = enumerate(value), True
+    else:
+        return None
+    for k, v in items:
+        path = _non_finite(v)
+        if path is not None:
+            return [(k, index)] + path
+    return None
+
+
+def _at(result, path):
+    for k, _ in path:
+        result = result[k]
     return result
