@@ -189,3 +189,21 @@ def test_the_guide_front_screened_by_the_beam_and_confirmed(tmp_path):
         slenderness = d["params"]["t"] / d["params"]["L"]
         for metric, value in d["objectives"].items():
             assert 0 < d["confirmed"][metric] / value - 1 < slenderness, metric
+
+
+def test_remote_centre_pivot_of_polygon_bodies():
+    """examples/bodies/remote_centre.toml: a V-block ground and a keel stage (polygons) whose
+    faces meet the two leaves square; the stage turns about the leaves' meeting point beyond
+    it, each leaf resisting with (E I / L)(4 - 12 p + 12 p^2), p = -1/4 (library
+    pivot_stiffness): the rotation compliance is L / (15.5 E I) within the roots' O(t/L), and
+    the beam model (its blocks' chords, masses and faces from the polygons) within 3 %."""
+    from flexfem.geometry.mechanism.library import pivot_stiffness
+
+    file = BODIES / "remote_centre.toml"
+    spec = load_spec(file)
+    L, t = spec.constants["L"], spec.constants["t"]
+    continuum, beam = (evaluate({}, file=str(file), model=m) for m in ("continuum", "beam"))
+    closed = 1 / (2 * pivot_stiffness(_EI(spec, t), L, -0.25))
+    assert 0 < continuum["compliance_22"] / closed - 1 < t / L  # the roots: softer, O(t/L)
+    for metric in ("compliance_22", "stiffness_stage_x", "f1_hz"):
+        assert beam[metric] == pytest.approx(continuum[metric], rel=0.03), metric
