@@ -54,12 +54,20 @@ def _notch_factors(line, nu: float):
     return profile_factors(line.thickness, line.thickness.length, nu)
 
 
+#: the least elements on a piece of a flexure between its profile's breaks (a fillet)
+PROFILE_PIECE_ELEMENTS = 4
+
+
 def _line_mesh(line, tol, cuts=None, trim=(0.0, 0.0), factors=None) -> BeamMesh:
     """Each segment ``line.elements`` quadratically tapered elements through t(s); a segment
     split at ``cuts`` {segment: [arc lengths from its first point, m]} (a crossing's rigid
     stubs) shares them among its pieces by length, at least one each; ``trim`` (m): the
     lengths left out at the first and last point (an oblique root's, :mod:`.roots`);
-    ``factors``: a notch's correction on every element."""
+    ``factors``: a notch's correction on every element. The profile's breaks (a root
+    fillet's end) split a segment too, and its pieces then get at least
+    :data:`PROFILE_PIECE_ELEMENTS` each (an element across a fillet's end, quadratic through
+    a thick root and the thin blade, would dip below the blade), as the layouts'
+    profile_beam does."""
     cuts, pieces = cuts or {}, []  # pieces: (start, end, arc length at its start, elements)
     last, before = len(line.points) - 2, 0.0  # before: arc length to the segment's start, m
     for k in range(last + 1):
@@ -72,9 +80,13 @@ def _line_mesh(line, tol, cuts=None, trim=(0.0, 0.0), factors=None) -> BeamMesh:
                              f"the block {trim[0]:.3g} m, {trim[1]:.3g} m along it) or a "
                              "crossing's joint leave no length of its segment "
                              f"{list(line.points[k])} - {list(line.points[k + 1])}")
+        breaks = [x - before for x in line.thickness.breaks
+                  if all(abs(x - before - m) > tol for m in marks) and start < x - before < stop]
+        least = PROFILE_PIECE_ELEMENTS if breaks else 1
+        marks = sorted(marks + breaks)
         for s0, s1 in zip(marks[:-1], marks[1:]):
             pieces.append((a + s0 / length * (b - a), a + s1 / length * (b - a), before + s0,
-                           max(1, round(line.elements * (s1 - s0) / length))))
+                           max(least, round(line.elements * (s1 - s0) / length))))
         before += length
     mesh = _pieces_mesh(pieces, line, tol)
     if factors is not None:

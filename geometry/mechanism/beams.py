@@ -34,8 +34,10 @@ def profile(flexure, length: float) -> Profile:
         r = flexure.fillet
         near = np.linspace(0.0, r, STATIONS)
         s = np.concatenate([near, length - near[::-1]])
+        ends = sorted({min(r, length / 2), max(length - r, length / 2)})  # the fillets' ends
         return Profile(tuple(s.tolist()),
-                       tuple((t + _rounded(np.minimum(s, length - s), r)).tolist()))
+                       tuple((t + _rounded(np.minimum(s, length - s), r)).tolist()),
+                       breaks=tuple(ends))
     along, across = flexure.semi_axes
     s = np.linspace(0.0, length, 4 * STATIONS + 1)
     u = np.clip((s - along) / along, -1.0, 1.0)

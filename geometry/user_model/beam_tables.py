@@ -28,12 +28,14 @@ _BINARY = {ast.Add: operator.add, ast.Sub: operator.sub, ast.Mult: operator.mul,
 class Profile:
     """In-plane thickness t(s) (m) along a beam, s its arc length from the first point (m):
     linear between the values at the points' arc lengths ``arc``, or an ``expression`` of s
-    and the parameters ``names``."""
+    and the parameters ``names``; ``breaks``: arc lengths (m) where the profile changes its
+    form (a root fillet's end), each meshed apart (reduced/model_file.py)."""
 
     arc: tuple
     values: tuple = ()
     expression: str | None = None
     names: dict = field(default_factory=dict)
+    breaks: tuple = ()
 
     def __post_init__(self):
         # the tables as arrays once: np.interp converting the tuples cost 8x the interpolation
