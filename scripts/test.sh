@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
-# Install flexfem with its test extras into .venv and run the whole test suite.
-# Local runs may skip the slow checks: bash scripts/test.sh -m "not slow"
+# Install flexfem with its test extras into .venv and run the whole test suite, on two
+# processes (pytest-xdist; a test file's tests stay in one process, so its fixtures are built
+# once). Local runs may skip the slow checks: bash scripts/test.sh -m "not slow"
 set -euo pipefail
 cd "$(dirname "$0")/.."
 python3 -m venv .venv
 .venv/bin/python -m pip install -q --upgrade pip
 .venv/bin/python -m pip install -q -e ".[test,fast,dask]"
-.venv/bin/python -m pytest "$@"
+.venv/bin/python -m pytest -n 2 --dist loadfile "$@"
