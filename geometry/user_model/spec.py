@@ -196,8 +196,7 @@ def _mechanism_spec(path: Path, raw: dict, loc: Locator, overridden: set, dim: i
         "section": section if dim == 2 else Section("solid"),
         "mesh": parse_mesh(raw.get("mesh", {}), loc),
         "supports": parse_supports(raw.get("supports", []), 2, loc),
-        "loads": tuple(replace(load, vector=tuple(load.vector) + (0.0,) * (dim - 2))
-                       for load in parse_loads(raw.get("loads", []), 2, loc)),
+        "loads": _body_loads(raw.get("loads", []), dim, loc),
         "analysis": parse_analysis(raw.get("analysis", {}), loc),
     }
     if parts["mesh"].refine:
@@ -218,6 +217,26 @@ def _mechanism_spec(path: Path, raw: dict, loc: Locator, overridden: set, dim: i
                      constants=dict(parameters), description=str(raw.get("description", "")),
                      beams=beam_spec(mechanism, **options), allow_code=allow_code,
                      mechanism=mechanism, selects=(), **parts)
+
+
+def _body_loads(raw, dim: int, loc: Locator) -> tuple:
+    """The [[loads]] of bodies and flexures: in-plane forces (F_x, F_y), or (F_x, F_y, F_z)
+    pushing out of the plane, which only the 3-D models (--dim 3) take; dim components each."""
+    entries, out_of_plane = raw, {}
+    if isinstance(raw, list):
+        entries = []
+        for i, entry in enumerate(raw):
+            force = entry.get("force") if isinstance(entry, dict) else None
+            if isinstance(force, list) and len(force) == 3 and is_number(force[2]):
+                if dim == 2 and force[2] != 0:
+                    raise loc.error(f"[[loads]] force = {force!r}: an out-of-plane force "
+                                    "(F_z) needs --dim 3 (the extruded solid or the spatial "
+                                    "beam model)", "loads", "force", i)
+                out_of_plane[i], entry = float(force[2]), {**entry, "force": force[:2]}
+            entries.append(entry)
+    loads = parse_loads(entries, 2, loc)
+    return tuple(replace(load, vector=tuple(load.vector) + (out_of_plane.get(i, 0.0),)
+                         * (dim - 2)) for i, load in enumerate(loads))
 
 
 def mechanism_spec(mechanism: Mechanism, material: Material, supports, loads,

@@ -10,7 +10,8 @@ from ...fem import (Fixed, Force, Model, PlaneStrain, PlaneStress, Prescribed, S
                     solve_nonlinear, solve_static)
 from ...geometry.user_model import ModelSpec, load_spec, mesh_geometry
 from ...reduced.model_file import beam_model
-from .beam_analysis import check_beam_analyses, lifted_outputs, planar_twin, spatial_modes
+from .beam_analysis import (check_beam_analyses, lifted_outputs, out_of_plane, planar_twin,
+                            spatial_modes, spatial_static)
 from .outputs import check_finite, groups_of as _groups, stiffness
 from .stroke import stroke_limits
 
@@ -101,9 +102,11 @@ def analyze_model(spec: ModelSpec, size_factor: float = 1.0, model: str = "conti
         if spec.dim == 3:  # bodies and flexures: the planar statics, the lifted model's modes
             solid, spec = spec, planar_twin(spec)
     supports, loads = supports_and_loads(spec)
+    spatial = solid is not None and out_of_plane(solid)
     try:
         fe, h = build(spec, model, size_factor, max_dofs)
-        result = solve_static(fe, supports, loads, solver=_solver(spec))
+        result = (spatial_static(solid, fe) if spatial else
+                  solve_static(fe, supports, loads, solver=_solver(spec)))
     except ValueError as error:
         raise _in_context(spec, error) from None
     groups = _groups(spec)
@@ -115,7 +118,7 @@ def analyze_model(spec: ModelSpec, size_factor: float = 1.0, model: str = "conti
         "max_von_mises_location": result.max_von_mises_location.tolist(),
         "mean_displacement": mean,
         "reactions": {g: np.asarray(r).tolist() for g, r in result.reactions.items()},
-        "stiffness": stiffness(spec, mean),
+        "stiffness": stiffness(solid if spatial else spec, mean),
         "yield_strength": spec.material.yield_strength,
     }
     if spec.analysis.modes:

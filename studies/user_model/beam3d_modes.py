@@ -1,12 +1,13 @@
 """The spatial beam model of bodies and flexures (``--model beam --dim 3``): the planar beam
 model lifted out of the plane by the mechanism's depth (reduced/spatial.py), its bodies'
 masses with their out-of-plane rotary inertias, for the modes out of the plane as well as in
-it. The statics stay the planar model's (in-plane loads). SI units."""
+it, and for the statics where a force pushes out of the plane (else the planar model's).
+SI units."""
 from dataclasses import replace
 
 import numpy as np
 
-from ...fem.beam3d import Fixed, solve_beam3d_modes
+from ...fem import Fixed, Force, solve_modes, solve_static
 from ...geometry.polygon import moments as polygon_moments
 from ...reduced.spatial import lifted_model
 from ...geometry.user_model.tables import Section
@@ -43,10 +44,9 @@ def _box_inertias(body, rho: float, depth: float) -> tuple:
     return m, c, (jx, jy, jz)
 
 
-def spatial_modes(spec, planar, n: int) -> list:
-    """The ``n`` lowest frequencies (Hz) of the lifted model, held where the planar model's
-    supports hold (every support holds its body whole: a partial support of a solid has no
-    planar meaning here)."""
+def spatial_model(spec, planar):
+    """The lifted spatial model of ``planar`` (the BeamModel of a 3-D spec of bodies and
+    flexures): its bodies' masses with their rotary inertias, the planar groups."""
     if any(s.components is not None for s in spec.supports):
         raise ValueError(f"{spec.source}: --model beam --dim 3 holds bodies whole; a support "
                          "with components (x = ..., y = ...) is the 2-D model's")
@@ -60,6 +60,27 @@ def spatial_modes(spec, planar, n: int) -> list:
                 break
         else:
             raise ValueError(f"{spec.source}: a body's mass node has no body (internal)")
-    model = lifted_model(planar, mechanism.depth, point_masses=masses)
-    supports = [Fixed(planar.groups[s.group].nodes) for s in spec.supports]
-    return solve_beam3d_modes(model, supports, n=n).frequencies_hz.tolist()
+    return lifted_model(planar, mechanism.depth, point_masses=masses)
+
+
+def spatial_modes(spec, planar, n: int) -> list:
+    """The ``n`` lowest frequencies (Hz) of the lifted model, held where the planar model's
+    supports hold (every support holds its body whole: a partial support of a solid has no
+    planar meaning here)."""
+    supports = [Fixed(s.group) for s in spec.supports]
+    return solve_modes(spatial_model(spec, planar), n, supports).frequencies_hz.tolist()
+
+
+def out_of_plane(spec) -> bool:
+    """True where a 3-D spec's loads push out of the plane (a nonzero F_z)."""
+    return spec.dim == 3 and any(len(load.vector) == 3 and load.vector[2] != 0.0
+                                 for load in spec.loads)
+
+
+def spatial_static(spec, planar):
+    """The linear static solve of the lifted model (:func:`spatial_model`) under the 3-D
+    spec's supports and its forces with their out-of-plane components (the analysis face's
+    Beam3DResult)."""
+    supports = [Fixed(s.group) for s in spec.supports]
+    loads = [Force(load.group, load.vector) for load in spec.loads]
+    return solve_static(spatial_model(spec, planar), supports, loads)

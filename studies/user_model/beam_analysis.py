@@ -6,11 +6,13 @@ that body, a force is the group's total force applied there, the group's "mean d
 is that point's displacement (the continuum's mean over a face that moves rigidly).
 max_von_mises is the beam stress |N|/A + |M| c / I (no stress concentration at the roots,
 which the continuum has). Buckling is the continuum's only. ``--dim 3`` (bodies and flexures):
-the planar statics, the modes of the spatial beam model (:mod:`.beam3d_modes`). SI units.
+the modes of the spatial beam model (:mod:`.beam3d_modes`), and its statics where a force
+pushes out of the plane (else the planar model's, the same in the plane). SI units.
 """
-from .beam3d_modes import planar_twin, spatial_modes
+from .beam3d_modes import out_of_plane, planar_twin, spatial_modes, spatial_static
 
-__all__ = ["check_beam_analyses", "lifted_outputs", "planar_twin", "spatial_modes"]
+__all__ = ["check_beam_analyses", "lifted_outputs", "out_of_plane", "planar_twin",
+           "spatial_modes", "spatial_static"]
 
 
 def check_beam_analyses(spec) -> None:
@@ -19,6 +21,9 @@ def check_beam_analyses(spec) -> None:
     if spec.dim != 2 and spec.mechanism is None:
         raise ValueError(f"{spec.source}: the declared beam model is planar; a 3-D geometry "
                          "file is the continuum's (--model continuum)")
+    if out_of_plane(spec) and (spec.analysis.steps or spec.analysis.harmonic):
+        raise ValueError(f"{spec.source}: [analysis] steps and harmonic of the beam model are "
+                         "planar; with an out-of-plane force use --model continuum --dim 3")
     if spec.analysis.buckling:
         raise ValueError(f"{spec.source}: [analysis] buckling: the beam model does not compute "
                          "it; use the continuum model (--model continuum)")
@@ -36,5 +41,5 @@ def lifted_outputs(out: dict) -> dict:
     """The planar statics of a 3-D file as the solid's: dim 3, vectors with z = 0."""
     lifted = {"dim": 3}
     for key in ("mean_displacement", "reactions"):
-        lifted[key] = {g: list(v) + [0.0] for g, v in out[key].items()}
+        lifted[key] = {g: list(v) + [0.0] * (3 - len(v)) for g, v in out[key].items()}
     return lifted

@@ -207,3 +207,23 @@ def test_remote_centre_pivot_of_polygon_bodies():
     assert 0 < continuum["compliance_22"] / closed - 1 < t / L  # the roots: softer, O(t/L)
     for metric in ("compliance_22", "stiffness_stage_x", "f1_hz"):
         assert beam[metric] == pytest.approx(continuum[metric], rel=0.03), metric
+
+
+def test_an_out_of_plane_force_on_the_spatial_beam_model(tmp_path):
+    """A force with an F_z component: refused in 2-D, naming --dim 3; with --model beam --dim 3
+    the spatial model's statics: the reaction balances the force, and the in-plane part of
+    the stage's motion is the planar model's under the in-plane part of the force (the lift
+    is exact in the plane; a tilted force superposes)."""
+    text = (BODIES / "guide.toml").read_text()
+    tilted = tmp_path / "guide.toml"
+    tilted.write_text(text.replace("force = [1.0, 0.0]", "force = [1.0, 0.0, 2.0]"))
+    with pytest.raises(ValueError, match="out-of-plane force .* needs --dim 3"):
+        load_spec(tilted)
+    from flexfem.studies.user_model.analysis import analyze_model
+
+    spatial = analyze_model(load_spec(tilted, dim=3), model="beam")
+    planar = analyze_model(load_spec(BODIES / "guide.toml"), model="beam")
+    assert spatial["reactions"]["ground"] == pytest.approx([-1.0, 0.0, -2.0], abs=1e-9)
+    u, u_planar = spatial["mean_displacement"]["stage"], planar["mean_displacement"]["stage"]
+    assert u[0] == pytest.approx(u_planar[0], rel=1e-6)
+    assert u[2] > 0 and spatial["stiffness"]["stage"]["along"] > 0
