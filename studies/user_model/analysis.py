@@ -91,15 +91,15 @@ def analyze_model(spec: ModelSpec, size_factor: float = 1.0, model: str = "conti
     N/m}} (single force load), frequencies_hz (when [analysis] modes), nonlinear (when
     [analysis] steps), compliance / buckling / harmonic (when asked; see :func:`_precision`).
     ``model="beam"``: the same analysis of the file's beam model (its declared [[beam]] or
-    its bodies' and flexures'; planar statics, and with ``--dim 3`` the spatial beam model's
-    modes: :mod:`.beam_analysis`). ``max_dofs``: the continuum's mesh budget (None: half the
+    its bodies' and flexures'; with ``--dim 3`` the spatial beam model's modes, and its
+    statics for a force out of the plane: :mod:`.beam_analysis`). ``max_dofs``: the continuum's mesh budget (None: half the
     available memory)."""
     if model not in MODELS:
         raise ValueError(f"{spec.source}: model = {model!r} must be one of {MODELS}")
     solid = None
     if model == "beam":
         check_beam_analyses(spec)
-        if spec.dim == 3:  # bodies and flexures: the planar statics, the lifted model's modes
+        if spec.dim == 3:  # bodies and flexures: the lifted model's modes (statics: below)
             solid, spec = spec, planar_twin(spec)
     supports, loads = supports_and_loads(spec)
     spatial = solid is not None and out_of_plane(solid)
