@@ -334,17 +334,24 @@ def solve_harmonic(model: BeamModel, supports, loads, frequencies_hz, damping=0.
     f = np.zeros((model.n_nodes, 3))
     for load in nodal:
         f[load.node] += (load.fx, load.fy, load.m)
-    w_r = 2 * np.pi * modes.frequencies_hz
+    q, zeta = modal_superposition(modes.frequencies_hz, modes.shapes, f, static, f_hz, damping)
+    return BeamHarmonic(model, f_hz, q.reshape(len(f_hz), model.n_nodes, 3), modes,
+                        info={"n_modes": n_modes, "damping_ratios": zeta})
+
+
+def modal_superposition(modes_hz, shapes, f, static, f_hz, damping) -> tuple:
+    """((n_f, n_dofs) complex amplitudes, the modal damping ratios): the modes (Hz;
+    mass-normalised ``shapes``, one row of DOFs each) driven by ``f``, plus the static
+    residual ``static`` - sum phi p / w^2 (exact at 0 Hz); also the spatial face's."""
+    w_r = 2 * np.pi * np.asarray(modes_hz)
     zeta = _damping_ratios(damping, w_r)
-    phi = modes.shapes.reshape(len(w_r), -1)
+    phi = shapes.reshape(len(w_r), -1)
     p = phi @ f.ravel()
     residual = static.ravel() - phi.T @ (p / w_r ** 2)
     omega = 2 * np.pi * f_hz
     with np.errstate(divide="ignore", invalid="ignore"):
         h = 1.0 / (w_r[None, :] ** 2 - omega[:, None] ** 2 + 2j * zeta * w_r * omega[:, None])
-    q = (h * p) @ phi + residual
-    return BeamHarmonic(model, f_hz, q.reshape(len(f_hz), model.n_nodes, 3), modes,
-                        info={"n_modes": n_modes, "damping_ratios": zeta})
+    return (h * p) @ phi + residual, zeta
 
 
 def _no_options(what: str, options: dict, ignored: tuple) -> None:

@@ -23,7 +23,8 @@ import numpy as np
 
 from ..boundary import Fixed, Force, Prescribed
 from ..compliance import Compliance, moved_compliance, rotation_frame
-from ..harmonic import FRF, _check_frequencies, _damping_ratios
+from ..beam.face import _no_options, modal_superposition
+from ..harmonic import FRF, _check_frequencies
 from .modal import Beam3DModes, solve_beam3d_modes
 from .model import Beam3DModel
 from .model import Fixed as NodeFixed
@@ -269,31 +270,9 @@ def solve_harmonic(model: Beam3DModel, supports, loads, frequencies_hz, damping=
     f = np.zeros((model.n_nodes, 6))
     for load in nodal:
         f[load.node] += load.vector
-    q = modal_superposition(modes.frequencies_hz, modes.shapes, f, static.q, f_hz, damping)
+    q, _ = modal_superposition(modes.frequencies_hz, modes.shapes, f, static.q, f_hz,
+                               damping)
     return Beam3DHarmonic(model, f_hz, q.reshape(len(f_hz), model.n_nodes, 6)[..., :3], modes)
-
-
-def modal_superposition(modes_hz, shapes, f, static, f_hz, damping) -> np.ndarray:
-    """(n_f, n_dofs) complex amplitudes: the modes (Hz; mass-normalised ``shapes``, one row
-    of DOFs each) driven by ``f`` plus the static residual ``static`` - sum phi p / w^2."""
-    w_r = 2 * np.pi * np.asarray(modes_hz)
-    zeta = _damping_ratios(damping, w_r)
-    phi = shapes.reshape(len(w_r), -1)
-    p = phi @ f.ravel()
-    residual = static.ravel() - phi.T @ (p / w_r ** 2)
-    omega = 2 * np.pi * f_hz
-    with np.errstate(divide="ignore", invalid="ignore"):
-        h = 1.0 / (w_r[None, :] ** 2 - omega[:, None] ** 2 + 2j * zeta * w_r * omega[:, None])
-    return (h * p) @ phi + residual
-
-
-def _no_options(what: str, options: dict, ignored: tuple) -> None:
-    """Options of the continuum's function that mean nothing on a beam model: those in
-    ``ignored`` are accepted, any other is a TypeError naming it."""
-    unknown = sorted(set(options) - set(ignored))
-    if unknown:
-        raise TypeError(f"{what}: option(s) {unknown} are the continuum's; the spatial beam "
-                        "model takes none of them")
 
 
 __all__ = ["Beam3DHarmonic", "Beam3DPath", "Beam3DResult", "compliance_matrix",
