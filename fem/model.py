@@ -201,8 +201,9 @@ class Model:
     def with_stiffness(self, extra) -> "Model":
         """A copy of this model whose stiffness is K + ``extra`` (N/m; a symmetric sparse
         n_dofs x n_dofs matrix, e.g. :func:`~flexfem.fem.springs.group_spring`), for the linear
-        analyses (static, modal, harmonic, compliance, buckling); the nonlinear solver
-        assembles its own tangent and does not see it."""
+        analyses (static, modal, harmonic, compliance, buckling) and, as a linear term
+        ``extra @ u`` in the residual and its tangent, the nonlinear solver (a spring that
+        stays along its axis: small spring rotations)."""
         if getattr(extra, "shape", None) != (self.n_dofs, self.n_dofs):
             raise ValueError(f"extra stiffness of shape {getattr(extra, 'shape', None)} must be "
                              f"({self.n_dofs}, {self.n_dofs})")
@@ -214,7 +215,13 @@ class Model:
         copy = replace(self)
         # the named cache: the upper triangle of K + extra
         copy.__dict__["stiffness_upper"] = symmetric.upper(self.stiffness_upper + extra)
+        copy.__dict__["extra_stiffness"] = extra + self.extra_stiffness
         return copy
+
+    @cached_property
+    def extra_stiffness(self) -> sp.csr_matrix:
+        """The stiffness added by :meth:`with_stiffness` (N/m; zero for a plain model)."""
+        return sp.csr_matrix((self.n_dofs, self.n_dofs))
 
     @property
     def stiffness_quadrature(self):

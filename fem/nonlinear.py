@@ -57,7 +57,9 @@ class _Problem:
         return self._follower_kind if self.space.symmetric else "general"
 
     def _load_stiffness(self, u, lam):
-        return lam * self.follower.stiffness(u) + self.pre_follower.stiffness(u)
+        """The follower loads' stiffness and the model's added linear stiffness (N/m)."""
+        return (lam * self.follower.stiffness(u) + self.pre_follower.stiffness(u)
+                + self.model.extra_stiffness)
 
     def evaluate(self, z, lam, tangent=True):
         """(u, r = f_int - lam f_ext - preloads (full), r_z, K_zz or None, reference force (N),
@@ -65,8 +67,9 @@ class _Problem:
         space = self.space
         u = space.displacement(z, lam)
         F, S = self.assembler.state(u)
-        r = (self.assembler.internal_force(F, S) - lam * (self.f_ext + self.follower.force(u))
-             - self.f_pre - self.pre_follower.force(u))
+        r = (self.assembler.internal_force(F, S) + self.model.extra_stiffness @ u
+             - lam * (self.f_ext + self.follower.force(u)) - self.f_pre
+             - self.pre_follower.force(u))
         T = space.jacobian(z, lam)
         g = space.applied(lam, z)
         rz = T.T @ r - g

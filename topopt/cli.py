@@ -50,16 +50,27 @@ def summarize(result: dict) -> str:
     for key in ("u_in", "u_out"):
         if key in result:
             lines.append(f"{key}: {result[key]:.6g} m")
+    large = result.get("large_displacements")
+    if large:
+        lines.append(f"large displacements: the small-displacement optimum ("
+                     f"{large['start_iterations']} iterations) gives {large['start_objective']:.6g}"
+                     f" with large displacements; this design {result['objective']:.6g}")
     if "compliances" in result:
         lines.append("compliance by load case: "
                      + ", ".join(f"{c:.6g} J" for c in result["compliances"]))
     for key, unit in (("frequency", "Hz"), ("stress", "Pa")):
         if key in result["constraints"]:
             lines.append(f"{key}: {result['constraints'][key]:.6g} {unit}")
-    tol = result.get("shape", {}).get("tolerance")
+    shape = result.get("shape", {})
+    tol = shape.get("tolerance")
     if tol:
-        fitted = result["shape"]["body_fitted"][tol["spring"]]
-        lines.append(f"body-fitted u_{tol['spring']}: {fitted:.6g} m (density model "
-                     f"{tol['u']:.6g} m, tolerance {tol['tolerance']:.3g} m)")
+        large = shape.get("body_fitted_large")
+        fitted = (large["large"] if large else shape["body_fitted"])[tol["spring"]]
+        lines.append(f"body-fitted u_{tol['spring']}{' (large displacements)' if large else ''}"
+                     f": {fitted:.6g} m (density model {tol['u']:.6g} m, tolerance "
+                     f"{tol['tolerance']:.3g} m)")
+        if large and not large["strain_valid"]:
+            lines.append(f"  its largest strain {large['max_strain']:.3g} is beyond the "
+                         "St. Venant-Kirchhoff material's validity (5 %)")
     lines.append(f"written: {', '.join(result['files'])} in {result['out']}")
     return "\n".join(lines)

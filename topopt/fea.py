@@ -38,7 +38,9 @@ class System:
         self._map = self.element_map(KE)
         self.solver = PatternSolver(self._indptr, self._indices, n)
         self._spring = np.zeros(keys.size)
+        self.spring_diagonal = np.zeros(grid.n_dofs)   # N/m by DOF
         for dof, k in springs.items():
+            self.spring_diagonal[dof] += k
             r = reduced[dof]
             if r >= 0:
                 self._spring[np.searchsorted(keys, np.int64(r) * n + r)] += k
@@ -56,6 +58,13 @@ class System:
         data = self._map @ E + self._spring if element_map is None else element_map @ E
         n = self.free.size
         return sp.csr_matrix((data, self._indices, self._indptr), shape=(n, n))
+
+    def factor_elements(self, KE: np.ndarray) -> None:
+        """Factorise sum_e KE[e] (n_elements x 8 x 8, N/m: each element its own matrix, e.g.
+        a tangent) plus the springs; then ``resolve`` solves with it."""
+        slot, elems, local, size = self._entries
+        values = KE.reshape(len(KE), 64)[elems, local]
+        self.solver.factor(np.bincount(slot, weights=values, minlength=size) + self._spring)
 
     def solve(self, E: np.ndarray, rhs: np.ndarray) -> np.ndarray:
         """Solutions (n_dofs, k) of K(E) u = rhs[:, j], one factorisation for all k."""

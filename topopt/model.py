@@ -8,6 +8,7 @@ import scipy.sparse as sp
 
 from .element import element_mass, element_stiffness, von_mises_matrix
 from .fea import System
+from .large_displacement import LargeDisplacement
 from .filters import Filter
 from .problem import Problem
 from .projection import project, project_derivative
@@ -73,6 +74,7 @@ class Discrete:
         self.P = design_map(g, p.symmetry)
         self.lower, self.upper = self._bounds()
         self.beta = p.projection.beta if p.projection else None
+        self.large = LargeDisplacement(self, p.nonlinear) if p.nonlinear else None
 
     def _bounds(self):
         """Bounds of the design variables: passive elements pinned at 0 or 1."""
@@ -149,6 +151,28 @@ class Discrete:
             g = g * project_derivative(filtered, self.beta, self.problem.projection.eta)
         return self.P.T @ self.filter.back(x, g, objective=objective)
 
+    def _linear_state(self, rho, E, dE) -> State:
+        """The displacements of every load case and the adjoints of the springs named by
+        a displacement response, one factorisation for all."""
+        p = self.problem
+        responses = [p.objective] + [c.response for c in p.constraints]
+        names = sorted({r.spring for r in responses if r.kind == "displacement"})
+        rhs = np.column_stack([self.forces] + [self.spring_vectors[n] for n in names])
+        sol = self.system.solve(E, rhs)
+        cases = self.forces.shape[1]
+        return State(rho, E, dE, sol[:, :cases], dict(zip(names, sol[:, cases:].T)))
+
+    def _large_response(self, large, state: State, r):
+        """A response of the large-displacement state: l.u with l a spring's vector
+        (displacement) or the load (end compliance f.u), by its adjoint; the stress norm; or
+        the volume."""
+        if r.kind == "volume":
+            return RESPONSES["volume"](self, state, r)
+        if r.kind == "stress":
+            return self.large.stress(large, state.rho, self.problem.interpolation.E0, r)
+        l = self.spring_vectors[r.spring] if r.kind == "displacement" else self.forces[:, 0]
+        return float(l @ large.u), self.large.gradient(large, l)
+
     def evaluate(self, z: np.ndarray) -> Evaluation:
         """All responses at z, one factorisation for the states of every load case and
         every adjoint."""
@@ -156,20 +180,20 @@ class Discrete:
         filtered = self.filter.physical(x)
         rho = self.physical(z, filtered)
         interp = p.interpolation
-        responses = [p.objective] + [c.response for c in p.constraints]
-        names = sorted({r.spring for r in responses if r.kind == "displacement"})
-        rhs = np.column_stack([self.forces] + [self.spring_vectors[n] for n in names])
-        E = interp.modulus(rho)
-        sol = self.system.solve(E, rhs)
-        cases = self.forces.shape[1]
-        state = State(rho, E, interp.derivative(rho), sol[:, :cases],
-                      dict(zip(names, sol[:, cases:].T)))
+        E, dE = interp.modulus(rho), interp.derivative(rho)
+        if self.large is None:
+            state = self._linear_state(rho, E, dE)
+            respond = lambda r: RESPONSES[r.kind](self, state, r)  # noqa: E731
+        else:
+            large = self.large.equilibrium(E, rho, dE)
+            state = State(rho, E, dE, large.u[:, None], {})
+            respond = lambda r: self._large_response(large, state, r)  # noqa: E731
         pinned = self.solid | self.void
-        u = sol[:, 0]
+        u = state.U[:, 0]
         disp = {n: float(v @ u) for n, v in self.spring_vectors.items()}
 
         def value_grad(r):
-            value, g = RESPONSES[r.kind](self, state, r)
+            value, g = respond(r)
             g[pinned] = 0.0
             return value, g
 

@@ -7,7 +7,7 @@ import numpy as np
 
 from .outline import Outline
 
-REACH = 0.51  # a group's curves lie within this many elements of its nodes
+REACH = 0.51  # a group's curves lie within this many longer element sides of its nodes
 
 
 def groups_of(problem) -> list:
@@ -23,7 +23,7 @@ def _zones(problem) -> dict:
     from shapely import MultiPoint
 
     g = problem.grid
-    r = REACH * min(g.dx, g.dy)
+    r = REACH * max(g.dx, g.dy)
     return {name: MultiPoint(g.nodes[where.nodes(g)]).buffer(r, 32)
             for name, where, _ in groups_of(problem)}
 

@@ -1,6 +1,7 @@
 """The design loop: evaluate, update (OC or MMA), record; resumable after every iteration."""
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import lru_cache
+from pathlib import Path
 
 import numpy as np
 
@@ -38,6 +39,9 @@ class Result:
     compliances: tuple
     history: np.ndarray = field(repr=False)
     problem: Problem = field(repr=False)
+    design: np.ndarray = field(repr=False, default=None)   # the design variables
+    beta: float | None = None                               # the projection's last
+    start_iterations: int = 0       # those of the small-displacement start (large ones)
 
     def summary(self) -> dict:
         """The JSON-able numbers: objective, iterations, volume_fraction, converged and,
@@ -50,6 +54,10 @@ class Result:
                "displacements": {f"u_{k}": v for k, v in self.displacements.items()}}
         if len(self.compliances) > 1:
             out["compliances"] = list(self.compliances)
+        if self.problem.nonlinear is not None and len(self.history):
+            # the first iteration evaluates the start: the small-displacement optimum
+            out["large_displacements"] = {"start_iterations": self.start_iterations,
+                                          "start_objective": float(self.history[0, 0])}
         for key, name in (("u_in", "input"), ("u_out", "output")):
             if name in self.displacements:
                 out[key] = self.displacements[name]
@@ -71,12 +79,13 @@ def _normalised(problem, values, grads):
     return f, df
 
 
-def _resume(discrete, out_dir):
+def _resume(discrete, out_dir, start=None):
     """(z, iteration, change, history, mma state, scale, beta, iterations at beta) from
-    out_dir, or a fresh start."""
+    out_dir, or a fresh start (from ``start``: (design variables, projection beta), if
+    given)."""
     p = discrete.problem
-    z = discrete.initial()
-    fresh = (z, 0, np.inf, np.zeros((0, 2)), MMAState.start(z), 0.0, discrete.beta, 0)
+    z, beta = (discrete.initial(), discrete.beta) if start is None else start
+    fresh = (z, 0, np.inf, np.zeros((0, 2)), MMAState.start(z), 0.0, beta, 0)
     state = load_state(out_dir) if out_dir is not None else None
     if state is None:
         return fresh
@@ -113,13 +122,24 @@ def _step(discrete, ev, z, it, mma, scale):
 def optimize(problem: Problem, out_dir=None, progress=None) -> Result:
     """Optimise ``problem``; with ``out_dir`` the state is saved after every iteration and
     a rerun continues from it. ``progress(iteration, objective, volume, change)`` is called
-    after each iteration."""
+    after each iteration. A problem with large displacements starts from the optimum of its
+    linear twin (the same problem, small displacements; saved in ``out_dir``/linear), where
+    the load path already exists: a uniform grey start under the full load strains the grey
+    material far beyond any solid's."""
+    start = None
+    if problem.nonlinear is not None:
+        twin = replace(problem, nonlinear=None)
+        linear = optimize(twin, None if out_dir is None else Path(out_dir) / "linear", progress)
+        start = (linear.design, linear.beta)
     discrete = Discrete(problem)
     with _blas().limit(limits=1):
-        return _optimize(discrete, out_dir, progress)
+        result = _optimize(discrete, out_dir, progress, start)
+    if start is not None:
+        result.start_iterations = linear.iterations
+    return result
 
 
-def _optimize(discrete, out_dir, progress) -> Result:
+def _optimize(discrete, out_dir, progress, start=None) -> Result:
     """optimize()'s loop, on one BLAS thread: its vector operations are small (n of 1e4-1e5)
     and many, and with OpenBLAS's threads each waits on a thread hand-off (a dot product of
     20,000 values: 0.4 ms threaded, 0.01 ms on one thread, on two busy cores); PARDISO's
@@ -128,7 +148,7 @@ def _optimize(discrete, out_dir, progress) -> Result:
     one thread, 8.4 s and 5.6 s CPU on two)."""
     p = discrete.problem
     opt = p.optimizer
-    z, it, change, history, mma, scale, beta, at_beta = _resume(discrete, out_dir)
+    z, it, change, history, mma, scale, beta, at_beta = _resume(discrete, out_dir, start)
     proj = p.projection
     while not _done(proj, change, opt.tolerance, beta, at_beta) and it < opt.max_iterations:
         it += 1
@@ -156,4 +176,4 @@ def _optimize(discrete, out_dir, progress) -> Result:
     return Result(final.objective, it, float(final.physical.mean()), converged,
                   change, final.physical, final.displacements,
                   dict(zip(names, map(float, final.constraints))),
-                  tuple(map(float, final.compliances)), history, p)
+                  tuple(map(float, final.compliances)), history, p, z, beta)

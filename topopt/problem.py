@@ -9,6 +9,7 @@ import numpy as np
 from .filters import KINDS as FILTERS
 from .grid import Grid
 from .interpolation import Interpolation
+from .large_displacement import Nonlinear
 from .projection import Projection
 from .regions import Region
 
@@ -116,6 +117,7 @@ class Problem:
     optimizer: Optimizer = field(default_factory=Optimizer)
     initial: float | None = None
     projection: Projection | None = None
+    nonlinear: Nonlinear | None = None
 
     def __post_init__(self):
         check_problem(self)
@@ -148,7 +150,8 @@ class Problem:
                      self.mass_density, self.interpolation, self.filter_kind, self.radius,
                      self.supports, self.loads, self.springs, self.constraints, self.passive,
                      self.symmetry, limits, self.initial)
-                    + ((self.projection,) if self.projection else ()))
+                    + ((self.projection,) if self.projection else ())
+                    + ((self.nonlinear,) if self.nonlinear else ()))
         return hashlib.sha256(text.encode()).hexdigest()[:16]
 
 
@@ -196,6 +199,19 @@ def check_problem(p: Problem) -> None:
     if p.symmetry and not set(p.symmetry) <= set(DOFS):
         raise ValueError(f"symmetry = {list(p.symmetry)!r}: give axes among 'x', 'y'")
     _check_optimizer(p)
+    if p.nonlinear is not None:
+        _check_nonlinear(p)
+
+
+def _check_nonlinear(p: Problem) -> None:
+    if p.n_cases > 1:
+        raise ValueError("nonlinear: one load case only (the large-displacement state is "
+                         "that of load case 1)")
+    for r in [p.objective] + [c.response for c in p.constraints]:
+        if r.kind not in ("displacement", "compliance", "volume", "stress"):
+            raise ValueError(f"nonlinear: {r.kind!r} is not available with large "
+                             "displacements (displacement, compliance, stress and volume "
+                             "are)")
 
 
 def _check_cases(p: Problem) -> None:

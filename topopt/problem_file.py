@@ -5,6 +5,7 @@ import tomllib
 
 from .grid import Grid
 from .interpolation import Interpolation
+from .large_displacement import Nonlinear
 from .problem import (Constraint, Load, Optimizer, Passive, Problem, Response, Spring,
                       Support)
 from .projection import Projection
@@ -19,6 +20,7 @@ TABLES = {
     "optimizer": {"kind", "move", "max_iterations", "tolerance", "initial"},
     "projection": {"beta", "eta", "beta_max", "every"},
     "shape": {"rho", "yield_strength", "min_member"},
+    "nonlinear": {"steps", "max_iterations", "tolerance"},
 }
 LISTS = {
     "support": {"where", "fix"},
@@ -144,6 +146,15 @@ def _projection(data: dict, t: dict) -> Projection | None:
                         for k, v in (("beta", 1.0), ("eta", 0.5), ("beta_max", 32.0))), every)
 
 
+def _nonlinear(data: dict, t: dict) -> Nonlinear | None:
+    if "nonlinear" not in data:
+        return None
+    d, default = t["nonlinear"], Nonlinear()
+    return Nonlinear(d.get("steps", default.steps),
+                     d.get("max_iterations", default.max_iterations),
+                     _number(d.get("tolerance", default.tolerance), "nonlinear.tolerance"))
+
+
 def problem_from_dict(data: dict) -> Problem:
     """The Problem a parsed problem file describes."""
     unknown = sorted(set(data) - set(TABLES) - set(LISTS))
@@ -177,7 +188,8 @@ def problem_from_dict(data: dict) -> Problem:
         symmetry=tuple(symmetry),
         optimizer=_optimizer(o),
         initial=_number(o["initial"], "optimizer.initial") if "initial" in o else None,
-        projection=_projection(data, t))
+        projection=_projection(data, t),
+        nonlinear=_nonlinear(data, t))
 
 
 def read_problem_file(path) -> dict:

@@ -80,6 +80,16 @@ def frequency(d, s: State, r):
     return f, dlam / (8.0 * np.pi**2 * max(f, 1e-300))
 
 
+def pnorm(t: list, P: float):
+    """(||t||_P over the arrays of ``t``, [d value / d t_k for each array]), computed
+    without overflow; (0, []) where every t is 0."""
+    top = max(float(np.max(tk)) for tk in t)
+    if top == 0.0:
+        return 0.0, []
+    value = top * float(sum(np.sum((tk / top) ** P) for tk in t)) ** (1.0 / P)
+    return value, [(tk / value) ** (P - 1) for tk in t]
+
+
 def stress(d, s: State, r):
     """The p-norm (Pa) over elements and load cases of t_e = rho_e^q sigma_vm(u_e) (the
     solid's von Mises stress at the element centre, q = r.relaxation: void carries none),
@@ -90,14 +100,12 @@ def stress(d, s: State, r):
     vm = [np.sqrt(np.maximum(np.einsum("ei,ei->e", su, u[edofs]), 0.0))
           for su, u in zip(Su, s.U.T)]
     t = [rho**q * v for v in vm]
-    top = max(float(np.max(tk)) for tk in t)
-    if top == 0.0:
+    value, weights = pnorm(t, P)
+    if value == 0.0:
         return 0.0, np.zeros(rho.size)
-    value = top * float(sum(np.sum((tk / top) ** P) for tk in t)) ** (1.0 / P)
     g, rhs = np.zeros(rho.size), np.zeros((d.system.grid.n_dofs, len(t)))
     positive = rho > 0
-    for k, (tk, vk, su) in enumerate(zip(t, vm, Su)):
-        w = (tk / value) ** (P - 1)       # d value / d t_e
+    for k, (tk, vk, su, w) in enumerate(zip(t, vm, Su, weights)):
         g[positive] += w[positive] * q * tk[positive] / rho[positive]
         dvm = np.where(vk > 0, w * rho**q / np.where(vk > 0, vk, 1.0), 0.0)
         np.add.at(rhs[:, k], edofs, dvm[:, None] * su)

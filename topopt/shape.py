@@ -7,7 +7,7 @@ from .export import write_step
 from .model_file import write_model
 from .outline import extract_outline, problem_anchors, write_dxf
 from .tolerance import body_fitted_tolerance
-from .verify import verify_mechanism
+from .verify import verify_large, verify_mechanism
 
 KEYS = {"rho", "yield_strength", "min_member"}
 
@@ -35,7 +35,10 @@ def shape_options(data: dict) -> dict | None:
 
 def write_shape(result, folder, options: dict) -> dict:
     """Write outline.dxf, outline.step, design.geo and design.toml into ``folder``; returns
-    {files, parts, islands (m^2), thin_area (m^2), body_fitted {spring: m}, tolerance}."""
+    {files, parts, islands (m^2), thin_area (m^2), body_fitted {spring: m} (small
+    displacements), tolerance} and, for a problem with large displacements,
+    body_fitted_large (:func:`~.verify.verify_large`); the tolerance is then that of the
+    large-displacement state."""
     problem, folder = result.problem, Path(folder)
     outline = extract_outline(result.density, problem.grid, problem_anchors(problem),
                               min_member=options["min_member"])
@@ -46,6 +49,8 @@ def write_shape(result, folder, options: dict) -> dict:
     out = {"files": ["outline.dxf", "outline.step", "design.geo", "design.toml"],
            "parts": len(outline.parts), "islands": list(outline.islands),
            "thin_area": outline.thin_area}
+    if problem.springs and problem.nonlinear is not None:
+        out["body_fitted_large"] = verify_large(problem, outline)
     if problem.springs:
         out["body_fitted"] = verify_mechanism(problem, outline)
         name = problem.objective.spring or problem.springs[-1].name

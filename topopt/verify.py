@@ -6,7 +6,11 @@ points C and the springs' stiffnesses k give (I + C k) u = u_loads."""
 import numpy as np
 
 from ..fem import (Fixed, Force, Material, Model, PlaneStress, PointForce, Prescribed,
-                   facets_where, gmsh_session, mesh_from_gmsh, solve_modes, solve_static)
+                   facets_where, gmsh_session, ground_spring, mesh_from_gmsh, solve_modes,
+                   solve_nonlinear, solve_static)
+from ..fem.hyperelastic import STRAIN_LIMIT, max_strain
+from ..fem.newton import NonConvergenceError
+from ..fem.static_result import mean_field
 from .outline import Outline
 
 AXIS = {"x": 0, "y": 1}
@@ -39,6 +43,12 @@ def _near(xy, reach):
         d = np.min(np.hypot(x[0][:, None] - xy[:, 0], x[1][:, None] - xy[:, 1]), axis=1)
         return d <= reach
     return near
+
+
+def _reach(grid) -> float:
+    """How far (m) from a region's grid nodes its facets lie: just over half the longer side
+    of an element, so that an edge's facets between its nodes are all within reach."""
+    return 0.51 * max(grid.dx, grid.dy)
 
 
 def _facets(problem, mesh, region, reach, what, parallel: bool = False):
@@ -77,7 +87,7 @@ def verify_mechanism(problem, outline: Outline, E: float | None = None, size=Non
     g = problem.grid
     h = min(g.dx, g.dy)
     mesh = mesh_outline(outline, size or h / 2)
-    mesh, supports = _supports(problem, mesh, 0.51 * h)
+    mesh, supports = _supports(problem, mesh, _reach(g))
     E = problem.interpolation.E0 if E is None else E
     model = Model(mesh, Material("design", E, problem.nu, 1.0), PlaneStress(problem.thickness),
                   order=2)
@@ -106,12 +116,13 @@ def shape_model(problem, outline: Outline, size=None):
     """(model, supports): the body-fitted shape meshed at ``size`` m (default half an
     element), quadratic plane stress with the problem's E, nu, thickness and mass density;
     boundary groups 'support<k>', 'load<k>' (load case 1) and each spring's name: the facets
-    within 0.51 element of their grid nodes (along an edge, only those parallel to it)."""
-    h = min(problem.grid.dx, problem.grid.dy)
-    mesh, supports = _supports(problem, mesh_outline(outline, size or h / 2), 0.51 * h, True)
-    groups = {f"load{k}": _facets(problem, mesh, ld.where, 0.51 * h, f"load[{k}]", True)
+    within 0.51 of an element's longer side of their grid nodes (along an edge, only those
+    parallel to it)."""
+    h, reach = min(problem.grid.dx, problem.grid.dy), _reach(problem.grid)
+    mesh, supports = _supports(problem, mesh_outline(outline, size or h / 2), reach, True)
+    groups = {f"load{k}": _facets(problem, mesh, ld.where, reach, f"load[{k}]", True)
               for k, ld in enumerate(problem.case_loads(1))}
-    groups.update({s.name: _facets(problem, mesh, s.where, 0.51 * h, f"spring {s.name!r}",
+    groups.update({s.name: _facets(problem, mesh, s.where, reach, f"spring {s.name!r}",
                                    True) for s in problem.springs})
     model = Model(mesh.with_groups(boundaries=groups),
                   Material("design", problem.interpolation.E0, problem.nu,
@@ -201,3 +212,38 @@ def verify_static(problem, outline: Outline, size=None) -> dict:
                               for s in problem.springs},
             "peak_stress": result.max_von_mises, "peak_where": where.tolist(),
             "corner_angle": angle, "singularity_exponent": singularity_exponent(angle)}
+
+
+def verify_large(problem, outline: Outline, size=None) -> dict:
+    """The body-fitted shape (:func:`shape_model`) under load case 1 with its springs (each
+    on its group's mean displacement), solved with large displacements in
+    ``problem.nonlinear.steps`` load steps (flexfem's continuum solver, St. Venant-Kirchhoff
+    like the density model) and with small ones: ``large`` and ``small`` {spring: its
+    group's mean displacement along its DOF, m}, ``load_factor`` (1, or the last one reached
+    where the path ends at a limit point or Newton fails; ``large`` is then there),
+    ``max_strain`` (the largest Green-Lagrange principal strain, -) and ``strain_valid``
+    (below the solver's St. Venant-Kirchhoff validity limit)."""
+    model, supports = shape_model(problem, outline, size)
+    springs = [ground_spring(model, s.name, s.stiffness, s.dof) for s in problem.springs]
+    if springs:
+        model = model.with_stiffness(sum(springs[1:], springs[0]))
+    loads = [Force(f"load{k}", tuple(ld.force)) for k, ld in enumerate(problem.case_loads(1))]
+    last = {"lam": 0.0, "u": np.zeros(model.n_dofs)}
+
+    def record(lam, u, _):
+        last.update(lam=float(lam), u=u)
+        return False
+
+    try:
+        solve_nonlinear(model, supports, loads, steps=problem.nonlinear.steps if
+                        problem.nonlinear else 10, stop_when=record)
+    except NonConvergenceError:
+        pass
+    small = solve_static(model, supports, loads)
+    strain = max_strain(model, last["u"])
+    return {"large": {s.name: float(mean_field(model, last["u"], s.name)[AXIS[s.dof]])
+                      for s in problem.springs},
+            "small": {s.name: float(small.mean_displacement(s.name)[AXIS[s.dof]])
+                      for s in problem.springs},
+            "load_factor": last["lam"], "max_strain": strain,
+            "strain_valid": bool(strain <= STRAIN_LIMIT)}

@@ -2,7 +2,8 @@
 import numpy as np
 import pytest
 
-from flexfem.fem import Fixed, Force, Model, PlaneStress, group_spring, solve_static
+from flexfem.fem import (Fixed, Force, Material, Model, PlaneStress, ground_spring, group_spring,
+                         solve_nonlinear, solve_static)
 from meshes import beam_2d
 
 
@@ -32,3 +33,27 @@ def test_bad_springs_are_refused(bar):
         group_spring(bar, "fixed", "tip", 1.0, "z")
     with pytest.raises(ValueError, match="shape"):
         bar.with_stiffness(np.eye(3))
+
+
+def test_a_ground_spring_is_the_spring_from_a_held_group(bar):
+    P = 1e3
+    a = bar.with_stiffness(ground_spring(bar, "tip", 5e7, "x"))
+    b = bar.with_stiffness(group_spring(bar, "fixed", "tip", 5e7, "x"))
+    ua = solve_static(a, [Fixed("fixed")], [Force("tip", (P, 0.0))]).mean_displacement("tip")
+    ub = solve_static(b, [Fixed("fixed")], [Force("tip", (P, 0.0))]).mean_displacement("tip")
+    assert np.allclose(ua, ub, rtol=1e-12)
+    with pytest.raises(ValueError, match="stiffness"):
+        ground_spring(bar, "tip", 0.0)
+
+
+def test_the_nonlinear_solver_carries_an_added_spring():
+    """A bar of nu = 0 stretched to 1.2 times its length against a spring at its tip: the
+    dead load F = E A (s^3 - s) / 2 + k (s - 1) L (St. Venant-Kirchhoff, uniaxial)."""
+    E, L, h, t, k, s = 2e9, 1.0, 0.1, 0.01, 4e7, 1.2
+    bar = Model(beam_2d(L, h, 0.05), Material("nu0", E, 0.0, 1000.0), PlaneStress(t), order=2)
+    F = E * h * t * (s**3 - s) / 2 + k * (s - 1) * L
+    sprung = bar.with_stiffness(ground_spring(bar, "tip", k, "x"))
+    result = solve_nonlinear(sprung, [Fixed("fixed")], [Force("tip", (F, 0.0))], steps=8)
+    assert result.mean_displacement("tip")[0] == pytest.approx((s - 1) * L, rel=1e-8)
+    plain = solve_nonlinear(bar, [Fixed("fixed")], [Force("tip", (F, 0.0))], steps=8)
+    assert plain.mean_displacement("tip")[0] > 1.05 * (s - 1) * L   # without it: further

@@ -1,0 +1,164 @@
+"""Large-displacement equilibrium of a density design and the adjoint gradients of the
+responses that are linear in its displacements (a spring's displacement, the end compliance
+f.u). Geometric nonlinearity only: St. Venant-Kirchhoff, exact for large rotations with small
+strains, as in flexure mechanisms.
+
+Residual R(u, rho) = sum_e E(rho_e) g_e(u, gamma(rho_e)) + K_springs u - f = 0, solved by Newton
+with the consistent tangent, from the previous design's state (a design changes little per
+iteration) or, where that fails, in load increments from zero. For a response c = l.u the
+adjoint K_T lambda = l, with the converged state's factorised tangent, gives
+dc/drho_e = -lambda_e . dR_e/drho_e (Buhl, Pedersen & Sigmund 2000, Struct Multidisc Optim
+19:93-104).
+"""
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..fem.linsolve import SingularSystemError
+from .element import element_stiffness
+from .large_strain import LargeStrainQ4, centre_stress, energy_gamma, interpolated
+from .responses import pnorm
+
+
+class EquilibriumFailed(RuntimeError):
+    """Newton found no equilibrium down to the smallest load increment."""
+
+
+@dataclass(frozen=True)
+class Nonlinear:
+    """Large-displacement analysis: ``steps`` load increments when a state is computed from
+    zero, at most ``max_iterations`` Newton iterations per increment, converged when the
+    residual is below ``tolerance`` times the applied force."""
+
+    steps: int = 10
+    max_iterations: int = 25
+    tolerance: float = 1e-8
+
+    def __post_init__(self):
+        if isinstance(self.steps, bool) or not isinstance(self.steps, int) or \
+                not 1 <= self.steps <= 1000:
+            raise ValueError(f"nonlinear.steps = {self.steps!r}: must be an integer, 1 to 1000")
+        if isinstance(self.max_iterations, bool) or not isinstance(self.max_iterations, int) \
+                or not 2 <= self.max_iterations <= 200:
+            raise ValueError(f"nonlinear.max_iterations = {self.max_iterations!r}: must be an "
+                             "integer, 2 to 200")
+        if not (isinstance(self.tolerance, (int, float)) and 1e-14 <= self.tolerance <= 1e-2):
+            raise ValueError(f"nonlinear.tolerance = {self.tolerance!r}: must be in "
+                             "[1e-14, 1e-2]")
+
+
+@dataclass
+class LargeState:
+    """A converged state: ``u`` (n_dofs; m), ``dR`` (n_elements, 8; N) the derivative of each
+    element's residual with respect to its density, ``g`` (n_elements, 8; N/Pa) that with
+    respect to its modulus (the unit-modulus internal force), ``increments`` (0: from the previous
+    state) and ``iterations`` (Newton iterations in all)."""
+
+    u: np.ndarray
+    dR: np.ndarray
+    g: np.ndarray
+    increments: int
+    iterations: int
+
+
+class LargeDisplacement:
+    """The nonlinear states of the designs of a :class:`~.model.Discrete` problem (load case
+    1); the tangent of the last converged state stays factorised in the problem's system."""
+
+    def __init__(self, discrete, settings: Nonlinear):
+        g, p = discrete.grid, discrete.problem
+        self.system, self.settings = discrete.system, settings
+        self.edofs = g.edofs
+        self.element = LargeStrainQ4(g.dx, g.dy, p.nu, p.thickness)
+        self.KL = element_stiffness(g.dx, g.dy, 1.0, p.nu, p.thickness)
+        self.force = discrete.forces[:, 0]
+        self.last = None
+
+    def _residual(self, u, E, gamma, factor):
+        """(R (n_dofs; N, zero at fixed DOFs), the tangent's element matrices)."""
+        g, Kt, _, _ = interpolated(self.element, self.KL, u[self.edofs], gamma)
+        n = self.system.grid.n_dofs
+        r = np.bincount(self.edofs.ravel(), weights=(E[:, None] * g).ravel(), minlength=n)
+        r += self.system.spring_diagonal * u - factor * self.force
+        r[self.system.fixed] = 0.0
+        return r, E[:, None, None] * Kt
+
+    def _newton(self, u, E, gamma, factor):
+        """(u, iterations) at load ``factor``, the tangent at u factorised; None on failure."""
+        s = self.settings
+        scale = max(np.linalg.norm(factor * self.force), 1e-300)
+        previous = np.inf
+        for it in range(s.max_iterations + 1):
+            r, K = self._residual(u, E, gamma, factor)
+            norm = np.linalg.norm(r)
+            if not np.isfinite(norm) or norm > 1e3 * max(previous, scale):
+                return None
+            try:
+                self.system.factor_elements(K)
+            except SingularSystemError:   # the tangent lost definiteness: a limit point
+                return None
+            if norm <= s.tolerance * scale:
+                return u, it
+            previous = norm
+            u = u - self.system.resolve(r)[:, 0]
+        return None
+
+    def equilibrium(self, E: np.ndarray, rho: np.ndarray, dE: np.ndarray) -> LargeState:
+        """The state of the design of moduli ``E`` (Pa), densities ``rho``, dE/drho ``dE``."""
+        gamma, d_gamma = energy_gamma(rho)
+        found = self._newton(self.last, E, gamma, 1.0) if self.last is not None else None
+        increments, iterations = 0, 0
+        if found is None:
+            found, increments, iterations = self._stepped(E, gamma)
+        u, it = found
+        self.last = u
+        g, _, dg, _ = interpolated(self.element, self.KL, u[self.edofs], gamma, tangent=False,
+                                   d_gamma=True)
+        dR = dE[:, None] * g + (E * d_gamma)[:, None] * dg
+        return LargeState(u, dR, g, increments, iterations + it)
+
+    def _stepped(self, E, gamma):
+        """Load increments from zero, halved on failure down to 1/64 of the first."""
+        first = 1.0 / self.settings.steps
+        u, factor, step, count, iterations = np.zeros(self.system.grid.n_dofs), 0.0, first, 0, 0
+        while True:
+            target = min(1.0, factor + step)
+            found = self._newton(u, E, gamma, target)
+            if found is None:
+                step /= 2.0
+                if step < first / 64.0:
+                    raise EquilibriumFailed(
+                        f"nonlinear: no equilibrium beyond load factor {factor:.4g} (Newton "
+                        "failed down to 1/64 of a load step); the design may snap through or "
+                        "the load is too large for it; try more nonlinear.steps or a smaller "
+                        "load")
+                continue
+            u, it = found
+            iterations += it
+            count += 1
+            factor = target
+            if factor >= 1.0:
+                return (u, 0), count, iterations
+            step = min(step * 2.0, first)
+
+    def gradient(self, state: LargeState, l: np.ndarray, by_modulus: bool = False):
+        """d(l.u)/drho_e for a fixed vector l (n_dofs), by one adjoint solve with the
+        factorised tangent of ``state`` (the last computed); with ``by_modulus``
+        d(l.u)/dE_e (m/Pa per unit of l) at fixed gamma."""
+        lam = self.system.resolve(l)[:, 0]
+        return -np.einsum("ei,ei->e", lam[self.edofs], state.g if by_modulus else state.dR)
+
+    def stress(self, state: LargeState, rho: np.ndarray, E0: float, r):
+        """The p-norm (Pa) of the elements' relaxed von Mises stresses rho^q sigma_vm of the
+        large-displacement state (second Piola-Kirchhoff, at the element centres, of the
+        solid of modulus ``E0``), and its gradient by one adjoint solve."""
+        vm, d_vm = centre_stress(self.element, E0, state.u[self.edofs])
+        q, t = r.relaxation, rho**r.relaxation * vm
+        value, weights = pnorm([t], r.pnorm)
+        if value == 0.0:
+            return 0.0, np.zeros(rho.size)
+        w = weights[0]
+        g = np.where(rho > 0, w * q * t / np.where(rho > 0, rho, 1.0), 0.0)
+        dP_du = np.bincount(self.edofs.ravel(), weights=((w * rho**q)[:, None] * d_vm).ravel(),
+                            minlength=self.system.grid.n_dofs)
+        return value, g + self.gradient(state, dP_du)
