@@ -13,10 +13,10 @@ beam of width c along its centre line, joined to its two hinges (offset +-h/2 ac
 rigid offsets; the input members (width a) and output members 4 and 11 (width ls) are elastic
 beams along their centre lines, member 11 clamped at its bottom (the mounting face); each input
 member where its pad bears on it, with the pad, is a 2-D plane-stress patch condensed onto the
-member's beams and the pad face's node (:mod:`.member_patch`; docs/beam_validation.md, "DBMA: the input
+member's beams and the pad face's node (:mod:`.member_patch`; docs/beam_validation_dbma.md, "DBMA: the input
 member's patch"). The spatial model lifts the planar one with block members instead (each pad
 with the part of its member it spans a rigid block, which the member's halves enter with the
-common root extension; docs/beam_validation.md, "Before the patch: the pad block").
+common root extension; docs/beam_validation_dbma.md, "Before the patch: the pad block").
 Root extension: see :mod:`flexfem.reduced.layout` (0.38 x root thickness per root by
 default, with the root's axial compliance for a block of height c at both ends: the arm's
 width; the members' faces around a hinge are about as tall). Lengths in m.
@@ -103,7 +103,7 @@ def _input_member(bld, links, supers, p, layout, J, pad, sx, hinge_ends, root_ex
     is a rigid block carried by the pad, a short beam (pad_height thick) from its face to the
     member's face, which the member's halves enter with the common root extension,
     root_extension x a into it, at most to its middle (a pad lower than 2 x 0.38 a: a point
-    support; docs/beam_validation.md, "Before the patch: the pad block")."""
+    support; docs/beam_validation_dbma.md, "Before the patch: the pad block")."""
     xc, face = sx * (J.x0 + J.x1) / 2, (sx * min(abs(pad.x0), abs(pad.x1)), 0.0)
     if member_patch:
         y0 = member_cut(p, layout)

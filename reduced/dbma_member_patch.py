@@ -4,7 +4,7 @@
 
 An input member is as deep (a) as its span from the pad to the first hinge row, and its pad
 bears on part of its inner face: a 2-D elasticity problem, which no beam rule reproduces
-(docs/beam_validation.md, "DBMA: the input member's patch"). So the member over |y| <= y_cut and its pad
+(docs/beam_validation_dbma.md, "DBMA: the input member's patch"). So the member over |y| <= y_cut and its pad
 are a plane-stress patch (:mod:`flexfem.reduced.patch2d`), joined to the member's beams at the two
 cuts by beam sections and to the actuator's end cap at the pad's face (held along x over the
 face, as the continuum holds it), and condensed onto those three nodes. The cuts lie half a

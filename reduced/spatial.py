@@ -21,7 +21,7 @@ def spatial_sections(planar_model, out_of_plane: float) -> list:
     axial compliance) act on the in-plane bending, shear and axial stiffness, and the axial
     one on the bending about the local y axis too: there each slice of the width is pulled
     or pushed along the axis, and a slice enters its block as the planar section does
-    (docs/beam_validation.md, "The strong axis's roots"); the mass factors (0 on a root extension) on
+    (docs/beam_validation_3d.md, "The strong axis's roots"); the mass factors (0 on a root extension) on
     the mass."""
     shear, w = planar_model.shear, out_of_plane
     out = []

@@ -1,5 +1,5 @@
 """A leaf hinge between two blocks, flexfem's 3-D solid beside the lifted beam model: the
-numbers of docs/beam_validation.md, "The strong axis's roots" (strong-axis bending and torsion).
+numbers of docs/beam_validation_3d.md, "The strong axis's roots" (strong-axis bending and torsion).
 
     .venv/bin/python scripts/leaf_between_blocks.py 0.6,4.41,10,10,20    # t,l,w,H,Lb in mm
 

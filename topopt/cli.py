@@ -55,7 +55,7 @@ def summarize(result: dict) -> str:
         lines.append(f"large displacements: the small-displacement optimum ("
                      f"{large['start_iterations']} iterations) gives {large['start_objective']:.6g}"
                      f" with large displacements; this design {result['objective']:.6g}")
-    if "compliances" in result:
+    if len(result["compliances"]) > 1:
         lines.append("compliance by load case: "
                      + ", ".join(f"{c:.6g} J" for c in result["compliances"]))
     for key, unit in (("frequency", "Hz"), ("stress", "Pa")):
@@ -72,5 +72,9 @@ def summarize(result: dict) -> str:
         if large and not large["strain_valid"]:
             lines.append(f"  its largest strain {large['max_strain']:.3g} is beyond the "
                          "St. Venant-Kirchhoff material's validity (5 %)")
+    for c, (fitted, tol) in enumerate(zip(shape.get("body_fitted_compliances", ()),
+                                          shape.get("compliance_tolerances", ())), start=1):
+        lines.append(f"body-fitted compliance, load case {c}: {fitted:.6g} J (density model "
+                     f"{tol['u']:.6g} J, tolerance {tol['tolerance']:.3g} J)")
     lines.append(f"written: {', '.join(result['files'])} in {result['out']}")
     return "\n".join(lines)

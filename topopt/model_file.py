@@ -14,18 +14,34 @@ def groups_of(problem) -> list:
     """(group name, region, kind) of every support ('support<k>'), load ('load<k>') and
     spring (its name)."""
     out = [(f"support{k}", s.where, "support") for k, s in enumerate(problem.supports)]
-    out += [(f"load{k}", ld.where, "load") for k, ld in enumerate(problem.case_loads(1))]
+    out += [(name, ld.where, "load") for name, ld in problem.load_groups()]
     return out + [(s.name, s.where, "spring") for s in problem.springs]
 
 
 def _zones(problem) -> dict:
-    """{group: shapely zone}: the union of disks of REACH elements about its nodes."""
+    """{group: (shapely zone, axis)}: the union of disks of REACH elements about its nodes;
+    axis 0 (1) where the nodes line an edge x = const (y = const), else None."""
     from shapely import MultiPoint
 
     g = problem.grid
     r = REACH * max(g.dx, g.dy)
-    return {name: MultiPoint(g.nodes[where.nodes(g)]).buffer(r, 32)
-            for name, where, _ in groups_of(problem)}
+    out = {}
+    for name, where, _ in groups_of(problem):
+        xy = g.nodes[where.nodes(g)]
+        line = [a for a in (0, 1) if len(xy) > 1 and np.ptp(xy[:, a]) <= 1e-9 * r]
+        out[name] = (MultiPoint(xy).buffer(r, 32), line[0] if line else None)
+    return out
+
+
+def _member(a, b, zone, axis) -> bool:
+    """Whether the line a-b belongs to a group: its midpoint in the zone and, where the
+    group lines an edge, within 30 degrees of it (not the ends of the faces that meet the
+    edge at a corner)."""
+    from shapely import Point
+
+    t = np.subtract(b, a)
+    return zone.contains(Point(np.mean([a, b], axis=0))) and (
+        axis is None or abs(t[axis]) <= 0.5 * np.hypot(*t))
 
 
 def _split_ring(coords, zones: dict) -> list:
@@ -33,7 +49,7 @@ def _split_ring(coords, zones: dict) -> list:
     edge crosses a zone's boundary, so that every edge lies inside or outside each zone."""
     from shapely import LineString, Point, union_all
 
-    cuts = union_all([z.boundary for z in zones.values()]) if zones else None
+    cuts = union_all([z.boundary for z, _ in zones.values()]) if zones else None
     ring = np.asarray(coords)[:-1]
     out = []
     for a, b in zip(ring, np.roll(ring, -1, axis=0)):
@@ -52,8 +68,6 @@ def _split_ring(coords, zones: dict) -> list:
 
 def geo_text(problem, outline: Outline, size: float) -> tuple:
     """(the .geo's text, {group: number of curves}); ``size``: element size (m)."""
-    from shapely import Point
-
     zones = _zones(problem)
     lines = [f"// A density design's outline (flexfem.topopt), m\nlc = {float(size)!r};"]
     members = {name: [] for name in zones}
@@ -73,9 +87,8 @@ def geo_text(problem, outline: Outline, size: float) -> tuple:
                 line_id += 1
                 lines.append(f"Line({line_id}) = {{{a}, {b}}};")
                 curves.append(line_id)
-                mid = Point(np.mean([verts[a - first], verts[b - first]], axis=0))
-                for name, zone in zones.items():
-                    if zone.contains(mid):
+                for name, (zone, axis) in zones.items():
+                    if _member(verts[a - first], verts[b - first], zone, axis):
                         members[name].append(line_id)
             loop_id += 1
             lines.append(f"Curve Loop({loop_id}) = {{{', '.join(map(str, curves))}}};")
@@ -89,8 +102,9 @@ def geo_text(problem, outline: Outline, size: float) -> tuple:
     return "\n".join(lines) + "\n", {k: len(v) for k, v in members.items()}
 
 
-def _toml_text(problem, geo_name: str, material: dict) -> str:
-    out = [f'# A density design of flexfem.topopt; flexfem analyze THIS.toml\n'
+def _toml_text(problem, geo_name: str, material: dict, case: int = 1) -> str:
+    cases = f", load case {case}" if problem.n_cases > 1 else ""
+    out = [f'# A density design of flexfem.topopt{cases}; flexfem analyze THIS.toml\n'
            f'geometry = "{geo_name}"\ndim = 2\n\n[material]\n'
            + "".join(f"{k} = {float(v)!r}\n" for k, v in material.items())
            + f'\n[section]\nkind = "plane_stress"\n'
@@ -98,8 +112,8 @@ def _toml_text(problem, geo_name: str, material: dict) -> str:
     for k, s in enumerate(problem.supports):
         fixed = "".join(f"{a} = 0.0\n" for a in s.fix) if len(s.fix) < 2 else ""
         out.append(f'[[supports]]\ngroup = "support{k}"\n{fixed}')
-    for k, ld in enumerate(problem.case_loads(1)):
-        out.append(f'[[loads]]\ngroup = "load{k}"\nforce = [{ld.force[0]!r}, {ld.force[1]!r}]\n')
+    for name, ld in problem.load_groups(case):
+        out.append(f'[[loads]]\ngroup = "{name}"\nforce = [{ld.force[0]!r}, {ld.force[1]!r}]\n')
     for s in problem.springs:
         out.append(f'[[loads]]          # no force: its mean displacement is reported\n'
                    f'group = "{s.name}"\nforce = [0.0, 0.0]\n')
@@ -113,8 +127,9 @@ def write_model(problem, outline: Outline, folder, *, rho: float, yield_strength
     """Write ``folder/name.geo`` and ``folder/name.toml``; returns the .toml's path. ``rho``
     (kg/m^3), ``yield_strength`` (Pa) and ``E`` (Pa, default the problem's) are the model
     file's material, SI as ``flexfem analyze`` requires (E >= 1 kPa); ``size`` (m, default
-    half an element): the mesh. The loads are those of load case 1. The springs are not in
-    the file (the format has none): each becomes a force-free load group whose mean
+    half an element): the mesh. The loads are those of load case 1; with several load cases
+    ``folder/name_case<c>.toml`` holds case c's (c >= 2), on the same .geo. The springs are
+    not in the file (the format has none): each becomes a force-free load group whose mean
     displacement ``flexfem analyze`` reports."""
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
@@ -128,4 +143,7 @@ def write_model(problem, outline: Outline, folder, *, rho: float, yield_strength
     path = folder / f"{name}.toml"
     material = {"E": E, "nu": problem.nu, "rho": rho, "yield_strength": yield_strength}
     path.write_text(_toml_text(problem, f"{name}.geo", material))
+    for case in range(2, problem.n_cases + 1):
+        (folder / f"{name}_case{case}.toml").write_text(
+            _toml_text(problem, f"{name}.geo", material, case))
     return path

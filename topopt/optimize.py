@@ -45,15 +45,14 @@ class Result:
 
     def summary(self) -> dict:
         """The JSON-able numbers: objective, iterations, volume_fraction, converged and,
-        where springs are named 'input' and 'output', u_in and u_out (m); with several load
-        cases, ``compliances`` (J, one per case)."""
+        where springs are named 'input' and 'output', u_in and u_out (m); ``compliances``
+        (J, f_c.u_c of each load case)."""
         out = {"objective": self.objective, "objective_kind": self.problem.objective.kind,
                "iterations": self.iterations, "volume_fraction": self.volume_fraction,
                "converged": self.converged, "change": self.change,
                "constraints": self.constraints,
                "displacements": {f"u_{k}": v for k, v in self.displacements.items()}}
-        if len(self.compliances) > 1:
-            out["compliances"] = list(self.compliances)
+        out["compliances"] = list(self.compliances)
         if self.problem.nonlinear is not None and len(self.history):
             # the first iteration evaluates the start: the small-displacement optimum
             out["large_displacements"] = {"start_iterations": self.start_iterations,

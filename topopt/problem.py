@@ -53,7 +53,8 @@ class Response:
     """'compliance' (sum over load cases of weights[k] f_k.u_k, J; ``weights`` default 1
     each), 'volume' (solid fraction), 'displacement' (the mean displacement of spring
     ``spring`` along its DOF in load case ``case``, m), 'frequency' (the lowest
-    eigenfrequency, Hz) or 'stress' (the p-norm, exponent ``pnorm``, of the elements'
+    eigenfrequency, Hz; with ``modes`` > 1 that of an aggregate of the ``modes`` lowest
+    eigenvalues, below the lowest and differentiable where it is repeated) or 'stress' (the p-norm, exponent ``pnorm``, of the elements'
     relaxed von Mises stresses rho^relaxation sigma_vm(solid) at their centres over all load
     cases, Pa)."""
 
@@ -63,6 +64,7 @@ class Response:
     weights: tuple = ()
     pnorm: float = 8.0
     relaxation: float = 0.5
+    modes: int = 1
 
 
 @dataclass(frozen=True)
@@ -138,6 +140,12 @@ class Problem:
         """The loads of load case ``case``."""
         return tuple(load for load in self.loads if load.case == case)
 
+    def load_groups(self, case: int | None = None) -> list:
+        """[(group name, load)] of the loads of ``case`` (every case: None), each named
+        'load<k>' by its place k in ``loads`` (the problem file's [[load]] k)."""
+        return [(f"load{k}", ld) for k, ld in enumerate(self.loads)
+                if case is None or ld.case == case]
+
     @property
     def volume_limit(self) -> float | None:
         """The upper bound of the volume constraint, if any."""
@@ -189,9 +197,12 @@ def check_problem(p: Problem) -> None:
     if p.projection is not None and p.filter_kind == "sensitivity":
         raise ValueError("projection: needs filter.kind 'density', 'helmholtz' or 'none', "
                          "not 'sensitivity'")
-    if p.objective.kind not in ("compliance", "displacement"):
-        raise ValueError(f"objective.kind = {p.objective.kind!r}: optimise compliance or a "
-                         "displacement (volume, frequency and stress are constraints)")
+    if p.objective.kind == "volume":
+        raise ValueError("objective.kind = 'volume': optimise compliance, a displacement, "
+                         "the frequency or the stress (the volume is a constraint)")
+    for kind, sense in (("frequency", "max"), ("stress", "min")):
+        if p.objective.kind == kind and p.sense != sense:
+            raise ValueError(f"objective.kind = {kind!r}: its sense is {sense!r}")
     _positive(p.mass_density, "material.rho")
     for c in p.constraints:
         if c.upper is None and c.lower is None:
@@ -242,6 +253,8 @@ def _check_response(p: Problem, r: Response) -> None:
         raise ValueError(f"stress: pnorm = {r.pnorm!r}: must be in [1, 64]")
     if not (isinstance(r.relaxation, (int, float)) and 0 < r.relaxation <= 1):
         raise ValueError(f"stress: relaxation = {r.relaxation!r}: must be in (0, 1]")
+    if isinstance(r.modes, bool) or not isinstance(r.modes, int) or not 1 <= r.modes <= 20:
+        raise ValueError(f"frequency: modes = {r.modes!r}: must be an integer, 1 to 20")
 
 
 def _check_optimizer(p: Problem) -> None:

@@ -16,7 +16,7 @@ TABLES = {
     "material": {"E", "nu", "Emin", "rho"},
     "interpolation": {"kind", "penal"},
     "filter": {"kind", "radius"},
-    "objective": {"kind", "spring", "sense", "case", "weights"},
+    "objective": {"kind", "spring", "sense", "case", "weights", "pnorm", "relaxation", "modes"},
     "optimizer": {"kind", "move", "max_iterations", "tolerance", "initial"},
     "projection": {"beta", "eta", "beta_max", "every"},
     "shape": {"rho", "yield_strength", "min_member"},
@@ -26,7 +26,8 @@ LISTS = {
     "support": {"where", "fix"},
     "load": {"where", "force", "case"},
     "spring": {"name", "where", "dof", "stiffness"},
-    "constraint": {"kind", "spring", "max", "min", "case", "weights", "pnorm", "relaxation"},
+    "constraint": {"kind", "spring", "max", "min", "case", "weights", "pnorm", "relaxation",
+                   "modes"},
     "passive": {"where", "value"},
 }
 
@@ -91,7 +92,8 @@ def _load(k, r) -> Load:
 
 # the keys of [objective] and [[constraint]] that only some kinds take
 KIND_KEYS = {"spring": ("displacement",), "case": ("displacement",),
-             "weights": ("compliance",), "pnorm": ("stress",), "relaxation": ("stress",)}
+             "weights": ("compliance",), "pnorm": ("stress",), "relaxation": ("stress",),
+             "modes": ("frequency",)}
 
 
 def _response(r: dict, name: str) -> Response:
@@ -107,7 +109,8 @@ def _response(r: dict, name: str) -> Response:
     return Response(kind, r.get("spring", ""), _integer(r.get("case", 1), f"{name}.case"),
                     tuple(_number(w, f"{name}.weights") for w in weights),
                     _number(r.get("pnorm", 8.0), f"{name}.pnorm"),
-                    _number(r.get("relaxation", 0.5), f"{name}.relaxation"))
+                    _number(r.get("relaxation", 0.5), f"{name}.relaxation"),
+                    r.get("modes", 1))
 
 
 def _spring(k, r) -> Spring:
@@ -171,7 +174,8 @@ def problem_from_dict(data: dict) -> Problem:
     return Problem(
         grid=_grid(t["domain"]),
         objective=_response(t["objective"], "objective"),
-        sense=t["objective"].get("sense", "min"),
+        sense=t["objective"].get("sense", "max" if t["objective"].get("kind") == "frequency"
+                                 else "min"),
         nu=_number(m.get("nu", 0.3), "material.nu"),
         thickness=_number(t["domain"].get("thickness", 1.0), "domain.thickness"),
         mass_density=_number(m.get("rho", 1.0), "material.rho"),

@@ -7,7 +7,7 @@ from .export import write_step
 from .model_file import write_model
 from .outline import extract_outline, problem_anchors, write_dxf
 from .tolerance import body_fitted_tolerance
-from .verify import verify_large, verify_mechanism
+from .verify import verify_compliances, verify_large, verify_mechanism
 
 KEYS = {"rho", "yield_strength", "min_member"}
 
@@ -34,11 +34,15 @@ def shape_options(data: dict) -> dict | None:
 
 
 def write_shape(result, folder, options: dict) -> dict:
-    """Write outline.dxf, outline.step, design.geo and design.toml into ``folder``; returns
-    {files, parts, islands (m^2), thin_area (m^2), body_fitted {spring: m} (small
-    displacements), tolerance} and, for a problem with large displacements,
-    body_fitted_large (:func:`~.verify.verify_large`); the tolerance is then that of the
-    large-displacement state."""
+    """Write outline.dxf, outline.step, design.geo and design.toml (with several load cases
+    also design_case<c>.toml) into ``folder``; returns {files, parts, islands (m^2),
+    thin_area (m^2)} and the body-fitted checks: with springs body_fitted {spring: m} (load
+    case 1, small displacements), with several load cases body_fitted_cases (one such dict
+    a case), and tolerance; without springs body_fitted_compliances (J, one a load case:
+    :func:`~.verify.verify_compliances`) and compliance_tolerances (each case's
+    :func:`~.tolerance.body_fitted_tolerance`); with large displacements body_fitted_large
+    (:func:`~.verify.verify_large`), the tolerance then that of the large-displacement
+    state."""
     problem, folder = result.problem, Path(folder)
     outline = extract_outline(result.density, problem.grid, problem_anchors(problem),
                               min_member=options["min_member"])
@@ -46,11 +50,20 @@ def write_shape(result, folder, options: dict) -> dict:
     write_step(outline, folder / "outline.step")
     write_model(problem, outline, folder, rho=options["rho"],
                 yield_strength=options["yield_strength"])
-    out = {"files": ["outline.dxf", "outline.step", "design.geo", "design.toml"],
+    cases = [f"design_case{c}.toml" for c in range(2, problem.n_cases + 1)]
+    out = {"files": ["outline.dxf", "outline.step", "design.geo", "design.toml", *cases],
            "parts": len(outline.parts), "islands": list(outline.islands),
            "thin_area": outline.thin_area}
     if problem.springs and problem.nonlinear is not None:
         out["body_fitted_large"] = verify_large(problem, outline)
+    if problem.springs and problem.n_cases > 1:
+        out["body_fitted_cases"] = [verify_mechanism(problem, outline, case=c)
+                                    for c in range(1, problem.n_cases + 1)]
+    if not problem.springs:
+        out["body_fitted_compliances"] = verify_compliances(problem, outline)
+        out["compliance_tolerances"] = [
+            body_fitted_tolerance(problem, result.density, None, c)
+            for c in range(1, problem.n_cases + 1)]
     if problem.springs:
         out["body_fitted"] = verify_mechanism(problem, outline)
         name = problem.objective.spring or problem.springs[-1].name

@@ -17,6 +17,11 @@ def _iparm() -> np.ndarray:
     iparm[0] = 1    # these values, not the defaults
     iparm[1] = 2    # METIS nested dissection
     iparm[9] = 8    # pivot perturbation 1e-8
+    # conditional numerical reproducibility, one thread: without it a solve's last bits
+    # depend on MKL's threading layer (Intel or GNU OpenMP, chosen at MKL's first call: GNU
+    # where libgomp is already loaded, e.g. by gmsh) and, on more than one thread, vary from
+    # call to call; the optimiser's path followed them (needs the sequential METIS above)
+    iparm[33] = 1
     iparm[34] = 1   # zero-based indices
     return iparm
 

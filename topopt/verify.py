@@ -80,20 +80,20 @@ def _supports(problem, mesh, reach, parallel: bool = False):
 
 
 def verify_mechanism(problem, outline: Outline, E: float | None = None, size=None,
-                     springs: bool = True) -> dict:
+                     springs: bool = True, case: int = 1) -> dict:
     """The body-fitted shape's displacement of every spring point along its DOF (m), with the
-    problem's supports, loads of load case 1 (at their nodes) and, with ``springs``, its
-    springs; ``E`` defaults to the problem's, ``size`` (m) to half an element."""
+    problem's supports, loads of load case ``case`` (at their nodes) and, with ``springs``,
+    its springs; ``E`` defaults to the problem's, ``size`` (m) to half an element."""
     g = problem.grid
     h = min(g.dx, g.dy)
     mesh = mesh_outline(outline, size or h / 2)
-    mesh, supports = _supports(problem, mesh, _reach(g))
+    mesh, supports = _supports(problem, mesh, _reach(g), True)
     E = problem.interpolation.E0 if E is None else E
     model = Model(mesh, Material("design", E, problem.nu, 1.0), PlaneStress(problem.thickness),
                   order=2)
     loads = [PointForce(tuple(g.nodes[n]), tuple(ld.force[a] / len(ld.where.nodes(g))
                                                   for a in (0, 1)))
-             for ld in problem.case_loads(1) for n in ld.where.nodes(g)]
+             for ld in problem.case_loads(case) for n in ld.where.nodes(g)]
     points = [g.nodes[s.where.nodes(g)].mean(axis=0) for s in problem.springs]
     vertices = [int(np.argmin(np.hypot(*(mesh.mesh.p - p[:, None])))) for p in points]
 
@@ -115,13 +115,13 @@ def verify_mechanism(problem, outline: Outline, E: float | None = None, size=Non
 def shape_model(problem, outline: Outline, size=None):
     """(model, supports): the body-fitted shape meshed at ``size`` m (default half an
     element), quadratic plane stress with the problem's E, nu, thickness and mass density;
-    boundary groups 'support<k>', 'load<k>' (load case 1) and each spring's name: the facets
+    boundary groups 'support<k>', 'load<k>' (every load case) and each spring's name: the facets
     within 0.51 of an element's longer side of their grid nodes (along an edge, only those
     parallel to it)."""
     h, reach = min(problem.grid.dx, problem.grid.dy), _reach(problem.grid)
     mesh, supports = _supports(problem, mesh_outline(outline, size or h / 2), reach, True)
-    groups = {f"load{k}": _facets(problem, mesh, ld.where, reach, f"load[{k}]", True)
-              for k, ld in enumerate(problem.case_loads(1))}
+    groups = {name: _facets(problem, mesh, ld.where, reach, f"load[{name[4:]}]", True)
+              for name, ld in problem.load_groups()}
     groups.update({s.name: _facets(problem, mesh, s.where, reach, f"spring {s.name!r}",
                                    True) for s in problem.springs})
     model = Model(mesh.with_groups(boundaries=groups),
@@ -201,7 +201,7 @@ def verify_static(problem, outline: Outline, size=None) -> dict:
     the interior angle, mirrored at symmetry lines, of the outline's vertex nearest the peak
     within two mesh sizes; 180 where there is none) and its ``singularity_exponent``."""
     model, supports = shape_model(problem, outline, size)
-    loads = [Force(f"load{k}", tuple(ld.force)) for k, ld in enumerate(problem.case_loads(1))]
+    loads = [Force(name, tuple(ld.force)) for name, ld in problem.load_groups(1)]
     result = solve_static(model, supports, loads)
     where = np.asarray(result.max_von_mises_location, float)
     xy, angles = interior_angles(outline, mirror_lines(problem))
@@ -227,7 +227,7 @@ def verify_large(problem, outline: Outline, size=None) -> dict:
     springs = [ground_spring(model, s.name, s.stiffness, s.dof) for s in problem.springs]
     if springs:
         model = model.with_stiffness(sum(springs[1:], springs[0]))
-    loads = [Force(f"load{k}", tuple(ld.force)) for k, ld in enumerate(problem.case_loads(1))]
+    loads = [Force(name, tuple(ld.force)) for name, ld in problem.load_groups(1)]
     last = {"lam": 0.0, "u": np.zeros(model.n_dofs)}
 
     def record(lam, u, _):
@@ -247,3 +247,16 @@ def verify_large(problem, outline: Outline, size=None) -> dict:
                       for s in problem.springs},
             "load_factor": last["lam"], "max_strain": strain,
             "strain_valid": bool(strain <= STRAIN_LIMIT)}
+
+
+def verify_compliances(problem, outline: Outline, size=None) -> list:
+    """The body-fitted shape's compliance f_c.u_c (J) in each load case c, each load's force
+    spread over its group (:func:`shape_model`): sum over the loads of F . (the group's mean
+    displacement), the work of a uniform traction; without the springs."""
+    model, supports = shape_model(problem, outline, size)
+    out = []
+    for case in range(1, problem.n_cases + 1):
+        groups = problem.load_groups(case)
+        result = solve_static(model, supports, [Force(n, tuple(ld.force)) for n, ld in groups])
+        out.append(float(sum(np.dot(ld.force, result.mean_displacement(n)) for n, ld in groups)))
+    return out

@@ -5,7 +5,7 @@ end-effectors of two eight-bar suspensions (:mod:`flexfem.geometry.eightbar.rigi
 x directions.
 
 The thesis gives no dimensions and its figures are not in the text, so the arrangement is ours
-(docs/eightbar.md, "Driving linkage"): each lambda has its ground line O-C vertical, so its
+(docs/eightbar_driving.md, "Driving linkage"): each lambda has its ground line O-C vertical, so its
 coupler point P runs along y; the lambda's crank O-A is extended to a lever point Q whose
 x-motion a horizontal connecting bar Q-D carries to the suspension's end-effector (D a point on
 it). The lambda is the Roberts-Chebyshev cognate of the Chebyshev linkage of Section 2.3

@@ -1,7 +1,7 @@
 """Peak stress of a filleted or notch hinge from the beam model: the nominal stress times a
 stress-concentration factor K_t. A filleted hinge's is the published factor of the shoulder
 fillet where its straight part meets the body (data/stress_concentration.toml: Roark's Table
-17.1, case 17, fits to Peterson's charts; docs/beam_validation.md, "DBMA: peak stress at the fillets");
+17.1, case 17, fits to Peterson's charts; docs/beam_validation_dbma.md, "DBMA: peak stress at the fillets");
 a circular notch's is its neck's, from the notch's 2-D model
 (:func:`flexfem.reduced.hinge_patch.notch_factors`).
 

@@ -9,7 +9,7 @@ along y (x free). Linear: the end-effector faces' mean displacements per unit in
 end-effector faces as free RigidFaces whose motion is read at each step, over +-half the
 rigid trace's stroke.
 
-Where the nonlinear path deviation comes from (docs/eightbar.md, tests/geometry/
+Where the nonlinear path deviation comes from (docs/eightbar_driving.md, tests/geometry/
 test_driving_linkage.py): it is the suspension's own elastic bow, y ~ c2 x^2 (deviation ~
 stroke^2), which the suspension alone, x prescribed with no y force and no moment, shows over the
 same stroke (:func:`suspension_alone_path`); the bar adds about 8 % (its end flexures

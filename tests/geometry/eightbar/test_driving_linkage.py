@@ -143,7 +143,7 @@ def test_flexure_fem_opposite_motion(tmp_path, section_contract):
     section_contract(tmp_path, out)
 
 
-# -- where the nonlinear path deviation comes from (docs/eightbar.md, "Driving linkage") --------
+# -- where the nonlinear path deviation comes from (docs/eightbar_driving.md, "Driving linkage") --------
 # Coarse meshes (size_factor 3, the quick study's), input +-3 mm in 4 steps each way: 9 points,
 # x from the middle ~ +-5.6 mm of end-effector travel.
 SF, STROKE, STEPS = 3.0, 3e-3, 4

@@ -1,6 +1,6 @@
 """The DBMA's beam model: its input member's 2-D patch (cut-independent, converged), the
 block model the spatial beam lifts against beam theory's closed form, and the whole model
-against the 2-D continuum on designs other than the paper's (docs/beam_validation.md, "DBMA: the input
+against the 2-D continuum on designs other than the paper's (docs/beam_validation_dbma.md, "DBMA: the input
 member's patch")."""
 import dataclasses
 
@@ -92,7 +92,7 @@ OTHER_DESIGNS = [
 @pytest.mark.parametrize("params, layout", OTHER_DESIGNS)
 def test_dbma_beam_model_against_the_continuum(params, layout):
     """R, k_in, k_out and the working frequency within 3 % of the 2-D continuum, the
-    target (measured: within 1.3 %; with the block model k_out was 0-6 % low, docs/beam_validation.md,
+    target (measured: within 1.3 %; with the block model k_out was 0-6 % low, docs/beam_validation_dbma.md,
     "DBMA: the input member's patch")."""
     from flexfem.studies.dbma.beam import analyze_dbma_beam
     from flexfem.studies.dbma.beam_report import continuum_metrics

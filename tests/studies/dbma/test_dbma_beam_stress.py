@@ -1,6 +1,6 @@
 """Peak stress of filleted hinges from the beam model: Roark's shoulder-fillet K_t
 (data/stress_concentration.toml) checked on one filleted hinge against the 2-D continuum over
-r/d and D/d, then on the DBMA (docs/beam_validation.md, "DBMA: peak stress at the fillets")."""
+r/d and D/d, then on the DBMA (docs/beam_validation_dbma.md, "DBMA: peak stress at the fillets")."""
 import dataclasses
 
 import numpy as np

@@ -1,6 +1,6 @@
 """The DBMA's spatial beam model: its in-plane modes are the planar model's, the hinges'
 warping restraint raises only the out-of-plane ones, and beside the 3-D continuum (slow) the
-modes pair by shape (docs/beam_validation.md, "The DBMA's out-of-plane modes")."""
+modes pair by shape (docs/beam_validation_3d.md, "The DBMA's out-of-plane modes")."""
 import numpy as np
 import pytest
 
