@@ -181,19 +181,16 @@ class Discrete:
         rho = self.physical(z, filtered)
         interp = p.interpolation
         E, dE = interp.modulus(rho), interp.derivative(rho)
-        if self.large is None:
-            state = self._linear_state(rho, E, dE)
-            respond = lambda r: RESPONSES[r.kind](self, state, r)  # noqa: E731
-        else:
-            large = self.large.equilibrium(E, rho, dE)
-            state = State(rho, E, dE, large.u[:, None], {})
-            respond = lambda r: self._large_response(large, state, r)  # noqa: E731
+        large = None if self.large is None else self.large.equilibrium(E, rho, dE)
+        state = (self._linear_state(rho, E, dE) if large is None else
+                 State(rho, E, dE, large.u[:, None], {}))
         pinned = self.solid | self.void
         u = state.U[:, 0]
         disp = {n: float(v @ u) for n, v in self.spring_vectors.items()}
 
         def value_grad(r):
-            value, g = respond(r)
+            value, g = (RESPONSES[r.kind](self, state, r) if large is None
+                        else self._large_response(large, state, r))
             g[pinned] = 0.0
             return value, g
 
