@@ -20,8 +20,10 @@ from .large_strain import LargeStrainQ4, centre_stress, energy_gamma, interpolat
 from .responses import pnorm
 
 
-class EquilibriumFailed(RuntimeError):
-    """Newton found no equilibrium down to the smallest load increment."""
+class EquilibriumFailed(ValueError):
+    """Newton found no equilibrium down to the smallest load increment (a ValueError, as
+    the solvers' NonConvergenceError: the command reports it in one line; the iterations
+    before it stay in state.npz)."""
 
 
 @dataclass(frozen=True)

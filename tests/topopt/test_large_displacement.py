@@ -250,3 +250,19 @@ def test_a_solid_bar_against_the_closed_form_in_both_models():
     assert shape["small"]["output"] == pytest.approx(F / (h / L + k), rel=1e-6)
     assert shape["max_strain"] == pytest.approx((s**2 - 1) / 2, rel=1e-6)
     assert not shape["strain_valid"]                          # 28 %: beyond 5 %
+
+
+def test_a_load_beyond_the_design_stops_with_one_line_and_keeps_the_start(tmp_path, capsys):
+    """Ten times the example's force: no equilibrium for the start design; the command says
+    where Newton stopped (exit 2) and the small-displacement optimum stays saved."""
+    from flexfem.studies.cli import main
+
+    text = LARGE.read_text().replace("force = [0.6, 0.0]", "force = [6.0, 0.0]")
+    text = text.replace("nelx = 40", "nelx = 20").replace("nely = 20",
+                                                         "nely = 10\nsize = [40.0, 20.0]")
+    path = tmp_path / "too_large.toml"
+    path.write_text(text)
+    assert main(["topopt", str(path), "--out", str(tmp_path / "out")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.count("\n") == 0 and "no equilibrium beyond load factor" in err
+    assert (tmp_path / "out" / "linear" / "state.npz").is_file()
