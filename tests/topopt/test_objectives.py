@@ -56,7 +56,7 @@ def test_maximising_the_frequency_of_a_clamped_beam():
         "load": [{"where": {"point": [20.0, 10.0]}, "force": [0.0, -1.0]}],
         "objective": {"kind": "frequency", "modes": 2},
         "constraint": [{"kind": "volume", "max": 0.5}],
-        "optimizer": {"kind": "mma", "max_iterations": 60, "move": 0.1},
+        "optimizer": {"kind": "mma", "max_iterations": 200, "move": 0.1},
         "filter": {"kind": "density", "radius": 1.5}})
     result = optimize(problem)
     uniform = result.history[0, 0]                 # the first iteration: the uniform start
