@@ -33,15 +33,21 @@ def _zones(problem) -> dict:
     return out
 
 
+def along_edge(t, axis: int):
+    """Whether direction(s) ``t`` ((2,) or (2, n)) lie within 60 degrees of an edge normal to
+    ``axis`` (0: an edge x = const): the outline's chamfer at a boundary element's corner
+    (45 degrees) belongs to the edge, the faces that meet it at a corner (90) do not."""
+    t = np.asarray(t, dtype=float)
+    return np.abs(t[axis]) <= np.sin(np.radians(60.0)) * np.hypot(t[0], t[1])
+
+
 def _member(a, b, zone, axis) -> bool:
     """Whether the line a-b belongs to a group: its midpoint in the zone and, where the
-    group lines an edge, within 30 degrees of it (not the ends of the faces that meet the
-    edge at a corner)."""
+    group lines an edge, along it (:func:`along_edge`)."""
     from shapely import Point
 
-    t = np.subtract(b, a)
     return zone.contains(Point(np.mean([a, b], axis=0))) and (
-        axis is None or abs(t[axis]) <= 0.5 * np.hypot(*t))
+        axis is None or bool(along_edge(np.subtract(b, a), axis)))
 
 
 def _split_ring(coords, zones: dict) -> list:

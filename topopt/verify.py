@@ -11,6 +11,7 @@ from ..fem import (Fixed, Force, Material, Model, PlaneStress, PointForce, Presc
 from ..fem.hyperelastic import STRAIN_LIMIT, max_strain
 from ..fem.newton import NonConvergenceError
 from ..fem.static_result import mean_field
+from .model_file import along_edge
 from .outline import Outline
 
 AXIS = {"x": 0, "y": 1}
@@ -53,15 +54,15 @@ def _reach(grid) -> float:
 
 def _facets(problem, mesh, region, reach, what, parallel: bool = False):
     """The boundary facets within ``reach`` (m) of ``region``'s grid nodes; with
-    ``parallel``, where those nodes line an edge (one x or one y), only the facets within 30
-    degrees of it (not the ends of the faces that meet it at a corner)."""
+    ``parallel``, where those nodes line an edge (one x or one y), only the facets along it
+    (:func:`~.model_file.along_edge`)."""
     xy = problem.grid.nodes[region.nodes(problem.grid)]
     facets = facets_where(mesh.mesh, _near(xy, reach))
     line = [a for a in (0, 1) if len(xy) > 1 and np.ptp(xy[:, a]) <= 1e-9 * reach]
     if parallel and line:
         p = mesh.mesh.p[:, mesh.mesh.facets[:, facets]]
         t = p[:, 1] - p[:, 0]
-        facets = facets[np.abs(t[line[0]]) <= 0.5 * np.hypot(*t)]
+        facets = facets[along_edge(t, line[0])]
     if facets.size == 0:
         raise ValueError(f"{what}: the shape does not reach it")
     return facets
@@ -115,9 +116,9 @@ def verify_mechanism(problem, outline: Outline, E: float | None = None, size=Non
 def shape_model(problem, outline: Outline, size=None):
     """(model, supports): the body-fitted shape meshed at ``size`` m (default half an
     element), quadratic plane stress with the problem's E, nu, thickness and mass density;
-    boundary groups 'support<k>', 'load<k>' (every load case) and each spring's name: the facets
-    within 0.51 of an element's longer side of their grid nodes (along an edge, only those
-    parallel to it)."""
+    boundary groups 'support<k>', 'load<k>' (every load case) and each spring's name: the
+    facets within 0.51 of an element's longer side of their grid nodes (along an edge, only
+    those along it)."""
     h, reach = min(problem.grid.dx, problem.grid.dy), _reach(problem.grid)
     mesh, supports = _supports(problem, mesh_outline(outline, size or h / 2), reach, True)
     groups = {name: _facets(problem, mesh, ld.where, reach, f"load[{name[4:]}]", True)

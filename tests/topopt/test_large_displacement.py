@@ -266,3 +266,52 @@ def test_a_load_beyond_the_design_stops_with_one_line_and_keeps_the_start(tmp_pa
     err = capsys.readouterr().err.strip()
     assert err.count("\n") == 0 and "no equilibrium beyond load factor" in err
     assert (tmp_path / "out" / "linear" / "state.npz").is_file()
+
+
+def _toml(value) -> str:
+    """A TOML value (inline table, array, string or number)."""
+    if isinstance(value, dict):
+        return "{ " + ", ".join(f"{k} = {_toml(v)}" for k, v in value.items()) + " }"
+    if isinstance(value, list):
+        return "[" + ", ".join(_toml(v) for v in value) + "]"
+    return f'"{value}"' if isinstance(value, str) else repr(value)
+
+
+def test_the_command_checks_a_large_displacement_design_on_its_shape(tmp_path, capsys):
+    """The example at 20 x 10 elements in SI units (40 x 20 mm of a 2 GPa, 1 mm sheet, the
+    same force relative to E t) with [shape]: the body-fitted shape is solved with large
+    displacements and the summary says how far it got and whether its strain is valid."""
+    import json
+
+    from flexfem.studies.cli import main
+
+    data = read_problem_file(LARGE)
+    E, t, s = 2e9, 1e-3, 1e-3                       # Pa, m, m per element of the example
+
+    def scale(where):
+        return {k: [[c * s for c in p] for p in v] if k == "box" else v
+                for k, v in where.items()}
+
+    lines = ["[domain]", "nelx = 20", "nely = 10", "size = [0.04, 0.02]", f"thickness = {t}",
+             "[material]", f"E = {E}", "nu = 0.3", "[filter]", 'kind = "density"',
+             "radius = 1.5", "[nonlinear]", "steps = 5", "[objective]", 'kind = "displacement"',
+             'spring = "output"', 'sense = "min"', "[optimizer]", 'kind = "mma"',
+             "max_iterations = 30", "[shape]", "rho = 1200.0", "yield_strength = 5e7"]
+    for table, rows in (("support", data["support"]), ("load", data["load"]),
+                        ("spring", data["spring"]), ("passive", data["passive"])):
+        for row in rows:
+            row = {**row, "where": scale(row["where"])}
+            if table == "load":
+                row["force"] = [row["force"][0] * E * t * s, 0.0]
+            if table == "spring":
+                row["stiffness"] = row["stiffness"] * E * t
+            lines += [f"[[{table}]]"] + [f"{k} = {_toml(v)}" for k, v in row.items()]
+    lines += ["[[constraint]]", 'kind = "volume"', "max = 0.3"]
+    path = tmp_path / "large_mm.toml"
+    path.write_text("\n".join(lines) + "\n")
+    assert main(["topopt", str(path), "--json", "--out", str(tmp_path / "out")]) == 0
+    result = json.loads(capsys.readouterr().out)
+    large = result["shape"]["body_fitted_large"]
+    assert 0 < large["load_factor"] <= 1 and large["max_strain"] > 0
+    assert large["small"]["output"] < 0 and large["small"]["input"] > 0
+    assert result["shape"]["tolerance"]["u"] == pytest.approx(result["u_out"], rel=1e-9)

@@ -53,8 +53,8 @@ def test_flexfem_analyze_of_the_written_model_matches_the_body_fitted_solve(desi
     free = verify_mechanism(problem, outline, springs=False)
     u = analysed["mean_displacement"]
     assert u["output"][0] < 0 < u["input"][0]
-    assert u["output"][0] == pytest.approx(free["output"], rel=0.02)
-    assert u["input"][0] == pytest.approx(free["input"], rel=0.02)
+    assert u["output"][0] == pytest.approx(free["output"], rel=0.08)
+    assert u["input"][0] == pytest.approx(free["input"], rel=0.08)
     assert u["support1"] == pytest.approx([0.0, 0.0], abs=1e-12)
 
 
