@@ -63,13 +63,19 @@ def test_the_dbma_sweep_runs_and_follows_the_paper(tmp_path):
 @pytest.mark.slow
 def test_the_eightbar_tolerance_study_names_the_tolerance_that_matters(tmp_path):
     """The example with a smaller Monte Carlo (n = 16: 80 designs): every design runs, and the
-    thin flexures' width drives the drive stiffness (k_x ~ sum of w^3 over the flexures)."""
+    thin flexures' width drives the drive stiffness (k_x ~ sum of w^3 over the flexures).
+    Its [tolerances.confirm] (5 designs by the continuum's large-deflection path, ~30 s) is
+    left out here: nothing below reads it; the same table's confirm is checked against the
+    beam model in tests/studies/report/test_report.py (the report's study is the example's:
+    test_the_report_runs_the_example_tolerance_study), and flexfem sweep's confirm step in
+    tests/studies/engine/test_tolerances.py."""
     from dataclasses import replace
 
     from flexfem.studies.run import sweep
     path = next(p for p in EXAMPLES if p.name == "eightbar_tolerances.toml")
     study = load_study(path)
-    study = replace(study, tolerances=replace(study.tolerances, n=16))
+    assert study.tolerances.confirm is not None  # what is left out below
+    study = replace(study, tolerances=replace(study.tolerances, n=16, confirm=None))
     result = sweep(study, tmp_path / "out", workers=2, progress=False)
     assert result["failed"] == 0 and result["cases"] == 16 * 5
     metrics = result["tolerances"]["metrics"]

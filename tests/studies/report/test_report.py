@@ -1,7 +1,9 @@
 """The reproduction report: a design summary per source document before the audit, sections
 that fail do not stop the others, and the HTML renders in a real browser with every figure
 decoded, every table filled and no table wider than the page; the quick report prints every
-number it printed before the mechanism contract reshaped the code."""
+number it printed before the mechanism contract reshaped the code. Checks of single sections
+that the quick report runs anyway (the DBMA FEM section, the eight-bar's tolerance study
+re-checked by the continuum) read its run instead of repeating it."""
 import json
 import math
 from pathlib import Path
@@ -225,6 +227,46 @@ def test_quick_report_prints_every_number_it_printed_before(quick_report):
         if not np.any(np.isclose(near, value, rtol=1e-5, atol=1e-8)):
             missing.append(f"{path} = {value}")
     assert missing == []
+
+
+@pytest.mark.slow
+def test_the_dbma_fem_section_writes_its_files(quick_report, section_contract):
+    """The DBMA report function in quick mode (studies/dbma/report.py: reproduce, the quick
+    report's dbma_fem section, read from the report run above rather than run a second
+    time): the section contract, a headline row, and the paragraph states the design's
+    stress verdict with the run's own numbers."""
+    out, report = quick_report
+    summary = next(s for s in report["sections"] if s["section"] == "dbma_fem")
+    assert "error" not in summary, summary.get("error")
+    section_contract(out / "dbma_fem", summary)
+    rows = summary["comparisons"]
+    assert rows and any(r["headline"] for r in rows)
+    assert f"{summary['max_von_mises'] / 1e6:.0f} MPa" in summary["paragraph"]
+
+
+@pytest.mark.slow
+def test_the_eightbar_tolerance_extremes_rechecked_by_the_continuum(quick_report, tmp_path):
+    """Outside --quick the eight-bar's Monte Carlo (beam model, n = 8: 40 designs) has the
+    designs at the extremes of the outputs it shows re-run by the 2-D continuum with its
+    large-deflection path: the beam model within 3 % of it there (docs/beam.md: 1-3 %), and
+    the continuum orders each pair of extremes as the beam model does. The quick report's
+    eightbar_fem section has just run the same 40 designs by the same model (its n = 8
+    Monte Carlo, without the re-check): the run starts from a copy of that section's study
+    store, as a resumed run would, and computes the continuum's re-runs (a design missing
+    from the copy is computed here)."""
+    from flexfem.studies.eightbar.report import TOLERANCE_OUTPUTS, tolerance_study
+
+    out, _ = quick_report
+    (tmp_path / "tolerances").mkdir()
+    for store in (out / "eightbar_fem" / "tolerances").glob("results.sqlite*"):  # with any WAL
+        shutil.copyfile(store, tmp_path / "tolerances" / store.name)
+    result = tolerance_study(tmp_path, n=8)
+    checked = result["confirm"]
+    assert set(checked["metrics"]) == set(TOLERANCE_OUTPUTS) and checked["failed"] == 0
+    for row in checked["metrics"].values():
+        assert all(abs(row[end]["rel_diff"]) < 0.03 for end in ("low", "high"))
+        assert row["spread_confirm"] * row["spread_screen"] > 0
+    assert len(result["confirm_table"]["rows"]) == 2 * len(TOLERANCE_OUTPUTS)
 
 
 def _summary_screens(page: str) -> dict:

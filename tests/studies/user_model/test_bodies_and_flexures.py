@@ -83,31 +83,38 @@ def test_the_same_groups_in_both_models_and_in_3d():
     assert solid.section.kind == "solid" and solid.mechanism.depth == 0.01
 
 
+@pytest.fixture(scope="module")
+def guide_solid():
+    """(spec, analysis) of the guide extruded to a solid (--dim 3: its statics and its first
+    three modes), the most expensive model of this file: solved once for the two checks
+    below, which read its modes and its stiffness."""
+    from flexfem.studies.user_model.analysis import analyze_model
+
+    spec = load_spec(BODIES / "guide.toml", {"analysis.modes": 3}, dim=3)
+    return spec, analyze_model(spec)
+
+
 @pytest.mark.slow
-def test_the_spatial_beam_modes_against_the_solid():
+def test_the_spatial_beam_modes_against_the_solid(guide_solid):
     """--model beam --dim 3 (the planar model lifted by the depth, its bodies' out-of-plane
     inertias) against the extruded solid: the first three modes (in-plane, and the stage
     rocking and moving out of the plane) within 6 %: the leaves, 10 t wide, bend in the solid
     partly as plates (up to 1/(1 - nu^2) stiffer), which a beam does not."""
     from flexfem.studies.user_model.analysis import analyze_model
 
-    spec = load_spec(BODIES / "guide.toml", {"analysis.modes": 3}, dim=3)
+    spec, solid = guide_solid
     beam = analyze_model(spec, model="beam")["frequencies_hz"]
-    solid = analyze_model(spec)["frequencies_hz"]
-    assert beam == pytest.approx(solid, rel=0.06)
+    assert beam == pytest.approx(solid["frequencies_hz"], rel=0.06)
 
 
 @pytest.mark.slow
-def test_the_extruded_solid_agrees_with_the_plane_model(tmp_path):
+def test_the_extruded_solid_agrees_with_the_plane_model(guide_solid):
     """3-D: the guide's leaves are 10 t wide, between plane stress and plane strain
     (E / (1 - nu^2) = 1.09 E): the solid is stiffer than the plane-stress model by less."""
-    file = str(BODIES / "guide.toml")
-    plane = evaluate({}, file=file)["stiffness_stage_x"]
-    spec = load_spec(file, dim=3)
-    from flexfem.studies.user_model.analysis import analyze_model
-    solid = analyze_model(spec)["stiffness"]["stage"]["x"]
+    plane = evaluate({}, file=str(BODIES / "guide.toml"))["stiffness_stage_x"]
+    spec, solid = guide_solid
     nu = spec.material.nu
-    assert plane < solid < plane / (1 - nu ** 2)
+    assert plane < solid["stiffness"]["stage"]["x"] < plane / (1 - nu ** 2)
 
 
 def test_cli_models_and_dims(capsys):
