@@ -10,7 +10,8 @@ import numpy as np
 
 from .element import _CORNERS, _GAUSS
 
-# Wang, Lazarov, Sigmund & Jensen 2014 (Comput Methods Appl Mech Engrg 276:453-472), eq. 13
+# the energy interpolation's switch: Wang, Lazarov, Sigmund & Jensen 2014 (Comput Methods Appl
+# Mech Engrg 276:453-472, doi:10.1016/j.cma.2014.03.021), its Heaviside of the density
 GAMMA_SHARPNESS = 500.0
 GAMMA_THRESHOLD = 0.01
 
