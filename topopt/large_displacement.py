@@ -77,21 +77,23 @@ class LargeDisplacement:
         self.last = None
 
     def _residual(self, u, E, gamma, factor):
-        """(R (n_dofs; N, zero at fixed DOFs), the tangent's element matrices)."""
-        g, Kt, _, _ = interpolated(self.element, self.KL, u[self.edofs], gamma)
+        """(R (n_dofs; N, zero at fixed DOFs), the tangent's element matrices, the elements'
+        unit-modulus forces g and dg/dgamma)."""
+        g, Kt, dg = interpolated(self.element, self.KL, u[self.edofs], gamma)
         n = self.system.grid.n_dofs
         r = np.bincount(self.edofs.ravel(), weights=(E[:, None] * g).ravel(), minlength=n)
         r += self.system.spring_diagonal * u - factor * self.force
         r[self.system.fixed] = 0.0
-        return r, E[:, None, None] * Kt
+        return r, E[:, None, None] * Kt, g, dg
 
     def _newton(self, u, E, gamma, factor):
-        """(u, iterations) at load ``factor``, the tangent at u factorised; None on failure."""
+        """(u, iterations, g, dg/dgamma at u) at load ``factor``, the tangent at u
+        factorised; None on failure."""
         s = self.settings
         scale = max(np.linalg.norm(factor * self.force), 1e-300)
         previous = np.inf
         for it in range(s.max_iterations + 1):
-            r, K = self._residual(u, E, gamma, factor)
+            r, K, g, dg = self._residual(u, E, gamma, factor)
             norm = np.linalg.norm(r)
             if not np.isfinite(norm) or norm > 1e3 * max(previous, scale):
                 return None
@@ -100,7 +102,7 @@ class LargeDisplacement:
             except SingularSystemError:   # the tangent lost definiteness: a limit point
                 return None
             if norm <= s.tolerance * scale:
-                return u, it
+                return u, it, g, dg
             previous = norm
             u = u - self.system.resolve(r)[:, 0]
         return None
@@ -112,10 +114,8 @@ class LargeDisplacement:
         increments, iterations = 0, 0
         if found is None:
             found, increments, iterations = self._stepped(E, gamma)
-        u, it = found
+        u, it, g, dg = found
         self.last = u
-        g, _, dg, _ = interpolated(self.element, self.KL, u[self.edofs], gamma, tangent=False,
-                                   d_gamma=True)
         dR = dE[:, None] * g + (E * d_gamma)[:, None] * dg
         return LargeState(u, dR, g, increments, iterations + it)
 
@@ -135,12 +135,12 @@ class LargeDisplacement:
                         "the load is too large for it; try more nonlinear.steps or a smaller "
                         "load")
                 continue
-            u, it = found
+            u, it = found[:2]
             iterations += it
             count += 1
             factor = target
             if factor >= 1.0:
-                return (u, 0), count, iterations
+                return (u, 0, *found[2:]), count, iterations
             step = min(step * 2.0, first)
 
     def gradient(self, state: LargeState, l: np.ndarray, by_modulus: bool = False):

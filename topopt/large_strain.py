@@ -36,12 +36,12 @@ class LargeStrainQ4:
         self.weight = dx * dy / 4.0 * thickness
         self.lam, self.mu = nu / (1.0 - nu**2), 1.0 / (2.0 * (1.0 + nu))
 
-    def force_tangent(self, ue: np.ndarray, tangent: bool = True):
-        """(f (n, 8) N, K (n, 8, 8) N/m or None, each element's smallest det F (n,)) for
-        modulus 1 Pa."""
+    def force_tangent(self, ue: np.ndarray):
+        """(f (n, 8) N, K (n, 8, 8) N/m, each element's smallest det F (n,)) for modulus
+        1 Pa."""
         U = ue.reshape(-1, 4, 2)
         f = np.zeros_like(U)
-        K = np.zeros((U.shape[0], 4, 2, 4, 2)) if tangent else None
+        K = np.zeros((U.shape[0], 4, 2, 4, 2))
         I = np.eye(2)
         det = np.full(U.shape[0], np.inf)
         for G in self.G:
@@ -52,17 +52,16 @@ class LargeStrainQ4:
             S = self.lam * (E[:, 0, 0] + E[:, 1, 1])[:, None, None] * I + 2.0 * self.mu * E
             P = np.einsum("nij,njk->nik", F, S)
             f += self.weight * np.einsum("nij,aj->nai", P, G)
-            if tangent:
-                FG = np.einsum("nij,bj->nbi", F, G)          # F_iJ dN_b/dX_J
-                GSG = np.einsum("aj,njl,bl->nab", G, S, G)   # dN_a.S.dN_b
-                GG = G @ G.T
-                K += self.weight * (
-                    np.einsum("nab,ik->naibk", GSG, I)
-                    + self.lam * np.einsum("nai,nbk->naibk", FG, FG)
-                    + self.mu * np.einsum("nbi,nak->naibk", FG, FG)
-                    + self.mu * np.einsum("ab,nik->naibk", GG, np.einsum("nim,nkm->nik", F, F)))
+            FG = np.einsum("nij,bj->nbi", F, G)          # F_iJ dN_b/dX_J
+            GSG = np.einsum("aj,njl,bl->nab", G, S, G)   # dN_a.S.dN_b
+            GG = G @ G.T
+            K += self.weight * (
+                np.einsum("nab,ik->naibk", GSG, I)
+                + self.lam * np.einsum("nai,nbk->naibk", FG, FG)
+                + self.mu * np.einsum("nbi,nak->naibk", FG, FG)
+                + self.mu * np.einsum("ab,nik->naibk", GG, np.einsum("nim,nkm->nik", F, F)))
         f = f.reshape(-1, 8)
-        return f, (K.reshape(-1, 8, 8) if tangent else None), det
+        return f, K.reshape(-1, 8, 8), det
 
 
 def centre_stress(element: LargeStrainQ4, E0: float, ue: np.ndarray):
@@ -100,25 +99,17 @@ def energy_gamma(rho: np.ndarray):
     return (np.tanh(b * r0) + t) / den, b * (1.0 - t**2) / den
 
 
-def interpolated(element: LargeStrainQ4, KL: np.ndarray, ue: np.ndarray, gamma: np.ndarray,
-                 tangent: bool = True, d_gamma: bool = False):
+def interpolated(element: LargeStrainQ4, KL: np.ndarray, ue: np.ndarray, gamma: np.ndarray):
     """The energy interpolation of Wang et al. (2014): an element's energy is
     psi_NL(gamma u) + psi_L(u) - psi_L(gamma u), nonlinear where gamma = 1 (solid), linear
     where gamma = 0 (void, whose distortion would otherwise stop Newton). Returns (g, Kt,
-    dg/dgamma or None, smallest det F among elements with gamma > 0.5) for unit modulus:
-    g = gamma f_NL(gamma u) + (1 - gamma^2) KL u and Kt = gamma^2 K_NL(gamma u) +
-    (1 - gamma^2) KL."""
+    dg/dgamma) for unit modulus: g = gamma f_NL(gamma u) + (1 - gamma^2) KL u and
+    Kt = gamma^2 K_NL(gamma u) + (1 - gamma^2) KL."""
     gu = gamma[:, None] * ue
-    fN, KN, det = element.force_tangent(gu, tangent=tangent or d_gamma)
+    fN, KN, _ = element.force_tangent(gu)
     fL = ue @ KL.T
     g2 = gamma**2
     g = gamma[:, None] * fN + (1.0 - g2)[:, None] * fL
-    Kt = None
-    if tangent:
-        Kt = g2[:, None, None] * KN + (1.0 - g2)[:, None, None] * KL
-    dg = None
-    if d_gamma:
-        dg = fN + gamma[:, None] * np.einsum("nij,nj->ni", KN, ue) - 2.0 * gamma[:, None] * fL
-    solid = gamma > 0.5
-    return g, Kt, dg, float(np.min(det[solid])) if np.any(solid) else 1.0
-
+    Kt = g2[:, None, None] * KN + (1.0 - g2)[:, None, None] * KL
+    dg = fN + gamma[:, None] * np.einsum("nij,nj->ni", KN, ue) - 2.0 * gamma[:, None] * fL
+    return g, Kt, dg

@@ -28,9 +28,15 @@ def _zones(problem) -> dict:
     out = {}
     for name, where, _ in groups_of(problem):
         xy = g.nodes[where.nodes(g)]
-        line = [a for a in (0, 1) if len(xy) > 1 and np.ptp(xy[:, a]) <= 1e-9 * r]
-        out[name] = (MultiPoint(xy).buffer(r, 32), line[0] if line else None)
+        out[name] = (MultiPoint(xy).buffer(r, 32), edge_axis(xy, r))
     return out
+
+
+def edge_axis(xy: np.ndarray, scale: float):
+    """0 (1) where the points ``xy`` (n, 2; m) line an edge x = const (y = const), to
+    1e-9 of ``scale`` (m); else None."""
+    line = [a for a in (0, 1) if len(xy) > 1 and np.ptp(xy[:, a]) <= 1e-9 * scale]
+    return line[0] if line else None
 
 
 def along_edge(t, axis: int):

@@ -56,16 +56,17 @@ def write_shape(result, folder, options: dict) -> dict:
            "thin_area": outline.thin_area}
     if problem.springs and problem.nonlinear is not None:
         out["body_fitted_large"] = verify_large(problem, outline)
-    if problem.springs and problem.n_cases > 1:
-        out["body_fitted_cases"] = [verify_mechanism(problem, outline, case=c)
-                                    for c in range(1, problem.n_cases + 1)]
     if not problem.springs:
         out["body_fitted_compliances"] = verify_compliances(problem, outline)
         out["compliance_tolerances"] = [
             body_fitted_tolerance(problem, result.density, None, c)
             for c in range(1, problem.n_cases + 1)]
     if problem.springs:
-        out["body_fitted"] = verify_mechanism(problem, outline)
+        fitted = [verify_mechanism(problem, outline, case=c)
+                  for c in range(1, problem.n_cases + 1)]
+        out["body_fitted"] = fitted[0]
+        if problem.n_cases > 1:
+            out["body_fitted_cases"] = fitted
         name = problem.objective.spring or problem.springs[-1].name
         out["tolerance"] = {"spring": name, **body_fitted_tolerance(problem, result.density,
                                                                      name)}

@@ -24,7 +24,7 @@ def _boundary(solid: np.ndarray, grid) -> np.ndarray:
 
 
 def _sensitivity(d, density, spring, case):
-    """(u (n_dofs; m), l.u, d(l.u)/dE_e (m/Pa or J/Pa)) for l the spring's vector, or the
+    """(l.u (m or J), d(l.u)/dE_e (m/Pa or J/Pa)) for l the spring's vector, or the
     load of ``case`` where ``spring`` is None (the compliance): with small displacements
     -lam_e^T k_e u_e; with large ones -lam_e . g_e(u_e), g_e the element's unit-modulus
     internal force at the converged state and lam the adjoint of its tangent
@@ -35,7 +35,7 @@ def _sensitivity(d, density, spring, case):
     if d.large is None:
         sol = d.system.solve(E, np.column_stack([d.forces[:, case - 1], l]))
         return float(l @ sol[:, 0]), -d.system.element_products(sol[:, 1], sol[:, 0])
-    state = d.large.equilibrium(E, density, np.ones_like(density))
+    state = d.large.equilibrium(E, density, interp.derivative(density))
     return float(l @ state.u), d.large.gradient(state, l, by_modulus=True)
 
 

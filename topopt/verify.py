@@ -11,7 +11,7 @@ from ..fem import (Fixed, Force, Material, Model, PlaneStress, PointForce, Presc
 from ..fem.hyperelastic import STRAIN_LIMIT, max_strain
 from ..fem.newton import NonConvergenceError
 from ..fem.static_result import mean_field
-from .model_file import along_edge
+from .model_file import along_edge, edge_axis
 from .outline import Outline
 
 AXIS = {"x": 0, "y": 1}
@@ -58,11 +58,10 @@ def _facets(problem, mesh, region, reach, what, parallel: bool = False):
     (:func:`~.model_file.along_edge`)."""
     xy = problem.grid.nodes[region.nodes(problem.grid)]
     facets = facets_where(mesh.mesh, _near(xy, reach))
-    line = [a for a in (0, 1) if len(xy) > 1 and np.ptp(xy[:, a]) <= 1e-9 * reach]
-    if parallel and line:
+    axis = edge_axis(xy, reach)
+    if parallel and axis is not None:
         p = mesh.mesh.p[:, mesh.mesh.facets[:, facets]]
-        t = p[:, 1] - p[:, 0]
-        facets = facets[along_edge(t, line[0])]
+        facets = facets[along_edge(p[:, 1] - p[:, 0], axis)]
     if facets.size == 0:
         raise ValueError(f"{what}: the shape does not reach it")
     return facets
