@@ -10,7 +10,7 @@ import numpy as np
 from ...fem import FEMesh, gmsh_session, mesh_from_gmsh
 from ...fem.budget import NODES_PER_ELEMENT, TETRAHEDRA_PER_CUBE, TRIANGLE, check_budget
 from ..polygon import inscribed_diameter
-from .description import REACH, Leaf, Mechanism, cross2
+from .description import REACH, Leaf, Mechanism, _label, cross2
 
 
 def _polygon(occ, points) -> int:
@@ -178,7 +178,32 @@ def element_sizes(mechanism: Mechanism, coarse: float | None = None) -> tuple:
                         for (x0, y0), (x1, y1) in b.boxes]
                        + [inscribed_diameter(p) for b in mechanism.bodies for p in b.polygons])
         coarse = min(mechanism.size / 20, shortest / 2)
-    return sizes, max(coarse, max(sizes))
+        return sizes, max(coarse, max(sizes))
+    check_body_size(mechanism, coarse, sizes)
+    return sizes, coarse
+
+
+def check_body_size(mechanism: Mechanism, coarse: float, sizes=None) -> None:
+    """Refuse a requested element size in the bodies (``coarse``, m) that the mesh cannot
+    honour: finer than the coarsest flexure's own size (half a leaf's thickness, a quarter
+    of a notch's neck), from which every flexure's size grows to the bodies'; say which
+    sizes are possible."""
+    if sizes is None:
+        sizes = [f.thickness / 2 if isinstance(f, Leaf) else f.thickness / 4
+                 for f in mechanism.flexures]
+    if not (math.isfinite(coarse) and coarse > 0):
+        raise ValueError(f"{mechanism.source}: [mesh] size = {coarse!r} must be a finite "
+                         "length > 0 (m)")
+    k = max(range(len(sizes)), key=sizes.__getitem__)
+    if coarse < sizes[k]:
+        f = mechanism.flexures[k]
+        what = (f"half the {f.thickness:g} m thickness of {_label(f, k)}" if isinstance(f, Leaf)
+                else f"a quarter of the {f.thickness:g} m neck of {_label(f, k)}")
+        raise ValueError(f"{mechanism.source}: [mesh] size = {coarse:g} m cannot be honoured: "
+                         f"it sets the bodies' elements, which may not be finer than a "
+                         f"flexure's own ({sizes[k]:g} m, {what}; each flexure is meshed at "
+                         f"its size and grows to the bodies'); give size >= {sizes[k]:g} m, or "
+                         "refine everything with size_factor (converge)")
 
 
 def _threshold(gmsh, entities, dim: int, size: float, far: float, near: float,

@@ -10,6 +10,7 @@ from ..mechanism import Mechanism
 from .beam_tables import BeamSpec, _options as beam_options, parse_beams
 from .geo_guard import check_inside
 from .mechanism_tables import parse_mechanism
+from .names import check_override_key, nearest, unknown_name
 from .geometry import CAD_SUFFIXES, GEO_SUFFIXES, SUFFIXES, inspect_geometry
 from .tables import (Analysis, Load, Locator, MeshOptions, Section, Support, is_number,
                      parse_analysis, parse_loads, parse_material, parse_mesh, parse_section,
@@ -72,16 +73,31 @@ def _read(path: Path) -> tuple[str, dict]:
 
 
 def _apply_overrides(raw: dict, overrides: dict | None, path: Path) -> dict:
-    """NAME=value goes to [parameters]; TABLE.KEY=value (material, section, mesh, analysis)
-    to that table."""
+    """NAME=value goes to [parameters]; TABLE.KEY=value (material, section, mesh, analysis,
+    beam_model) to that table; a TABLE.KEY that is no key of its table is refused with the
+    known keys (names.py)."""
     raw = {k: (dict(v) if isinstance(v, dict) else v) for k, v in raw.items()}
     for name, value in (overrides or {}).items():
         table, dot, key = str(name).rpartition(".")
-        if dot and table not in OVERRIDE_TABLES:
-            raise ValueError(f"{path}: override {name!r}: only [parameters] names and "
-                             f"{', '.join(t + '.KEY' for t in OVERRIDE_TABLES)} can be set")
+        if dot:
+            check_override_key(name, path)
         raw.setdefault(table or "parameters", {})[key] = value
     return raw
+
+
+def parameter_names(raw: dict) -> set:
+    """The [parameters] names a model file declares itself (before any override)."""
+    table = raw.get("parameters", {})
+    return set(table) if isinstance(table, dict) else set()
+
+
+def _check_declared(overridden: set, declared: set, path: Path) -> None:
+    """An override of bodies and flexures names one of the file's own [parameters]: its
+    expressions use no other name, so any other would leave the design unchanged."""
+    for name in sorted(n for n in overridden if "." not in str(n)):
+        if name not in declared:
+            raise ValueError(f"{path}: override " + unknown_name(
+                name, f"a [parameters] name of {path.name}", declared))
 
 
 def _parameters(raw, loc: Locator, overridden: set) -> dict:
@@ -130,7 +146,8 @@ def _check_parameters(parameters: dict, geometry: Path, constants: dict, loc: Lo
     for name in parameters:
         if name not in constants:
             message = (f"{name!r} is not a DefineConstant of {geometry.name}; its "
-                       f"constants: {', '.join(sorted(constants)) or 'none'}")
+                       f"constants: {', '.join(sorted(constants)) or 'none'}"
+                       f"{nearest(name, constants)}")
             if name in overridden:
                 raise ValueError(f"{loc.path}: override {message}")
             raise loc.error(f"[parameters] {message}", "parameters", name)
@@ -208,6 +225,14 @@ def _mechanism_spec(path: Path, raw: dict, loc: Locator, overridden: set, dim: i
     parameters = _parameters(raw.get("parameters", {}), loc, overridden)
     mechanism = parse_mechanism(raw, parameters, section.thickness, loc,
                                 {s.group for s in parts["supports"]})
+    if parts["mesh"].size is not None:  # a size the mesh cannot honour: refused, not raised
+        from ..mechanism.draw import check_body_size
+
+        try:
+            check_body_size(mechanism, parts["mesh"].size)
+        except ValueError as error:
+            raise loc.error(str(error).removeprefix(f"{mechanism.source}: "), "mesh",
+                            "size") from None
     groups = {b.name: dim - 1 for b in mechanism.bodies} | {"solid": dim}
     _check_groups(parts, groups, path, dim, loc)
     from ..mechanism.beams import beam_spec  # it builds on beam_tables: imported when used
@@ -278,6 +303,7 @@ def load_spec(path, overrides: dict | None = None, allow_code: bool = False,
     text, raw = _read(path)
     loc = Locator(path, text)
     overridden = set((overrides or {}).keys())
+    declared = parameter_names(raw)
     raw = _apply_overrides(raw, overrides, path)
     unknown = sorted(set(raw) - set(TOP_KEYS))
     if unknown:
@@ -288,6 +314,7 @@ def load_spec(path, overrides: dict | None = None, allow_code: bool = False,
                         f"allowed: {', '.join(TOP_KEYS)}",
                         name if is_table else None, None if is_table else name)
     if "body" in raw or "flexure" in raw:
+        _check_declared(overridden, declared, path)
         return _mechanism_spec(path, raw, loc, overridden, dim, allow_code)
     geometry = _geometry_path(raw, loc, allow_code)
     asked, dim = dim, _dim(raw, loc)
