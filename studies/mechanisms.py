@@ -155,10 +155,14 @@ def model_mechanism(path, base_dir=None, allow_code: bool = False) -> str:
     """The mechanism name of a model file: "model:<absolute path>@<digest>", the digest over
     the model file and the geometry file it names, so that a study's stored cases are not
     reused once either file changes. ``path`` is relative to ``base_dir`` (default: cwd); a
-    study (``base_dir`` given) names only model files inside its own folder unless
-    ``allow_code``."""
+    study (``base_dir`` given) names only model files inside its own folder (a relative path,
+    symbolic links resolved) unless ``allow_code``."""
     if not isinstance(path, (str, Path)) or not str(path):
         raise ValueError(f"mechanism.model = {path!r} must be the path of a model file")
+    if base_dir is not None and not allow_code and Path(path).is_absolute():
+        raise ValueError(f"mechanism.model = {str(path)!r} is an absolute path; a study names "
+                         "its model file relative to its own folder (pass --allow-code to "
+                         "lift this)")
     path = Path(base_dir or ".") / path
     if base_dir is not None and not allow_code:
         try:
@@ -169,6 +173,11 @@ def model_mechanism(path, base_dir=None, allow_code: bool = False) -> str:
                              "(pass --allow-code to lift this)") from None
     if not path.is_file():
         raise ValueError(f"mechanism.model = {str(path)!r}: no such model file")
+    return f"{MODEL_PREFIX}{path.resolve()}@{_model_digest(path)}"
+
+
+def _model_digest(path: Path) -> str:
+    """The first 12 hex digits of the sha256 over a model file and the geometry it names."""
     digest = hashlib.sha256(path.read_bytes())
     try:
         geometry = tomllib.loads(path.read_text()).get("geometry")
@@ -176,7 +185,34 @@ def model_mechanism(path, base_dir=None, allow_code: bool = False) -> str:
         raise ValueError(f"{path}: not valid TOML: {error}") from None
     if isinstance(geometry, str) and (path.parent / geometry).is_file():
         digest.update((path.parent / geometry).read_bytes())
-    return f"{MODEL_PREFIX}{path.resolve()}@{digest.hexdigest()[:12]}"
+    return digest.hexdigest()[:12]
+
+
+def verify_model_mechanism(name: str, key: str = "mechanism") -> str:
+    """``name`` ("model:<path>@<digest>") if its file exists and still has that digest; else
+    ValueError naming ``key``: a case stored under a digest is the file as it was then."""
+    path, _, digest = name[len(MODEL_PREFIX):].rpartition("@")
+    if not Path(path).is_absolute() or not Path(path).is_file():
+        raise ValueError(f"{key} = {name!r}: no model file {path!r} (a model mechanism is "
+                         "\"model:<absolute path>@<digest>\", as model_mechanism gives it)")
+    actual = _model_digest(Path(path))
+    if digest != actual:
+        raise ValueError(f"{key} = {name!r}: the digest {digest!r} is not that of {path} "
+                         f"({actual!r}): the file changed or the name was written by hand; "
+                         "name the model file (mechanism = { model = \"FILE.toml\" })")
+    return name
+
+
+class BoundEvaluate(functools.partial):
+    """An evaluate with keywords the caller binds (a model file's ``file`` and
+    ``allow_code``): a call that sets one of them again is refused, so that no study option
+    overrides what the command line chose (picklable, for the workers)."""
+
+    def __call__(self, *args, **options):
+        taken = sorted(set(options) & set(self.keywords))
+        if taken:
+            raise ValueError(f"option(s) {taken} are set by the command line, not by a study")
+        return super().__call__(*args, **options)
 
 
 def _model_path(name: str) -> str | None:
@@ -230,9 +266,10 @@ def get_evaluator(name: str, allow_code: bool = False):
     """
     check_mechanism(name, allow_code=allow_code)
     if _model_path(name):
+        verify_model_mechanism(name)
         model = MECHANISMS["model"]
-        return functools.partial(model.load(model.evaluate), file=_model_path(name),
-                                 allow_code=allow_code)
+        bind = functools.partial if allow_code else BoundEvaluate  # trusted: may override
+        return bind(model.load(model.evaluate), file=_model_path(name), allow_code=allow_code)
     if name in MECHANISMS:
         return MECHANISMS[name].load(MECHANISMS[name].evaluate)
     target = plugin_mechanisms()[name].value if name in plugin_mechanisms() else name

@@ -15,24 +15,100 @@ from .engine.store import export_csv, export_parquet, parquet_available
 from .engine.sweep import Study, plot_metric
 from .engine.tolerance import confirm_extremes, summarize
 from .mechanisms import (
+    MODEL_PREFIX,
     check_mechanism,
     coarsest_size_factor,
     get_evaluator,
     model_mechanism,
     quantity_units,
+    verify_model_mechanism,
 )
 
 
-def study_from_dict(data: dict, base_dir=None, allow_code: bool = False) -> Study:
-    """The engine's ``study_from_dict``, its mechanism checked against the registry (a
-    "module:function" only with ``allow_code``, see studies/mechanisms.py); a
-    ``mechanism = { model = "guide.toml" }`` table names a model file (relative to
-    ``base_dir``, default the working directory). ValueError for any malformed value."""
+#: Options the command line owns: a study file cannot set them (studies_rights).
+COMMAND_LINE_OPTIONS = {"allow_code": "--allow-code on the command line",
+                        "file": "the model file the mechanism names"}
+#: Value endings of a file: a study's values are numbers and names, never paths.
+_FILE_SUFFIXES = (".toml", ".geo", ".step", ".stp", ".brep", ".msh", ".py", ".sqlite",
+                  ".json", ".csv", ".parquet")
+
+
+def _path_like(value) -> bool:
+    return isinstance(value, str) and ("/" in value or "\\" in value
+                                       or value.lower().endswith(_FILE_SUFFIXES))
+
+
+def check_rights(data: dict, source: str = "study") -> None:
+    """Refuse what only the command line may grant, in a parsed study or front file
+    ``source``: an option the command line owns (allow_code, file), a path as any value, a
+    mechanism named by path and digest ("model:...": a study names its model as
+    ``{ model = "FILE.toml" }``). ValueError naming ``source`` and the key."""
+    if not isinstance(data, dict):
+        return
+    mechanism = data.get("mechanism")
+    if isinstance(mechanism, str) and mechanism.startswith(MODEL_PREFIX):
+        raise ValueError(f"{source}: mechanism = {mechanism!r} names a model file by path and "
+                         "digest; a study names its model inside its own folder, mechanism = "
+                         "{ model = \"FILE.toml\" } (pass --allow-code to lift this)")
+    tables = {key: data.get(key) for key in ("options", "confirm", "base")}
+    tolerances = data.get("tolerances")
+    if isinstance(tolerances, dict):
+        tables["tolerances.confirm"] = tolerances.get("confirm")
+    tables["grid"] = data.get("grid")
+    cases = data.get("cases")
+    for i, case in enumerate(cases if isinstance(cases, list) else ()):
+        tables[f"cases[{i}]"] = case
+    for where, table in tables.items():
+        if not isinstance(table, dict):
+            continue
+        for name, value in table.items():
+            if name in COMMAND_LINE_OPTIONS and where != "base":
+                raise ValueError(f"{source}: {where}.{name} is not a study's to set: it is "
+                                 f"{COMMAND_LINE_OPTIONS[name]} (a study cannot widen its own "
+                                 "rights)")
+            values = value if isinstance(value, list) else [value]
+            if any(_path_like(v) for v in values):
+                raise ValueError(f"{source}: {where}.{name} = {value!r} is a path; a study's "
+                                 "values are numbers and names, its one file is its model "
+                                 "(mechanism = { model = \"FILE.toml\" })")
+
+
+def _mechanism_of(data: dict, base_dir, allow_code: bool, source: str):
+    """The study's mechanism name: a model table resolved inside ``base_dir``; a "model:..."
+    name (only with ``allow_code``) checked against its file's digest."""
     mechanism = data.get("mechanism") if isinstance(data, dict) else None
     if isinstance(mechanism, dict):
         if set(mechanism) != {"model"}:
-            raise ValueError(f"mechanism = {mechanism!r}: a table must be {{ model = \"FILE.toml\" }}")
-        data = {**data, "mechanism": model_mechanism(mechanism["model"], base_dir, allow_code)}
+            raise ValueError(f"{source}: mechanism = {mechanism!r}: a table must be "
+                             "{ model = \"FILE.toml\" }")
+        try:
+            return model_mechanism(mechanism["model"], base_dir, allow_code)
+        except ValueError as error:
+            raise ValueError(f"{source}: {error}") from None
+    if isinstance(mechanism, str) and mechanism.startswith(MODEL_PREFIX):
+        try:
+            return verify_model_mechanism(mechanism)
+        except ValueError as error:
+            raise ValueError(f"{source}: {error}") from None
+    return mechanism
+
+
+def study_from_dict(data: dict, base_dir=None, allow_code: bool = False,
+                    source: str = "study") -> Study:
+    """The engine's ``study_from_dict``, its mechanism checked against the registry (a
+    "module:function" only with ``allow_code``, see studies/mechanisms.py); a
+    ``mechanism = { model = "guide.toml" }`` table names a model file (relative to
+    ``base_dir``, default the working directory). Without ``allow_code`` the study may not
+    set what the command line owns (:func:`check_rights`). ValueError for any malformed
+    value, naming ``source`` (the study file) where it is about rights."""
+    named = data.get("mechanism") if isinstance(data, dict) else None
+    if isinstance(named, str) and not named.startswith(MODEL_PREFIX):
+        check_mechanism(named, allow_code=allow_code)  # code is refused first, by its name
+    if not allow_code:
+        check_rights(data, source)
+    mechanism = _mechanism_of(data, base_dir, allow_code, source)
+    if mechanism is not None:
+        data = {**data, "mechanism": mechanism}
     try:
         study = engine.study_from_dict(data)
     except (TypeError, AttributeError) as error:  # a value of the wrong shape (cases = 3, ...)
@@ -46,13 +122,17 @@ def load_study(path, allow_code: bool = False) -> Study:
     found relative to the study file)."""
     path = Path(path)
     return study_from_dict(engine.read_study_file(path), base_dir=path.parent,
-                           allow_code=allow_code)
+                           allow_code=allow_code, source=str(path))
 
 
 def run_study(study: Study, store_path, allow_code: bool = False, **options) -> engine.StudyResult:
     """The engine's ``run_study`` with the study's mechanism resolved by name (ValueError
     listing the known names for an unknown one, or for code without ``allow_code``);
     ``options`` as the engine's."""
+    if not allow_code:
+        confirm = study.tolerances.confirm if study.tolerances is not None else None
+        check_rights({"options": study.options, "tolerances": {"confirm": confirm}},
+                     f"study {study.name!r}")
     evaluate = get_evaluator(study.mechanism, allow_code=allow_code)
     return engine.run_study(study, store_path, evaluate, **options)
 
@@ -133,11 +213,12 @@ def run_front(path, out_dir=None, allow_code: bool = False) -> dict:
     path = Path(path)
     data = engine.read_study_file(path)
     name = data.pop("name", path.stem)
-    mechanism = data.get("mechanism")
-    if isinstance(mechanism, dict):
-        if set(mechanism) != {"model"}:
-            raise ValueError(f"mechanism = {mechanism!r}: a table must be {{ model = \"FILE.toml\" }}")
-        mechanism = model_mechanism(mechanism["model"], path.parent, allow_code)
+    named = data.get("mechanism")
+    if isinstance(named, str) and not named.startswith(MODEL_PREFIX):
+        check_mechanism(named, allow_code=allow_code)  # code is refused first, by its name
+    if not allow_code:
+        check_rights(data, str(path))
+    mechanism = _mechanism_of(data, path.parent, allow_code, str(path))
     check_mechanism(mechanism, allow_code=allow_code)
     front = front_from_dict({**data, "mechanism": mechanism})
     out = Path(out_dir if out_dir is not None else name)
