@@ -119,8 +119,10 @@ def analyze_model(spec: ModelSpec, size_factor: float = 1.0, model: str = "conti
         "mean_displacement": mean,
         "reactions": {g: np.asarray(r).tolist() for g, r in result.reactions.items()},
         "stiffness": stiffness(solid if spatial else spec, mean),
-        "yield_strength": spec.material.yield_strength,
+        "yield_strength": _strength(spec.material.yield_strength),
     }
+    if out["yield_strength"] is None:
+        out["not_available"] = {"yield_strength": "not given in [material]"}
     if spec.analysis.modes:
         try:
             modes = (spatial_modes(solid, fe, spec.analysis.modes) if solid is not None else
@@ -140,8 +142,17 @@ def analyze_model(spec: ModelSpec, size_factor: float = 1.0, model: str = "conti
     nominal = None
     if model == "continuum" and spec.beams is not None:
         nominal = lambda: analyze_model(spec, model="beam")  # noqa: E731
-    out.update(stroke_limits(spec, out, nominal))
+    limits = stroke_limits(spec, out, nominal)
+    out.update({**limits, "not_available": {**out.get("not_available", {}),
+                                            **limits.get("not_available", {})}})
+    if not out["not_available"]:
+        del out["not_available"]
     return check_finite(out, spec.source)
+
+
+def _strength(value: float) -> float | None:
+    """A material strength as output: None where the material gives none (inf)."""
+    return float(value) if np.isfinite(value) else None
 
 
 def _precision(spec, model, supports, loads) -> dict:
@@ -211,6 +222,9 @@ def flat_metrics(result: dict) -> dict[str, float]:
     for key in ("stroke_limit_yield", "stroke_limit_fatigue"):
         if result.get(key) is not None:
             out[key] = float(result[key])
+    missing = {k: v for k, v in result.get("not_available", {}).items() if k.startswith("stroke")}
+    if missing:  # a study's table says why a stroke metric is absent (a string, not a number)
+        out["not_available"] = "; ".join(f"{k}: {v}" for k, v in missing.items())
     if result.get("harmonic", {}).get("resonances_hz"):
         out["harmonic_resonance_hz"] = float(result["harmonic"]["resonances_hz"][0])
     return out

@@ -43,9 +43,10 @@ def summarize(result: dict) -> str:
              f"{result['solver']}, element size h = {result['h']:.4g} m"]
     vm = result["max_von_mises"]
     where = _vector(result["max_von_mises_location"], "m")
-    ratio = vm / result["yield_strength"]
-    lines.append(f"max von Mises stress {vm / 1e6:.4g} MPa at {where}"
-                 + (f" ({100 * ratio:.4g} % of yield)" if ratio > 0 else ""))
+    strength = result["yield_strength"]
+    share = (f" ({100 * vm / strength:.4g} % of yield)" if strength is not None and vm > 0 else
+             " (% of yield not available: needs yield_strength)" if strength is None else "")
+    lines.append(f"max von Mises stress {vm / 1e6:.4g} MPa at {where}{share}")
     for group, u in result["mean_displacement"].items():
         lines.append(f"mean displacement of {group!r}: {_vector(u, 'm')}")
     for group, f in result["reactions"].items():
@@ -86,9 +87,13 @@ def _stroke_lines(result: dict) -> list[str]:
     lines = []
     if "stroke_limit_where" not in result:  # no stress to size it by
         return [f"no stroke limit of {group!r}: sized by {result['stroke_stress_basis']}"]
+    missing = result.get("not_available", {})
     if result["stroke_limit_yield"] is not None:
         lines.append(f"stroke of {group!r} to yield (safety factor {n:g}): "
                      f"{result['stroke_limit_yield'] * 1e3:.4g} mm")
+    else:
+        lines.append(f"stroke of {group!r} to yield: not available: "
+                     f"{missing.get('stroke_limit_yield', 'no yield strength')}")
     if result["stroke_limit_fatigue"] is not None:
         mean = (f" about a mean of {result['mean_stroke'] * 1e3:.4g} mm"
                 if result["mean_stroke"] else "")
@@ -96,7 +101,8 @@ def _stroke_lines(result: dict) -> list[str]:
                      f"({result['fatigue_criterion']}{mean}): "
                      f"{result['stroke_limit_fatigue'] * 1e3:.4g} mm")
     else:
-        lines.append(f"no fatigue-limited stroke: the material has no fatigue data")
+        lines.append(f"fatigue-limited stroke amplitude of {group!r}: not available: "
+                     f"{missing.get('stroke_limit_fatigue', 'no fatigue data')}")
     lines.append(f"  sized by the {result['stroke_stress_basis']}, at "
                  f"{_vector(result['stroke_limit_where'], 'm')}")
     return lines

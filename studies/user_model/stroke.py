@@ -77,12 +77,40 @@ def stroke_limits(spec, result: dict, nominal=None) -> dict:
         return {}
     per_stroke = stress / stroke
     a, m = spec.analysis, spec.material
-    fatigue = fatigue_stroke(per_stroke, m, a.mean_stroke, a.fatigue, a.safety_factor)
-    return {"stroke_group": load.group, "stroke_direction": direction.tolist(),
-            "stress_per_stroke": per_stroke, "stroke_stress_basis": basis,
-            "stroke_limit_where": [float(v) for v in where],
-            "stroke_limit_yield": (yield_stroke(per_stroke, m.yield_strength, a.safety_factor)
-                                   if np.isfinite(m.yield_strength) else None),
-            "stroke_limit_fatigue": fatigue, "fatigue_cycles": m.fatigue_cycles,
-            "fatigue_criterion": a.fatigue, "fatigue_source": m.fatigue_source,
-            "safety_factor": a.safety_factor, "mean_stroke": a.mean_stroke}
+    missing = {"stroke_limit_yield": yield_needs(m),
+               "stroke_limit_fatigue": fatigue_needs(m, a.fatigue, a.mean_stroke)}
+    missing = {k: v for k, v in missing.items() if v is not None}
+    out = {"stroke_group": load.group, "stroke_direction": direction.tolist(),
+           "stress_per_stroke": per_stroke, "stroke_stress_basis": basis,
+           "stroke_limit_where": [float(v) for v in where],
+           "stroke_limit_yield": (None if "stroke_limit_yield" in missing else
+                                  yield_stroke(per_stroke, m.yield_strength, a.safety_factor)),
+           "stroke_limit_fatigue": (None if "stroke_limit_fatigue" in missing else
+                                    fatigue_stroke(per_stroke, m, a.mean_stroke, a.fatigue,
+                                                   a.safety_factor)),
+           "fatigue_cycles": m.fatigue_cycles, "fatigue_criterion": a.fatigue,
+           "fatigue_source": m.fatigue_source, "safety_factor": a.safety_factor,
+           "mean_stroke": a.mean_stroke}
+    if missing:
+        out["not_available"] = missing
+    return out
+
+
+def yield_needs(material) -> str | None:
+    """Why the yield-limited stroke cannot be given ("needs yield_strength"), None if it can."""
+    return None if np.isfinite(material.yield_strength) else "needs yield_strength"
+
+
+def fatigue_needs(material, criterion: str, mean_stroke: float) -> str | None:
+    """Why the fatigue-limited stroke cannot be given, None if it can: no fatigue data, or a
+    mean stroke without the static strength its line is drawn to (Goodman: ultimate_strength,
+    Soderberg: yield_strength; a compressive face is also held to yield_strength)."""
+    if material.fatigue_strength is None:
+        return "needs fatigue_strength and fatigue_cycles"
+    if mean_stroke:
+        static = "ultimate_strength" if criterion == "goodman" else "yield_strength"
+        lacking = [k for k in dict.fromkeys((static, "yield_strength"))
+                   if not np.isfinite(getattr(material, k))]
+        if lacking:
+            return (f"needs {' and '.join(lacking)} (the {criterion} line of a mean stroke)")
+    return None
