@@ -55,3 +55,16 @@ def gmsh_session(name: str = "flexfem", verbose: bool = False):
             _restore_sigpipe(sigpipe)
     finally:
         _LOCK.release()
+
+
+def fork_outside_sessions() -> int:
+    """``os.fork()`` while no thread of this process is inside a gmsh session (the child
+    starts with no session open and may open its own); returns fork's value."""
+    import os
+
+    global _LOCK
+    with _LOCK:
+        pid = os.fork()
+        if pid == 0:  # one thread now: a fresh lock instead of the copied, held one
+            _LOCK = threading.RLock()
+        return pid

@@ -11,10 +11,12 @@ from pathlib import Path
 import re
 
 from ...fem import FEMesh, gmsh_session, mesh_from_gmsh, read_mesh
-from ...fem.budget import check_budget
+from ...fem.budget import BYTES_PER_DOF, NODES_PER_ELEMENT, TETRAHEDRA_PER_CUBE, TRIANGLE, \
+    BudgetError, check_budget, default_max_dofs
 from ..mechanism import mesh_mechanism
+from .bounded import run_bounded
 from .estimate import check_outlines, estimate_geometry_mesh
-from .geo_guard import check_geo
+from .geo_guard import check_geo, check_geometry_file
 from .selection import compile_rule, entity_values
 
 GEO_SUFFIXES = (".geo",)
@@ -71,9 +73,27 @@ def _gmsh_error(path: Path, error: Exception) -> ValueError:
     return ValueError(f"{path}: gmsh cannot read this geometry file: {error}")
 
 
+#: Limits of the child process that reads (parses) a geometry file: CPU seconds, and the
+#: share of the available memory it may take.
+READ_CPU_SECONDS = 60
+
+
+def _read_limits() -> dict:
+    return {"memory_bytes": default_max_dofs(3) * BYTES_PER_DOF[3],
+            "cpu_seconds": READ_CPU_SECONDS, "wall_seconds": 2 * READ_CPU_SECONDS + 10}
+
+
+def _mesh_limits(dim: int, max_dofs: int) -> dict:
+    """The meshing child's limits from the DOF budget: the memory the budget's solve would
+    take, and a CPU time that grows with it (gmsh makes ~1e5 elements a second)."""
+    cpu = 60 + max_dofs / 10_000
+    return {"memory_bytes": max_dofs * BYTES_PER_DOF[dim], "cpu_seconds": cpu,
+            "wall_seconds": 2 * cpu + 10}
+
+
 def _load_geo(gmsh, path: Path, parameters: dict, root=None, allow_code=False) -> None:
     """Merge the .geo ``path`` with its DefineConstant overrides, after :func:`check_geo`
-    (nothing that reaches the OS, reads only inside ``root``, unless ``allow_code``)."""
+    (only what a geometry needs, reads only inside ``root``, unless ``allow_code``)."""
     check_geo(path, root, allow_code)
     for name, value in parameters.items():
         gmsh.parser.setNumber(name, [float(value)])
@@ -121,14 +141,22 @@ def _physical_groups(gmsh) -> dict:
 
 def inspect_geometry(path: Path, parameters: dict | None = None, selects=(), root=None,
                      allow_code: bool = False) -> GeometryInfo:
-    """Read ``path`` (no meshing) and list its groups and DefineConstant values; a .geo is
-    checked first (:func:`check_geo`, reads only inside ``root``, default its folder)."""
+    """Read ``path`` (no meshing) and list its groups and DefineConstant values. The file is
+    checked first (its content must be what its name says; a .geo passes :func:`check_geo`
+    and reads only inside ``root``, default its folder), then read by gmsh in a bounded child
+    process (bounded.py)."""
     path = Path(path)
     if path.suffix.lower() not in SUFFIXES:
         raise ValueError(f"{path}: unknown geometry file type {path.suffix!r}; use one of "
                          f"{', '.join(SUFFIXES)}")
     if not path.is_file():
         raise ValueError(f"{path}: the geometry file does not exist")
+    check_geometry_file(path, root, allow_code)
+    return run_bounded(_inspect, path, parameters, selects, root, allow_code,
+                       what=f"reading {path.name}", **_read_limits())
+
+
+def _inspect(path: Path, parameters, selects, root, allow_code) -> GeometryInfo:
     suffix = path.suffix.lower()
     with gmsh_session("inspect") as gmsh:
         if suffix in GEO_SUFFIXES:
@@ -176,17 +204,75 @@ def mesh_geometry(spec, size_factor: float = 1.0, max_dofs: int | None = None) -
     """Mesh the model file's geometry (m) with its named groups. ``size_factor`` multiplies
     every element size (a .msh cannot be remeshed: only 1 is accepted). A mesh whose estimate
     (estimate.py) is above ``max_dofs`` (None: half the available memory) is refused before
-    gmsh meshes it (BudgetError)."""
+    gmsh meshes it (BudgetError). A geometry file is meshed in a bounded child process
+    (bounded.py) that also stops, with a BudgetError, as soon as the nodes gmsh has made
+    (curves first, then surfaces, then volumes) pass the budget."""
     if not size_factor > 0:
         raise ValueError(f"size_factor = {size_factor!r} must be > 0")
     if spec.mechanism is not None:
         return mesh_mechanism(spec.mechanism, spec.dim, size_factor, spec.mesh.size,
                               order=spec.mesh.order, max_dofs=max_dofs)
+    if spec.geometry.suffix.lower() in MESH_SUFFIXES and size_factor != 1.0:
+        raise ValueError(f"{spec.geometry}: a .msh mesh cannot be remeshed with size_factor "
+                         f"= {size_factor}; give a .geo or CAD file")
+    check_budget({"elements": 0, "nodes": 0, "dofs": 0}, spec.dim, max_dofs)  # max_dofs valid
+    limit = default_max_dofs(spec.dim) if max_dofs is None else max_dofs
+    check_geometry_file(spec.geometry, spec.path.parent, spec.allow_code)
+    return run_bounded(_mesh, spec, size_factor, max_dofs, limit,
+                       what=f"meshing {spec.geometry.name}", **_mesh_limits(spec.dim, limit))
+
+
+def _with_refinements(gmsh, estimate: dict, spec, factor: float) -> dict:
+    """``estimate`` plus the elements of each [mesh] refine band: the group's measure (a
+    curve's length, a surface's area; a point counts as a disc/ball of the band) times the
+    band's width 2 ``distance``, at the refined ``size``."""
+    groups = {gmsh.model.getPhysicalName(d, t): (d, t) for d, t in gmsh.model.getPhysicalGroups()}
+    dim, extra = spec.dim, 0.0
+    for r in spec.mesh.refine:
+        d, tag = groups[r.group]
+        h = r.size * factor
+        if not h > 1e-12:
+            raise ValueError(f"{spec.source}: [mesh] refine size {r.size!r} cannot be meshed")
+        band = 2 * r.distance
+        measure = 0.0
+        for e in gmsh.model.getEntitiesForPhysicalGroup(d, tag):
+            measure += 1.0 if d == 0 else _entity_measure(gmsh, d, int(e))
+        region = measure * band ** (dim - d) if d < dim else measure
+        cell = TRIANGLE * h * h if dim == 2 else h ** 3 / TETRAHEDRA_PER_CUBE
+        extra += region / cell
+    if not extra:
+        return estimate
+    elements = estimate["elements"] + extra
+    nodes = NODES_PER_ELEMENT[(dim, spec.mesh.order)] * elements
+    return {"elements": int(min(elements, 1e18)), "nodes": int(min(nodes, 1e18)),
+            "dofs": int(min(dim * nodes, 1e18))}
+
+
+def _entity_measure(gmsh, dim: int, tag: int) -> float:
+    try:
+        return float(gmsh.model.occ.getMass(dim, tag))
+    except Exception:  # noqa: BLE001 - a built-in kernel entity: its bounding box
+        box = gmsh.model.getBoundingBox(dim, tag)
+        sides = sorted((max(box[3 + k] - box[k], 0.0) for k in range(3)), reverse=True)
+        return float(sum(sides[:1])) if dim == 1 else float(sides[0] * sides[1])
+
+
+def _check_nodes(gmsh, spec, limit: int, stage: str, what: str) -> None:
+    """BudgetError when the nodes gmsh has made so far (order 1) already mean more DOFs
+    than ``limit`` at the model's element order."""
+    nodes = len(gmsh.model.mesh.getNodes()[0])
+    per_node = NODES_PER_ELEMENT[(spec.dim, spec.mesh.order)] / NODES_PER_ELEMENT[(spec.dim, 1)]
+    dofs = int(spec.dim * nodes * per_node)
+    if dofs > limit:
+        raise BudgetError(f"{what}: gmsh made {nodes:,} nodes on the {stage} alone, about "
+                          f"{dofs:,} DOFs at order {spec.mesh.order}, above the budget of "
+                          f"{limit:,} DOFs; check the .geo's element sizes (Transfinite, "
+                          "MeshSize, Field) or raise the budget with --max-dofs N")
+
+
+def _mesh(spec, size_factor: float, max_dofs, limit: int) -> FEMesh:
     suffix = spec.geometry.suffix.lower()
     if suffix in MESH_SUFFIXES:
-        if size_factor != 1.0:
-            raise ValueError(f"{spec.geometry}: a .msh mesh cannot be remeshed with size_factor "
-                             f"= {size_factor}; give a .geo or CAD file")
         return _check_dim(read_mesh(spec.geometry), spec)
     with gmsh_session("model") as gmsh:
         if suffix in GEO_SUFFIXES:
@@ -194,12 +280,15 @@ def mesh_geometry(spec, size_factor: float = 1.0, max_dofs: int | None = None) -
         else:
             _load_cad(gmsh, spec.geometry, spec.selects)
         gmsh.option.setNumber("Mesh.ElementOrder", 1)
-        gmsh.option.setNumber("Mesh.MeshSizeFactor", size_factor)
+        factor = size_factor * gmsh.option.getNumber("Mesh.MeshSizeFactor")  # the .geo's too
+        gmsh.option.setNumber("Mesh.MeshSizeFactor", factor)
         xmin, ymin, zmin, xmax, ymax, zmax = gmsh.model.getBoundingBox(-1, -1)
         coarse = spec.mesh.size or 0.1 * ((xmax - xmin) ** 2 + (ymax - ymin) ** 2
                                           + (zmax - zmin) ** 2) ** 0.5
         if spec.mesh.size:
-            gmsh.option.setNumber("Mesh.MeshSizeMax", spec.mesh.size)
+            gmsh.option.setNumber("Mesh.MeshSizeMax", min(
+                spec.mesh.size, gmsh.option.getNumber("Mesh.MeshSizeMax")))
+        size_max = gmsh.option.getNumber("Mesh.MeshSizeMax")
         if spec.mesh.refine:
             _refine(gmsh, spec.mesh.refine, coarse)
         off_plane = max(abs(zmin), abs(zmax))  # OpenCASCADE pads boxes by 1e-7 m
@@ -210,14 +299,21 @@ def mesh_geometry(spec, size_factor: float = 1.0, max_dofs: int | None = None) -
             raise ValueError(f"{spec.source}: dim = {spec.dim} but {spec.geometry} is "
                              f"{gmsh.model.getDimension()}-D")
         what = f"the mesh of {spec.geometry.name} at size_factor {size_factor:g}"
-        estimate = estimate_geometry_mesh(gmsh, spec.dim, spec.mesh.order, size_factor,
-                                          spec.mesh.size, what)
+        estimate = estimate_geometry_mesh(gmsh, spec.dim, spec.mesh.order, factor, size_max,
+                                          what)
+        estimate = _with_refinements(gmsh, estimate, spec, factor)
         check_budget(estimate, spec.dim, max_dofs, what=what)
         check_outlines(gmsh, what)
+        stages = {1: "curves", 2: "surfaces", 3: "volumes"}
         try:
-            gmsh.model.mesh.generate(spec.dim)
+            for stage in range(1, spec.dim + 1):
+                gmsh.model.mesh.generate(stage)
+                _check_nodes(gmsh, spec, limit, stages[stage], what)
+        except BudgetError:
+            raise
         except Exception as error:
-            raise ValueError(f"{spec.geometry}: gmsh could not mesh it: {error}") from None
+            reason = str(error) or gmsh.logger.getLastError() or "gmsh gave no reason"
+            raise ValueError(f"{spec.geometry}: gmsh could not mesh it: {reason}") from None
         return _check_dim(mesh_from_gmsh(gmsh), spec)
 
 

@@ -165,7 +165,8 @@ def test_unreadable_geometry_names_the_file(tmp_path):
     step = tmp_path / "part.toml"
     step.write_text(MODEL.replace('"guide.geo"', '"part.step"').replace("[parameters]\nL = 0.04\n",
                                                                           ""))
-    with pytest.raises(ValueError, match=r"part.step: gmsh cannot read this geometry file"):
+    with pytest.raises(ValueError, match=r"part.step: its content is text gmsh would run as a "
+                                         r"\.geo script, not a STEP file"):
         load_spec(step)
 
 
