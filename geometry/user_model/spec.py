@@ -293,12 +293,14 @@ def mechanism_spec(mechanism: Mechanism, material: Material, supports, loads,
 
 
 def load_spec(path, overrides: dict | None = None, allow_code: bool = False,
-              dim: int | None = None) -> ModelSpec:
+              dim: int | None = None, bodies_only: str | None = None) -> ModelSpec:
     """Read and validate the model file ``path``; ``overrides`` {NAME: value} replace
     [parameters] entries (or 'material.E'-style keys) before validation. Files are data:
     the geometry must lie in the model file's folder and a .geo may not reach the OS
     (geo_guard.py) unless ``allow_code``. ``dim``: 3 extrudes a file of bodies and
-    flexures to a solid (a geometry file has its own dimension)."""
+    flexures to a solid (a geometry file has its own dimension). ``bodies_only``: the name
+    of a task that needs bodies and flexures ("export"): any other file is refused before its
+    geometry is read."""
     path = Path(path)
     text, raw = _read(path)
     loc = Locator(path, text)
@@ -316,6 +318,9 @@ def load_spec(path, overrides: dict | None = None, allow_code: bool = False,
     if "body" in raw or "flexure" in raw:
         _check_declared(overridden, declared, path)
         return _mechanism_spec(path, raw, loc, overridden, dim, allow_code)
+    if bodies_only:
+        raise ValueError(f"{path}: {bodies_only} needs a model of bodies and flexures "
+                         "([[body]], [[flexure]]); a geometry file is already a drawing")
     geometry = _geometry_path(raw, loc, allow_code)
     asked, dim = dim, _dim(raw, loc)
     if asked is not None and asked != dim:

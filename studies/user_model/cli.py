@@ -137,10 +137,8 @@ def run_export(args) -> dict:
     """``flexfem export``: the outline of a model file of bodies and flexures as DXF or STEP."""
     from ...geometry.mechanism.export import export
 
-    spec = load_spec(args.model, parse_sets(args.set), allow_code=args.allow_code)
-    if spec.mechanism is None:
-        raise ValueError(f"{spec.source}: export needs a model of bodies and flexures "
-                         "([[body]], [[flexure]]); a geometry file is already a drawing")
+    spec = load_spec(args.model, parse_sets(args.set), allow_code=args.allow_code,
+                     bodies_only="export")
     path = export(spec.mechanism, args.out, args.dim)
     return {"model": spec.source, "out": str(path), "dim": args.dim,
             "format": path.suffix.lower().lstrip("."),
