@@ -8,6 +8,8 @@ modal solve of flexfem's quadratic elements: measured peaks of the DBMA analysis
 2.8 kB per DOF in 2-D (106k DOFs) and 11 kB in 3-D (100k DOFs); the constants keep a
 factor ~2 of margin.
 """
+import contextlib
+import contextvars
 import math
 import os
 
@@ -18,6 +20,41 @@ TETRAHEDRA_PER_CUBE = 8.5  # regular tetrahedra of edge h: h^3 / (6 sqrt 2) each
 #: Nodes per element of large unstructured meshes, by (dim, order).
 NODES_PER_ELEMENT = {(2, 1): 0.5, (2, 2): 2.05, (3, 1): 0.18, (3, 2): 1.4}
 FALLBACK_MEMORY = 4 * 2**30  # when the available memory cannot be read
+
+
+_ESTIMATING = contextvars.ContextVar("flexfem_budget_estimating", default=False)
+
+
+class Estimated(Exception):
+    """Raised by :func:`check_budget` inside :func:`estimate_only` instead of going on to
+    mesh: ``estimate`` ({"elements", "nodes", "dofs"}), ``limit`` (DOFs), ``source`` (where
+    the limit comes from), ``what`` was estimated and its ``dim``. Not a ValueError: no analysis wraps it
+    as a failure of the design; picklable (a bounded child process sends it back)."""
+
+    def __init__(self, estimate: dict, limit: int, source: str, what: str, dim: int = 2):
+        super().__init__(estimate, limit, source, what, dim)
+        self.estimate, self.limit, self.source, self.what = estimate, limit, source, what
+        self.dim = dim
+
+    @property
+    def memory_gib(self) -> float:
+        return self.estimate["dofs"] * BYTES_PER_DOF.get(self.dim, BYTES_PER_DOF[3]) / 2**30
+
+    @property
+    def fits(self) -> bool:
+        return self.estimate["dofs"] <= self.limit
+
+
+@contextlib.contextmanager
+def estimate_only():
+    """Inside this context the first :func:`check_budget` of an analysis raises
+    :class:`Estimated` with its estimate (its mesh is never made): a study checks every level
+    against the budget before it meshes any (studies/engine/convergence.py)."""
+    token = _ESTIMATING.set(True)
+    try:
+        yield
+    finally:
+        _ESTIMATING.reset(token)
 
 
 class BudgetError(ValueError):
@@ -55,10 +92,12 @@ def check_budget(estimate: dict, dim: int, max_dofs: int | None = None,
                                  or max_dofs < 1):
         raise ValueError(f"max_dofs = {max_dofs!r} must be an integer >= 1")
     limit = default_max_dofs(dim) if max_dofs is None else max_dofs
+    source = ("half the available memory" if max_dofs is None else "max_dofs")
+    if _ESTIMATING.get() and (estimate["dofs"] or estimate["elements"]):  # 0: a check of max_dofs
+        raise Estimated(dict(estimate), limit, source, what, dim)
     if estimate["dofs"] <= limit:
         return
     memory = estimate["dofs"] * BYTES_PER_DOF[dim] / 2**30
-    source = ("half the available memory" if max_dofs is None else "max_dofs")
     raise BudgetError(
         f"{what}: about {estimate['elements']:,} elements and {estimate['dofs']:,} DOFs "
         f"(~{memory:.1f} GiB to solve), above the budget of {limit:,} DOFs ({source}); "

@@ -1,7 +1,9 @@
 """Studies of registered mechanisms by name: a study file or a convergence study, its
 mechanism found in the registry (studies/mechanisms.py), run by the engine (studies/engine/)."""
+import functools
 import json
 import math
+import re
 from pathlib import Path
 
 from .engine import sweep as engine
@@ -14,6 +16,7 @@ from .engine.convergence import (
 from .engine.store import export_csv, export_parquet, parquet_available
 from .engine.sweep import Study, plot_metric
 from .engine.tolerance import confirm_extremes, summarize
+from .engine.validate import declared_options
 from .mechanisms import (
     MODEL_PREFIX,
     check_mechanism,
@@ -259,13 +262,26 @@ def plot_front(summary: dict, path) -> Path:
     return Path(path)
 
 
+def convergence_folder(mechanism: str) -> str:
+    """The default output folder of a convergence study: convergence_<name> (a model file's
+    stem for a model file)."""
+    path = mechanism[len(MODEL_PREFIX):].rpartition("@")[0] if mechanism.startswith(
+        MODEL_PREFIX) else mechanism if mechanism.endswith(".toml") else ""
+    label = Path(path).stem if path else mechanism
+    return "convergence_" + re.sub(r"\W", "_", label)
+
+
 def run_convergence(mechanism: str, metric: str, tol="0.5%", n_levels: int = 4, ratio: float = 2.0,
                     params: dict | None = None, out_dir=None, dim: int = 2,
-                    start: float | None = None, allow_code: bool = False) -> dict:
+                    start: float | None = None, allow_code: bool = False,
+                    max_dofs: int | None = None, progress=None) -> dict:
     """A convergence study of a registered mechanism on ``n_levels`` levels of size_factor
     start, start/ratio, ... (``start`` defaults to the mechanism's coarsest level, see
-    the registry's coarsest_size_factor); writes convergence_<metric>.png into ``out_dir`` when
-    given. JSON-able. ``allow_code``: a model file's .geo may run code (geo_guard.py)."""
+    the registry's coarsest_size_factor). Every level's mesh estimate is checked against the
+    budget (``max_dofs``, None: half the available memory) before the first is meshed. With
+    ``out_dir``: each level is stored as it completes in out_dir/levels.sqlite (a rerun reuses
+    it) and convergence_<metric>.png is written there. JSON-able. ``allow_code``: a model
+    file's .geo may run code (geo_guard.py)."""
     tolerance = parse_tolerance(tol)
     if not (math.isfinite(ratio) and 1 < ratio <= 10):
         raise ValueError(f"ratio = {ratio!r} must be in (1, 10]: the size factor between "
@@ -282,8 +298,17 @@ def run_convergence(mechanism: str, metric: str, tol="0.5%", n_levels: int = 4, 
     if not (math.isfinite(start) and start > 0):
         raise ValueError(f"start = {start!r} must be a finite size_factor > 0")
     levels = default_levels(n_levels, ratio, start=start)
-    result = converge(get_evaluator(mechanism, allow_code=allow_code), metric, levels, params=params, tol=tolerance, dim=dim)
-    summary = {"mechanism": mechanism, **result.to_dict(), "figures": []}
+    evaluate = get_evaluator(mechanism, allow_code=allow_code)
+    if max_dofs is not None:
+        if "max_dofs" not in declared_options(evaluate)[0]:
+            raise ValueError(f"max_dofs = {max_dofs!r}: mechanism {mechanism!r} takes no mesh "
+                             "budget (it meshes nothing)")
+        evaluate = functools.partial(evaluate, max_dofs=max_dofs)  # not part of a level's key
+    store = Path(out_dir) / "levels.sqlite" if out_dir is not None else None
+    result = converge(evaluate, metric, levels, params=params, tol=tolerance, dim=dim,
+                      store=store, mechanism=mechanism, progress=progress)
+    summary = {"mechanism": mechanism, **result.to_dict(), "figures": [],
+               "store": str(store) if store is not None else None}
     if out_dir is not None:
         Path(out_dir).mkdir(parents=True, exist_ok=True)
         figure = plot_convergence(result, Path(out_dir) / f"convergence_{metric}.png")

@@ -2,7 +2,7 @@
 from .engine.executors import MAX_WORKERS
 from .engine.sweep import MAX_CASES
 from .options import count, json_object, tolerance, whole_number
-from .run import run_convergence, run_front, sweep
+from .run import convergence_folder, run_convergence, run_front, sweep
 
 
 def register(subparsers):
@@ -34,7 +34,12 @@ def register(subparsers):
                    help="size_factor of the coarsest level (default: the mechanism's, 4 for dbma)")
     c.add_argument("--params", type=json_object, default=None,
                    help='design parameters as JSON, e.g. \'{"length_m": 0.05}\' (default: the base design)')
-    c.add_argument("--out", help="folder for the log-log plot")
+    c.add_argument("--out", help="output folder: each level's result as it completes "
+                                 "(levels.sqlite: a rerun reuses them) and the log-log plot "
+                                 "(default: ./convergence_<mechanism or model file's name>)")
+    c.add_argument("--max-dofs", type=count, default=None,
+                   help="mesh budget of every level in DOFs (default: what half the available "
+                        "memory affords); every level is checked before the first is meshed")
     c.add_argument("--allow-code", action="store_true",
                    help="trust the model file: its .geo may run programs and read outside "
                         "its folder")
@@ -78,9 +83,11 @@ def _run_sweep(args) -> dict:
 
 
 def _run_converge(args) -> dict:
+    out = args.out if args.out is not None else convergence_folder(args.mechanism)
     return run_convergence(args.mechanism, args.metric, tol=args.tol, n_levels=args.levels,
-                           ratio=args.ratio, params=args.params, out_dir=args.out,
-                           start=args.start, allow_code=args.allow_code)
+                           ratio=args.ratio, params=args.params, out_dir=out,
+                           start=args.start, allow_code=args.allow_code,
+                           max_dofs=args.max_dofs)
 
 
 def summarize_sweep(result: dict) -> str:
@@ -127,4 +134,8 @@ def summarize_convergence(result: dict) -> str:
     lines.append(f"coarsest level within {tol:.3g} %: "
                  + (f"{within} ({_level(result['levels'][within])})" if within is not None
                     else "none: refine further"))
+    if result.get("store"):
+        reused = result.get("reused") or []
+        lines.append(f"levels stored in {result['store']}" + (
+            f"; level(s) {', '.join(str(i) for i in reused)} reused" if reused else ""))
     return "\n".join(lines)

@@ -41,7 +41,7 @@ COMMAND_ARGS = {
     "export": [MODEL, "{tmp}/guide.dxf"],
     "optimize dbma": ["--quick", "--max-evaluations", "8", "--out", "{tmp}/search"],
     "sweep": ["{tmp}/study.toml", "--out", "{tmp}/out", "--workers", "1"],
-    "converge": ["toy", "--metric", "tip_deflection"],
+    "converge": ["toy", "--metric", "tip_deflection", "--out", "{tmp}/converge"],
 }
 # accepted values that run a whole design search (~30 s each): CI runs them (-m slow)
 SLOW = {

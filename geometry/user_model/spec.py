@@ -91,6 +91,17 @@ def parameter_names(raw: dict) -> set:
     return set(table) if isinstance(table, dict) else set()
 
 
+def model_parameter_names(path, allow_code: bool = False) -> list[str]:
+    """The names an override of model file ``path`` may set besides 'table.key': a bodies
+    and flexures file's [parameters], a .geo's DefineConstants (gmsh reads them), none for
+    a STEP or a mesh. ValueError (naming the file) for a file that cannot be read."""
+    path = Path(path)
+    _, raw = _read(path)
+    if "body" in raw or "flexure" in raw:
+        return sorted(parameter_names(raw))
+    return sorted(load_spec(path, allow_code=allow_code).constants)
+
+
 def _check_declared(overridden: set, declared: set, path: Path) -> None:
     """An override of bodies and flexures names one of the file's own [parameters]: its
     expressions use no other name, so any other would leave the design unchanged."""

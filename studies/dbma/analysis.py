@@ -33,6 +33,7 @@ from ...geometry.dbma.drawing import (
 )
 from ...geometry.dbma.params import DBMAParams, paper_design
 from ..engine.convergence import converge, plot_convergence
+from ..engine.validate import declare
 from .beam_model import beam_model
 from .figures import analytical_metrics
 from .material import dbma_material  # noqa: F401 (public here too)
@@ -182,6 +183,7 @@ def build(p: DBMAParams, layout: DBMALayout | None = None, model: str = "continu
     raise ValueError(f"model = {model!r} must be one of {MODELS}")
 
 
+@declare(parameters=DBMAParams, positive=("k_in", "k_out", "R_fem", "fn_working", "h", "dofs"))
 def evaluate(params_dict: dict | None = None, dim: int = 2, size_factor: float = 1.0,
              modes: bool = False, force: float = 100.0, max_dofs: int | None = None, *,
              model: Literal["continuum", "beam"] = "continuum",

@@ -37,7 +37,7 @@ from ...geometry.eightbar.flexure import (
 )
 from ...geometry.eightbar.rigid import EightBarParams, trace_eightbar
 from ...geometry.straight_line import straight_line_deviation
-from ..engine.validate import require_finite
+from ..engine.validate import declare, require_finite
 from .beam_model import beam_model, spatial_beam_modes
 from .continuum_model import build_model, group_at_vertex  # noqa: F401 (public here too)
 from .places import Places, continuum_places
@@ -246,6 +246,13 @@ def params_from_dict(values: dict) -> EightBarFlexureParams:
     return replace(base, rigid=rigid, **{k: v for k, v in values.items() if k in own})
 
 
+def parameter_names() -> list[str]:
+    """The names :func:`params_from_dict` takes: EightBarFlexureParams' and EightBarParams'."""
+    return sorted(({f.name for f in fields(EightBarFlexureParams)} - {"rigid"})
+                  | {f.name for f in fields(EightBarParams)})
+
+
+@declare(parameters=parameter_names, positive=("k_x", "k_y", "f1_hz", "h", "dofs"))
 def evaluate(params: dict | None = None, size_factor: float = 1.0, nonlinear: bool = False,
              steps: int = 6, max_dofs: int | None = None, *,
              model: Literal["continuum", "beam"] = "continuum", n_per_flexure: int = 24,

@@ -23,6 +23,7 @@ from ...reduced.layout import ROOT_EXTENSION
 from ...geometry.eightbar.driving import DrivingParams
 from ...reduced.driving import driving_beam_model, driving_prbm_stiffness
 from ...geometry.eightbar.flexure import EightBarFlexureParams
+from ..engine.validate import declare
 from .driving import build_model, linear_drive
 
 PROBE = 1e-6  # m, the linear input displacement (results are per metre)
@@ -116,6 +117,7 @@ def _metrics(out: dict) -> dict:
     return metrics
 
 
+@declare(parameters=_DRIVING + _FLEXURE, positive=("stiffness_n_per_m", "f1_hz", "dofs"))
 def evaluate(params: dict | None = None, *, model: Literal["continuum", "beam"] = "continuum",
              size_factor: float = 1.5, n_per_flexure: int = 24,
              root_extension: float = ROOT_EXTENSION) -> dict:

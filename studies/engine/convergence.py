@@ -18,10 +18,12 @@ levels (coarse c, medium m, fine f; ratios r_cm = h_c/h_m, r_mf = h_m/h_f):
 import math
 import sys
 import time
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
+from ...fem.budget import BudgetError, Estimated, estimate_only
 from ..report.figures import legend_outside, pyplot
+from .store import CaseResult, ResultStore, case_key, flexfem_version
 
 SAFETY_FACTOR = 1.25  # Roache's factor for three grids (Celik et al. 2008, eq. 6)
 
@@ -124,6 +126,8 @@ class ConvergenceResult:
     tol: float | None
     coarsest_within_tol: int | None
     dim: int = 2
+    reused: list = field(default_factory=list)
+    estimates: list = field(default_factory=list)
 
     def to_dict(self) -> dict:
         return asdict(self)
@@ -145,28 +149,23 @@ def _mesh_sizes(outputs: list, key: str | None, dim: int) -> tuple[str, list]:
 
 def converge(evaluate, metric: str, levels: list, mesh_size_key: str | None = None,
              params: dict | None = None, tol: float | None = None, dim: int = 2,
-             progress=None) -> ConvergenceResult:
+             progress=None, store=None, mechanism: str = "evaluate") -> ConvergenceResult:
     """Evaluate ``metric`` at each level (evaluate options, coarse to fine) and estimate its
     converged value. ``evaluate``: ``evaluate(params, **options) -> metrics``; ``params``:
     the design (default: the mechanism's); ``mesh_size_key``: "h" or "dofs" (default: "h" when
     returned); ``dim``: the dimension relating dofs to h; ``tol``: relative tolerance;
     ``progress``: a stream that gets a line per level as it completes (None: stderr when it is
-    a terminal)."""
+    a terminal). Before any level is meshed, every level's mesh estimate is checked against
+    its budget (:func:`check_levels`). ``store``: an SQLite file (engine/store.py) where each
+    level is recorded as it completes, keyed by ``mechanism``, the design and the level: a
+    rerun reuses the stored levels ("level N reused")."""
     if len(levels) < 3:
         raise ValueError(f"levels has {len(levels)} entries; the observed order needs >= 3")
     if tol is not None:
         tol = parse_tolerance(tol)
-    outputs, times = [], []
     stream = progress if progress is not None else (sys.stderr if sys.stderr.isatty() else None)
-    for i, options in enumerate(levels):
-        start = time.perf_counter()
-        outputs.append(evaluate(dict(params or {}), **options))
-        times.append(time.perf_counter() - start)
-        if stream is not None:
-            out = outputs[-1]
-            print(f"level {i + 1}/{len(levels)} ({_describe(options)}): "
-                  f"{out.get('dofs', '?')} DOFs, {metric} = {out.get(metric, '?')}, "
-                  f"{times[-1]:.1f} s", file=stream, flush=True)
+    outputs, times, reused, estimates = _run_levels(evaluate, levels, dict(params or {}),
+                                                    store, mechanism, metric, stream)
     if any(metric not in o for o in outputs):
         raise ValueError(f"metric = {metric!r} is not returned; returned: {sorted(outputs[0])}")
     key, sizes = _mesh_sizes(outputs, mesh_size_key, dim)
@@ -199,7 +198,89 @@ def converge(evaluate, metric: str, levels: list, mesh_size_key: str | None = No
         metric=metric, size_key=key, levels=[dict(level) for level in levels], values=values,
         sizes=sizes, dofs=[o.get("dofs") for o in outputs], wall_times_s=times, order=p,
         extrapolated=extrapolated, error_estimate=error, gci=gci, behaviour=behaviour,
-        tol=tol, coarsest_within_tol=within, dim=dim)
+        tol=tol, coarsest_within_tol=within, dim=dim, reused=reused, estimates=estimates)
+
+
+def _level_key(mechanism: str, params: dict, level: dict) -> str:
+    return case_key(mechanism, params, {"convergence_level": dict(level)}, flexfem_version())
+
+
+def _say(stream, text: str) -> None:
+    if stream is not None:
+        print(text, file=stream, flush=True)
+
+
+def check_levels(evaluate, levels: list, params: dict, skip=(), on_computed=None) -> dict:
+    """Every level's mesh estimate against its budget, before any level is meshed: each
+    level's evaluate runs under fem/budget.py's ``estimate_only`` up to its first budget
+    check. Returns {level: estimate (with "limit")}; BudgetError naming the first level that
+    does not fit, its estimate and the budget. A level whose evaluate checks no budget (a
+    closed form) is simply computed: ``on_computed(level, outputs, seconds)`` keeps it."""
+    estimates = {}
+    for i, options in enumerate(levels):
+        if i in skip:
+            continue
+        start = time.perf_counter()
+        try:
+            with estimate_only():
+                outputs = evaluate(dict(params), **options)
+        except Estimated as e:
+            estimates[i] = {**e.estimate, "limit": e.limit}
+            if not e.fits:
+                raise BudgetError(
+                    f"level {i + 1}/{len(levels)} ({_describe(options)}) does not fit: "
+                    f"{e.what} is about {e.estimate['dofs']:,} DOFs (~{e.memory_gib:.1f} GiB), above "
+                    f"the budget of {e.limit:,} DOFs ({e.source}); refused before any level "
+                    "was meshed: use " + (f"--levels {i} or fewer, " if i >= 3 else "")
+                    + "a coarser --start, a smaller --ratio or raise the budget with "
+                    "--max-dofs N") from None
+            continue
+        if on_computed is not None:
+            on_computed(i, outputs, time.perf_counter() - start)
+    return estimates
+
+
+def _run_levels(evaluate, levels, params, store, mechanism, metric, stream):
+    """(outputs, times, reused levels, estimates) of every level: those in ``store`` reused,
+    the others estimated first (:func:`check_levels`), then computed and stored one by one."""
+    outputs, times, reused = [None] * len(levels), [None] * len(levels), []
+    keys = [_level_key(mechanism, params, level) for level in levels]
+    db = ResultStore(store) if store is not None and Path(store).is_file() else None
+    try:
+        if db is not None:
+            stored = {c.key: c for c in db.results(keys) if c.ok}
+            for i, key in enumerate(keys):
+                if key in stored:
+                    outputs[i], times[i] = dict(stored[key].metrics), stored[key].wall_time_s
+                    reused.append(i)
+                    _say(stream, f"level {i + 1}/{len(levels)} reused ({_describe(levels[i])}, "
+                                 f"from {store})")
+
+        def keep(i, out, seconds):
+            nonlocal db
+            outputs[i], times[i] = out, seconds
+            if store is not None:
+                db = db or ResultStore(store)  # made with the first level it keeps
+                dofs = out.get("dofs")
+                db.record(CaseResult(keys[i], mechanism, params,
+                                     {"convergence_level": dict(levels[i])}, metrics=dict(out),
+                                     wall_time_s=seconds, flexfem_version=flexfem_version(),
+                                     dofs=int(dofs) if isinstance(dofs, (int, float))
+                                     and math.isfinite(dofs) else None))
+            _say(stream, f"level {i + 1}/{len(levels)} ({_describe(levels[i])}): "
+                         f"{out.get('dofs', '?')} DOFs, {metric} = {out.get(metric, '?')}, "
+                         f"{seconds:.1f} s")
+
+        found = check_levels(evaluate, levels, params, skip=set(reused), on_computed=keep)
+        for i, options in enumerate(levels):
+            if outputs[i] is None:
+                start = time.perf_counter()
+                out = evaluate(dict(params), **options)
+                keep(i, out, time.perf_counter() - start)
+    finally:
+        if db is not None:
+            db.close()
+    return outputs, times, reused, [found.get(i) for i in range(len(levels))]
 
 
 def plot_convergence(result: ConvergenceResult, path, theoretical_order: float | None = None) -> Path:

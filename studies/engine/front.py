@@ -38,6 +38,8 @@ import math
 import numpy as np
 
 from .store import CaseResult, ResultStore, case_key, flexfem_version
+from .checks import warn_stale
+from .validate import check_parameter_names, normalise_options, result_problems
 
 GOALS = ("min", "max")
 
@@ -113,17 +115,40 @@ def front_from_dict(data: dict) -> Front:
                  search.get("seed", 0), data.get("confirm"), tuple(references))
 
 
+def check_front(front: Front, evaluate) -> None:
+    """Refuse, before any evaluation, an option the evaluate does not take (screening or
+    confirming) and a parameter it does not declare (base, variables, references), naming
+    the key, the known names and the nearest (validate.py)."""
+    normalise_options(evaluate, front.options, front.mechanism)
+    if front.confirm:
+        normalise_options(evaluate, {**front.options, **front.confirm}, front.mechanism,
+                          where="confirm")
+    named = [(f"base.{k}", k) for k in front.base]
+    named += [(f"variables.{k}", k) for k in front.variables]
+    named += [(f"reference {r!r} params.{k}", k) for r, params in front.references
+              for k in params]
+    check_parameter_names(evaluate, named, front.mechanism)
+
+
 def _cached(evaluate, front: Front, store: ResultStore, options: dict):
-    """evaluate(params) through the store: a stored design is not computed again."""
+    """evaluate(params) through the store: a stored design is not computed again, unless it
+    fails the checks of a fresh result or lacks an objective's or a constraint's metric."""
     version = flexfem_version()
     done = {c.key: c for c in store.results()}
+    required = [m for m, _ in front.objectives] + [m for m, _, _ in front.constraints]
 
     def run(params: dict) -> dict:
         key = case_key(front.mechanism, params, options, version)
         if key in done and done[key].ok:
-            return done[key].metrics
+            stale = result_problems(done[key].metrics, evaluate, required)
+            if not stale:
+                return done[key].metrics
+            warn_stale({key: stale}, store.path)
         try:
             metrics = evaluate(dict(params), **options)
+            problems = result_problems(metrics, evaluate)
+            if problems:
+                raise ValueError(f"result check: {'; '.join(problems)}")
             case = CaseResult(key, front.mechanism, params, options, "ok",
                               {k: v for k, v in metrics.items()
                                if isinstance(v, (int, float))}, flexfem_version=version)
@@ -145,6 +170,7 @@ def search_front(front: Front, evaluate, store_path) -> dict:
     from pymoo.core.problem import ElementwiseProblem
     from pymoo.optimize import minimize
 
+    check_front(front, evaluate)
     names = list(front.variables)
     lows = np.array([front.variables[n][0] for n in names], float)
     highs = np.array([front.variables[n][1] for n in names], float)

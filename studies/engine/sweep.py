@@ -22,8 +22,9 @@ from pathlib import Path
 
 import tomllib
 
-from ..report.figures import axis_label, legend_outside, pyplot
+from .checks import check_study, required_metrics, stale_rows, warn_stale
 from .executors import make_executor
+from .plots import plot_metric, pyplot  # noqa: F401  (engine.sweep.plot_metric, as before)
 from .progress import Progress
 from .tolerance import Tolerances, tolerances_from_dict
 from .store import (
@@ -33,8 +34,7 @@ from .store import (
     case_key,
     flexfem_version,
 )
-from .units import unit_of
-from .validate import check_value, normalise_options
+from .validate import check_value, result_problems
 
 SAMPLE_METHODS = ("lhs", "sobol")
 STUDY_KEYS = {"mechanism", "name", "base", "options", "grid", "cases", "sample", "plots",
@@ -272,6 +272,9 @@ def run_case(task: dict) -> dict:
     try:
         metrics = {str(k): _as_metric(v) for k, v in task["evaluate"](dict(task["params"]),
                                                                       **task["options"]).items()}
+        problems = result_problems(metrics, task["evaluate"])  # as a stored row's (checks.py)
+        if problems:
+            raise ValueError(f"result check: {'; '.join(problems)}")
         status, error = "ok", None
     except Exception as exc:  # a failing case is a result, not the end of the study
         metrics, status = {}, failure_status(exc)
@@ -323,21 +326,25 @@ def run_study(study: Study, store_path, evaluate, workers: int | None = None,
     draw a progress line on stderr (None: when stderr is a terminal). On Ctrl-C the cases in
     flight are stopped and KeyboardInterrupt propagates; what completed stays stored.
     ``max_cases``: a study that expands to more designs is refused before expansion. The
-    options are normalised to the types ``evaluate`` declares (validate.normalise_options).
+    options are normalised to the types ``evaluate`` declares (validate.normalise_options),
+    the names checked before any case runs, and a stored row reused only if it passes the
+    checks of a fresh result (checks.py).
     """
     start = time.perf_counter()
     count = study.case_count()
     if count > max_cases:
         raise ValueError(f"study {study.name!r} has {count:,} cases, above the limit of "
                          f"{max_cases:,}: split it, or raise the limit (--max-cases)")
-    options = normalise_options(evaluate, study.options, study.mechanism)
-    study = Study(**{**study.__dict__, "options": options})
+    study = check_study(study, evaluate)  # names and options, before any case (checks.py)
     tasks = [{**task, "evaluate": evaluate} for task in study_tasks(study)]
     executor = make_executor(workers, scheduler)
     with ResultStore(store_path) as store:
         statuses = store.statuses()
+        stale = stale_rows(store, [t["key"] for t in tasks if statuses.get(t["key"]) == "ok"],
+                           evaluate, required_metrics(study))
+        warn_stale(stale, store_path)
         todo = [t for t in tasks if statuses.get(t["key"], "error") == "error"
-                or (retry_failed and statuses[t["key"]] == "failed")]
+                or (retry_failed and statuses[t["key"]] == "failed") or t["key"] in stale]
         bar = Progress(len(todo), enabled=progress)
         try:
             if todo:
@@ -352,49 +359,3 @@ def run_study(study: Study, store_path, evaluate, workers: int | None = None,
     return StudyResult(study=study, store_path=Path(store_path), cases=cases, computed=len(todo),
                        reused=len(tasks) - len(todo), executor=executor.description,
                        wall_time_s=time.perf_counter() - start)
-
-
-def plot_metric(cases, metric: str, parameter: str, path, overlay=(), units=None) -> Path:
-    """PNG of ``metric`` against ``parameter`` over the successful ``cases`` (CaseResult),
-    one line per combination of the other varied parameters, ``overlay`` metrics (e.g. the
-    analytical value) dashed or dotted in the same colour; designs that share no line with
-    another (a space-filling sample) as grey points. Axis labels carry the units of
-    ``units`` ({name: unit}, see :func:`.units.unit_of`)."""
-    plt = pyplot()
-    ok = [c for c in cases if c.ok and parameter in c.params and metric in c.metrics]
-    if not ok:
-        raise ValueError(f"no successful case has both parameter {parameter!r} and metric {metric!r}")
-    others = sorted({k for c in ok for k in c.params if k != parameter
-                     and len({repr(d.params.get(k)) for d in ok}) > 1})
-    groups = {}
-    for case in ok:
-        groups.setdefault(tuple(case.params.get(k) for k in others), []).append(case)
-    lines = {k: v for k, v in groups.items() if len(v) > 1}
-    scattered = [c for v in groups.values() if len(v) == 1 for c in v]
-    styles = itertools.cycle(["--", ":", "-."])
-    overlay_styles = {name: next(styles) for name in overlay}
-    fig, ax = plt.subplots(figsize=(6.4, 4.4))
-    for (label_values, members), colour in zip(sorted(lines.items(), key=lambda g: repr(g[0])),
-                                               itertools.cycle(plt.rcParams["axes.prop_cycle"].by_key()["color"])):
-        members.sort(key=lambda c: c.params[parameter])
-        x = [c.params[parameter] for c in members]
-        label = ", ".join(f"{k}={v:.4g}" if isinstance(v, float) else f"{k}={v}"
-                          for k, v in zip(others, label_values))
-        ax.plot(x, [c.metrics[metric] for c in members], "o-", color=colour,
-                label=f"{metric} {label}".strip())
-        for name in overlay:
-            ax.plot(x, [c.metrics.get(name, math.nan) for c in members], overlay_styles[name],
-                    color=colour, label=f"{name} {label}".strip())
-    if scattered:  # designs that share no line with another (e.g. a space-filling sample)
-        ax.plot([c.params[parameter] for c in scattered], [c.metrics[metric] for c in scattered],
-                "o", color="0.35", label=f"{metric}, other designs ({len(scattered)})")
-    if len(lines) * (1 + len(overlay)) + bool(scattered) <= 12:
-        legend_outside(ax)  # beside the axes: no curve hidden
-    ax.set_xlabel(axis_label(parameter, unit_of(parameter, units)))
-    ax.set_ylabel(axis_label(metric, unit_of(metric, units)))
-    ax.grid(True, alpha=0.3)
-    fig.tight_layout()
-    fig.savefig(path, dpi=120, bbox_inches="tight")
-    plt.close(fig)
-    return Path(path)
-

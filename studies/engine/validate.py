@@ -9,6 +9,9 @@ types are read from the evaluate's signature: each keyword parameter's default (
 or bool) or its annotation (``int | None``) gives its type; an annotation
 ``Literal["continuum", "beam"]`` lists the values an option may take.
 """
+import dataclasses
+import difflib
+import fnmatch
 import functools
 import inspect
 import math
@@ -90,17 +93,20 @@ def _normalise(where: str, value, kind):
     return value
 
 
-def normalise_options(evaluate, options: dict, mechanism: str) -> dict:
+def normalise_options(evaluate, options: dict, mechanism: str, where: str = "options") -> dict:
     """``options`` with each value of its declared type (an integral 2.0 for an int option
-    is 2); ValueError naming ``options.<name>`` for an unknown option or a value of the
-    wrong type."""
+    is 2); ValueError naming ``options.<name>`` for an unknown option (one the signature
+    lacks, or that its ``**options`` do not take where :func:`declare` says which) or a
+    value of the wrong type."""
     declared, accepts_any = declared_options(evaluate)
+    extra = _declared(evaluate, "study_options")  # what its **options take, if it says
     out = {}
     for name, value in options.items():
-        if name not in declared and not accepts_any:
-            raise ValueError(f"options.{name} is not an option of mechanism {mechanism!r}; "
-                             f"its options: {sorted(declared)}")
-        out[name] = _normalise(f"options.{name}", value, declared.get(name))
+        if name not in declared and (not accepts_any or extra is not None and name not in extra):
+            known = sorted(declared) + sorted(extra or ())
+            raise ValueError(f"{where}.{name} is not an option of mechanism {mechanism!r}; "
+                             f"its options: {known}{nearest(name, known)}")
+        out[name] = _normalise(f"{where}.{name}", value, declared.get(name))
     return out
 
 
@@ -113,3 +119,77 @@ def require_finite(values: dict, what: str) -> dict:
         raise ValueError(f"{what}: result not finite: "
                          + ", ".join(f"{k} = {values[k]}" for k in bad))
     return values
+
+
+def declare(parameters=None, options=None, positive=()):
+    """Decorate a mechanism's ``evaluate`` with what the engine checks around it, so that a
+    misspelled name is refused before any case runs and a stored row is reused only if it
+    passes the checks of a fresh one. ``parameters``: its parameter names (a dataclass: its
+    fields; an iterable of names; or a callable taking the keywords a functools.partial
+    binds, e.g. a model file's ``file``, and returning them, or None where it cannot tell); ``options``: the same for the
+    names its ``**options`` take (a model file's 'table.key'); ``positive``: metric names or
+    fnmatch patterns ("stiffness_*", "f*_hz") that must be > 0 (stiffnesses, frequencies: positive by definition
+    in its analyses). An evaluate declaring nothing is checked by its signature only."""
+    def mark(evaluate):
+        evaluate.study_parameters = parameters
+        evaluate.study_options = options
+        evaluate.positive_metrics = tuple(positive)
+        return evaluate
+    return mark
+
+
+def _declared(evaluate, attribute: str):
+    func, bound = evaluate, {}
+    if isinstance(evaluate, functools.partial):
+        func, bound = evaluate.func, dict(evaluate.keywords)
+    source = getattr(func, attribute, None)
+    if source is None:
+        return None
+    if dataclasses.is_dataclass(source) and isinstance(source, type):
+        return {f.name for f in dataclasses.fields(source)}
+    names = source(**bound) if callable(source) else source
+    return None if names is None else set(names)
+
+
+def known_parameters(evaluate) -> set | None:
+    """The parameter names ``evaluate`` declares (:func:`declare`), None if it declares none."""
+    return _declared(evaluate, "study_parameters")
+
+
+def nearest(name, known) -> str:
+    """'; did you mean 'X'?' for the closest of ``known`` to ``name`` (difflib), or ''."""
+    close = difflib.get_close_matches(str(name), sorted(map(str, known)), n=1, cutoff=0.6)
+    return f"; did you mean {close[0]!r}?" if close else ""
+
+
+def check_parameter_names(evaluate, named, mechanism: str) -> None:
+    """Refuse the first of ``named`` ((where, name) pairs: 'grid.L', 'L') that names no
+    parameter ``evaluate`` declares, with the known names and the nearest: a misspelled
+    name would otherwise run the mechanism's default for the parameter meant, unchanged."""
+    known = known_parameters(evaluate)
+    if known is None:
+        return
+    for where, name in named:
+        if name not in known:
+            raise ValueError(f"{where} names no parameter of mechanism {mechanism!r}; its "
+                             f"parameters: {', '.join(sorted(known)) or 'none'}"
+                             f"{nearest(name, known)}")
+
+
+def result_problems(metrics: dict, evaluate=None, required=()) -> list[str]:
+    """Why ``metrics`` (an "ok" case's, fresh or stored) cannot stand as a result: none at
+    all, a metric the study asks for (``required``) missing, a number that is not finite,
+    a metric ``evaluate`` declares positive (:func:`declare`) that is not > 0. [] if none."""
+    if not metrics:
+        return ["it has no metrics"]
+    problems = [f"metric {m!r} is missing" for m in required if m not in metrics]
+    func = evaluate.func if isinstance(evaluate, functools.partial) else evaluate
+    patterns = getattr(func, "positive_metrics", ())
+    for name, value in metrics.items():
+        if not isinstance(value, numbers.Real) or isinstance(value, bool):
+            continue
+        if not math.isfinite(value):
+            problems.append(f"{name} = {value} is not finite")
+        elif not value > 0 and any(fnmatch.fnmatchcase(name, p) for p in patterns):
+            problems.append(f"{name} = {value:g} must be > 0")
+    return problems

@@ -18,6 +18,8 @@ The engine's tests add hooks (sleep, fail, crash) in a mechanism of their own
 import math
 from dataclasses import dataclass, fields
 
+from ..engine.validate import declare
+
 BASE_ELEMENTS = 8  # elements at size_factor = 1
 #: Units of the metrics of :func:`evaluate` (the parameters' names end in their unit).
 UNITS = {"tip_deflection*": "m", "stiffness*": "N/m", "root_stress": "Pa", "h": "m",
@@ -99,6 +101,7 @@ def elements_for(size_factor: float = 1.0, n_elements: int | None = None) -> int
     return max(1, round(BASE_ELEMENTS / size_factor))
 
 
+@declare(parameters=CantileverParams, positive=("stiffness*", "h", "dofs"))
 def evaluate(params: dict, size_factor: float = 1.0, n_elements: int | None = None) -> dict:
     """Metrics of the toy cantilever (SI): tip deflection (m) numerical and exact, stiffness
     (N/m) both ways, root stress (Pa), element size ``h`` (m) and ``dofs`` (nodes).

@@ -232,7 +232,7 @@ def flat_metrics(result: dict) -> dict[str, float]:
 
 def evaluate(params: dict | None = None, *, model: Literal["continuum", "beam"] = "continuum",
              file: str | None = None, size_factor: float = 1.0, allow_code: bool = False,
-             **options) -> dict[str, float]:
+             max_dofs: int | None = None, **options) -> dict[str, float]:
     """Metrics of the model file ``file`` with ``params`` overriding its [parameters]
     (SI) and ``options`` its other tables ('material.E': 210e9, 'analysis.modes': 3, ...),
     by the continuum FEM or (``model="beam"``) its declared beam model. Keys: dofs, h (m),
@@ -240,7 +240,8 @@ def evaluate(params: dict | None = None, *, model: Literal["continuum", "beam"] 
     stiffness_<group>_<axis> (N/m, single force load), f1_hz, f2_hz, ... (Hz),
     stroke_limit_yield and stroke_limit_fatigue (m, studies/user_model/stroke.py). A path given
     as ``model`` (``evaluate(model="guide.toml")``) is the file, analysed by the continuum.
-    ``allow_code``: the file's .geo may run code (geometry/user_model/geo_guard.py)."""
+    ``allow_code``: the file's .geo may run code (geometry/user_model/geo_guard.py);
+    ``max_dofs``: the continuum's mesh budget (None: half the available memory)."""
     if file is None and model not in MODELS:
         file, model = model, "continuum"
     if file is None:
@@ -250,4 +251,4 @@ def evaluate(params: dict | None = None, *, model: Literal["continuum", "beam"] 
         raise ValueError(f"evaluate: unknown option(s) {unknown}; give parameters in params and "
                          "other model-file keys as 'table.key' (e.g. 'material.E')")
     spec = load_spec(file, {**(params or {}), **options}, allow_code=allow_code)
-    return flat_metrics(analyze_model(spec, size_factor, model))
+    return flat_metrics(analyze_model(spec, size_factor, model, max_dofs))

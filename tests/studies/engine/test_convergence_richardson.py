@@ -119,9 +119,9 @@ def test_converge_command_and_plot(tmp_path, capsys):
     assert result["tol"] == 0.005 and len(result["values"]) == 5
     assert abs(result["order"] - 2.0) < 0.1
     assert (tmp_path / "convergence_tip_deflection.png").read_bytes()[:4] == b"\x89PNG"
-    assert main(["converge", "toy", "--metric", "tip_deflection"]) == 0
+    assert main(["converge", "toy", "--metric", "tip_deflection", "--out", str(tmp_path)]) == 0
     assert "observed order 2 (" in capsys.readouterr().out
-    assert main(["converge", "toy", "--metric", "nope"]) == 2
+    assert main(["converge", "toy", "--metric", "nope", "--out", str(tmp_path)]) == 2
     assert "nope" in capsys.readouterr().err
 
 

@@ -48,7 +48,7 @@ def test_stored_cases_follow_the_model_and_geometry_files(guide, capsys):
 
 def test_converge_takes_a_model_file(guide, capsys):
     assert main(["converge", str(guide / "guide.toml"), "--metric", "stiffness_stage_x",
-                 "--levels", "3", "--start", "2", "--json"]) == 0
+                 "--levels", "3", "--start", "2", "--out", str(guide / "out"), "--json"]) == 0
     result = json.loads(capsys.readouterr().out)
     assert result["values"][0] > result["values"][-1] > 0  # P2 stiffens on coarse meshes
     assert result["extrapolated"] == pytest.approx(result["values"][-1], rel=0.01)
