@@ -9,6 +9,9 @@ from ...fem import (Fixed, Force, Model, PlaneStrain, PlaneStress, Prescribed, S
                     Traction, compliance_matrix, solve_buckling, solve_harmonic, solve_modes,
                     solve_nonlinear, solve_static)
 from ...geometry.user_model import ModelSpec, load_spec, mesh_geometry
+from ...geometry.user_model.names import override_keys
+from ...geometry.user_model.spec import model_parameter_names
+from ..engine.validate import declare
 from ...reduced.model_file import beam_model
 from .beam_analysis import (check_beam_analyses, lifted_outputs, out_of_plane, planar_twin,
                             spatial_modes, spatial_static)
@@ -230,6 +233,13 @@ def flat_metrics(result: dict) -> dict[str, float]:
     return out
 
 
+def _names(file=None, allow_code=False, **_) -> list[str] | None:
+    """The [parameters] names of the model file a study binds (spec.model_parameter_names)."""
+    return model_parameter_names(file, allow_code) if file is not None else None
+
+
+@declare(parameters=_names, options=lambda **_: override_keys(),
+         positive=("stiffness_*", "f*_hz", "compliance_*", "h", "dofs"))
 def evaluate(params: dict | None = None, *, model: Literal["continuum", "beam"] = "continuum",
              file: str | None = None, size_factor: float = 1.0, allow_code: bool = False,
              max_dofs: int | None = None, **options) -> dict[str, float]:
