@@ -228,3 +228,15 @@ def test_built_in_mechanisms_declare_the_names_their_parsers_take():
                 parse({field: 0.0})
             except (ValueError, TypeError) as error:
                 assert "parameter(s)" not in str(error), (name, field, str(error))
+
+
+def test_sweep_refuses_a_misspelled_grid_name_in_one_line(bodies):
+    study = bodies.parent / "s.toml"
+    study.write_text('mechanism = { model = "guide.toml" }\n[options]\nmodel = "beam"\n'
+                     '[grid]\nthicknes = [0.001, 0.0012, 0.0014]\n')
+    run = flexfem("sweep", study, "--out", bodies.parent / "out", "--workers", "1")
+    assert run.returncode == 2, run.stderr
+    lines = run.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("flexfem sweep: error: grid.thicknes "), lines
+    assert "guide.toml" in lines[0] and "its parameters: L, d, t" in lines[0]
+    assert not (bodies.parent / "out" / "results.sqlite").exists()
