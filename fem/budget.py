@@ -20,6 +20,17 @@ TETRAHEDRA_PER_CUBE = 8.5  # regular tetrahedra of edge h: h^3 / (6 sqrt 2) each
 #: Nodes per element of large unstructured meshes, by (dim, order).
 NODES_PER_ELEMENT = {(2, 1): 0.5, (2, 2): 2.05, (3, 1): 0.18, (3, 2): 1.4}
 FALLBACK_MEMORY = 4 * 2**30  # when the available memory cannot be read
+#: Most eigenpairs a model file may ask for (modes, buckling factors, a harmonic's modal
+#: basis): a flexure is designed on its first few; the Lanczos solve keeps k vectors of the
+#: model's size and its time grows ~k^2 (4000 modes of a small guide ran past 120 s).
+MAX_MODES = 200
+#: Most frequencies of a harmonic response: the response is stored at every frequency for
+#: every DOF (16 bytes each, complex), 10,000 x 100,000 DOFs = 16 GB; an FRF is read at
+#: hundreds of points.
+MAX_FREQUENCY_POINTS = 10_000
+#: Bytes per DOF of a topology optimisation's structured grid (bilinear quads, a direct
+#: solve of a banded stiffness: measured ~1.5 kB a DOF on top88-sized grids; margin ~2).
+TOPOPT_BYTES_PER_DOF = 3_000
 
 
 _ESTIMATING = contextvars.ContextVar("flexfem_budget_estimating", default=False)
@@ -82,6 +93,18 @@ def available_memory_bytes() -> int:
 def default_max_dofs(dim: int) -> int:
     """DOFs whose solve fits in half the available memory."""
     return int(0.5 * available_memory_bytes() / BYTES_PER_DOF[dim])
+
+
+def check_grid(nelx: int, nely: int, what: str) -> None:
+    """BudgetError when a topology optimisation's nelx x nely grid (2 DOFs a node) needs more
+    than half the available memory at TOPOPT_BYTES_PER_DOF, naming ``what``."""
+    dofs = 2 * (nelx + 1) * (nely + 1)
+    memory, limit = dofs * TOPOPT_BYTES_PER_DOF, 0.5 * available_memory_bytes()
+    if memory > limit:
+        raise BudgetError(f"{what}: {nelx:,} x {nely:,} elements are {dofs:,} DOFs (~"
+                          f"{memory / 2**30:.1f} GiB to solve), above the budget of "
+                          f"{int(limit / TOPOPT_BYTES_PER_DOF):,} DOFs (half the available "
+                          "memory); use a coarser grid")
 
 
 def check_budget(estimate: dict, dim: int, max_dofs: int | None = None,

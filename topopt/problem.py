@@ -6,6 +6,7 @@ import hashlib
 
 import numpy as np
 
+from ..fem.budget import check_grid
 from .filters import KINDS as FILTERS
 from .grid import Grid
 from .interpolation import Interpolation
@@ -169,7 +170,9 @@ def _positive(value, key: str) -> None:
 
 
 def check_problem(p: Problem) -> None:
-    """ValueError naming the first inconsistent key of ``p``."""
+    """ValueError naming the first inconsistent key of ``p`` (a BudgetError for a grid
+    that does not fit the machine: fem/budget.py)."""
+    check_grid(p.grid.nelx, p.grid.nely, "domain.nelx x domain.nely")
     if not (isinstance(p.nu, (int, float)) and -1.0 < p.nu < 0.5):
         raise ValueError(f"material.nu = {p.nu!r}: must be in (-1, 0.5)")
     _positive(p.thickness, "domain.thickness")

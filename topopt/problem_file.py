@@ -206,5 +206,10 @@ def read_problem_file(path) -> dict:
 
 
 def load_problem(path) -> Problem:
-    """Read and check a problem file."""
-    return problem_from_dict(read_problem_file(path))
+    """Read and check a problem file (its errors name it)."""
+    try:
+        return problem_from_dict(read_problem_file(path))
+    except ValueError as error:
+        if not str(error).startswith(Path(path).name):
+            error.args = (f"{Path(path).name}: {error}",)
+        raise

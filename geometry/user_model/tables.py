@@ -6,6 +6,7 @@ import math
 import numbers
 from pathlib import Path
 
+from ...fem.budget import MAX_FREQUENCY_POINTS, MAX_MODES
 from ...fem.materials import Material, material, material_names
 from .toml_lines import find_line
 
@@ -338,6 +339,15 @@ def parse_harmonic(raw, loc: Locator) -> Harmonic:
         if key in raw and not ok(raw[key]):
             raise loc.error(f"{what} {key} = {raw[key]!r} is not valid (f_max > 0 Hz, points "
                             ">= 3, 0 < damping < 1, n_modes >= 1)", "analysis", "harmonic")
+    for key, cap in (("points", MAX_FREQUENCY_POINTS), ("n_modes", MAX_MODES)):
+        if raw.get(key, 0) > cap:
+            raise loc.error(f"{what} {key} = {raw[key]:,} is above the most flexfem solves, "
+                            f"{cap:,}: " + ("the response is kept at every frequency for every "
+                                            "DOF (points x DOFs x 16 bytes: 10,000 x 100,000 "
+                                            "DOFs is 16 GB)" if key == "points" else
+                                            "each mode is a vector of the model's size and "
+                                            "the solve's time grows as their square"),
+                            "analysis", "harmonic")
     return Harmonic(**{k: (float(v) if k in ("f_max", "damping") else v)
                        for k, v in raw.items()})
 
@@ -370,6 +380,11 @@ def parse_analysis(raw, loc: Locator) -> Analysis:
             if not (isinstance(v, int) and not isinstance(v, bool) and v >= 1):
                 raise loc.error(f"[analysis] {key} = {v!r} must be an integer >= 1",
                                 "analysis", key)
+            if key in ("modes", "buckling") and v > MAX_MODES:
+                raise loc.error(f"[analysis] {key} = {v:,} is above the most flexfem solves, "
+                                f"{MAX_MODES}: a flexure is designed on its first few; each "
+                                "one is a vector of the model's size and the eigen-solve's "
+                                "time grows as their square", "analysis", key)
             values[key] = v
     solver = raw.get("solver", "auto")
     if solver not in SOLVERS:
