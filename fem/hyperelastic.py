@@ -26,6 +26,16 @@ def green_lagrange(F: np.ndarray) -> np.ndarray:
     return 0.5 * (mul(transpose(F), F) - eye(np.ones_like(F[0, 0]), F.shape[0]))
 
 
+def green_lagrange_of_gradient(H: np.ndarray) -> np.ndarray:
+    """E = (H + H^T + H^T H) / 2 of a (dim, dim, ...) displacement gradient H = grad u: the
+    Green-Lagrange strain without forming F^T F - I, whose cancellation leaves an absolute
+    error of ~1e-16 in every strain. That floor (a residual of ~2 mu 1e-16 Pa times each
+    element's area) does not shrink with the load, so at a small load step Newton's relative
+    residual would stall above its tolerance; computed from H the error stays relative to the
+    strain itself."""
+    return 0.5 * (H + transpose(H) + mul(transpose(H), H))
+
+
 def svk_stress(E: np.ndarray, lam: float, mu: float) -> np.ndarray:
     """Second Piola-Kirchhoff stress (Pa) S = lam tr(E) I + 2 mu E."""
     return lam * trace(E) * eye(np.ones_like(E[0, 0]), E.shape[0]) + 2.0 * mu * E
@@ -78,11 +88,12 @@ class Assembler:
 
     def state(self, u: np.ndarray):
         """(F, S) at the quadrature points; raises _StepFailed where det F <= 0."""
-        F = deformation(self.basis, u)
+        H = self.basis.interpolate(u).grad
+        F = H + eye(np.ones_like(H[0, 0]), H.shape[0])
         J = np.linalg.det(np.moveaxis(F, (0, 1), (-2, -1)))
         if not np.all(np.isfinite(J)) or J.min() <= 0:
             raise _StepFailed(f"an element turned inside out (min det F = {J.min():.2g})", [])
-        return F, svk_stress(green_lagrange(F), self.lam, self.mu)
+        return F, svk_stress(green_lagrange_of_gradient(H), self.lam, self.mu)
 
     def internal_force(self, F, S) -> np.ndarray:
         return _internal_force.assemble(self.basis, F=F, S=S, t=self.t)

@@ -85,7 +85,9 @@ def _resume(discrete, out_dir, start=None):
     p = discrete.problem
     z, beta = (discrete.initial(), discrete.beta) if start is None else start
     fresh = (z, 0, np.inf, np.zeros((0, 2)), MMAState.start(z), 0.0, beta, 0)
-    state = load_state(out_dir) if out_dir is not None else None
+    keys = ("digest", "z", "iteration", "change", "history", "xold1", "xold2", "low", "upp",
+            "scale") + (("beta", "at_beta") if p.projection else ())
+    state = load_state(out_dir, keys) if out_dir is not None else None
     if state is None:
         return fresh
     if str(state["digest"]) != p.digest():

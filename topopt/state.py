@@ -22,10 +22,28 @@ def save_state(folder, **arrays) -> Path:
     return target
 
 
-def load_state(folder) -> dict | None:
-    """The arrays of ``folder/state.npz``, or None where there is none."""
+def load_state(folder, required=()) -> dict | None:
+    """The arrays of ``folder/state.npz``, or None where there is none. A file numpy cannot
+    read (cut short, overwritten, not an .npz, holding objects) or lacking one of the
+    ``required`` keys: ValueError naming it, damaged, and what to do (numpy's own message
+    would advise loading it with pickles, which runs code from the file)."""
     path = Path(folder) / STATE_FILE
     if not path.is_file():
         return None
-    with np.load(path, allow_pickle=False) as data:
-        return {k: data[k] for k in data.files}
+    try:
+        with np.load(path, allow_pickle=False) as data:
+            state = {k: data[k] for k in data.files}
+    except Exception as error:  # zipfile, OSError, EOFError, pickled objects: all damage
+        cause = (f"{type(error).__name__}: {error}".split("\n")[0] if "pickle" not in str(error)
+                 else "it is no archive of plain arrays; flexfem never unpickles a file, "
+                 "which could run code")
+        raise damaged(path, cause) from None
+    missing = [k for k in required if k not in state]
+    if missing:
+        raise damaged(path, f"it lacks {', '.join(missing)}")
+    return state
+
+
+def damaged(path: Path, cause: str) -> ValueError:
+    return ValueError(f"{path}: the saved optimiser state is damaged ({cause.rstrip('.')}); "
+                      "delete it to start the optimisation again")

@@ -13,6 +13,10 @@ from shapely import LineString, Point, Polygon
 from .. import polygon as poly
 from .plane import box_corners
 
+#: The smallest side of a body's box (m), as a flexure's smallest thickness: below it the box
+#: is a sliver (a corner mistyped by a rounding error) that gmsh cannot draw or mesh.
+BOX_SIDE_MIN = 1e-6
+
 
 @dataclass(frozen=True)
 class Body:
@@ -34,6 +38,12 @@ class Body:
             if not all(map(math.isfinite, (x0, y0, x1, y1))) or x0 == x1 or y0 == y1:
                 raise ValueError(f"{where}: box {[list(box[0]), list(box[1])]} must be two "
                                  "opposite corners of a rectangle of non-zero area (m)")
+            side = min(abs(x1 - x0), abs(y1 - y0))
+            if side < BOX_SIDE_MIN:
+                raise ValueError(f"{where}: box {[list(box[0]), list(box[1])]} is only "
+                                 f"{side:.3g} m {'wide' if abs(x1 - x0) == side else 'tall'}: "
+                                 f"a body's box needs at least {BOX_SIDE_MIN:g} m on each side "
+                                 "(a sliver no mesh can resolve; lengths are in m)")
             boxes.append(((min(x0, x1), min(y0, y1)), (max(x0, x1), max(y0, y1))))
         polygons = []
         for k, vertices in enumerate(self.polygons):

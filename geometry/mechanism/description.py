@@ -166,6 +166,11 @@ class Mechanism:
             for side in (-1.0, 1.0):
                 offset = side * f.width / 2 * span.n
                 corner = side_root(body, root + offset, inward, f.width * REACH, tol)
+                if corner is None:
+                    raise _error(f, f"{_label(f, index)}: its side at "
+                                 f"{(root + offset).tolist()} misses body {name!r}: the body's "
+                                 f"face must be wider than the flexure ({f.width:.4g} m) where "
+                                 "it starts")
                 face = body.face_at(corner, 10 * tol)
                 if face is None:
                     raise _error(f, f"{_label(f, index)}: its side meets body {name!r} at "

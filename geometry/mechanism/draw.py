@@ -3,6 +3,7 @@ OpenCASCADE kernel (boxes, polygons, flexures, root fillets, notches), fragmente
 conforming model with a boundary group per body (its outline, where it meets no flexure),
 meshed with local refinement in every flexure; 2-D, or extruded by the depth to a solid (the
 group: the body's lateral faces). Lengths in m."""
+from contextlib import contextmanager
 import math
 
 import numpy as np
@@ -81,6 +82,21 @@ def _flexure_shapes(gmsh, mechanism: Mechanism, index: int, body_tags) -> list:
     return shape
 
 
+@contextmanager
+def _naming(source: str, what: str):
+    """A gmsh (OpenCASCADE) failure while drawing ``what`` as one ValueError naming it: a
+    degenerate or near-coincident shape (a sliver, an edge within round-off of another)."""
+    try:
+        yield
+    except ValueError:
+        raise
+    except Exception as error:  # gmsh raises bare Exception with OCC's last error
+        cause = str(error).strip() or "no reason given"
+        raise ValueError(f"{source + ': ' if source else ''}{what}: gmsh cannot draw it "
+                         f"({cause}); look for a degenerate shape: a side near zero or an edge "
+                         "within round-off of another body's or flexure's") from None
+
+
 def draw(gmsh, mechanism: Mechanism, dim: int = 2) -> dict:
     """Draw ``mechanism`` into the open gmsh session, fragmented into one conforming model with
     a physical group per body (its outline in 2-D, its lateral faces in 3-D: dimension
@@ -89,15 +105,18 @@ def draw(gmsh, mechanism: Mechanism, dim: int = 2) -> dict:
     occ = gmsh.model.occ
     body_tags = []
     for body in mechanism.bodies:
-        boxes = [(2, occ.addRectangle(x0, y0, 0, x1 - x0, y1 - y0))
-                 for (x0, y0), (x1, y1) in body.boxes]
-        boxes += [(2, _polygon(occ, vertices)) for vertices in body.polygons]  # ccw
-        if len(boxes) > 1:
-            boxes, _ = occ.fuse(boxes[:1], boxes[1:])
+        with _naming(body.source or mechanism.source, f"body {body.name!r}"):
+            boxes = [(2, occ.addRectangle(x0, y0, 0, x1 - x0, y1 - y0))
+                     for (x0, y0), (x1, y1) in body.boxes]
+            boxes += [(2, _polygon(occ, vertices)) for vertices in body.polygons]  # ccw
+            if len(boxes) > 1:
+                boxes, _ = occ.fuse(boxes[:1], boxes[1:])
         body_tags.append(boxes)
     every_body = [dt for tags in body_tags for dt in tags]
-    flexure_tags = [_flexure_shapes(gmsh, mechanism, i, every_body)
-                    for i in range(len(mechanism.flexures))]
+    flexure_tags = []
+    for i, f in enumerate(mechanism.flexures):
+        with _naming(f.source or mechanism.source, _label(f, i)):
+            flexure_tags.append(_flexure_shapes(gmsh, mechanism, i, every_body))
     inputs = body_tags + flexure_tags
     flat = [dt for tags in inputs for dt in tags]
     _, children = occ.fragment(flat, [])

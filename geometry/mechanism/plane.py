@@ -23,11 +23,13 @@ def convex_overlap(p: np.ndarray, q: np.ndarray, tol: float) -> bool:
     return True
 
 
-def side_root(body, point, direction, reach: float, tol: float) -> np.ndarray:
+def side_root(body, point, direction, reach: float, tol: float) -> np.ndarray | None:
     """Where the line through ``point`` along ``direction`` (unit) leaves ``body`` nearest
-    ``point``, looking ``reach`` (m) either side (m)."""
+    ``point``, looking ``reach`` (m) either side (m); None where that line misses the body."""
     start, end = point - reach * direction, point + reach * direction
     exits = [hi for _, hi in body.span_inside(start, end, tol)]
+    if not exits:
+        return None
     s = min(exits, key=lambda v: abs(v - 0.5))
     return start + s * (end - start)
 

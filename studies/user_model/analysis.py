@@ -15,7 +15,7 @@ from ..engine.validate import declare
 from ...reduced.model_file import beam_model
 from .beam_analysis import (check_beam_analyses, lifted_outputs, out_of_plane, planar_twin,
                             spatial_modes, spatial_static)
-from .outputs import check_finite, groups_of as _groups, stiffness
+from .outputs import check_finite, check_loaded_supports, groups_of as _groups, stiffness
 from .stroke import stroke_limits
 
 MODELS = ("continuum", "beam")
@@ -69,9 +69,13 @@ def _solver(spec: ModelSpec) -> str:
 
 
 def _in_context(spec: ModelSpec, error: ValueError) -> ValueError:
-    """fem errors prefixed by the model file (their own type kept)."""
+    """The fem error itself, its message prefixed by the model file: its type and attributes
+    kept (rebuilding it would fail for one whose constructor takes more than the message,
+    such as NonConvergenceError, and hide the real cause behind a TypeError)."""
     text = str(error)
-    return type(error)(text if text.startswith(spec.source) else f"{spec.source}: {text}")
+    if not text.startswith(spec.source):
+        error.args = (f"{spec.source}: {text}",)
+    return error
 
 
 def build(spec: ModelSpec, model: str = "continuum", size_factor: float = 1.0,
@@ -99,6 +103,7 @@ def analyze_model(spec: ModelSpec, size_factor: float = 1.0, model: str = "conti
     available memory)."""
     if model not in MODELS:
         raise ValueError(f"{spec.source}: model = {model!r} must be one of {MODELS}")
+    check_loaded_supports(spec)
     solid = None
     if model == "beam":
         check_beam_analyses(spec)

@@ -12,6 +12,24 @@ def groups_of(spec) -> list[str]:
     return list(dict.fromkeys(names))
 
 
+def check_loaded_supports(spec) -> None:
+    """ValueError naming the group that is both supported and loaded along a held axis (a
+    fully held group along any): its support takes the load at once, nothing else carries it,
+    and its "stiffness" would be a force over no motion."""
+    held = {}
+    for s in spec.supports:
+        held.setdefault(s.group, set()).update(range(3) if s.components is None else
+                                                s.components)
+    for load in spec.loads:
+        axes = [_AXES[k] for k in sorted(held.get(load.group, ()))
+                if k < len(load.vector) and load.vector[k] != 0]
+        if axes:
+            raise ValueError(f"{load.source or spec.source}: group {load.group!r} is both "
+                             f"supported and loaded (along {', '.join(axes)}): its support "
+                             "takes the load and nothing moves; load another group, or leave "
+                             "that axis of its [[supports]] free")
+
+
 def single_force(spec):
     """The model's one load if it is a non-zero force and every support holds still, else
     None. Only then is a group's motion the force's alone: a prescribed support displacement
