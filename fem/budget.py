@@ -75,8 +75,24 @@ class BudgetError(ValueError):
     environmental = True
 
 
+#: An environment variable that fixes the memory flexfem plans for (GiB) instead of reading
+#: what is free now: for a machine shared with other jobs, and for tests, whose budgets must
+#: not depend on the load of the moment.
+MEMORY_VARIABLE = "FLEXFEM_MEMORY_GIB"
+
+
 def available_memory_bytes() -> int:
-    """Memory available to a new allocation now (Linux MemAvailable), else free pages."""
+    """Memory available to a new allocation: ``FLEXFEM_MEMORY_GIB`` where it is set, else
+    what is available now (Linux MemAvailable), else free pages."""
+    fixed = os.environ.get(MEMORY_VARIABLE)
+    if fixed:
+        try:
+            gib = float(fixed)
+        except ValueError:
+            gib = math.nan
+        if not (math.isfinite(gib) and gib > 0):
+            raise ValueError(f"{MEMORY_VARIABLE} = {fixed!r} must be a number of GiB > 0")
+        return int(gib * 2**30)
     try:
         with open("/proc/meminfo") as f:
             for line in f:
