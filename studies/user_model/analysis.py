@@ -103,12 +103,12 @@ def analyze_model(spec: ModelSpec, size_factor: float = 1.0, model: str = "conti
     available memory)."""
     if model not in MODELS:
         raise ValueError(f"{spec.source}: model = {model!r} must be one of {MODELS}")
-    check_loaded_supports(spec)
     solid = None
     if model == "beam":
         check_beam_analyses(spec)
-        if spec.dim == 3:  # bodies and flexures: the lifted model's modes (statics: below)
-            solid, spec = spec, planar_twin(spec)
+    check_loaded_supports(spec)
+    if model == "beam" and spec.dim == 3:  # bodies and flexures: the lifted model's modes
+        solid, spec = spec, planar_twin(spec)  # (statics: below)
     supports, loads = supports_and_loads(spec)
     spatial = solid is not None and out_of_plane(solid)
     try:
