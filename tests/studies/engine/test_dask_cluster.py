@@ -159,9 +159,11 @@ def test_a_lost_worker_is_an_error_not_a_failed_design(tmp_path):
 
 
 def test_a_model_file_geo_runs_no_code_on_dask_workers(tmp_path, dask_cluster):
-    """A study naming a model file whose .geo calls System: every case fails with the refusal
-    on the workers, and the command never runs (tests/studies/user_model/test_geo_is_data.py
-    covers analyze and the local executors)."""
+    """A study naming a model file whose .geo calls System: refused before any case reaches
+    the cluster (the study's names are checked against the model first), and the command never
+    runs (tests/studies/user_model/test_geo_is_data.py covers analyze and the local
+    executors)."""
+    from flexfem.geometry.user_model.geo_guard import CodeInGeometry
     from flexfem.studies.run import sweep
 
     folder = tmp_path / "model"
@@ -171,9 +173,9 @@ def test_a_model_file_geo_runs_no_code_on_dask_workers(tmp_path, dask_cluster):
     geo.write_text(geo.read_text() + f'\nSystem "touch {marker}";\n')
     study = folder / "study.toml"
     study.write_text('mechanism = { model = "guide.toml" }\n[grid]\nL = [0.04, 0.05]\n')
-    summary = sweep(study, tmp_path / "out", scheduler=dask_cluster, progress=False)
-    assert summary["failed"] == 2 and not marker.exists()
-    assert all("'System' runs a shell command" in f["error"] for f in summary["failures"])
+    with pytest.raises(CodeInGeometry, match="'System' runs a shell command"):
+        sweep(study, tmp_path / "out", scheduler=dask_cluster, progress=False)
+    assert not marker.exists()
 
 
 def test_a_tolerance_study_on_dask_gives_the_local_indices(tmp_path, dask_cluster):
