@@ -17,6 +17,7 @@ from ..mechanism import mesh_mechanism
 from .bounded import run_bounded
 from .estimate import check_outlines, estimate_geometry_mesh
 from .geo_guard import check_geo, check_geometry_file
+from .msh_header import check_msh_counts
 from .selection import compile_rule, entity_values
 
 GEO_SUFFIXES = (".geo",)
@@ -69,8 +70,14 @@ def define_constant_names(path: Path) -> list[str]:
     return names
 
 
+def suffix_is_mesh(path: Path) -> bool:
+    """Whether ``path`` names a finished mesh (.msh)."""
+    return Path(path).suffix.lower() in MESH_SUFFIXES
+
+
 def _gmsh_error(path: Path, error: Exception) -> ValueError:
-    return ValueError(f"{path}: gmsh cannot read this geometry file: {error}")
+    reason = str(error).strip() or "gmsh gave no reason (check that the file is complete)"
+    return ValueError(f"{path}: gmsh cannot read this geometry file: {reason}")
 
 
 #: Limits of the child process that reads (parses) a geometry file: CPU seconds, and the
@@ -152,6 +159,8 @@ def inspect_geometry(path: Path, parameters: dict | None = None, selects=(), roo
     if not path.is_file():
         raise ValueError(f"{path}: the geometry file does not exist")
     check_geometry_file(path, root, allow_code)
+    if suffix_is_mesh(path):
+        check_msh_counts(path)
     return run_bounded(_inspect, path, parameters, selects, root, allow_code,
                        what=f"reading {path.name}", **_read_limits())
 
@@ -218,6 +227,8 @@ def mesh_geometry(spec, size_factor: float = 1.0, max_dofs: int | None = None) -
     check_budget({"elements": 0, "nodes": 0, "dofs": 0}, spec.dim, max_dofs)  # max_dofs valid
     limit = default_max_dofs(spec.dim) if max_dofs is None else max_dofs
     check_geometry_file(spec.geometry, spec.path.parent, spec.allow_code)
+    if suffix_is_mesh(spec.geometry):
+        check_msh_counts(spec.geometry)
     return run_bounded(_mesh, spec, size_factor, max_dofs, limit,
                        what=f"meshing {spec.geometry.name}", **_mesh_limits(spec.dim, limit))
 

@@ -166,3 +166,25 @@ def test_allow_code_still_runs_what_the_user_trusts(tmp_path):
         load_spec(model)
     load_spec(model, allow_code=True)
     assert marker.exists()
+
+
+def test_a_msh_claiming_1e11_nodes_is_refused_by_analyze(tmp_path, capsys):
+    model, _ = _model(tmp_path, "")
+    spec = load_spec(model)
+    mesh_file = model.parent / "guide.msh"
+    from flexfem.fem import gmsh_session
+    with gmsh_session("probe") as gmsh:  # the example's own mesh, written by gmsh
+        gmsh.merge(str(spec.geometry))
+        gmsh.model.mesh.generate(2)
+        gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
+        gmsh.write(str(mesh_file))
+    data = mesh_file.read_bytes()
+    at = data.find(b"\n$Nodes") + len(b"\n$Nodes\n")
+    end = data.find(b"\n", at)
+    fields = data[at:end].split()
+    mesh_file.write_bytes(data[:at] + b" ".join([fields[0], b"100000000000", *fields[2:]])
+                          + data[end:])
+    text = model.read_text().replace('"guide.geo"', '"guide.msh"')
+    model.write_text(text[:text.index("[parameters]")] + text[text.index("[material]"):])
+    _refused(capsys, ["analyze", str(model)], "guide.msh: its $Nodes header claims "
+                                                "100,000,000,000 nodes")
