@@ -63,6 +63,8 @@ def summarize_front(result: dict) -> str:
     names = [m for m, _ in result["objectives"]]
     lines = [f"front {result['name']} ({result['mechanism']}): {len(result['designs'])} designs "
              f"on the front, {result['evaluations']} evaluations ({result['failed']} failed)"]
+    if result.get("first_failure"):
+        lines.append(f"  a failed design: {result['first_failure']}")
     for d in result["designs"][:20]:
         values = ", ".join(f"{m} {d['objectives'][m]:.4g}" for m in names)
         margins = ", ".join(f"{m} {v:+.3g}" for m, v in d["margins"].items())

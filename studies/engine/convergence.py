@@ -167,7 +167,10 @@ def converge(evaluate, metric: str, levels: list, mesh_size_key: str | None = No
     outputs, times, reused, estimates = _run_levels(evaluate, levels, dict(params or {}),
                                                     store, mechanism, metric, stream)
     if any(metric not in o for o in outputs):
-        raise ValueError(f"metric = {metric!r} is not returned; returned: {sorted(outputs[0])}")
+        reasons = outputs[0].get("not_available")
+        why = f" (not available: {reasons})" if isinstance(reasons, str) and reasons else ""
+        raise ValueError(f"metric = {metric!r} is not returned{why}; returned: "
+                         f"{sorted(k for k, v in outputs[0].items() if k != 'not_available')}")
     key, sizes = _mesh_sizes(outputs, mesh_size_key, dim)
     if any(b >= a for a, b in zip(sizes, sizes[1:])):
         raise ValueError(f"levels must refine from coarse to fine, but the sizes are {sizes}")

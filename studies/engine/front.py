@@ -146,7 +146,7 @@ def _cached(evaluate, front: Front, store: ResultStore, options: dict):
             warn_stale({key: stale}, store.path)
         try:
             metrics = evaluate(dict(params), **options)
-            problems = result_problems(metrics, evaluate)
+            problems = result_problems(metrics, evaluate, required)
             if problems:
                 raise ValueError(f"result check: {'; '.join(problems)}")
             case = CaseResult(key, front.mechanism, params, options, "ok",
@@ -165,7 +165,8 @@ def _cached(evaluate, front: Front, store: ResultStore, options: dict):
 def search_front(front: Front, evaluate, store_path) -> dict:
     """The Pareto front: {"designs": [{params, objectives {metric: value}, margins {metric:
     margin}, confirmed {metric: value} (with a confirming model)}], "evaluations",
-    "failed"} sorted by the first objective. Failed designs count as infeasible."""
+    "failed", "first_failure" (a failed design's error, when one failed)} sorted by the
+    first objective. Failed designs count as infeasible."""
     from pymoo.algorithms.moo.nsga2 import NSGA2
     from pymoo.core.problem import ElementwiseProblem
     from pymoo.optimize import minimize
@@ -229,6 +230,9 @@ def search_front(front: Front, evaluate, store_path) -> dict:
                                "dominated_by": sum(_dominates(d["objectives"], objectives,
                                                               front.objectives)
                                                    for d in designs)})
+        if counts["failed"]:  # why, in the design's own words
+            counts["first_failure"] = next((c.error for c in store.results()
+                                            if c.status != "ok" and c.error), None)
     first = front.objectives[0][0]
     designs.sort(key=lambda d: d["objectives"][first])
     return {"designs": designs, "references": references, **counts}

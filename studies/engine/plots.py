@@ -16,7 +16,10 @@ def plot_metric(cases, metric: str, parameter: str, path, overlay=(), units=None
     plt = pyplot()
     ok = [c for c in cases if c.ok and parameter in c.params and metric in c.metrics]
     if not ok:
-        raise ValueError(f"no successful case has both parameter {parameter!r} and metric {metric!r}")
+        reasons = {c.metrics.get("not_available") for c in cases if c.ok} - {None, ""}
+        why = f" (not available: {'; '.join(sorted(map(str, reasons)))})" if reasons else ""
+        raise ValueError(f"no successful case has both parameter {parameter!r} and metric "
+                         f"{metric!r}{why}")
     others = sorted({k for c in ok for k in c.params if k != parameter
                      and len({repr(d.params.get(k)) for d in ok}) > 1})
     groups = {}

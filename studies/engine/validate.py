@@ -182,7 +182,9 @@ def result_problems(metrics: dict, evaluate=None, required=()) -> list[str]:
     a metric ``evaluate`` declares positive (:func:`declare`) that is not > 0. [] if none."""
     if not metrics:
         return ["it has no metrics"]
-    problems = [f"metric {m!r} is missing" for m in required if m not in metrics]
+    reasons = metrics.get("not_available")
+    why = f" (not available: {reasons})" if isinstance(reasons, str) and reasons else ""
+    problems = [f"metric {m!r} is missing{why}" for m in required if m not in metrics]
     func = evaluate.func if isinstance(evaluate, functools.partial) else evaluate
     patterns = getattr(func, "positive_metrics", ())
     for name, value in metrics.items():

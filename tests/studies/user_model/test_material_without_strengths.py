@@ -135,3 +135,24 @@ def test_fatigue_with_a_mean_stroke_needs_the_static_strength(tmp_path):
                                                "analysis.fatigue": "soderberg"}), model="beam")
     assert soderberg["not_available"]["stroke_limit_fatigue"] == (
         "needs yield_strength (the soderberg line of a mean stroke)")
+
+
+def test_a_front_constrained_by_a_stroke_says_why_its_designs_fail(tmp_path, capsys):
+    _bare_copy(tmp_path, "bodies/guide.toml")
+    front = (EXAMPLES / "bodies" / "guide_front.toml").read_text()
+    front = front.replace("population = 24", "population = 4").replace("generations = 12",
+                                                                      "generations = 1")
+    (tmp_path / "front.toml").write_text(front)
+    assert main(["front", str(tmp_path / "front.toml"), "--out", str(tmp_path / "out")]) == 0
+    out = capsys.readouterr().out
+    assert "a failed design:" in out and "'stroke_limit_yield' is missing (not available: " \
+                                         "stroke_limit_yield: needs yield_strength" in out
+
+
+def test_converge_of_a_stroke_says_what_it_needs(tmp_path, capsys):
+    path = _bare_copy(tmp_path, "bodies/guide.toml")
+    assert main(["converge", str(path), "--metric", "stroke_limit_yield", "--levels", "3",
+                 "--out", str(tmp_path / "conv")]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "not available: stroke_limit_yield: needs " \
+                                    "yield_strength" in err
