@@ -135,3 +135,14 @@ def test_max_dofs_is_refused_for_a_mechanism_without_a_mesh(tmp_path, capsys):
                  "--out", str(tmp_path)]) == 2
     err = capsys.readouterr().err
     assert "max_dofs" in err and "toy" in err and err.count("\n") == 1
+
+
+def test_a_misspelled_params_name_is_refused_before_any_level(tmp_path, capsys):
+    from flexfem.studies.cli import main
+
+    assert main(["converge", "toy", "--metric", "tip_deflection_m", "--params",
+                 '{"lenght_m": 0.1}', "--out", str(tmp_path / "c")]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "params.lenght_m names no parameter" in err \
+        and "did you mean 'length_m'?" in err
+    assert not (tmp_path / "c" / "levels.sqlite").exists()
