@@ -221,8 +221,9 @@ def check_body_size(mechanism: Mechanism, coarse: float, sizes=None) -> None:
         raise ValueError(f"{mechanism.source}: [mesh] size = {coarse:g} m cannot be honoured: "
                          f"it sets the bodies' elements, which may not be finer than a "
                          f"flexure's own ({sizes[k]:g} m, {what}; each flexure is meshed at "
-                         f"its size and grows to the bodies'); give size >= {sizes[k]:g} m, or "
-                         "refine everything with size_factor (converge)")
+                         f"its size and grows to the bodies'); give size >= {sizes[k]:g} m; to "
+                         "refine the flexures too, use flexfem converge (it divides every size "
+                         "by the same factor)")
 
 
 def _threshold(gmsh, entities, dim: int, size: float, far: float, near: float,
