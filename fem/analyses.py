@@ -9,23 +9,26 @@ the same names whichever model it is given: a continuum :class:`.model.Model` is
 the continuum's function (:mod:`.static`, :mod:`.modal`, ...), a beam model with named groups
 by :mod:`.beam.face` (planar :class:`.beam.BeamModel`) or :mod:`.beam3d.face` (spatial
 :class:`.beam3d.Beam3DModel`); what a group is on a beam model, and what its stress means,
-is there. Options that only the continuum has (a rigid face, a prestress,
-arc-length control, buckling) raise a TypeError or ValueError naming them on a beam model.
+is there (linear buckling: :mod:`.beam.buckling`, :mod:`.beam3d.buckling`). Options that
+only the continuum has (a rigid face, a prestress, arc-length control) raise a TypeError or
+ValueError naming them on a beam model.
 """
 from . import buckling, compliance, harmonic, modal, nonlinear, static
+from .beam import buckling as beam_buckling
 from .beam import face as beam_face
 from .beam.model import BeamModel
+from .beam3d import buckling as beam3d_buckling
 from .beam3d import face as beam3d_face
 from .beam3d.model import Beam3DModel
 
 BEAM_MODELS = (BeamModel, Beam3DModel)
 
 
-def _pick(model, continuum, beam):
-    """The function for ``model``: the continuum's, the planar beam face's (``beam``) or the
-    spatial beam face's function of the same name."""
+def _pick(model, continuum, beam, spatial=None):
+    """The function for ``model``: the continuum's, the planar beam's (``beam``) or the
+    spatial beam's (``spatial``; default the spatial face's function of ``beam``'s name)."""
     if isinstance(model, Beam3DModel):
-        return getattr(beam3d_face, beam.__name__)
+        return spatial or getattr(beam3d_face, beam.__name__)
     return beam if isinstance(model, BeamModel) else continuum
 
 
@@ -53,11 +56,9 @@ def solve_harmonic(model, supports, loads, frequencies_hz, **options):
         model, supports, loads, frequencies_hz, **options)
 
 
-def solve_buckling(model, supports, loads, n: int = 3):
-    if isinstance(model, BEAM_MODELS):
-        raise ValueError("solve_buckling: the beam model has no linearised buckling; solve "
-                         "the continuum, or follow the beam's load path with solve_nonlinear")
-    return buckling.solve_buckling(model, supports, loads, n)
+def solve_buckling(model, supports, loads, n: int = 3, **options):
+    return _pick(model, buckling.solve_buckling, beam_buckling.solve_buckling,
+                 beam3d_buckling.solve_buckling)(model, supports, loads, n, **options)
 
 
 def _describe(function, continuum, beam=None) -> None:
@@ -74,4 +75,4 @@ _describe(solve_modes, modal.solve_modes, beam_face.solve_modes)
 _describe(solve_nonlinear, nonlinear.solve_nonlinear, beam_face.solve_nonlinear)
 _describe(compliance_matrix, compliance.compliance_matrix, beam_face.compliance_matrix)
 _describe(solve_harmonic, harmonic.solve_harmonic, beam_face.solve_harmonic)
-_describe(solve_buckling, buckling.solve_buckling)
+_describe(solve_buckling, buckling.solve_buckling, beam_buckling.solve_buckling)

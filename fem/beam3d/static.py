@@ -72,6 +72,12 @@ def solve_beam3d_static(model: Beam3DModel, supports, loads=()) -> Beam3DState:
     """Linear (small-displacement) static solve for the loads (NodalLoad) and the supports'
     values (Fixed, Prescribed) at load factor 1. Element forces are the linear ones; R is
     exp of the linear rotation vector."""
+    return linear_solution(model, supports, loads)[0]
+
+
+def linear_solution(model: Beam3DModel, supports, loads=()) -> tuple:
+    """(Beam3DState, q (n_dofs,) the linear DOFs (m, rad), r (n_dofs,) = K q - f_ext (N,
+    N m), the reduced K (CSC), T, the Assembler) of :func:`solve_beam3d_static`."""
     asm = Assembler(model, supports, loads)
     space = asm.space
     u0, R0 = space.reference()
@@ -81,12 +87,13 @@ def solve_beam3d_static(model: Beam3DModel, supports, loads=()) -> Beam3DState:
     z = Factor(K).solve(rhs)
     q = T @ z + Tp @ p
     r = Kfull @ q - asm.f_ext
-    q = q.reshape(-1, 6)
+    q6 = q.reshape(-1, 6)
     _, _, Bg, _ = kinematics(model, model.nodes, R0)
-    qe = q[model.elements].reshape(-1, 12)
+    qe = q6[model.elements].reshape(-1, 12)
     fl = np.einsum("eij,ej->ei", asm.Kb, np.einsum("eij,ej->ei", Bg, qe))
-    return make_state(asm, q[:, :3], expm(q[:, 3:]), r, 1.0, fl, T, Tp,
-                      {"n_unknowns": space.n})
+    state = make_state(asm, q6[:, :3], expm(q6[:, 3:]), r, 1.0, fl, T, Tp,
+                       {"n_unknowns": space.n})
+    return state, q, r, K, T, asm
 
 
 def compliance3d(model: Beam3DModel, supports, node: int, about=None, loads=()) -> np.ndarray:

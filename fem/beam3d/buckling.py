@@ -1,0 +1,71 @@
+"""Linear (eigenvalue) buckling of a spatial beam model with named groups:
+``solve_buckling(model, supports, loads, n) -> BeamBuckling`` (the planar model's result,
+:mod:`flexfem.fem.beam.buckling`), the continuum's solve_buckling on the spatial beam.
+
+About the linear static state, (K + lambda K_g) phi = 0 with each element's consistent
+geometric stiffness of its axial force N: N int (v'^2 + w'^2 + u'^2) dx in both bending
+planes (each plane's own interpolation, as the planar element's) and Wagner's torsion term
+N (I_p / A) int theta_x'^2 dx (the shear centre at the centroid: a doubly symmetric
+section), plus the rigid links' second-order term of the prebuckling forces. Torsion and
+bending-moment terms are left out: Euler (flexural) and torsional buckling of compressed
+members, in and out of the plane, are modelled; lateral-torsional buckling under bending
+is not.
+"""
+import numpy as np
+
+from ..beam.buckling import BeamBuckling, check_n, lowest_load_factors, scaled_shapes
+from ..beam.element import WXI, XI, _gram, bending_shape_functions
+from .assembly import scatter
+from .element import AXIAL, TORSION, XY, XZ, XZ_SIGN, _put, to_global
+from .face import Beam3DResult, _supported, node_loads, node_supports
+from .model import Beam3DModel
+from .static import linear_solution
+
+
+def _plane(E, G, I_mid, As, L) -> np.ndarray:
+    """(n_e, 4, 4) int N_w'^T N_w' dx of one bending plane (v, theta order); the shear
+    parameter from the mid-length I and the shear area As (inf: Euler-Bernoulli)."""
+    phi = np.where(np.isfinite(As), 12.0 * E * I_mid / (G * As * L**2), 0.0)
+    _, dNw, _, _ = bending_shape_functions(XI, L, phi)
+    return _gram(WXI[None, :] * L[:, None], dNw, dNw)
+
+
+def geometric_stiffness(model: Beam3DModel, axial_force) -> np.ndarray:
+    """(n_e, 12, 12) element geometric stiffness (N/m, N, N m) in global DOF order for the
+    axial forces ``axial_force`` (n_e,) N (tension > 0)."""
+    L, mid, table = model.lengths, model.section_at([0.5]), model.section_table()
+    E = model.material.E
+    G = E / (2.0 * (1.0 + model.material.nu))
+    local = np.zeros((model.n_elements, 12, 12))
+    _put(local, XY, _plane(E, G, mid["Iz"][:, 0], table["factors"][:, 1] * table["Ay"], L))
+    _put(local, XZ, _plane(E, G, mid["Iy"][:, 0], table["Az"], L), XZ_SIGN)
+    bar = np.array([[1.0, -1.0], [-1.0, 1.0]]) / L[:, None, None]
+    _put(local, AXIAL, bar)
+    _put(local, TORSION, bar * (mid["Ip"][:, 0] / mid["A"][:, 0])[:, None, None])
+    local *= np.asarray(axial_force, dtype=float)[:, None, None]
+    Eg = to_global(model.frames)
+    return np.einsum("eij,ejk,elk->eil", Eg, local, Eg)
+
+
+def solve_buckling(model: Beam3DModel, supports, loads, n: int = 3,
+                   **options) -> BeamBuckling:
+    """The ``n`` lowest positive critical load factors and shapes (u_x, u_y, u_z, r_x, r_y,
+    r_z per node) of the loads (Force on a group, N) and the prescribed values of the
+    supports (held at zero in the shapes) of a grouped spatial beam model. Raises
+    ValueError if the loads compress no beam."""
+    check_n(n)
+    if options:
+        raise TypeError(f"solve_buckling: option(s) {sorted(options)} are the continuum's; "
+                        "the beam model takes none of them")
+    state, _, r, K, T, asm = linear_solution(model, node_supports(model, supports),
+                                             node_loads(model, loads))
+    links = asm.space.constraint_tangent(asm.space.reference()[1], r)
+    G_full = scatter(model, geometric_stiffness(model, state.axial_force)) \
+        + 0.5 * (links + links.T)
+    G = (T.T @ G_full @ T).tocsc()
+    if not np.any(G.data):
+        raise ValueError("the loads leave every beam without axial force: no buckling")
+    factors, vectors = lowest_load_factors(K, G, n)
+    full = np.asarray(T @ vectors).T
+    return BeamBuckling(model, factors, scaled_shapes(full, 6),
+                        Beam3DResult(model, state, _supported(supports)))
