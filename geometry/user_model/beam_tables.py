@@ -3,25 +3,20 @@
 
 Coordinates and sizes are numbers (m) or expressions of the geometry's parameters
 (``"L + hs / 2"``, ``"L / (2 * sqrt(2))"``): + - * / ** and parentheses, sqrt, sin, cos, tan,
-atan, atan2, pi, so that a sweep that changes L moves the beams with the sketch. Errors name
-the model file and line.
+atan, atan2, abs, pi (expressions.py), so that a sweep that changes L moves the beams with the
+sketch. Errors name the model file and line.
 """
-import ast
 from dataclasses import dataclass, field
 import math
-import operator
 
 import numpy as np
 
+from .expressions import evaluate_expression, names_in
 from .tables import Locator, check_keys, is_number
 
 BEAM_KEYS = ("points", "thickness", "depth", "elements")
 RIGID_KEYS = ("joins", "groups", "blocks")
 OPTION_KEYS = ("elements", "shear", "root_extension", "crossings", "roots", "notch_correction")
-_FUNCTIONS = {"sqrt": math.sqrt, "sin": math.sin, "cos": math.cos, "tan": math.tan,
-              "atan": math.atan, "atan2": math.atan2}
-_BINARY = {ast.Add: operator.add, ast.Sub: operator.sub, ast.Mult: operator.mul,
-           ast.Div: operator.truediv, ast.Pow: operator.pow}
 
 
 @dataclass(frozen=True)
@@ -106,50 +101,6 @@ class BeamSpec:
     groups: dict = field(default_factory=dict)
 
 
-def evaluate_expression(value, names: dict, where: str):
-    """A number, or an expression string of ``names`` ({name: float}), as a float; ValueError
-    prefixed by ``where`` otherwise."""
-    if is_number(value):
-        return float(value)
-    if not isinstance(value, str):
-        raise ValueError(f"{where}: {value!r} must be a number (m) or an expression string")
-    try:
-        tree = ast.parse(value, mode="eval")
-    except SyntaxError:
-        raise ValueError(f"{where}: {value!r} is not an arithmetic expression") from None
-
-    def ev(node):
-        if isinstance(node, ast.Expression):
-            return ev(node.body)
-        if isinstance(node, ast.Constant) and is_number(node.value):
-            return float(node.value)
-        if isinstance(node, ast.Name):
-            if node.id == "pi":
-                return math.pi
-            if node.id not in names:
-                raise ValueError(f"{where}: {node.id!r} in {value!r} is not a parameter of "
-                                 f"the geometry; known: {', '.join(sorted(names)) or 'none'}")
-            return float(names[node.id])
-        if isinstance(node, ast.UnaryOp) and isinstance(node.op, (ast.USub, ast.UAdd)):
-            return -ev(node.operand) if isinstance(node.op, ast.USub) else ev(node.operand)
-        if isinstance(node, ast.BinOp) and type(node.op) in _BINARY:
-            return _BINARY[type(node.op)](ev(node.left), ev(node.right))
-        if (isinstance(node, ast.Call) and isinstance(node.func, ast.Name)
-                and node.func.id in _FUNCTIONS and not node.keywords):
-            return _FUNCTIONS[node.func.id](*(ev(a) for a in node.args))
-        raise ValueError(f"{where}: {value!r}: only numbers, parameters, + - * / **, "
-                         f"parentheses, pi and {', '.join(_FUNCTIONS)} are allowed")
-    try:
-        result = ev(tree)
-    except (ZeroDivisionError, OverflowError, TypeError, ValueError) as error:
-        if str(error).startswith(where):
-            raise
-        raise ValueError(f"{where}: {value!r} cannot be evaluated ({error})") from None
-    if not math.isfinite(result):
-        raise ValueError(f"{where}: {value!r} = {result} is not finite")
-    return result
-
-
 def _point(raw, names, where) -> tuple:
     if not (isinstance(raw, list) and len(raw) == 2):
         raise ValueError(f"{where}: {raw!r} must be a point [x, y] (m)")
@@ -200,12 +151,7 @@ def _beam(entry, i, names, depth, elements, loc: Locator) -> BeamLine:
 
 def _uses_s(value) -> bool:
     """True for an expression string that names s (the arc length)."""
-    try:
-        tree = ast.parse(value, mode="eval") if isinstance(value, str) else None
-    except SyntaxError:
-        return False
-    return tree is not None and any(isinstance(n, ast.Name) and n.id == "s"
-                                    for n in ast.walk(tree))
+    return "s" in names_in(value)
 
 
 def _profile(raw, points, names) -> Profile:

@@ -1,11 +1,11 @@
 """The ``[[body]]`` and ``[[flexure]]`` tables of a model file (docs/model_files.md, "Bodies
 and flexures") -> :class:`flexfem.geometry.mechanism.Mechanism`. Every coordinate and size is a
-number (m) or an expression of the ``[parameters]`` (beam_tables.evaluate_expression); errors
+number (m) or an expression of the ``[parameters]`` (expressions.evaluate_expression); errors
 name the model file, the line and the body or flexure."""
 import math
 
 from ..mechanism import Body, Leaf, Mechanism, Notch
-from .beam_tables import evaluate_expression
+from .expressions import evaluate_expression
 from .tables import Locator, check_keys
 
 BODY_KEYS = ("name", "box", "polygon")

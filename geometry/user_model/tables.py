@@ -2,12 +2,11 @@
 TOML value and a :class:`Locator` (to name the file and line in errors) and returns frozen
 dataclasses with SI values."""
 from dataclasses import dataclass
-import math
-import numbers
 from pathlib import Path
 
 from ...fem.budget import MAX_FREQUENCY_POINTS, MAX_MODES
 from ...fem.materials import Material, material, material_names
+from .expressions import is_number
 from .toml_lines import find_line
 
 SECTION_KINDS = ("plane_stress", "plane_strain", "solid")
@@ -131,10 +130,6 @@ class Analysis:
     safety_factor: float = 1.0
     mean_stroke: float = 0.0
     fatigue: str = "goodman"
-
-
-def is_number(value) -> bool:
-    return isinstance(value, numbers.Real) and not isinstance(value, bool) and math.isfinite(value)
 
 
 def check_keys(raw, allowed, loc: Locator, table, index: int = 0, what=None) -> dict:

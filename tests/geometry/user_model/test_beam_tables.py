@@ -8,7 +8,7 @@ import pytest
 
 from flexfem.geometry.user_model import load_spec
 from flexfem.reduced.model_file import beam_model
-from flexfem.geometry.user_model.beam_tables import evaluate_expression
+from flexfem.geometry.user_model.expressions import evaluate_expression
 from flexfem.reduced.crossings import crossings
 
 EXAMPLES = Path(__file__).resolve().parents[3] / "examples"
