@@ -16,7 +16,8 @@ from flexfem.geometry.user_model.geometry import inspect_geometry
 
 EXAMPLES = Path(__file__).parents[3] / "examples"
 GEOS = sorted(EXAMPLES.glob("*/*.geo"))
-MODELS = sorted(p for p in EXAMPLES.glob("*/*.toml") if "body" in tomllib.loads(p.read_text())
+MODELS = sorted(p for p in EXAMPLES.glob("*/[!_]*.toml")
+                if "body" in tomllib.loads(p.read_text())
                 or str(tomllib.loads(p.read_text()).get("geometry", "")).endswith(".geo"))
 POOL = ["SystemCall", "System", "Print", "Save", "Exit", "Include", "Merge", "GetValue",
         "ListFromFile", "FileExists", "General", "Solver", "Plugin", "Macro", "Call", "Mesh",
@@ -120,7 +121,7 @@ def _toml(raw: dict) -> str:
 def test_model_file_mutants_are_refused_or_read(tmp_path_factory, model, edits):
     folder = tmp_path_factory.mktemp("model")
     for other in model.parent.iterdir():
-        if other.is_file():
+        if other.is_file() and not other.name.startswith("_"):
             (folder / other.name).write_bytes(other.read_bytes())
     path = folder / model.name
     path.write_text(_toml(_mutate(tomllib.loads(model.read_text()), edits)))
