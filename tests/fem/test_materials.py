@@ -75,3 +75,14 @@ def test_material_is_frozen():
     m = material("structural_steel")
     with pytest.raises(AttributeError):
         m.E = 1.0
+
+
+def test_the_flexure_materials_are_there_and_consistent():
+    flexure = {"spring_steel_aisi1095", "maraging_steel_300", "titanium_ti6al4v",
+               "beryllium_copper_c17200", "aluminium_7075_t6", "silicon_110", "invar_36"}
+    assert flexure <= set(material_names())
+    for name in flexure:
+        m = material(name)
+        assert m.yield_strength <= m.ultimate_strength, name
+        if m.fatigue_strength is not None:  # an amplitude a polished specimen survives
+            assert m.fatigue_strength < m.ultimate_strength and m.fatigue_cycles >= 1e6, name
