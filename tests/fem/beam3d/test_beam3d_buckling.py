@@ -83,7 +83,7 @@ def test_euler_load_converges_as_h4():
 
 def test_torsional_buckling_is_saint_venants():
     """A section of little torsional stiffness (J = 1e-5 I) buckles by twisting at
-    P = G J A / I_p (Wagner's term, no warping), exactly with any number of elements."""
+    P = G J A / I_p (Wagner's term, no warping), exact with any number of elements (-3.9e-11)."""
     I, A = EI_WEAK / STEEL.E, W * T
     section = Section(A=A, Iy=I, Iz=I, J=1e-5 * I)
     G = STEEL.E / (2 * (1 + STEEL.nu))
@@ -103,7 +103,8 @@ def test_a_rigid_arm_carries_its_load_around():
 def test_a_portal_frame_buckles_as_the_planar_model():
     """A planar portal frame (two columns, a beam; a rigid stage on the columns' tops, as a
     parallel guide's) under a vertical load on the stage, and its lift into space: the
-    in-plane sway factors agree to 1e-8."""
+    in-plane sway factors agree to 1e-13; the sway 4.0e-4 below 2 pi^2 E I / h^2 (the
+    stage's tilt on the leaves' axial stiffness)."""
     leaf = PlanarSection.rect(0.01, T)
     h, gap = L, 0.02
     mesh = beam_chain([(0, 0), (0, h)], leaf, 10).join(beam_chain([(gap, 0), (gap, h)],
