@@ -64,6 +64,13 @@ def test_timoshenko_column_is_engessers():
     assert got / p_e < 0.92
 
 
+def test_a_fine_mesh_takes_the_sparse_eigensolver():
+    """300 elements (897 unknowns, above the dense solver's 800): Lanczos on a factor of K,
+    within 3e-7 of Euler's three lowest (the factor's round-off on K's conditioning)."""
+    got = factors(column(300), CLAMPED_FREE[0])
+    assert got == pytest.approx(P_E / 4 * np.array(CLAMPED_FREE[2]), rel=1e-6)
+
+
 def rigid_arm_column(n: int, arm: float) -> BeamModel:
     """A clamped column with a rigid arm of length ``arm`` on along its axis beyond the top:
     the load acts at the arm's end (group "end", a rigid-link slave of the top node)."""
