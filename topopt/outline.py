@@ -1,11 +1,13 @@
 """From densities to a shape: the thresholded design's outline (scikit-image's marching
 squares), cleaned and simplified with shapely, checked for members thinner than a minimum
-size and for islands, and written as DXF (ezdxf) for manufacture or re-meshing."""
+size and for islands, and written as DXF (geometry/outline_files.py, mm) for manufacture or
+re-meshing."""
 from dataclasses import dataclass
 from functools import reduce
 
 import numpy as np
 
+from ..geometry.outline_files import loop_of, write_dxf as _write_dxf
 from .grid import Grid
 
 
@@ -22,6 +24,12 @@ class Outline:
     @property
     def parts(self) -> list:
         return list(getattr(self.shape, "geoms", [self.shape]))
+
+    @property
+    def faces(self) -> list:
+        """[[outer loop, hole loop, ...]] a part, each loop [(x, y, 0.0)] (m, straight)."""
+        return [[loop_of(p.exterior.coords), *(loop_of(r.coords) for r in p.interiors)]
+                for p in self.parts]
 
 
 def problem_anchors(problem) -> list:
@@ -73,18 +81,7 @@ def extract_outline(density, grid: Grid, anchors=(), threshold: float = 0.5,
     return Outline(shape, islands, thin)
 
 
-def write_dxf(outline: Outline, path, scale: float = 1000.0) -> int:
-    """Each ring of the outline as a closed polyline (mm with the default ``scale``);
-    returns the number of polylines."""
-    import ezdxf
-
-    doc = ezdxf.new()
-    doc.units = ezdxf.units.MM if scale == 1000.0 else ezdxf.units.M
-    msp = doc.modelspace()
-    count = 0
-    for part in outline.parts:
-        for ring in [part.exterior, *part.interiors]:
-            msp.add_lwpolyline(np.asarray(ring.coords)[:-1] * scale, close=True)
-            count += 1
-    doc.saveas(path)
-    return count
+def write_dxf(outline: Outline, path) -> int:
+    """Each ring of the outline as a closed polyline, in millimetres; returns the number of
+    polylines."""
+    return _write_dxf([loop for face in outline.faces for loop in face], path)

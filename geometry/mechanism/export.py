@@ -1,22 +1,21 @@
-"""A mechanism's outline for manufacture: DXF (ezdxf) and STEP (gmsh's OpenCASCADE writer).
+"""A mechanism's outline for manufacture, through the package's one DXF and STEP writers
+(geometry/outline_files.py), both in millimetres.
 
-DXF: every boundary loop of the mechanism's one face as a closed LWPOLYLINE in millimetres,
-straight edges as vertices and fillets and notches as true arcs (bulges), as wire-EDM and laser
-shops take it; the outer loop first, then the holes. STEP: the 2-D face, or with ``dim`` 3 the
-solid extruded by the depth, in metres (gmsh's OCC writer; the file's unit is declared)."""
-import contextlib
-import math
-import os
+The boundary loops of the mechanism's one face, the outer loop first, then the holes:
+straight edges as vertices, fillets and circular notches as true arcs (bulges), an elliptical
+notch as ELLIPSE_ARCS circular arcs, as wire-EDM and laser shops take it. DXF: each loop a
+closed LWPOLYLINE. STEP: the 2-D face, or with ``dim`` 3 the solid extruded by the depth."""
 from pathlib import Path
-import sys
 
 import numpy as np
 
 from ...fem import gmsh_session
+from ..outline_files import write_dxf as _write_dxf, write_step as _write_step
 from .description import Mechanism, cross2
 from .draw import draw
 
 SUFFIXES = (".dxf", ".step", ".stp")
+ELLIPSE_ARCS = 32  # circular arcs an elliptical notch's side is written as (DXF has none)
 
 
 def _fused(gmsh, mechanism: Mechanism, dim: int) -> list:
@@ -30,20 +29,31 @@ def _fused(gmsh, mechanism: Mechanism, dim: int) -> list:
     return shapes
 
 
-def _bulge(gmsh, curve: int, start) -> float:
-    """The DXF bulge of ``curve`` traversed from its end at ``start`` (m): tan(sweep / 4),
-    > 0 counter-clockwise; 0 for a straight line."""
-    if gmsh.model.getType(1, curve) not in ("Circle", "Ellipse"):
-        return 0.0
-    lo, hi = gmsh.model.getParametrizationBounds(1, curve)
-    a, m, b = (np.asarray(gmsh.model.getValue(1, curve, [u]))[:2]
-               for u in (lo[0], (lo[0] + hi[0]) / 2, hi[0]))
-    if np.linalg.norm(b - start) < np.linalg.norm(a - start):
-        a, b = b, a
+def _bulge(a, m, b) -> float:
+    """The DXF bulge tan(sweep / 4) of the circle through ``a``, ``m``, ``b`` (m) from a to
+    b, > 0 counter-clockwise."""
     chord = b - a
     cross = cross2(chord, m - a)
     sagitta = abs(cross) / np.linalg.norm(chord)
     return sagitta / (np.linalg.norm(chord) / 2) * (1.0 if cross < 0 else -1.0)
+
+
+def _segments(gmsh, curve: int, start) -> list:
+    """[(x, y, bulge)] of ``curve`` traversed from its end at ``start`` (m): one straight
+    edge, one arc for a circle's (OpenCASCADE may call it an ellipse), ELLIPSE_ARCS arcs for
+    a true ellipse's."""
+    kind = gmsh.model.getType(1, curve)
+    if kind not in ("Circle", "Ellipse"):
+        return [(float(start[0]), float(start[1]), 0.0)]
+    lo, hi = gmsh.model.getParametrizationBounds(1, curve)
+    curvature = np.abs(gmsh.model.getCurvature(1, curve, np.linspace(lo[0], hi[0], 9).tolist()))
+    n = 1 if np.ptp(curvature) <= 1e-9 * curvature.max() else ELLIPSE_ARCS  # a circle's arc
+    u = np.linspace(lo[0], hi[0], 2 * n + 1)
+    xy = np.asarray(gmsh.model.getValue(1, curve, u.tolist())).reshape(-1, 3)[:, :2]
+    if np.linalg.norm(xy[-1] - start) < np.linalg.norm(xy[0] - start):
+        xy = xy[::-1]
+    return [(float(xy[2 * k][0]), float(xy[2 * k][1]),
+             _bulge(xy[2 * k], xy[2 * k + 1], xy[2 * k + 2])) for k in range(n)]
 
 
 def _ends(gmsh, curve: int) -> list:
@@ -65,7 +75,7 @@ def outline_loops(mechanism: Mechanism) -> list:
             loop = []
             for curve, (p, q) in zip(curves, ends):
                 xy = np.asarray(gmsh.model.getValue(0, point, []))[:2]
-                loop.append((float(xy[0]), float(xy[1]), _bulge(gmsh, curve, xy)))
+                loop += _segments(gmsh, curve, xy)
                 point = q if p == point else p
             out.append(loop)
         return sorted(out, key=lambda lp: -_extent(lp))
@@ -77,43 +87,15 @@ def _extent(loop) -> float:
 
 
 def write_dxf(mechanism: Mechanism, path) -> Path:
-    """The outline as closed polylines with arcs, in millimetres (ezdxf)."""
-    import ezdxf
-    from ezdxf import units
-
-    doc = ezdxf.new("R2010")
-    doc.units = units.MM
-    msp = doc.modelspace()
-    for loop in outline_loops(mechanism):
-        msp.add_lwpolyline([(1e3 * x, 1e3 * y, 0.0, 0.0, b) for x, y, b in loop],
-                           format="xyseb", close=True)
-    doc.saveas(path)
+    """The outline as closed polylines with arcs, in millimetres."""
+    _write_dxf(outline_loops(mechanism), path)
     return Path(path)
-
-
-@contextlib.contextmanager
-def _quiet_stdout():
-    """OpenCASCADE's STEP writer prints its statistics on file descriptor 1: keep stdout
-    for the command's own output (--json)."""
-    sys.stdout.flush()
-    saved = os.dup(1)
-    try:
-        with open(os.devnull, "w") as null:
-            os.dup2(null.fileno(), 1)
-            yield
-    finally:
-        os.dup2(saved, 1)
-        os.close(saved)
 
 
 def write_step(mechanism: Mechanism, path, dim: int = 2) -> Path:
-    """The face (``dim`` 2) or the extruded solid (3) as STEP, in metres."""
-    with gmsh_session("step") as gmsh:
-        _fused(gmsh, mechanism, dim)
-        gmsh.option.setString("Geometry.OCCTargetUnit", "M")
-        with _quiet_stdout():
-            gmsh.write(str(path))
-    return Path(path)
+    """The face (``dim`` 2) or the solid extruded by the depth (3) as STEP, in millimetres."""
+    return _write_step([outline_loops(mechanism)], path,
+                       mechanism.depth if dim == 3 else None)
 
 
 def export(mechanism: Mechanism, path, dim: int = 2) -> Path:
@@ -133,16 +115,3 @@ def area(mechanism: Mechanism) -> float:
     """The mechanism's face area (m^2), from the OpenCASCADE model (checks of an export)."""
     with gmsh_session("area") as gmsh:
         return sum(gmsh.model.occ.getMass(*dt) for dt in _fused(gmsh, mechanism, 2))
-
-
-def polyline_area(points) -> float:
-    """Area enclosed by a closed polyline [(x, y, bulge)] (any unit^2), arcs included."""
-    total = 0.0
-    for (x0, y0, b), (x1, y1, _) in zip(points, points[1:] + points[:1]):
-        total += (x0 * y1 - x1 * y0) / 2
-        if b:
-            theta = 4 * math.atan(b)
-            chord = math.hypot(x1 - x0, y1 - y0)
-            radius = chord / (2 * math.sin(abs(theta) / 2))
-            total += math.copysign(radius ** 2 * (abs(theta) - math.sin(abs(theta))) / 2, theta)
-    return total

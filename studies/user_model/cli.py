@@ -136,13 +136,13 @@ def register(subparsers):
 def run_export(args) -> dict:
     """``flexfem export``: the outline of a model file of bodies and flexures as DXF or STEP."""
     from ...geometry.mechanism.export import export
+    from ...geometry.outline_files import UNIT
 
     spec = load_spec(args.model, parse_sets(args.set), allow_code=args.allow_code,
                      bodies_only="export")
     path = export(spec.mechanism, args.out, args.dim)
     return {"model": spec.source, "out": str(path), "dim": args.dim,
-            "format": path.suffix.lower().lstrip("."),
-            "units": "mm" if path.suffix.lower() == ".dxf" else "m"}
+            "format": path.suffix.lower().lstrip("."), "units": UNIT}
 
 
 def summarize_export(result: dict) -> str:
@@ -152,7 +152,7 @@ def summarize_export(result: dict) -> str:
 
 def register_export(subparsers):
     parser = subparsers.add_parser(
-        "export", help="write a model's outline for manufacture (DXF in mm, or STEP)")
+        "export", help="write a model's outline for manufacture (DXF or STEP, in mm)")
     parser.add_argument("model", metavar="MODEL.toml", help="a model file of bodies and flexures")
     parser.add_argument("out", metavar="OUT.dxf|OUT.step", help="the file to write")
     parser.add_argument("--set", action="append", metavar="NAME=VALUE", default=[],

@@ -8,7 +8,8 @@ import numpy as np
 import pytest
 from flexfem.geometry.mechanism import Body, Leaf, Mechanism, Notch
 from flexfem.geometry.mechanism.beams import profile
-from flexfem.geometry.mechanism.export import area, export, polyline_area
+from flexfem.geometry.mechanism.export import area, export
+from flexfem.geometry.outline_files import polyline_area
 from flexfem.geometry.user_model import load_spec
 from flexfem.studies.cli import main
 

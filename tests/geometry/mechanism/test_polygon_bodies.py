@@ -13,7 +13,8 @@ import pytest
 from flexfem.geometry import polygon
 from flexfem.geometry.mechanism import Body, Leaf, Mechanism
 from flexfem.geometry.mechanism.beams import beam_spec
-from flexfem.geometry.mechanism.export import area, export, polyline_area
+from flexfem.geometry.mechanism.export import area, export
+from flexfem.geometry.outline_files import polyline_area
 from flexfem.geometry.user_model import load_spec
 from flexfem.reduced.model_file import _body_mass, _block_height
 from flexfem.studies.cli import main
