@@ -17,16 +17,13 @@ __all__ = ["check_beam_analyses", "lifted_outputs", "out_of_plane", "planar_twin
 
 def check_beam_analyses(spec) -> None:
     """ValueError naming the file for what the beam model does not do: a 3-D geometry file,
-    buckling, two supports on one [[rigid]] body (the beam model holds a body once)."""
+    two supports on one [[rigid]] body (the beam model holds a body once)."""
     if spec.dim != 2 and spec.mechanism is None:
         raise ValueError(f"{spec.source}: the declared beam model is planar; a 3-D geometry "
                          "file is the continuum's (--model continuum)")
     if out_of_plane(spec) and (spec.analysis.steps or spec.analysis.harmonic):
         raise ValueError(f"{spec.source}: [analysis] steps and harmonic of the beam model are "
                          "planar; with an out-of-plane force use --model continuum --dim 3")
-    if spec.analysis.buckling:
-        raise ValueError(f"{spec.source}: [analysis] buckling: the beam model does not compute "
-                         "it; use the continuum model (--model continuum)")
     bodies = spec.beams.groups if spec.beams is not None else {}
     held = {}
     for s in spec.supports:
