@@ -322,16 +322,22 @@ def beam_model(spec) -> tuple:
     model = BeamModel(np.asarray(nodes.xy), mesh.elements, mesh.sections, spec.material,
                       shear=beams.shear, rigid_links=links, point_masses=masses)
     for name, node in groups.items():
-        model.add_group(name, [node], _span(spec, beams.rigid[beams.groups[name]]))
+        model.add_group(name, [node], _span(spec, beams.rigid[beams.groups[name]], name))
     return model, {"groups": groups, "masters": masters, "bodies": dict(beams.groups)}
 
 
-def _span(spec, body) -> tuple:
+def _span(spec, body, name: str = "") -> tuple:
     """The extent (m) of the face a group stands for: a body of a mechanism description is
-    its group whole (its blocks' bounding box); a [[rigid]] group's point stands for a face
-    of unknown extent (zero: a component held there leaves the rotation free)."""
+    its group whole (its blocks' bounding box), a face of it (``stage.top``) that face's
+    extent; a [[rigid]] group's point stands for a face of unknown extent (zero: a component
+    held there leaves the rotation free)."""
     if spec.mechanism is None or not body.blocks:
         return (0.0, 0.0)
+    from ..geometry.mechanism.faces import face_point, parse_face
+
+    face = parse_face(name, [b.name for b in spec.mechanism.bodies], spec.dim)
+    if face is not None:
+        return face_point(spec.mechanism, name, *face)[1]
     corners = np.array([p for block in body.blocks for p in block], dtype=float)
     return tuple(corners.max(axis=0) - corners.min(axis=0))
 
@@ -342,6 +348,7 @@ def _check_groups(spec, groups: dict) -> None:
     needed += [(load.group, load.source) for load in spec.loads]
     if spec.analysis.compliance:
         needed.append((spec.analysis.compliance, spec.source))
+    needed += [(g, o.source) for o in getattr(spec, "outputs", ()) for g in o.groups]
     for group, where in needed:
         if group not in groups:
             raise _error(where or spec.source, f"group {group!r} has no point in the beam "

@@ -219,8 +219,9 @@ def mesh_geometry(spec, size_factor: float = 1.0, max_dofs: int | None = None) -
     if not size_factor > 0:
         raise ValueError(f"size_factor = {size_factor!r} must be > 0")
     if spec.mechanism is not None:
-        return mesh_mechanism(spec.mechanism, spec.dim, size_factor, spec.mesh.size,
+        mesh = mesh_mechanism(spec.mechanism, spec.dim, size_factor, spec.mesh.size,
                               order=spec.mesh.order, max_dofs=max_dofs)
+        return with_faces(mesh, spec)
     if spec.geometry.suffix.lower() in MESH_SUFFIXES and size_factor != 1.0:
         raise ValueError(f"{spec.geometry}: a .msh mesh cannot be remeshed with size_factor "
                          f"= {size_factor}; give a .geo or CAD file")
@@ -231,6 +232,19 @@ def mesh_geometry(spec, size_factor: float = 1.0, max_dofs: int | None = None) -
         check_msh_counts(spec.geometry)
     return run_bounded(_mesh, spec, size_factor, max_dofs, limit,
                        what=f"meshing {spec.geometry.name}", **_mesh_limits(spec.dim, limit))
+
+
+def with_faces(mesh: FEMesh, spec) -> FEMesh:
+    """``mesh`` of a mechanism with a boundary group for each face of a body the model file
+    names (``stage.top``: geometry/mechanism/faces.py)."""
+    from ..mechanism.faces import face_facets, parse_face
+
+    bodies = [b.name for b in spec.mechanism.bodies]
+    for name in spec.groups:
+        face = parse_face(name, bodies, spec.dim)
+        if face is not None and name not in mesh.boundaries:
+            mesh.boundaries[name] = face_facets(mesh, spec.mechanism, name, *face)
+    return mesh
 
 
 def _with_refinements(gmsh, estimate: dict, spec, factor: float) -> dict:

@@ -11,6 +11,7 @@ from .beam_tables import BeamSpec, _options as beam_options, parse_beams
 from .geo_guard import check_inside
 from .mechanism_tables import parse_mechanism
 from .names import check_override_key, nearest, unknown_name
+from .outputs_table import parse_outputs
 from .geometry import CAD_SUFFIXES, GEO_SUFFIXES, SUFFIXES, inspect_geometry
 from .tables import (Analysis, Load, Locator, MeshOptions, Section, Support, is_number,
                      parse_analysis, parse_loads, parse_material, parse_mesh, parse_section,
@@ -18,7 +19,7 @@ from .tables import (Analysis, Load, Locator, MeshOptions, Section, Support, is_
 
 TOP_KEYS = ("geometry", "dim", "description", "parameters", "material", "section", "mesh",
             "supports", "loads", "select", "analysis", "beam", "rigid", "beam_model", "body",
-            "flexure")
+            "flexure", "outputs")
 OVERRIDE_TABLES = ("material", "section", "mesh", "analysis", "beam_model")
 
 
@@ -31,7 +32,8 @@ class ModelSpec:
     beam model (BeamSpec, [[beam]] and [[rigid]]) or None; allow_code: the user trusts the
     file (its .geo may run code and read outside its folder); mechanism: the bodies and
     flexures of a file that describes its mechanism so (then ``geometry`` is the model file
-    itself, and both the continuum and the beam model are derived from it)."""
+    itself, and both the continuum and the beam model are derived from it); outputs: the
+    [outputs] metrics (outputs_table.Output)."""
 
     path: Path
     geometry: Path
@@ -50,6 +52,7 @@ class ModelSpec:
     beams: BeamSpec | None = None
     allow_code: bool = False
     mechanism: Mechanism | None = None
+    outputs: tuple = ()
 
     @property
     def source(self) -> str:
@@ -234,8 +237,9 @@ def _mechanism_spec(path: Path, raw: dict, loc: Locator, overridden: set, dim: i
         raise loc.error("the mechanism has no support: hold a body with [[supports]] group = "
                         "'NAME'", None)
     parameters = _parameters(raw.get("parameters", {}), loc, overridden)
+    held = {s.group for s in parts["supports"]}  # a held face holds its body
     mechanism = parse_mechanism(raw, parameters, section.thickness, loc,
-                                {s.group for s in parts["supports"]})
+                                held | {g.rpartition(".")[0] for g in held if "." in g})
     if parts["mesh"].size is not None:  # a size the mesh cannot honour: refused, not raised
         from ..mechanism.draw import check_body_size
 
@@ -245,14 +249,22 @@ def _mechanism_spec(path: Path, raw: dict, loc: Locator, overridden: set, dim: i
             raise loc.error(str(error).removeprefix(f"{mechanism.source}: "), "mesh",
                             "size") from None
     groups = {b.name: dim - 1 for b in mechanism.bodies} | {"solid": dim}
+    from ..mechanism.faces import face_names, named_faces, with_face_points
+
+    bodies = [b.name for b in mechanism.bodies]
+    outputs = parse_outputs(raw.get("outputs"), parameters,
+                            set(groups) | set(face_names(bodies, dim)), dim, loc)
+    faces = named_faces(parts, outputs, bodies, dim)
+    groups |= {name: dim - 1 for name in faces}
     _check_groups(parts, groups, path, dim, loc)
     from ..mechanism.beams import beam_spec  # it builds on beam_tables: imported when used
 
     options = beam_options(raw.get("beam_model", {}), loc)
+    beams = with_face_points(beam_spec(mechanism, **options), mechanism, faces)
     return ModelSpec(path=path, geometry=path, dim=dim, parameters=parameters, groups=groups,
                      constants=dict(parameters), description=str(raw.get("description", "")),
-                     beams=beam_spec(mechanism, **options), allow_code=allow_code,
-                     mechanism=mechanism, selects=(), **parts)
+                     beams=beams, allow_code=allow_code, mechanism=mechanism, selects=(),
+                     outputs=outputs, **parts)
 
 
 def _body_loads(raw, dim: int, loc: Locator) -> tuple:
@@ -365,6 +377,9 @@ def load_spec(path, overrides: dict | None = None, allow_code: bool = False,
         raise loc.error(f"dim = {dim} but {geometry.name} is {info.dim}-D", None,
                         "dim" if "dim" in raw else None)
     _check_groups(parts, info.groups, geometry, dim, loc)
+    observable = {g for g, d in info.groups.items() if d in (dim - 1, dim)}
+    outputs = parse_outputs(raw.get("outputs"), {**info.constants, **parameters}, observable,
+                            dim, loc)
     description = raw.get("description", "")
     beams = parse_beams(raw, {**info.constants, **parameters},
                         parts["section"].thickness if dim == 2 else None, loc)
@@ -373,4 +388,4 @@ def load_spec(path, overrides: dict | None = None, allow_code: bool = False,
     return ModelSpec(path=path, geometry=geometry, dim=dim, parameters=parameters,
                      groups=info.groups, constants=info.constants,
                      description=str(description), beams=beams, allow_code=allow_code,
-                     **parts)
+                     outputs=outputs, **parts)

@@ -15,6 +15,7 @@ from ..engine.validate import declare
 from ...reduced.model_file import beam_model
 from .beam_analysis import (check_beam_analyses, lifted_outputs, out_of_plane, planar_twin,
                             spatial_modes, spatial_static)
+from .observe import observation_metrics, observed, observed_path
 from .outputs import check_finite, check_loaded_supports, groups_of as _groups, stiffness
 from .stroke import stroke_limits
 
@@ -91,7 +92,7 @@ def build(spec: ModelSpec, model: str = "continuum", size_factor: float = 1.0,
 
 
 def analyze_model(spec: ModelSpec, size_factor: float = 1.0, model: str = "continuum",
-                  max_dofs: int | None = None) -> dict:
+                  max_dofs: int | None = None, fields: dict | None = None) -> dict:
     """Solve the model file's problem. Returns (SI): dofs, solver, h (m), max_von_mises (Pa),
     max_von_mises_location (m), mean_displacement {group: vector (m)} of every support and
     load group, reactions {group: vector (N)} of every support, stiffness {group: {axis:
@@ -100,7 +101,8 @@ def analyze_model(spec: ModelSpec, size_factor: float = 1.0, model: str = "conti
     ``model="beam"``: the same analysis of the file's beam model (its declared [[beam]] or
     its bodies' and flexures'; with ``--dim 3`` the spatial beam model's modes, and its
     statics for a force out of the plane: :mod:`.beam_analysis`). ``max_dofs``: the continuum's mesh budget (None: half the
-    available memory)."""
+    available memory). ``fields``: a dict that receives the solved "model", its "static"
+    result and its "modes" (pictures.py draws and writes them)."""
     if model not in MODELS:
         raise ValueError(f"{spec.source}: model = {model!r} must be one of {MODELS}")
     solid = None
@@ -118,6 +120,8 @@ def analyze_model(spec: ModelSpec, size_factor: float = 1.0, model: str = "conti
     except ValueError as error:
         raise _in_context(spec, error) from None
     groups = _groups(spec)
+    if fields is not None:
+        fields.update(model=fe, static=result)
     mean = {g: result.mean_displacement(g).tolist() for g in groups}
     out = {
         "model": spec.source, "geometry": str(spec.geometry), "parameters": dict(spec.constants),
@@ -131,15 +135,19 @@ def analyze_model(spec: ModelSpec, size_factor: float = 1.0, model: str = "conti
     }
     if out["yield_strength"] is None:
         out["not_available"] = {"yield_strength": "not given in [material]"}
+    seen = observed(spec, result, groups, lifted=solid is not None)  # observe.py
+    out["not_available"] = {**out.get("not_available", {}), **seen.pop("not_available", {})}
+    out.update(seen)
     if spec.analysis.modes:
         try:
             modes = (spatial_modes(solid, fe, spec.analysis.modes) if solid is not None else
-                     solve_modes(fe, spec.analysis.modes, supports).frequencies_hz.tolist())
+                     _kept(fields, "modes", solve_modes(fe, spec.analysis.modes, supports))
+                     .frequencies_hz.tolist())
         except ValueError as error:
             raise _in_context(spec, error) from None
         out["frequencies_hz"] = modes
     if spec.analysis.steps:
-        out["nonlinear"] = _nonlinear(spec, fe, supports, loads, groups)
+        out["nonlinear"] = _nonlinear(spec, fe, supports, loads, groups, solid is not None)
     try:
         out.update(_precision(spec, fe, supports, loads))
     except ValueError as error:
@@ -156,6 +164,13 @@ def analyze_model(spec: ModelSpec, size_factor: float = 1.0, model: str = "conti
     if not out["not_available"]:
         del out["not_available"]
     return check_finite(out, spec.source)
+
+
+def _kept(fields: dict | None, name: str, value):
+    """``value``, also kept as ``fields[name]`` where the caller asked for the fields."""
+    if fields is not None:
+        fields[name] = value
+    return value
 
 
 def _strength(value: float) -> float | None:
@@ -191,9 +206,9 @@ def _precision(spec, model, supports, loads) -> dict:
     return out
 
 
-def _nonlinear(spec, model, supports, loads, groups) -> dict:
+def _nonlinear(spec, model, supports, loads, groups, lifted: bool = False) -> dict:
     """Large-deflection solve at full load: mean displacements (m), reactions (N), von Mises
-    (Pa)."""
+    (Pa), observations and outputs (and the outputs at every step: observe.py)."""
     try:
         large = solve_nonlinear(model, supports, loads, steps=spec.analysis.steps)
     except ValueError as error:
@@ -201,7 +216,8 @@ def _nonlinear(spec, model, supports, loads, groups) -> dict:
     return {"steps": len(large.load_factors) - 1,
             "mean_displacement": {g: large.mean_displacement(g).tolist() for g in groups},
             "reactions": {g: np.asarray(r).tolist() for g, r in large.reactions[-1].items()},
-            "max_von_mises": large.max_von_mises}
+            "max_von_mises": large.max_von_mises,
+            **observed_path(spec, large, groups, lifted)}
 
 
 def _key(name: str) -> str:
@@ -230,11 +246,13 @@ def flat_metrics(result: dict) -> dict[str, float]:
     for key in ("stroke_limit_yield", "stroke_limit_fatigue"):
         if result.get(key) is not None:
             out[key] = float(result[key])
-    missing = {k: v for k, v in result.get("not_available", {}).items() if k.startswith("stroke")}
+    missing = {k: v for k, v in result.get("not_available", {}).items()
+               if k.startswith(("stroke", "outputs."))}
     if missing:  # a study's table says why a stroke metric is absent (a string, not a number)
         out["not_available"] = "; ".join(f"{k}: {v}" for k, v in missing.items())
     if result.get("harmonic", {}).get("resonances_hz"):
         out["harmonic_resonance_hz"] = float(result["harmonic"]["resonances_hz"][0])
+    out.update(observation_metrics(result))
     return out
 
 
