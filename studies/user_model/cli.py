@@ -78,7 +78,26 @@ def summarize(result: dict) -> str:
         for group, u in nl["mean_displacement"].items():
             lines.append(f"large deflection ({nl['steps']} steps), mean displacement of "
                          f"{group!r}: {_vector(u, 'm')}")
-    return "\n".join(lines)
+    return "\n".join(lines + _output_lines(result))
+
+
+def _output_lines(result: dict) -> list[str]:
+    """The [outputs] (and, with steps, at the final step) and the rotations of the bodies
+    and faces observed."""
+    lines, why = [], result.get("not_available", {})
+    for name, value in result.get("outputs", {}).items():
+        lines.append(f"output {name} = {value:.6g}" if value is not None else
+                     f"output {name}: not available: {why.get('outputs.' + name, '')}")
+    for name, value in result.get("nonlinear", {}).get("outputs", {}).items():
+        if value is not None:
+            lines.append(f"large deflection, output {name} = {value:.6g}")
+    for group, o in result.get("observations", {}).items():
+        turns = {k: v for k, v in o.items() if k.startswith("r") and v is not None}
+        if turns and group not in result["mean_displacement"]:
+            u = _vector([v for k, v in o.items() if k[0] == "u"], "m")
+            lines.append(f"observed {group!r}: u = {u}"
+                         + "".join(f", {k} = {v:.4g} rad" for k, v in turns.items()))
+    return lines
 
 
 def _stroke_lines(result: dict) -> list[str]:
