@@ -16,7 +16,7 @@ from .engine.convergence import (
 from .engine.store import export_csv, export_parquet, parquet_available
 from .engine.sweep import Study, plot_metric
 from .engine.tolerance import confirm_extremes, summarize
-from .engine.validate import check_parameter_names, declared_options
+from .engine.validate import check_metric_names, check_parameter_names, declared_options
 from .mechanisms import (
     MODEL_PREFIX,
     check_mechanism,
@@ -300,6 +300,7 @@ def run_convergence(mechanism: str, metric: str, tol="0.5%", n_levels: int = 4, 
     levels = default_levels(n_levels, ratio, start=start)
     evaluate = get_evaluator(mechanism, allow_code=allow_code)
     check_parameter_names(evaluate, [(f"params.{k}", k) for k in (params or {})], mechanism)
+    check_metric_names(evaluate, [("metric", metric)], mechanism)
     if max_dofs is not None:
         if "max_dofs" not in declared_options(evaluate)[0]:
             raise ValueError(f"max_dofs = {max_dofs!r}: mechanism {mechanism!r} takes no mesh "

@@ -11,7 +11,8 @@ and a warning line on stderr says which and why.
 import sys
 from dataclasses import replace
 
-from .validate import check_parameter_names, nearest, normalise_options, result_problems
+from .validate import (check_metric_names, check_parameter_names, nearest, normalise_options,
+                       result_problems)
 
 
 def study_parameter_names(study) -> list[tuple[str, str]]:
@@ -44,6 +45,11 @@ def check_study(study, evaluate):
                           where="tolerances.confirm")
     named = study_parameter_names(study)
     check_parameter_names(evaluate, named, study.mechanism)
+    metrics = [(f"plots[{i}].{'metric' if k == 0 else 'overlay'}", m)
+               for i, p in enumerate(study.plots) for k, m in enumerate((p.metric, *p.overlay))]
+    if study.tolerances is not None:
+        metrics += [("tolerances.metrics", m) for m in study.tolerances.metrics]
+    check_metric_names(evaluate, metrics, study.mechanism)
     given = sorted({name for _, name in named})
     for i, plot in enumerate(study.plots):
         if plot.parameter not in given:

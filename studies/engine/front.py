@@ -39,7 +39,8 @@ import numpy as np
 
 from .store import CaseResult, ResultStore, case_key, flexfem_version
 from .checks import warn_stale
-from .validate import check_parameter_names, normalise_options, result_problems
+from .validate import check_metric_names, check_parameter_names, normalise_options, \
+    result_problems
 
 GOALS = ("min", "max")
 
@@ -128,6 +129,8 @@ def check_front(front: Front, evaluate) -> None:
     named += [(f"reference {r!r} params.{k}", k) for r, params in front.references
               for k in params]
     check_parameter_names(evaluate, named, front.mechanism)
+    check_metric_names(evaluate, [("objective", m) for m, _ in front.objectives]
+                       + [("constraint", m) for m, _, _ in front.constraints], front.mechanism)
 
 
 def _cached(evaluate, front: Front, store: ResultStore, options: dict):

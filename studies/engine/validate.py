@@ -121,7 +121,7 @@ def require_finite(values: dict, what: str) -> dict:
     return values
 
 
-def declare(parameters=None, options=None, positive=()):
+def declare(parameters=None, options=None, positive=(), metrics=None):
     """Decorate a mechanism's ``evaluate`` with what the engine checks around it, so that a
     misspelled name is refused before any case runs and a stored row is reused only if it
     passes the checks of a fresh one. ``parameters``: its parameter names (a dataclass: its
@@ -129,9 +129,13 @@ def declare(parameters=None, options=None, positive=()):
     binds, e.g. a model file's ``file``, and returning them, or None where it cannot tell); ``options``: the same for the
     names its ``**options`` take (a model file's 'table.key'); ``positive``: metric names or
     fnmatch patterns ("stiffness_*", "f*_hz") that must be > 0 (stiffnesses, frequencies: positive by definition
-    in its analyses). An evaluate declaring nothing is checked by its signature only."""
+    in its analyses); ``metrics``: the metric names it may return, names or fnmatch patterns
+    (the same kinds as ``parameters``), so that a study's, a front's or a convergence
+    study's misspelled metric is refused before any case runs. An evaluate declaring nothing
+    is checked by its signature only."""
     def mark(evaluate):
         evaluate.study_parameters = parameters
+        evaluate.study_metrics = metrics
         evaluate.study_options = options
         evaluate.positive_metrics = tuple(positive)
         return evaluate
@@ -154,6 +158,20 @@ def _declared(evaluate, attribute: str):
 def known_parameters(evaluate) -> set | None:
     """The parameter names ``evaluate`` declares (:func:`declare`), None if it declares none."""
     return _declared(evaluate, "study_parameters")
+
+
+def check_metric_names(evaluate, named, mechanism: str) -> None:
+    """Refuse the first of ``named`` ((where, metric) pairs: 'plots[0].metric', 'R') that is
+    none of the metrics ``evaluate`` declares (:func:`declare`; names or fnmatch patterns),
+    with the known ones and the nearest."""
+    known = _declared(evaluate, "study_metrics")
+    if known is None:
+        return
+    for where, name in named:
+        if not any(fnmatch.fnmatchcase(str(name), k) for k in known):
+            exact = sorted(k for k in known if not any(c in k for c in "*?["))
+            raise ValueError(f"{where} = {name!r} is no metric of mechanism {mechanism!r}; "
+                             f"its metrics: {', '.join(sorted(known))}{nearest(name, exact)}")
 
 
 def nearest(name, known) -> str:

@@ -1,6 +1,8 @@
 """Analysis of a user's model file: static solve (and natural frequencies, and a
 large-deflection solve where asked), as a JSON-able dict and as flat metrics for sweeps."""
+from pathlib import Path
 import re
+import tomllib
 from typing import Literal
 
 import numpy as np
@@ -10,6 +12,7 @@ from ...fem import (Fixed, Force, Model, PlaneStrain, PlaneStress, Prescribed, S
                     solve_nonlinear, solve_static)
 from ...geometry.user_model import ModelSpec, load_spec, mesh_geometry
 from ...geometry.user_model.names import override_keys
+from ...geometry.user_model.outputs_table import BUILT_IN, output_names
 from ...geometry.user_model.spec import model_parameter_names
 from ..engine.validate import declare
 from ...reduced.model_file import beam_model
@@ -261,7 +264,21 @@ def _names(file=None, allow_code=False, **_) -> list[str] | None:
     return model_parameter_names(file, allow_code) if file is not None else None
 
 
-@declare(parameters=_names, options=lambda **_: override_keys(),
+def _metrics(file=None, **_) -> list[str] | None:
+    """The metrics the model file's evaluate may return: the built-in names and patterns,
+    its [outputs] (and NAME_nonlinear); None where the file cannot be read (its own error
+    then comes from evaluate)."""
+    try:
+        raw = tomllib.loads(Path(file).read_text()) if file is not None else None
+    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError):
+        return None
+    if raw is None:
+        return None
+    names = output_names(raw)
+    return [*BUILT_IN, *names, *(f"{n}_nonlinear" for n in names)]
+
+
+@declare(parameters=_names, options=lambda **_: override_keys(), metrics=_metrics,
          positive=("stiffness_*", "f*_hz", "compliance_*", "h", "dofs"))
 def evaluate(params: dict | None = None, *, model: Literal["continuum", "beam"] = "continuum",
              file: str | None = None, size_factor: float = 1.0, allow_code: bool = False,
