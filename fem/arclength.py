@@ -17,8 +17,8 @@ import math
 import numpy as np
 
 from . import linsolve
-from .hyperelastic import _StepFailed
-from .newton import NonConvergenceError, _newton
+from .stepping import StepFailed
+from .newton import NonConvergenceError, newton_step
 
 
 def _load_direction(problem, z, lam, rz) -> np.ndarray:
@@ -33,9 +33,9 @@ def _solve2(K, a, b, kind="symmetric"):
         with linsolve.factorize(K, kind=kind) as solve:
             x = solve(np.column_stack([a, b]))
     except (RuntimeError, linsolve.SingularSystemError) as error:
-        raise _StepFailed(f"the tangent is singular ({error})", []) from None
+        raise StepFailed(f"the tangent is singular ({error})", []) from None
     if not np.all(np.isfinite(x)):
-        raise _StepFailed("the tangent is singular (non-finite increment)", [])
+        raise StepFailed("the tangent is singular (non-finite increment)", [])
     return x[:, 0], x[:, 1]
 
 
@@ -55,18 +55,18 @@ def arc_step(problem, z, lam, ds, previous, max_iterations, tol):
         norm = float(np.linalg.norm(rz))
         history.append(norm / reference if reference > 0 else norm)
         if not math.isfinite(norm):
-            raise _StepFailed("the residual diverged", history)
+            raise StepFailed("the residual diverged", history)
         small = d is not None and np.linalg.norm(d) <= math.sqrt(tol) * max(np.linalg.norm(u), 1e-300)
         if norm <= tol * reference and small:
             return zc, lc, u, r, iteration
         a, b = _solve2(K, -rz, _load_direction(problem, zc, lc, rz), problem.matrix_kind)
         denominator = 2.0 * float(Dz @ b)
         if denominator == 0:
-            raise _StepFailed("the arc-length constraint is degenerate", history)
+            raise StepFailed("the arc-length constraint is degenerate", history)
         dl = (ds ** 2 - float(Dz @ Dz) - 2.0 * float(Dz @ a)) / denominator
         d = a + dl * b
         Dz, Dlam = Dz + d, Dlam + dl
-    raise _StepFailed(f"no convergence in {max_iterations} iterations", history)
+    raise StepFailed(f"no convergence in {max_iterations} iterations", history)
 
 
 def limit_points(load_factors) -> list:
@@ -102,9 +102,9 @@ def trace(problem, steps, max_iterations, tol, min_step, max_steps, on_step, z0=
             z_new, lam_new, u, r, its = arc_step(problem, z, lam, ds, previous, max_iterations, tol)
             if lam_new > 1.0:
                 guess = z + (1.0 - lam) / (lam_new - lam) * (z_new - z)
-                z_new, u, r, its, _ = _newton(problem, z, lam, 1.0, max_iterations, tol, guess)
+                z_new, u, r, its, _ = newton_step(problem, z, lam, 1.0, max_iterations, tol, guess)
                 lam_new = 1.0
-        except _StepFailed as failure:
+        except StepFailed as failure:
             if ds / 2 < min_step * ds0:
                 raise NonConvergenceError(
                     f"arc-length: no convergence beyond load factor {lam:.6g} with arc length "

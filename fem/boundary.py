@@ -175,7 +175,7 @@ def _check_dim(vector, dim, what):
         raise ValueError(f"{what} has {len(vector)} components; the model is {dim}-D: give {dim}")
 
 
-def _facet_basis(model, group):
+def facet_basis(model, group):
     facets = model.mesh.facets(group)
     if len(facets) == 0:
         raise ValueError(f"group {group!r} has no facets: a load on it would act on no nodes")
@@ -280,7 +280,7 @@ def _traction_form(model, load):
 
 def _surface_load(model, load) -> np.ndarray:
     """Nodal forces (N) of a Force, Traction or Pressure on the undeformed surface."""
-    fb = _facet_basis(model, load.group)
+    fb = facet_basis(model, load.group)
     t = model.thickness
     if isinstance(load, Force):
         _check_dim(load.vector, model.dim, "Force")

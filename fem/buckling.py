@@ -46,16 +46,16 @@ class Buckling:
         """Write every shape as a vertex field 'buckling_k (factor)' to ``.vtu``."""
         import meshio
 
-        from .export import _cell_types, _pad3, oriented_corners
+        from .export import cell_types, pad3, oriented_corners
 
         femesh = self.model.mesh
-        (linear, _), _ = _cell_types(femesh.mesh)
-        point = {f"buckling_{k + 1} ({f:.6g})": _pad3(self.vertex_shape(k))
+        (linear, _), _ = cell_types(femesh.mesh)
+        point = {f"buckling_{k + 1} ({f:.6g})": pad3(self.vertex_shape(k))
                  for k, f in enumerate(self.load_factors)}
         path = Path(path)
         if path.suffix != ".vtu":
             raise ValueError(f"path = {str(path)!r}: buckling shapes are written as .vtu")
-        meshio.write(path, meshio.Mesh(_pad3(femesh.mesh.p.T),
+        meshio.write(path, meshio.Mesh(pad3(femesh.mesh.p.T),
                                        [(linear, oriented_corners(femesh.mesh))],
                                        point_data=point), file_format="vtu")
         return path

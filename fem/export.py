@@ -38,7 +38,7 @@ _MESHIO_CELLS = {
 }
 
 
-def _cell_types(mesh: skfem.Mesh) -> tuple[tuple[str, str], str]:
+def cell_types(mesh: skfem.Mesh) -> tuple[tuple[str, str], str]:
     for mesh_type, value in _MESHIO_CELLS.items():
         if isinstance(mesh, mesh_type):
             return value
@@ -53,7 +53,7 @@ _HEX_FACES = np.array([[0, 1, 2, 3], [4, 7, 6, 5], [0, 4, 5, 1], [1, 5, 6, 2], [
                        [3, 7, 4, 0]])
 
 
-def _facet_cells(femesh: FEMesh, facets: np.ndarray) -> np.ndarray:
+def facet_cells(femesh: FEMesh, facets: np.ndarray) -> np.ndarray:
     """(n, k) vertex indices of boundary facets in meshio (VTK) order: for hexahedra the
     face of the adjacent element whose vertices go round the face (skfem stores them sorted)."""
     mesh = femesh.mesh
@@ -77,7 +77,7 @@ def meshio_mesh(femesh: FEMesh, order: int = 1) -> meshio.Mesh:
     group; cell data ``group_id`` (the group's tag; for an element in several subdomains the
     first by name, 0 for none), one 0/1 array per group, cell sets and field data
     ``{name: [tag, dim]}``."""
-    (linear, quadratic), facet_type = _cell_types(femesh.mesh)
+    (linear, quadratic), facet_type = cell_types(femesh.mesh)
     am = abaqus_mesh(femesh, order)
     dim = femesh.dim
     points = am.points  # (n, 3): VTU and gmsh store 3-D points
@@ -89,7 +89,7 @@ def meshio_mesh(femesh: FEMesh, order: int = 1) -> meshio.Mesh:
     cells = [(quadratic if order == 2 else linear, am.elements)]
     group_id = [element_tag]
     for name in sorted(femesh.boundaries):
-        facets = _facet_cells(femesh, femesh.boundaries[name])
+        facets = facet_cells(femesh, femesh.boundaries[name])
         ftype = facet_type
         if order == 2:
             facets = np.hstack([facets, mid_edge_nodes(femesh.mesh, facets, _CYCLE[facet_type])])
@@ -171,7 +171,7 @@ def write_mesh(femesh: FEMesh, path, order: int = 1) -> Path:
     return path
 
 
-def _pad3(vectors: np.ndarray) -> np.ndarray:
+def pad3(vectors: np.ndarray) -> np.ndarray:
     """(n, 2) -> (n, 3) with a zero z column, for ParaView's vector glyphs and warps."""
     return np.hstack([vectors, np.zeros((vectors.shape[0], 3 - vectors.shape[1]))])
 
@@ -198,18 +198,18 @@ def result_fields(result_or_modes) -> tuple[dict, dict, dict]:
 
     r = result_or_modes
     if isinstance(r, StaticResult):
-        point = {"displacement": _pad3(r.displacement), "von_mises": r.von_mises_nodal}
+        point = {"displacement": pad3(r.displacement), "von_mises": r.von_mises_nodal}
         if r.nodal_stress_full is not None:
             point["stress"] = _tensor9(r.nodal_stress_full)
         return point, {"von_mises_element_max": [r.von_mises_element_max]}, {}
     if isinstance(r, NonlinearResult):
-        point = {"displacement": _pad3(vertex_displacement(r.model, r.u[-1])),
+        point = {"displacement": pad3(vertex_displacement(r.model, r.u[-1])),
                  "von_mises": r.von_mises_nodal}
         for name, value in nonlinear_stress(r, full=True).items():
             point[f"stress_{name}"] = _tensor9(value)
         return point, {"von_mises_element_max": [r.von_mises_element_max]}, {}
     if isinstance(r, Modes):
-        point = {mode_field_name(k, f): _pad3(r.vertex_shape(k))
+        point = {mode_field_name(k, f): pad3(r.vertex_shape(k))
                  for k, f in enumerate(r.frequencies_hz)}
         return point, {}, {}
     raise ValueError(f"write_result needs a StaticResult, NonlinearResult or Modes, not "
@@ -224,8 +224,8 @@ def write_result(result_or_modes, path) -> Path:
     suffix = _format(path, RESULT_FORMATS)
     point, cell, field = result_fields(result_or_modes)
     femesh = result_or_modes.model.mesh
-    (linear, _), _ = _cell_types(femesh.mesh)
-    m = meshio.Mesh(_pad3(femesh.mesh.p.T), [(linear, oriented_corners(femesh.mesh))],
+    (linear, _), _ = cell_types(femesh.mesh)
+    m = meshio.Mesh(pad3(femesh.mesh.p.T), [(linear, oriented_corners(femesh.mesh))],
                     point_data=point, cell_data=cell, field_data=field)
     if suffix == ".xdmf":
         meshio.xdmf.write(path, m, data_format="XML")

@@ -130,7 +130,7 @@ def mean_weights(model: Model, group: str) -> np.ndarray:
     return weights / np.sum(basis.dx)
 
 
-def _damping_ratios(damping, omega: np.ndarray) -> np.ndarray:
+def damping_ratios(damping, omega: np.ndarray) -> np.ndarray:
     if isinstance(damping, Rayleigh):
         return damping.ratios(omega)
     zeta = np.asarray(damping, dtype=float)
@@ -141,7 +141,7 @@ def _damping_ratios(damping, omega: np.ndarray) -> np.ndarray:
     return np.broadcast_to(zeta, omega.shape)
 
 
-def _check_frequencies(frequencies_hz) -> np.ndarray:
+def check_frequencies(frequencies_hz) -> np.ndarray:
     f = np.atleast_1d(np.asarray(frequencies_hz, dtype=float))
     if f.ndim != 1 or len(f) == 0 or not np.all(np.isfinite(f)) or np.any(f < 0):
         raise ValueError(f"frequencies_hz = {frequencies_hz!r} must be finite numbers >= 0 (Hz)")
@@ -161,7 +161,7 @@ def solve_harmonic(model: Model, supports, loads, frequencies_hz, damping=0.0,
     mode, or Rayleigh(alpha, beta). method : 'modal' (``n_modes`` modes plus the static
     correction, exact at 0 Hz) or 'direct' (one complex factorization per frequency; Rayleigh
     or zero damping only). An undamped response at a natural frequency is infinite."""
-    f_hz = _check_frequencies(frequencies_hz)
+    f_hz = check_frequencies(frequencies_hz)
     if method not in ("modal", "direct"):
         raise ValueError(f"method = {method!r}; choose 'modal' or 'direct'")
     D, _, _ = constrained_dofs(model, supports)
@@ -184,7 +184,7 @@ def solve_harmonic(model: Model, supports, loads, frequencies_hz, damping=0.0,
         raise ValueError(f"n_modes = {n_modes!r} must be an integer in [1, {len(I) - 1}]")
     modes = solve_modes(model, n_modes, supports)
     w_r = 2 * np.pi * modes.frequencies_hz
-    zeta = _damping_ratios(damping, w_r)
+    zeta = damping_ratios(damping, w_r)
     p = modes.shapes @ f  # modal forces, N m/sqrt(kg)
     static = np.zeros(model.n_dofs)
     static[I] = _static(model, I, f)

@@ -16,7 +16,7 @@ from skfem.helpers import ddot, eye, grad, mul, transpose, trace
 
 from .model import Model, PlaneStrain, von_mises
 from .projection import nodal_average
-from .stepping import StepFailed as _StepFailed  # raised here, caught by the step driver
+from .stepping import StepFailed  # raised here, caught by the step driver
 
 STRAIN_LIMIT = 0.05
 
@@ -87,12 +87,12 @@ class Assembler:
         self._pattern = None
 
     def state(self, u: np.ndarray):
-        """(F, S) at the quadrature points; raises _StepFailed where det F <= 0."""
+        """(F, S) at the quadrature points; raises StepFailed where det F <= 0."""
         H = self.basis.interpolate(u).grad
         F = H + eye(np.ones_like(H[0, 0]), H.shape[0])
         J = np.linalg.det(np.moveaxis(F, (0, 1), (-2, -1)))
         if not np.all(np.isfinite(J)) or J.min() <= 0:
-            raise _StepFailed(f"an element turned inside out (min det F = {J.min():.2g})", [])
+            raise StepFailed(f"an element turned inside out (min det F = {J.min():.2g})", [])
         return F, svk_stress(green_lagrange_of_gradient(H), self.lam, self.mu)
 
     def internal_force(self, F, S) -> np.ndarray:

@@ -87,7 +87,7 @@ def _mkl_pardiso():
     return fn
 
 
-def _pardiso_call(pt, mtype, phase, n, data, indptr, indices, iparm, b, x) -> None:
+def pardiso_call(pt, mtype, phase, n, data, indptr, indices, iparm, b, x) -> None:
     """One call of MKL's pardiso (zero-based CSR, iparm[34] = 1); raises on its error code."""
     fn = _mkl_pardiso()
     error = ctypes.c_int32(0)
@@ -111,13 +111,13 @@ def _pardiso_call(pt, mtype, phase, n, data, indptr, indices, iparm, b, x) -> No
                            f"{_PARDISO_ERRORS.get(error.value, 'unknown')}")
 
 
-def _pardiso_release(pt, mtype, n, iparm) -> None:
+def pardiso_release(pt, mtype, n, iparm) -> None:
     """Release the factor that the handle ``pt`` holds in MKL (phase -1), with the
     ``iparm`` it was made with (the two-level factorization's release crashes on defaults);
     idempotent."""
     if np.any(pt):
         empty_i, empty_d = np.zeros(1, dtype=np.int32), np.zeros(1)
-        _pardiso_call(pt, mtype, -1, n, empty_d, empty_i, empty_i, iparm, empty_d, empty_d.copy())
+        pardiso_call(pt, mtype, -1, n, empty_d, empty_i, empty_i, iparm, empty_d, empty_d.copy())
         pt[:] = 0
 
 
@@ -183,11 +183,11 @@ class Factorization:
         self._pt = np.zeros(64, dtype=np.int64)
         memory.release_freed()  # before the factor, the largest allocation, is made
         # release the MKL factor when this object goes away, even without free()
-        self._finalizer = weakref.finalize(self, _pardiso_release, self._pt, self._mtype, self.n,
+        self._finalizer = weakref.finalize(self, pardiso_release, self._pt, self._mtype, self.n,
                                           self._iparm)
         dummy = np.zeros(self.n)
         try:
-            _pardiso_call(self._pt, self._mtype, 12, self.n, self._data, self._indptr,
+            pardiso_call(self._pt, self._mtype, 12, self.n, self._data, self._indptr,
                           self._indices, self._iparm, dummy, dummy.copy())
         except BaseException:
             self.free()
@@ -209,7 +209,7 @@ class Factorization:
                 raise RuntimeError("this factorization was freed")
             b = np.asfortranarray(b)
             x = np.zeros_like(b, order="F")
-            _pardiso_call(self._pt, self._mtype, 33, self.n, self._data, self._indptr,
+            pardiso_call(self._pt, self._mtype, 33, self.n, self._data, self._indptr,
                           self._indices, self._iparm, b, x)
             return np.ascontiguousarray(x)
         if self.backend == "cholmod":

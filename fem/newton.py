@@ -5,7 +5,7 @@ import math
 import numpy as np
 
 from . import linsolve
-from .hyperelastic import _StepFailed
+from .stepping import StepFailed
 
 
 def check_step_arguments(steps, max_iterations, tol, min_step) -> None:
@@ -33,13 +33,13 @@ class NonConvergenceError(ValueError):
         self.residual_history = residual_history
 
 
-def _solve_direct(A, b, kind="symmetric") -> np.ndarray:
+def solve_tangent(A, b, kind="symmetric") -> np.ndarray:
     """Direct solve of a Newton step: the tangent is symmetric but need not be positive
     definite (a compressed or buckling flexure); ``kind`` 'general' for follower pressure."""
     return linsolve.solve_direct(A, np.asarray(b, dtype=float), kind=kind)
 
 
-def _newton(problem, z, lam_old, lam, max_iterations, tol, guess=None):
+def newton_step(problem, z, lam_old, lam, max_iterations, tol, guess=None):
     """Converged z at load factor ``lam`` from the converged ``z`` at ``lam_old``. Starts
     from ``guess`` (extrapolated from earlier steps) if given, else from the tangent
     predictor: the increment of loads and prescribed motions applied through the tangent
@@ -61,7 +61,7 @@ def _newton(problem, z, lam_old, lam, max_iterations, tol, guess=None):
             norm = float(np.linalg.norm(rz))
             history.append(norm / reference if reference > 0 else norm)
             if not math.isfinite(norm) or (len(history) > 1 and norm > 1e8 * max(reference, 1e-300)):
-                raise _StepFailed("the residual diverged", history)
+                raise StepFailed("the residual diverged", history)
             step_small = np.linalg.norm(dz) <= math.sqrt(tol) * max(np.linalg.norm(u), 1e-300)
             if norm <= tol * reference and step_small:
                 return z, u, r, iteration - 1, history
@@ -69,6 +69,6 @@ def _newton(problem, z, lam_old, lam, max_iterations, tol, guess=None):
                 break
             dz = problem.solve(problem.reduced_tangent(z, lam, u, r, T), -rz)
             z = z + dz
-    except _StepFailed as failure:
-        raise _StepFailed(failure.reason, history + failure.history) from None
-    raise _StepFailed(f"no convergence in {max_iterations} iterations", history)
+    except StepFailed as failure:
+        raise StepFailed(failure.reason, history + failure.history) from None
+    raise StepFailed(f"no convergence in {max_iterations} iterations", history)

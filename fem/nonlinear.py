@@ -17,7 +17,7 @@ import numpy as np
 
 from . import linsolve
 from .boundary import component_indices, constrained_dofs, load_vector
-from .hyperelastic import (STRAIN_LIMIT, Assembler, _StepFailed, cauchy_stress,  # noqa: F401
+from .hyperelastic import (STRAIN_LIMIT, Assembler, StepFailed, cauchy_stress,  # noqa: F401
                            deformation, final_stress, green_lagrange, max_strain, svk_stress,
                            tangent_modulus)
 from .model import Model
@@ -26,7 +26,7 @@ from .preload import PreloadedSpace, preload_faces, split_preloads
 from .rigid_face import ReducedSpace
 from .rigid_static import check_held
 from .arclength import limit_points, trace
-from .newton import (NonConvergenceError, _newton, _solve_direct,  # noqa: F401
+from .newton import (NonConvergenceError, newton_step, solve_tangent,  # noqa: F401
                      check_step_arguments)
 from .nonlinear_result import NonlinearResult
 from .stability import count_negative_eigenvalues
@@ -93,12 +93,12 @@ class _Problem:
             if self.solver == "amg":
                 x = linsolve.solve_amg(K, b, self._near_null_space())
             else:
-                x = _solve_direct(K, b, self.matrix_kind)
+                x = solve_tangent(K, b, self.matrix_kind)
             linsolve.check_solution(K, x, b, "Newton step", rtol=1e-6)
         except (RuntimeError, linsolve.SingularSystemError) as error:
-            raise _StepFailed(f"the tangent is singular ({error})", []) from None
+            raise StepFailed(f"the tangent is singular ({error})", []) from None
         if not np.all(np.isfinite(x)):
-            raise _StepFailed("the tangent is singular (non-finite increment)", [])
+            raise StepFailed("the tangent is singular (non-finite increment)", [])
         return x
 
     def _near_null_space(self):
@@ -135,7 +135,7 @@ def _load_control(problem, steps, max_iterations, tol, min_step, on_step, z0) ->
         z, guess = path["z"], None
         if path["lam_previous"] is not None and cuts_here == 0:
             guess = z + dlam / (lam - path["lam_previous"]) * (z - path["z_previous"])
-        z_new, u, r, n_it, _ = _newton(problem, z, lam, lam + dlam, max_iterations, tol, guess)
+        z_new, u, r, n_it, _ = newton_step(problem, z, lam, lam + dlam, max_iterations, tol, guess)
         path.update(z=z_new, z_previous=z, lam_previous=lam)
         return on_step(z_new, lam + dlam, u, r, n_it)
 

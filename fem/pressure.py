@@ -14,7 +14,7 @@ import numpy as np
 import scipy.sparse as sp
 import skfem
 
-from .boundary import Pressure, _facet_basis, evaluate_on_points
+from .boundary import Pressure, facet_basis, evaluate_on_points
 
 _EPS = np.zeros((3, 3, 3))
 _EPS[0, 1, 2] = _EPS[1, 2, 0] = _EPS[2, 0, 1] = 1.0
@@ -48,7 +48,7 @@ class FollowerPressure:
         self.terms = []
         for load in loads:
             if isinstance(load, Pressure) and load.follower:
-                fb = _facet_basis(model, load.group)
+                fb = facet_basis(model, load.group)
                 if callable(load.p):
                     x = np.asarray(fb.global_coordinates())
                     p = evaluate_on_points(load.p, x, 0, f"Pressure({load.group!r}).p")

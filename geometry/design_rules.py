@@ -13,7 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..data import load_toml
-from .flexure_linkage import _inside, polygon_distance
+from .flexure_linkage import inside_convex, polygon_distance
 from .linkage_clearance import segment_distance
 
 UM = 1e-6
@@ -66,7 +66,7 @@ class Violation:
 
 def _distance(P, Q) -> float:
     """Distance (m) between two convex polygons, 0 where they touch or overlap."""
-    if _inside(P[0], Q) or _inside(Q[0], P):
+    if inside_convex(P[0], Q) or inside_convex(Q[0], P):
         return 0.0
     return min(segment_distance(a0, a1, b0, b1)
                for a0, a1 in zip(P, np.roll(P, -1, axis=0))

@@ -238,7 +238,7 @@ def _bars(link, lines, position, attach, W) -> list:
 
 # -- convex polygon distances (rectangles), for clearance checks ------------------------------
 
-def _inside(point, poly) -> bool:
+def inside_convex(point, poly) -> bool:
     """Point inside (or on) a counter-clockwise convex polygon."""
     for a, b in zip(poly, np.roll(poly, -1, axis=0)):
         if (b[0] - a[0]) * (point[1] - a[1]) - (b[1] - a[1]) * (point[0] - a[0]) < 0:
@@ -255,8 +255,8 @@ def polygon_distance(P: np.ndarray, Q: np.ndarray) -> tuple:
             d = segment_distance(a0, a1, b0, b1)
             if d < best:
                 best, where = d, _closest_midpoint(a0, a1, b0, b1)
-    if _inside(P[0], Q) or _inside(Q[0], P):
-        return 0.0, tuple(P[0] if _inside(P[0], Q) else Q[0])
+    if inside_convex(P[0], Q) or inside_convex(Q[0], P):
+        return 0.0, tuple(P[0] if inside_convex(P[0], Q) else Q[0])
     return best, where
 
 

@@ -188,3 +188,38 @@ def test_no_path_outside_the_repository(pattern):
             if OUTSIDE.search(line):
                 hits.append(f"{path.relative_to(ROOT)}:{k}: {line.strip()}")
     assert hits == []
+
+
+def private_names_shared() -> list[str]:
+    """'file:line name' for every ``_name`` that one module of the package imports from
+    another (``from .x import _name``) or reads off one it imported (``x._name``): what two
+    modules share is public and documented."""
+    found = []
+    for path in package_files():
+        tree = ast.parse(path.read_text())
+        imported = set()
+        for node in ast.walk(tree):
+            if isinstance(node, ast.ImportFrom) and (node.level or (node.module or "").startswith(
+                    "flexfem")):
+                for alias in node.names:
+                    if alias.name.startswith("_") and not alias.name.startswith("__"):
+                        found.append(f"{path.relative_to(ROOT)}:{node.lineno} {alias.name}")
+                    imported.add(alias.asname or alias.name)
+        for node in ast.walk(tree):
+            if (isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name)
+                    and node.value.id in imported and node.attr.startswith("_")
+                    and not node.attr.startswith("__")):
+                found.append(f"{path.relative_to(ROOT)}:{node.lineno} {node.value.id}.{node.attr}")
+    return found
+
+
+def test_no_private_name_crosses_modules():
+    assert private_names_shared() == []
+
+
+def test_the_private_name_finder_finds_one(tmp_path, monkeypatch):
+    (tmp_path / "fem").mkdir()
+    (tmp_path / "fem" / "a.py").write_text("from .b import _hidden\nfrom . import c\nc._x\n")
+    monkeypatch.setattr(__import__(__name__), "ROOT", tmp_path, raising=False)
+    monkeypatch.setitem(globals(), "ROOT", tmp_path)
+    assert private_names_shared() == ["fem/a.py:1 _hidden", "fem/a.py:3 c._x"]

@@ -2,8 +2,8 @@
 import numpy as np
 
 # node order: bottom-left, bottom-right, top-right, top-left; DOFs (x, y) per node
-_CORNERS = np.array([(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)])
-_GAUSS = np.array([-1.0, 1.0]) / np.sqrt(3.0)
+CORNERS = np.array([(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)])
+GAUSS = np.array([-1.0, 1.0]) / np.sqrt(3.0)
 
 
 def plane_stress_matrix(E: float, nu: float) -> np.ndarray:
@@ -14,8 +14,8 @@ def plane_stress_matrix(E: float, nu: float) -> np.ndarray:
 
 def strain_displacement(dx: float, dy: float, xi: float, eta: float) -> np.ndarray:
     """B (3x8, 1/m) of a dx x dy (m) rectangle at the natural point (xi, eta)."""
-    dN_dxi = _CORNERS[:, 0] * (1.0 + _CORNERS[:, 1] * eta) / 4.0
-    dN_deta = _CORNERS[:, 1] * (1.0 + _CORNERS[:, 0] * xi) / 4.0
+    dN_dxi = CORNERS[:, 0] * (1.0 + CORNERS[:, 1] * eta) / 4.0
+    dN_deta = CORNERS[:, 1] * (1.0 + CORNERS[:, 0] * xi) / 4.0
     dN_dx, dN_dy = dN_dxi * 2.0 / dx, dN_deta * 2.0 / dy
     B = np.zeros((3, 8))
     B[0, 0::2] = dN_dx
@@ -31,8 +31,8 @@ def element_stiffness(dx: float = 1.0, dy: float = 1.0, E: float = 1.0, nu: floa
     with E = 1 it is top88's ``lk()``."""
     D = plane_stress_matrix(E, nu)
     KE = np.zeros((8, 8))
-    for xi in _GAUSS:
-        for eta in _GAUSS:
+    for xi in GAUSS:
+        for eta in GAUSS:
             B = strain_displacement(dx, dy, xi, eta)
             KE += B.T @ D @ B * (dx * dy / 4.0)
     return KE * thickness

@@ -8,7 +8,7 @@ small-displacement limit is exactly the linear plane-stress element (element.py)
 """
 import numpy as np
 
-from .element import _CORNERS, _GAUSS
+from .element import CORNERS, GAUSS
 
 # the energy interpolation's switch: Wang, Lazarov, Sigmund & Jensen 2014 (Comput Methods Appl
 # Mech Engrg 276:453-472, doi:10.1016/j.cma.2014.03.021), its Heaviside of the density
@@ -20,9 +20,9 @@ def shape_gradients(dx: float, dy: float) -> np.ndarray:
     """dN_a/dX_j (1/m) at the 2 x 2 Gauss points of a dx x dy (m) rectangle, (4, 4, 2):
     Gauss point, node (element.py's order), direction."""
     out = np.empty((4, 4, 2))
-    for k, (xi, eta) in enumerate((x, e) for x in _GAUSS for e in _GAUSS):
-        out[k, :, 0] = _CORNERS[:, 0] * (1.0 + _CORNERS[:, 1] * eta) / 4.0 * 2.0 / dx
-        out[k, :, 1] = _CORNERS[:, 1] * (1.0 + _CORNERS[:, 0] * xi) / 4.0 * 2.0 / dy
+    for k, (xi, eta) in enumerate((x, e) for x in GAUSS for e in GAUSS):
+        out[k, :, 0] = CORNERS[:, 0] * (1.0 + CORNERS[:, 1] * eta) / 4.0 * 2.0 / dx
+        out[k, :, 1] = CORNERS[:, 1] * (1.0 + CORNERS[:, 0] * xi) / 4.0 * 2.0 / dy
     return out
 
 
@@ -32,7 +32,7 @@ class LargeStrainQ4:
 
     def __init__(self, dx: float, dy: float, nu: float, thickness: float):
         self.G = shape_gradients(dx, dy)
-        self.G0 = _CORNERS / 2.0 / np.array([dx, dy])     # dN_a/dX_j at the centre
+        self.G0 = CORNERS / 2.0 / np.array([dx, dy])     # dN_a/dX_j at the centre
         self.weight = dx * dy / 4.0 * thickness
         self.lam, self.mu = nu / (1.0 - nu**2), 1.0 / (2.0 * (1.0 + nu))
 

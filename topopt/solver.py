@@ -39,7 +39,7 @@ class PatternSolver:
         self._analysed = False
         if self.backend == "mkl-pardiso":
             self._pt, self._iparm = np.zeros(64, dtype=np.int64), _iparm()
-            self._finalizer = weakref.finalize(self, linsolve._pardiso_release, self._pt, SPD,
+            self._finalizer = weakref.finalize(self, linsolve.pardiso_release, self._pt, SPD,
                                                n, self._iparm)
 
     def factor(self, data: np.ndarray) -> None:
@@ -67,7 +67,7 @@ class PatternSolver:
         return np.ascontiguousarray(x)
 
     def _call(self, phase: int, b, x) -> None:
-        linsolve._pardiso_call(self._pt, SPD, phase, self.n, self._data, self._indptr,
+        linsolve.pardiso_call(self._pt, SPD, phase, self.n, self._data, self._indptr,
                                self._indices, self._iparm, b, x)
 
     def free(self) -> None:

@@ -20,9 +20,9 @@ import scipy.sparse.linalg as spla
 
 from .assembly import DENSE_EIGEN_LIMIT, SingularBeamError, load_vector
 from .banded import spd_factor
-from .element import (AXIAL, BEND, WXI, XI, _gram, bending_shape_functions,
+from .element import (AXIAL, BEND, WXI, XI, gram, bending_shape_functions,
                       rotation_to_global, shear_parameter)
-from .face import BeamResult, _supported, node_loads, node_supports
+from .face import BeamResult, node_loads, node_supports, supported_groups
 from .linear import linear_system
 from .model import BeamModel
 from .pattern import global_matrix
@@ -57,7 +57,7 @@ def geometric_stiffness(model: BeamModel, axial_force) -> np.ndarray:
     L = model.lengths
     _, dNw, _, _ = bending_shape_functions(XI, L, shear_parameter(model))
     local = np.zeros((model.n_elements, 6, 6))
-    local[:, np.array(BEND)[:, None], np.array(BEND)[None, :]] = _gram(
+    local[:, np.array(BEND)[:, None], np.array(BEND)[None, :]] = gram(
         WXI[None, :] * L[:, None], dNw, dNw)
     bar = np.array([[1.0, -1.0], [-1.0, 1.0]])
     local[:, np.array(AXIAL)[:, None], np.array(AXIAL)[None, :]] = bar / L[:, None, None]
@@ -143,4 +143,4 @@ def solve_buckling(model: BeamModel, supports, loads, n: int = 3, **options) -> 
     factors, vectors = lowest_load_factors(ev.K, G, n)
     full = space.expand(vectors, np.zeros(len(space.held)), ev.w).T
     return BeamBuckling(model, factors, scaled_shapes(full, 3),
-                        BeamResult(model, state, tuple(_supported(supports))))
+                        BeamResult(model, state, tuple(supported_groups(supports))))

@@ -76,7 +76,7 @@ def _shape_slopes(xi, L, phi):
     return dNw, dNp
 
 
-def _gram(weight, A, B) -> np.ndarray:
+def gram(weight, A, B) -> np.ndarray:
     """sum_g weight[e, g] A[e, g, i] B[e, g, j]: (n_e, i, j) (einsum's, by matmul)."""
     return np.matmul((A * weight[:, :, None]).transpose(0, 2, 1), B)
 
@@ -187,7 +187,7 @@ def bending_stiffness(EI, kGA, L) -> np.ndarray:
     n = len(L)
     wdx = WXI[None, :] * L[:, None]
     b = np.broadcast_to(_MOMENT_SHAPES, (n, len(XI), 2))
-    f = _gram(wdx / EI, b, b)
+    f = gram(wdx / EI, b, b)
     if kGA is not None:
         f = f + ((wdx / kGA).sum(axis=1) / L**2)[:, None, None]
     chord = np.zeros((n, 2, 4))  # basic deformations from the DOFs
@@ -234,7 +234,7 @@ def _local_mass(model) -> np.ndarray:
     A, I, _ = sections(model, XI)
     Nw, Np = shape_values(XI, L, phi)
     wdx = WXI[None, :] * L[:, None]
-    Mb = _gram(rho * A * wdx, Nw, Nw) + _gram(rho * I * wdx, Np, Np)
+    Mb = gram(rho * A * wdx, Nw, Nw) + gram(rho * I * wdx, Np, Np)
     Ma = np.einsum("eg,gi,gj->eij", rho * A * wdx, _AXIAL_SHAPES, _AXIAL_SHAPES)
     M = np.zeros((model.n_elements, 6, 6))
     M[:, np.array(BEND)[:, None], np.array(BEND)[None, :]] = Mb

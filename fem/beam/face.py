@@ -22,7 +22,7 @@ import numpy as np
 
 from ..boundary import Fixed, Force, Prescribed
 from ..compliance import Compliance, moved_compliance, rotation_frame
-from ..harmonic import FRF, _check_frequencies, _damping_ratios
+from ..harmonic import FRF, check_frequencies, damping_ratios
 from ..rigid_face_input import RigidFace
 from .compliance import shared_compliance
 from .modal import BeamModes, solve_beam_modes
@@ -90,7 +90,7 @@ def node_loads(model: BeamModel, loads) -> list:
     return out
 
 
-def _supported(supports) -> list:
+def supported_groups(supports) -> list:
     return [s.group for s in supports if isinstance(s, (Fixed, Prescribed))]
 
 
@@ -154,11 +154,11 @@ def solve_static(model: BeamModel, supports, loads=(), rigid_faces=(),
     """Linear static solve of a grouped beam model (the continuum's supports and loads;
     ``rigid_faces``: RigidFace on one-node groups, a prescribed x, y or rotation held, a free
     one carrying the face's force or moment; face_motion reads them)."""
-    _no_options("solve_static", options, ("solver",))
+    no_options("solve_static", options, ("solver",))
     held, face_loads, _ = rigid_face_conditions(model, rigid_faces)
     state = solve_beam_static(model, node_supports(model, supports) + held,
                               node_loads(model, loads) + face_loads)
-    return BeamResult(model, state, tuple(_supported(supports)),
+    return BeamResult(model, state, tuple(supported_groups(supports)),
                       faces=tuple(f.group for f in rigid_faces))
 
 
@@ -166,7 +166,7 @@ def solve_modes(model: BeamModel, n: int = 6, supports=(), **options) -> BeamMod
     """The ``n`` lowest natural frequencies (Hz) and shapes, supports held at zero (their
     values ignored, as the continuum's); effective_mass (n, 2) kg. A shift_hz is accepted
     and not needed (the beam's eigensolvers choose their own)."""
-    _no_options("solve_modes", options, ("shift_hz",))
+    no_options("solve_modes", options, ("shift_hz",))
     held = [_at_zero(s) for s in node_supports(model, supports)]
     return solve_beam_modes(model, held, n=n)
 
@@ -274,12 +274,12 @@ def solve_nonlinear(model: BeamModel, supports, loads, steps: int = 10,
     """Large-rotation (co-rotational) static solve, the loads, prescribed values and
     ``rigid_faces`` (RigidFace on one-node groups) scaled 0 -> 1 in ``steps`` increments
     (halved on failure down to ``min_step``)."""
-    _no_options("solve_nonlinear", options, ("solver", "check_stability"))
+    no_options("solve_nonlinear", options, ("solver", "check_stability"))
     held, applied_loads, applied = rigid_face_conditions(model, rigid_faces)
     result = solve_beam_nonlinear(model, node_supports(model, supports) + held,
                                   node_loads(model, loads) + applied_loads, steps=steps,
                                   max_iterations=max_iterations, tol=tol, min_step=min_step)
-    return BeamPath(model, result, tuple(_supported(supports)),
+    return BeamPath(model, result, tuple(supported_groups(supports)),
                     tuple(f.group for f in rigid_faces), applied)
 
 
@@ -288,7 +288,7 @@ def compliance_matrix(model: BeamModel, supports, face, point=None, angle: float
     """3 x 3 compliance of the group ``face`` (one node: the master of its rigid body) under
     ``supports``, at ``point`` (m; default that node), in the axes rotated by ``angle`` (rad)
     or the columns of ``frame`` (as the continuum's compliance_matrix)."""
-    _no_options("compliance_matrix", options, ())
+    no_options("compliance_matrix", options, ())
     nodes = group(model, face).nodes
     if len(nodes) != 1:
         raise ValueError(f"compliance_matrix: group {face!r} has {len(nodes)} nodes; a "
@@ -325,8 +325,8 @@ def solve_harmonic(model: BeamModel, supports, loads, frequencies_hz, damping=0.
     """Steady-state response to the loads (amplitudes, N) by modal superposition of
     ``n_modes`` modes plus the static correction (exact at 0 Hz), as the continuum's 'modal'
     method: damping a modal damping ratio (one, or one per mode) or Rayleigh(alpha, beta)."""
-    _no_options("solve_harmonic", options, ("method",))
-    f_hz = _check_frequencies(frequencies_hz)
+    no_options("solve_harmonic", options, ("method",))
+    f_hz = check_frequencies(frequencies_hz)
     held = [_at_zero(s) for s in node_supports(model, supports)]
     nodal = node_loads(model, loads)
     modes = solve_beam_modes(model, held, n=n_modes)
@@ -344,7 +344,7 @@ def modal_superposition(modes_hz, shapes, f, static, f_hz, damping) -> tuple:
     mass-normalised ``shapes``, one row of DOFs each) driven by ``f``, plus the static
     residual ``static`` - sum phi p / w^2 (exact at 0 Hz); also the spatial face's."""
     w_r = 2 * np.pi * np.asarray(modes_hz)
-    zeta = _damping_ratios(damping, w_r)
+    zeta = damping_ratios(damping, w_r)
     phi = shapes.reshape(len(w_r), -1)
     p = phi @ f.ravel()
     residual = static.ravel() - phi.T @ (p / w_r ** 2)
@@ -354,7 +354,7 @@ def modal_superposition(modes_hz, shapes, f, static, f_hz, damping) -> tuple:
     return (h * p) @ phi + residual, zeta
 
 
-def _no_options(what: str, options: dict, ignored: tuple) -> None:
+def no_options(what: str, options: dict, ignored: tuple) -> None:
     """Options of the continuum's function that mean nothing on a beam model: those in
     ``ignored`` (a solver choice) are accepted, any other is a TypeError naming it."""
     unknown = sorted(set(options) - set(ignored))

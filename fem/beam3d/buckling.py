@@ -14,10 +14,10 @@ is not.
 import numpy as np
 
 from ..beam.buckling import BeamBuckling, check_n, lowest_load_factors, scaled_shapes
-from ..beam.element import WXI, XI, _gram, bending_shape_functions
+from ..beam.element import WXI, XI, gram, bending_shape_functions
 from .assembly import scatter
-from .element import AXIAL, TORSION, XY, XZ, XZ_SIGN, _put, to_global
-from .face import Beam3DResult, _supported, node_loads, node_supports
+from .element import AXIAL, TORSION, XY, XZ, XZ_SIGN, put_block, to_global
+from .face import Beam3DResult, node_loads, node_supports, supported_groups
 from .model import Beam3DModel
 from .static import linear_solution
 
@@ -27,7 +27,7 @@ def _plane(E, G, I_mid, As, L) -> np.ndarray:
     parameter from the mid-length I and the shear area As (inf: Euler-Bernoulli)."""
     phi = np.where(np.isfinite(As), 12.0 * E * I_mid / (G * As * L**2), 0.0)
     _, dNw, _, _ = bending_shape_functions(XI, L, phi)
-    return _gram(WXI[None, :] * L[:, None], dNw, dNw)
+    return gram(WXI[None, :] * L[:, None], dNw, dNw)
 
 
 def geometric_stiffness(model: Beam3DModel, axial_force) -> np.ndarray:
@@ -37,11 +37,11 @@ def geometric_stiffness(model: Beam3DModel, axial_force) -> np.ndarray:
     E = model.material.E
     G = E / (2.0 * (1.0 + model.material.nu))
     local = np.zeros((model.n_elements, 12, 12))
-    _put(local, XY, _plane(E, G, mid["Iz"][:, 0], table["factors"][:, 1] * table["Ay"], L))
-    _put(local, XZ, _plane(E, G, mid["Iy"][:, 0], table["Az"], L), XZ_SIGN)
+    put_block(local, XY, _plane(E, G, mid["Iz"][:, 0], table["factors"][:, 1] * table["Ay"], L))
+    put_block(local, XZ, _plane(E, G, mid["Iy"][:, 0], table["Az"], L), XZ_SIGN)
     bar = np.array([[1.0, -1.0], [-1.0, 1.0]]) / L[:, None, None]
-    _put(local, AXIAL, bar)
-    _put(local, TORSION, bar * (mid["Ip"][:, 0] / mid["A"][:, 0])[:, None, None])
+    put_block(local, AXIAL, bar)
+    put_block(local, TORSION, bar * (mid["Ip"][:, 0] / mid["A"][:, 0])[:, None, None])
     local *= np.asarray(axial_force, dtype=float)[:, None, None]
     Eg = to_global(model.frames)
     return np.einsum("eij,ejk,elk->eil", Eg, local, Eg)
@@ -68,4 +68,4 @@ def solve_buckling(model: Beam3DModel, supports, loads, n: int = 3,
     factors, vectors = lowest_load_factors(K, G, n)
     full = np.asarray(T @ vectors).T
     return BeamBuckling(model, factors, scaled_shapes(full, 6),
-                        Beam3DResult(model, state, _supported(supports)))
+                        Beam3DResult(model, state, supported_groups(supports)))

@@ -38,7 +38,7 @@ def _bending(E, I, G, As, I_mid, rho, A, A_mid, L, factors=(1.0, 1.0)):
     return K, M
 
 
-def _put(target, idx, block, sign=None):
+def put_block(target, idx, block, sign=None):
     if sign is not None:
         block = block * sign[None, :, None] * sign[None, None, :]
     target[:, np.array(idx)[:, None], np.array(idx)[None, :]] += block
@@ -60,19 +60,19 @@ def local_matrices(model):
     Nu = np.stack([1.0 - XI, XI], axis=-1)
     wdx = WXI[None, :] * L[:, None]
     factors = shear["factors"]
-    _put(K, AXIAL, (E * factors[:, 2] / ((WXI / s["A"]).sum(axis=1) * L))[:, None, None] * bar)
-    _put(M, AXIAL, np.einsum("eg,gi,gj->eij", rho * s["A"] * wdx, Nu, Nu))
-    _put(K, TORSION, (G / ((WXI / s["J"]).sum(axis=1) * L))[:, None, None] * bar)
-    _put(M, TORSION, np.einsum("eg,gi,gj->eij", rho * s["Ip"] * wdx, Nu, Nu))
+    put_block(K, AXIAL, (E * factors[:, 2] / ((WXI / s["A"]).sum(axis=1) * L))[:, None, None] * bar)
+    put_block(M, AXIAL, np.einsum("eg,gi,gj->eij", rho * s["A"] * wdx, Nu, Nu))
+    put_block(K, TORSION, (G / ((WXI / s["J"]).sum(axis=1) * L))[:, None, None] * bar)
+    put_block(M, TORSION, np.einsum("eg,gi,gj->eij", rho * s["Ip"] * wdx, Nu, Nu))
     A_mid = mid["A"][:, 0]
     Kz, Mz = _bending(E, s["Iz"], G, shear["Ay"], mid["Iz"][:, 0], rho, s["A"], A_mid, L,
                       (factors[:, 0], factors[:, 1]))
-    _put(K, XY, Kz)
-    _put(M, XY, Mz)
+    put_block(K, XY, Kz)
+    put_block(M, XY, Mz)
     Ky, My = _bending(E, s["Iy"], G, shear["Az"], mid["Iy"][:, 0], rho, s["A"], A_mid, L,
                       (factors[:, 3], 1.0))
-    _put(K, XZ, Ky, XZ_SIGN)
-    _put(M, XZ, My, XZ_SIGN)
+    put_block(K, XZ, Ky, XZ_SIGN)
+    put_block(M, XZ, My, XZ_SIGN)
     return K, M * shear["mass_factor"][:, None, None]
 
 

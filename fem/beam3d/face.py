@@ -23,8 +23,8 @@ import numpy as np
 
 from ..boundary import Fixed, Force, Prescribed
 from ..compliance import Compliance, moved_compliance, rotation_frame
-from ..beam.face import _no_options, modal_superposition
-from ..harmonic import FRF, _check_frequencies
+from ..beam.face import no_options, modal_superposition
+from ..harmonic import FRF, check_frequencies
 from .modal import Beam3DModes, solve_beam3d_modes
 from .model import Beam3DModel
 from .model import Fixed as NodeFixed
@@ -97,7 +97,7 @@ def node_loads(model: Beam3DModel, loads) -> list:
     return out
 
 
-def _supported(supports) -> tuple:
+def supported_groups(supports) -> tuple:
     return tuple(s.group for s in supports if isinstance(s, (Fixed, Prescribed)))
 
 
@@ -149,10 +149,10 @@ class Beam3DResult:
 def solve_static(model: Beam3DModel, supports, loads=(), **options) -> Beam3DResult:
     """Linear static solve of a grouped spatial beam model (the continuum's supports and
     loads)."""
-    _no_options("solve_static", options, ("solver",))
+    no_options("solve_static", options, ("solver",))
     state = solve_beam3d_static(model, node_supports(model, supports),
                                 node_loads(model, loads))
-    return Beam3DResult(model, state, _supported(supports))
+    return Beam3DResult(model, state, supported_groups(supports))
 
 
 def _at_zero(support):
@@ -164,7 +164,7 @@ def _at_zero(support):
 def solve_modes(model: Beam3DModel, n: int = 6, supports=(), **options) -> Beam3DModes:
     """The ``n`` lowest natural frequencies (Hz) and shapes, supports held at zero (their
     values ignored, as the continuum's); effective_mass (n, 3) kg."""
-    _no_options("solve_modes", options, ("shift_hz",))
+    no_options("solve_modes", options, ("shift_hz",))
     held = [_at_zero(s) for s in node_supports(model, supports)]
     return solve_beam3d_modes(model, held, n=n)
 
@@ -213,11 +213,11 @@ def solve_nonlinear(model: Beam3DModel, supports, loads, steps: int = 10,
                     **options) -> Beam3DPath:
     """Large-rotation (co-rotational) static solve, the loads and prescribed values scaled
     0 -> 1 in ``steps`` increments (halved on failure down to ``min_step``)."""
-    _no_options("solve_nonlinear", options, ("solver", "check_stability"))
+    no_options("solve_nonlinear", options, ("solver", "check_stability"))
     result = solve_beam3d_nonlinear(model, node_supports(model, supports),
                                     node_loads(model, loads), steps=steps,
                                     max_iterations=max_iterations, tol=tol, min_step=min_step)
-    return Beam3DPath(model, result, _supported(supports))
+    return Beam3DPath(model, result, supported_groups(supports))
 
 
 def compliance_matrix(model: Beam3DModel, supports, face, point=None, frame=None,
@@ -225,7 +225,7 @@ def compliance_matrix(model: Beam3DModel, supports, face, point=None, frame=None
     """6 x 6 compliance of the group ``face`` (one node: the master of its rigid body) under
     ``supports``, at ``point`` (m; default that node), in the axes ``frame`` (columns; default
     global), as the continuum's compliance_matrix."""
-    _no_options("compliance_matrix", options, ())
+    no_options("compliance_matrix", options, ())
     nodes = group(model, face).nodes
     if len(nodes) != 1:
         raise ValueError(f"compliance_matrix: group {face!r} has {len(nodes)} nodes; a "
@@ -261,8 +261,8 @@ def solve_harmonic(model: Beam3DModel, supports, loads, frequencies_hz, damping=
     """Steady-state response to the loads (amplitudes, N) by modal superposition of
     ``n_modes`` modes plus the static correction (exact at 0 Hz), as the continuum's 'modal'
     method: damping a modal damping ratio (one, or one per mode) or Rayleigh(alpha, beta)."""
-    _no_options("solve_harmonic", options, ("method",))
-    f_hz = _check_frequencies(frequencies_hz)
+    no_options("solve_harmonic", options, ("method",))
+    f_hz = check_frequencies(frequencies_hz)
     held = [_at_zero(s) for s in node_supports(model, supports)]
     nodal = node_loads(model, loads)
     modes = solve_beam3d_modes(model, held, n=n_modes)

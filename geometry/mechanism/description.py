@@ -101,7 +101,7 @@ class Span:
         return np.array([self.a - h, self.b - h, self.b + h, self.a + h])
 
 
-def _label(flexure, index: int) -> str:
+def flexure_label(flexure, index: int) -> str:
     name = f" {flexure.name!r}" if flexure.name else ""
     return f"flexure {index + 1}{name} ({flexure.kind} between {flexure.between[0]!r} and " \
            f"{flexure.between[1]!r})"
@@ -167,13 +167,13 @@ class Mechanism:
                 offset = side * f.width / 2 * span.n
                 corner = side_root(body, root + offset, inward, f.width * REACH, tol)
                 if corner is None:
-                    raise _error(f, f"{_label(f, index)}: its side at "
+                    raise _error(f, f"{flexure_label(f, index)}: its side at "
                                  f"{(root + offset).tolist()} misses body {name!r}: the body's "
                                  f"face must be wider than the flexure ({f.width:.4g} m) where "
                                  "it starts")
                 face = body.face_at(corner, 10 * tol)
                 if face is None:
-                    raise _error(f, f"{_label(f, index)}: its side meets body {name!r} at "
+                    raise _error(f, f"{flexure_label(f, index)}: its side meets body {name!r} at "
                                  f"{corner.tolist()}, on no face of it")
                 face = face if float(face @ offset) > 0 else -face
                 out.append((name, corner, inward, face, side))
@@ -287,7 +287,7 @@ class Mechanism:
 
     def _check_flexure(self, i: int) -> Span:
         f = self.flexures[i]
-        label = _label(f, i)
+        label = flexure_label(f, i)
         names = [b.name for b in self.bodies]
         if len(f.between) != 2 or f.between[0] == f.between[1]:
             raise _error(f, f"{label}: between must name two different bodies")
@@ -341,4 +341,4 @@ class Mechanism:
                             and abs(cross2(s.d, t.d)) > math.sin(math.radians(10)))
                 if not crossing and convex_overlap(s.corners(f.width), t.corners(g.width),
                                                     self.tol):
-                    raise _error(g, f"{_label(g, j)} overlaps {_label(f, i)}")
+                    raise _error(g, f"{flexure_label(g, j)} overlaps {flexure_label(f, i)}")

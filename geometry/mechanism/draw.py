@@ -11,7 +11,7 @@ import numpy as np
 from ...fem import FEMesh, gmsh_session, mesh_from_gmsh
 from ...fem.budget import NODES_PER_ELEMENT, TETRAHEDRA_PER_CUBE, TRIANGLE, check_budget
 from ..polygon import inscribed_diameter
-from .description import REACH, Leaf, Mechanism, _label, cross2
+from .description import REACH, Leaf, Mechanism, flexure_label, cross2
 
 
 def _polygon(occ, points) -> int:
@@ -115,7 +115,7 @@ def draw(gmsh, mechanism: Mechanism, dim: int = 2) -> dict:
     every_body = [dt for tags in body_tags for dt in tags]
     flexure_tags = []
     for i, f in enumerate(mechanism.flexures):
-        with _naming(f.source or mechanism.source, _label(f, i)):
+        with _naming(f.source or mechanism.source, flexure_label(f, i)):
             flexure_tags.append(_flexure_shapes(gmsh, mechanism, i, every_body))
     inputs = body_tags + flexure_tags
     flat = [dt for tags in inputs for dt in tags]
@@ -216,8 +216,8 @@ def check_body_size(mechanism: Mechanism, coarse: float, sizes=None) -> None:
     k = max(range(len(sizes)), key=sizes.__getitem__)
     if coarse < sizes[k]:
         f = mechanism.flexures[k]
-        what = (f"half the {f.thickness:g} m thickness of {_label(f, k)}" if isinstance(f, Leaf)
-                else f"a quarter of the {f.thickness:g} m neck of {_label(f, k)}")
+        what = (f"half the {f.thickness:g} m thickness of {flexure_label(f, k)}" if isinstance(f, Leaf)
+                else f"a quarter of the {f.thickness:g} m neck of {flexure_label(f, k)}")
         raise ValueError(f"{mechanism.source}: [mesh] size = {coarse:g} m cannot be honoured: "
                          f"it sets the bodies' elements, which may not be finer than a "
                          f"flexure's own ({sizes[k]:g} m, {what}; each flexure is meshed at "

@@ -200,7 +200,7 @@ def _rigid(entry, i, names, loc: Locator) -> RigidBody:
     return RigidBody(joins, points, rects, loc.at("rigid", "joins", i))
 
 
-def _options(raw, loc: Locator) -> dict:
+def beam_options(raw, loc: Locator) -> dict:
     raw = check_keys(raw, OPTION_KEYS, loc, "beam_model")
     out = {}
     if "elements" in raw:
@@ -249,7 +249,7 @@ def parse_beams(raw: dict, names: dict, depth, loc: Locator) -> BeamSpec | None:
     for name, value in (("beam", beams), ("rigid", rigid)):
         if not (isinstance(value, list) and all(isinstance(e, dict) for e in value)):
             raise loc.error(f"{name} must be an array of tables: [[{name}]] ...", None, name)
-    options = _options(raw.get("beam_model", {}), loc)
+    options = beam_options(raw.get("beam_model", {}), loc)
     elements = options.get("elements", 20)
     lines = tuple(_beam(e, i, names, depth, elements, loc) for i, e in enumerate(beams))
     bodies = tuple(_rigid(e, i, names, loc) for i, e in enumerate(rigid))

@@ -7,7 +7,7 @@ import tomllib
 
 from ...fem.materials import Material
 from ..mechanism import Mechanism
-from .beam_tables import BeamSpec, _options as beam_options, parse_beams
+from .beam_tables import BeamSpec, beam_options, parse_beams
 from .geo_guard import check_inside
 from .mechanism_tables import parse_mechanism
 from .names import check_override_key, nearest, unknown_name

@@ -28,7 +28,7 @@ from .pivot_fem import hub_state, pivot_model
 
 # ---------------------------------------------------------------- FEM check (large deflection)
 
-def _leaf_model(pivot: CompressedLeafPivot, formulation, elements_through_thickness, nu):
+def leaf_model(pivot: CompressedLeafPivot, formulation, elements_through_thickness, nu):
 
     geometry = PivotGeometry("single", pivot.L, pivot.t)
     return pivot_model(pivot, formulation, elements_through_thickness, nu, geometry)
@@ -55,7 +55,7 @@ def negative_pivot_fem_check(pivot: CompressedLeafPivot, fractions=(0.5, 1.0), s
     fractions = [float(f) for f in fractions]
     if any(not (0 < abs(f) <= 1) for f in fractions):
         raise ValueError(f"fractions = {fractions!r} must each be in [-1, 0) or (0, 1]")
-    model = _leaf_model(pivot, formulation, elements_through_thickness, nu)
+    model = leaf_model(pivot, formulation, elements_through_thickness, nu)
     E = pivot.material.E
     if formulation == "plane_strain":
         E = plate_modulus(E, model.material.nu)

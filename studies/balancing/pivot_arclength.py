@@ -26,7 +26,7 @@ from scipy.interpolate import CubicSpline
 from ...fem import Fixed, RigidFace
 from ...fem.nonlinear import solve_nonlinear
 from .negative_pivot import compressed_leaf_elastica
-from .negative_pivot_study import _leaf_model, negative_pivot_designs
+from .negative_pivot_study import leaf_model, negative_pivot_designs
 from .pivot_stability import elastica_limit
 
 
@@ -74,7 +74,7 @@ def pivot_arclength(pivot, steps: int = 10, end_fraction: float = 6.0) -> dict:
     """The moment-driven compressed leaf by arc-length (see module): rows, limit point,
     margins, the preload stage's largest sideways hub motion (m) and the solve's counts."""
     theta_e, moment_e = elastica_limit(pivot)
-    model = _leaf_model(pivot, "plane_stress", 2, None)
+    model = leaf_model(pivot, "plane_stress", 2, None)
     result = trace_moment_driven(model, pivot.P, 2.0 * moment_e, end_fraction * pivot.theta_max,
                                  steps)
     rows = path_rows(result, pivot)

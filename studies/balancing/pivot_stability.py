@@ -45,7 +45,7 @@ from scipy.optimize import minimize_scalar
 from ...fem import Fixed, RigidFace, compliance_matrix
 from ...fem.nonlinear import solve_nonlinear
 from .negative_pivot import compressed_leaf_elastica
-from .negative_pivot_study import _leaf_model, negative_pivot_designs
+from .negative_pivot_study import leaf_model, negative_pivot_designs
 from .pivot_fem import pivot_geometry, pivot_model, positive_stiffness_pivots
 
 
@@ -102,7 +102,7 @@ def elastica_limit(pivot) -> tuple[float, float]:
 def negative_pivot_limit(pivot, fractions, steps: int = 3) -> dict:
     """Moment-rotation curve of one compressed-leaf pivot at rotations ``fractions`` x
     theta_max, with the elastica's moment, the limit point and the margins (see module)."""
-    model = _leaf_model(pivot, "plane_stress", 2, None)
+    model = leaf_model(pivot, "plane_stress", 2, None)
     E, I, L, P = pivot.material.E, pivot.I, pivot.L, pivot.P
     rows = []
     for f in fractions:

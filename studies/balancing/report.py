@@ -18,7 +18,7 @@ from .calibration import calibrate_workspace, calibration_comparisons
 from .design import (METHODS, PAPER_TABLES, balance_robot, beyond_paper, default_workspace,
                      paper_table, pivot_designs, sensitivity_rows)
 from .gravity import Workspace, load_robot, workspace_torques
-from .negative_pivot_study import _leaf_model, negative_pivot_designs, negative_pivot_study
+from .negative_pivot_study import leaf_model, negative_pivot_designs, negative_pivot_study
 from .pivot_fem import pivot_fem_study
 from .pivot_stability import leaf_state
 
@@ -141,7 +141,7 @@ def leaf_stress_curve(pivot, quick: bool = False, P: float | None = None) -> dic
     rotations (rad, :data:`LEAF_STATES`) under the preload P (N, default the design's), in
     order up to the first state at or above the yield strength: {theta_rad, stress_Pa, P_N}."""
     fractions, steps = LEAF_STATES[quick]
-    model = _leaf_model(pivot, "plane_stress", 2, None)
+    model = leaf_model(pivot, "plane_stress", 2, None)
     P = pivot.P if P is None else float(P)
     theta, stress = [], []
     for f in fractions:

@@ -2,7 +2,7 @@
 the path through the limit point against the elastica closed form, coinciding with rotation
 control, and its report entries."""
 import pytest
-from flexfem.studies.balancing.negative_pivot_study import _leaf_model, negative_pivot_designs
+from flexfem.studies.balancing.negative_pivot_study import leaf_model, negative_pivot_designs
 from flexfem.studies.balancing.pivot_arclength import parabola_vertex, pivot_arclength
 from flexfem.studies.balancing.pivot_arclength_report import (arclength_comparisons,
                                                               plot_arclength)
@@ -44,7 +44,7 @@ def test_the_path_follows_the_elastica_through_the_limit_point(arc, pivot):
 
 def test_arc_length_and_rotation_control_give_the_same_states(arc, pivot):
     # the same leaf, the hub turned to an arc-length state's rotation by rotation control
-    model = _leaf_model(pivot, "plane_stress", 2, None)
+    model = leaf_model(pivot, "plane_stress", 2, None)
     k = arc["limit_step"]
     for row in (arc["rows"][2], arc["rows"][k + 2]):  # before and past the limit point
         held = leaf_state(model, pivot.P, row["theta_rad"], 3)

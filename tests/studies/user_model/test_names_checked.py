@@ -13,7 +13,7 @@ import pytest
 
 from flexfem.geometry.mechanism.draw import element_sizes, estimate_mesh
 from flexfem.geometry.user_model import load_spec
-from flexfem.geometry.user_model.beam_tables import _options as beam_options
+from flexfem.geometry.user_model.beam_tables import beam_options
 from flexfem.geometry.user_model.names import OVERRIDE_KEYS
 from flexfem.geometry.user_model.tables import (Locator, parse_analysis, parse_material,
                                                 parse_mesh, parse_section)
