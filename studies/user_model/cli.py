@@ -2,6 +2,7 @@
 flexure from its model file (see docs/model_files.md); ``--model beam``: the beam model the file
 declares."""
 import argparse
+from pathlib import Path
 
 from ...geometry.user_model import load_spec
 from ..options import count
@@ -28,10 +29,29 @@ def parse_sets(items) -> dict:
 
 
 def run(args) -> dict:
-    """analyze_model of ``args.model`` with the ``--set`` overrides."""
+    """analyze_model of ``args.model`` with the ``--set`` overrides; with ``--out DIR`` also
+    its field files, pictures and page in DIR (page.py), listed under "files"."""
+    out = getattr(args, "out", None)
+    if out is not None:  # a folder that cannot be written is refused before the solve
+        from .page import check_out, write_outputs
+
+        check_out(out)
     spec = load_spec(args.model, parse_sets(args.set), allow_code=args.allow_code,
                      dim=getattr(args, "dim", None))
-    return analyze_model(spec, model=args.reduced, max_dofs=getattr(args, "max_dofs", None))
+    kept = {} if out is not None else None
+    result = analyze_model(spec, model=args.reduced, max_dofs=getattr(args, "max_dofs", None),
+                           fields=kept)
+    if out is not None:
+        result["files"] = write_outputs(out, spec, result, kept, summarize(result))
+    return result
+
+
+def summarize_run(result: dict) -> str:
+    """:func:`summarize`, and with ``--out`` the files written."""
+    files = result.get("files")
+    tail = (f"\nwrote {len(files)} files, the page {files[-1]}: "
+            + ", ".join(Path(f).name for f in files[:-1])) if files else ""
+    return summarize(result) + tail
 
 
 def _vector(v, unit: str) -> str:
@@ -144,11 +164,15 @@ def register(subparsers):
     parser.add_argument("--dim", type=int, choices=(2, 3), default=None,
                         help="bodies and flexures: 2 (default) or 3, the continuum extruded by "
                              "the [section] thickness")
+    parser.add_argument("--out", metavar="DIR", default=None,
+                        help="also write the fields (VTU, for ParaView), pictures (PNG) and a "
+                             "page (index.html) of the model solved into DIR (created if "
+                             "missing)")
     parser.add_argument("--allow-code", action="store_true",
                         help="trust the model file: its .geo may run programs, write files "
                              "and read outside its folder (refused by default)")
     parser.add_argument("--json", action="store_true", help="print one JSON object")
-    parser.set_defaults(run=run, summarize=summarize)
+    parser.set_defaults(run=run, summarize=summarize_run)
     register_export(subparsers)
 
 
