@@ -53,22 +53,29 @@ def _absolute(row: dict) -> bool:
 
 
 def margin_text(row: dict) -> str:
-    """How far a value judged against a limit lies from it: '47.1x the limit' / '43x below
-    the limit' where the ratio is 2 or more, else the signed distance in the row's unit
-    ('+1.6 Hz above the limit')."""
+    """How far a value judged against a limit lies from it, in words that say which side is
+    good: '47.1x the minimum', '21.7x below the maximum' (within), '2.25x short of the
+    minimum', '3x over the maximum' (beyond), as a ratio where it is 2 or more, else the
+    signed distance in the row's unit ('+1.6 Hz above the minimum', '-2.32 Hz short of the
+    minimum')."""
     value, limit, unit = row.get("flexfem"), row.get("reference"), row.get("unit", "")
     if not all(isinstance(v, (int, float)) and math.isfinite(v) for v in (value, limit)):
         return "-"
+    upper = row.get("limit") == "upper"
+    bound = "maximum" if upper else "minimum"
+    gap = value - limit
+    within = gap <= 0 if upper else gap >= 0
     if limit > 0 and value > 0:
         ratio = value / limit
         if ratio >= 2:
-            return f"{ratio:.3g}x the limit"
+            return f"{ratio:.3g}x the {bound}" + ("" if within else ", over it")
         if ratio <= 0.5:
-            return f"{1 / ratio:.3g}x below the limit"
-    gap = value - limit
-    where = "above" if gap > 0 else "below"
+            return f"{1 / ratio:.3g}x " + (f"below the {bound}" if within else
+                                            f"short of the {bound}")
     text = number(abs(gap), "" if unit == "-" else unit)
-    return f"{'+' if gap > 0 else '-'}{text} {where} the limit"
+    where = ("above" if gap > 0 else "below") if within else (
+        "over" if upper else "short of")
+    return f"{'+' if gap > 0 else '-'}{text} {where} the {bound}"
 
 
 def difference_text(row: dict) -> str:

@@ -1,7 +1,8 @@
 """The reproduction report: report.md, index.html and summary.json from the sections' summaries.
 
-The report answers first and justifies second: a design summary of one screen per source
-document (:mod:`.summary`: one sentence, the headline comparisons with their verdicts and
+The report answers first and justifies second: one table of the sources at a glance (what
+was rebuilt, how many headline results agree, the difference furthest out of its tolerance
+and its reason), a design summary of one screen per source document (:mod:`.summary`: one sentence, the headline comparisons with their verdicts and
 reasons, the stroke limits, one figure), then the audit (every section: what was done and how
 the models were built, its figures with captions, its comparisons and links to its full
 tables).
@@ -21,7 +22,7 @@ from pathlib import Path
 from ...data import load_toml
 from ..engine.serialize import jsonable
 from .format import difference_text, is_image, number, tolerance_text
-from .summary import html_block, markdown_block
+from .summary import GLANCE_COLUMNS, glance_rows, html_block, markdown_block
 
 VERDICT_CLASSES = {"agrees": "agrees", "within limit": "agrees", "differs": "differs",
                    "beyond limit": "differs", "calibrated": "calibrated"}
@@ -103,8 +104,10 @@ def run_line(report: dict) -> str:
 
 
 def render_markdown(report: dict) -> str:
-    out = ["# flexfem reproduction report", "", run_line(report), "", "## Design summary", ""]
-    for key, doc, _, rows, _ in headline_groups(report):
+    groups = headline_groups(report)
+    out = ["# flexfem reproduction report", "", run_line(report), "", "## At a glance", "",
+           _md_table(GLANCE_COLUMNS, glance_rows(groups, report)), "", "## Design summary", ""]
+    for key, doc, _, rows, _ in groups:
         out += markdown_block(doc, citation(doc), report, key, rows, _md_table)
     out += ["## Audit", "", "How each result was obtained, section by section: the models, "
             "their figures, every comparison (calibrations shown apart) and the full tables.",
@@ -173,6 +176,8 @@ def render_html(report: dict) -> str:
              "<title>flexfem reproduction report</title>", f"<style>{STYLE}</style>",
              CHECK_SCRIPT, "</head><body>", "<h1>flexfem reproduction report</h1>",
              f"<p class='run'>{html.escape(run_line(report))}</p>",
+             "<h2 id='glance'>At a glance</h2>",
+             _html_table(GLANCE_COLUMNS, glance_rows(groups, report), "glance"),
              "<h2 id='summary'>Design summary</h2>"]
     for key, doc, _, rows, _ in groups:
         parts += html_block(key, doc, citation(doc).replace("*", ""), report, rows)

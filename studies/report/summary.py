@@ -8,6 +8,7 @@ most one figure (the first section's ``summary_figure``, a file of its own figur
 models were built stays in the audit.
 """
 import html
+import math
 
 from .format import difference_text, is_image, number, tolerance_text
 from .stroke import stroke_sentence
@@ -30,6 +31,40 @@ def summary_cells(row: dict) -> list[str]:
     return [row.get("quantity", ""), number(row.get("flexfem"), unit),
             f"{number(row.get('reference'), unit)} ({row.get('source', '')})",
             difference_text(row), verdict, note]
+
+
+GLANCE_COLUMNS = ["source", "what was rebuilt", "headline results", "largest difference",
+                  "its reason"]
+
+
+def _short_source(doc: dict) -> str:
+    """'G. Liu et al., Micromachines 11(3), 312, 2020'."""
+    authors = doc.get("authors", "").split(", ")
+    who = authors[0] + (" et al." if len(authors) > 1 else "")
+    return f"{doc['title']} ({who}, {doc.get('venue', '')})"
+
+
+def glance_rows(groups, report: dict) -> list[list[str]]:
+    """One row per source document, before the per-document screens: what was rebuilt (its
+    ``lead``), how many headline results agree or meet their limit, and the difference
+    furthest out of its own tolerance (a differing or beyond-limit row first) with its note."""
+    out = []
+    for key, doc, _, rows, _ in groups:
+        sections = doc_sections(report, key)
+        lead = next((s["lead"] for s in sections if s.get("lead")), "-")
+        judged = [r for r in rows if r.get("verdict") in GOOD + BAD]
+        good = sum(r.get("verdict") in GOOD for r in judged)
+        valued = [r for r in judged if isinstance(r.get("difference"), (int, float))
+                  and math.isfinite(r["difference"]) and (r.get("tolerance") or r.get("limit"))]
+        # a differing (or beyond-limit) row first, then the furthest out of its tolerance (a
+        # limit row: its relative distance from the limit)
+        worst = max(valued, key=lambda r: (r["verdict"] in BAD, abs(r["difference"]) / (
+            1.0 if r.get("limit") else r["tolerance"])), default=None)
+        largest = f"{worst['quantity']}: {difference_text(worst)}" if worst else "-"
+        reason = (worst.get("note") or "-") if worst else "-"
+        out.append([_short_source(doc), lead, f"{good} of {len(judged)} agree or meet their "
+                    "limit", largest, reason])
+    return out
 
 
 def doc_sections(report: dict, key: str) -> list[dict]:

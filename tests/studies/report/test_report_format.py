@@ -18,11 +18,13 @@ def _limit_row(value, reference, unit, limit):
 
 
 @pytest.mark.parametrize("value, reference, unit, limit, text", [
-    (47.09, 1.0, "-", "lower", "47.1x the limit"),
-    (0.0046, 0.1, "-", "upper", "21.7x below the limit"),
-    (1.465e-5, 3.3e-5, "m", "lower", "2.25x below the limit"),
-    (5.02, 7.34, "Hz", "lower", "-2.32 Hz below the limit"),
-    (1.6, 1.0, "-", "lower", "+0.6 above the limit"),
+    (47.09, 1.0, "-", "lower", "47.1x the minimum"),
+    (0.0046, 0.1, "-", "upper", "21.7x below the maximum"),
+    (1.465e-5, 3.3e-5, "m", "lower", "2.25x short of the minimum"),  # beyond: short of it
+    (5.02, 7.34, "Hz", "lower", "-2.32 Hz short of the minimum"),
+    (1.6, 1.0, "-", "lower", "+0.6 above the minimum"),
+    (3.0, 1.0, "-", "upper", "3x the maximum, over it"),
+    (1.2, 1.0, "-", "upper", "+0.2 over the maximum"),
 ])
 def test_a_limit_row_shows_its_margin_not_a_percentage(value, reference, unit, limit, text):
     row = _limit_row(value, reference, unit, limit)
@@ -102,3 +104,25 @@ def test_every_mode_is_explained():
                        working=2)
     assert [r[-1].split(":")[0] for r in table["rows"]] == ["internal", "working mode"]
     assert table["rows"][0][2:4] == ["0.031 %", "< 0.01 %"]
+
+
+def test_the_glance_table_counts_verdicts_and_names_the_worst_row():
+    from flexfem.studies.report.comparison import Comparison
+    from flexfem.studies.report.render import headline_groups, render_html, render_markdown
+    from flexfem.studies.report.summary import glance_rows
+
+    rows = [Comparison("a", 1.01, 1.0, "-", "Eq. 1", tolerance=0.05, headline=True).to_row(),
+            Comparison("b", 1.3, 1.0, "-", "Eq. 2", tolerance=0.1, headline=True,
+                       note="why b differs").to_row(),
+            Comparison("c", 1.15, 1.0, "-", "Eq. 3", tolerance=0.1, headline=True).to_row(),
+            Comparison("d", 2.0, 1.0, "-", "Eq. 4", limit="lower", headline=True).to_row()]
+    report = {"sections": [{"section": "s", "title": "S", "document": "dbma", "lead": "rebuilt",
+                            "comparisons": rows}],
+              "environment": {"flexfem": "0", "python": "3", "cpus": 2},
+              "settings": {"quick": True}, "wall_time_s": 1.0}
+    [row] = glance_rows(headline_groups(report), report)
+    assert row[1] == "rebuilt" and row[2] == "2 of 4 agree or meet their limit"
+    assert row[3] == "b: +30.0 %" and row[4] == "why b differs"  # 3x its tolerance, differs
+    assert "At a glance" in render_markdown(report)
+    html = render_html(report)
+    assert html.index("At a glance") < html.index("Design summary")
