@@ -35,6 +35,15 @@ def _measure(gmsh, dim: int, tag: int) -> float:
         return float(np.prod([max(box[3 + k] - box[k], 0.0) for k in range(dim)]))
 
 
+def _curves_of(gmsh, dim: int, tag: int) -> set:
+    """The curves bounding a surface, or a volume's surfaces (a recursive getBoundary of a
+    volume returns its points only)."""
+    faces = [tag] if dim == 2 else [abs(t) for _, t in gmsh.model.getBoundary(
+        [(3, tag)], combined=False, oriented=False)]
+    return {abs(t) for f in faces for _, t in gmsh.model.getBoundary(
+        [(2, f)], combined=False, oriented=False)}
+
+
 def _nodes_along(length: float, h0: float, h1: float) -> float:
     if abs(h1 - h0) <= 1e-12 * max(h0, h1):
         return length / h0
@@ -68,9 +77,7 @@ def estimate_geometry_mesh(gmsh, dim: int, order: int, size_factor: float = 1.0,
         largest[curve] = max(h)
     elements = nodes_1d
     for _, tag in gmsh.model.getEntities(dim):
-        bounding = gmsh.model.getBoundary([(dim, tag)], combined=False, oriented=False,
-                                          recursive=dim == 3)
-        h = max((largest.get(abs(t), cap * size_factor) for d, t in bounding if d == 1),
+        h = max((largest.get(c, cap * size_factor) for c in _curves_of(gmsh, dim, tag)),
                 default=cap * size_factor)
         cell = TRIANGLE * h * h if dim == 2 else h ** 3 / TETRAHEDRA_PER_CUBE
         elements += _measure(gmsh, dim, tag) / cell
