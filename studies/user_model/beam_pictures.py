@@ -9,8 +9,8 @@ import numpy as np
 from matplotlib.collections import LineCollection
 from matplotlib.patches import Polygon
 
-from .fields import _beam_cells
-from .pictures import DEFORMED_SHARE, _axes, _colours, nice_scale, scale_text
+from .fields import beam_cells
+from .pictures import DEFORMED_SHARE, axes, colours, nice_scale, scale_text
 
 _LINE_STYLE = {"beam": ("#1f4e9c", 1.6), "condensed pair": ("#d97706", 2.2),
                "rigid link": ("#444444", 0.5)}
@@ -52,7 +52,7 @@ def _draw_outline(ax, loops, alpha: float = 1.0) -> None:
 def _segments(model, q=None, scale: float = 0.0) -> list[tuple[str, np.ndarray]]:
     """[(kind, (n, 2, 2) segments in mm)] of the beam lines, moved by scale * q."""
     xy = model.nodes + (scale * np.asarray(q)[:, :2] if q is not None else 0.0)
-    return [(kind, xy[cells] * 1e3) for kind, cells in _beam_cells(model)]
+    return [(kind, xy[cells] * 1e3) for kind, cells in beam_cells(model)]
 
 
 def _outline_note(loops) -> str:
@@ -62,13 +62,13 @@ def _outline_note(loops) -> str:
 
 def beam_mechanism_figure(model, loops, source: str):
     """The beam lines over the outline, the groups' nodes labelled."""
-    fig, ax = _axes(f"{source}: the beam model{_outline_note(loops)}")
+    fig, ax = axes(f"{source}: the beam model{_outline_note(loops)}")
     _draw_outline(ax, loops)
     for kind, seg in _segments(model):
         colour, width = _LINE_STYLE[kind]
         ax.add_collection(LineCollection(seg, colors=colour, linewidths=width, label=kind))
     names = sorted(model.groups)
-    for i, (name, colour) in enumerate(zip(names, _colours(len(names)))):
+    for i, (name, colour) in enumerate(zip(names, colours(len(names)))):
         p = model.nodes[list(model.groups[name].nodes)] * 1e3
         ax.plot(p[:, 0], p[:, 1], "o", color=colour, markersize=6, markeredgecolor="black")
         ax.annotate(name, p.mean(axis=0), xytext=_OFFSETS[i % len(_OFFSETS)],
@@ -113,7 +113,7 @@ def beam_deformed_figure(model, static, loops, source: str):
     q = static.state.q
     scale = nice_scale(float(np.linalg.norm(q[:, :2], axis=1).max()), _extent(model) / 1e3)
     stress = np.nan_to_num(np.asarray(static.state.stress, dtype=float)) / 1e6
-    fig, ax = _axes(f"{source}: beam model deformed, {scale_text(scale)}")
+    fig, ax = axes(f"{source}: beam model deformed, {scale_text(scale)}")
     _moved_lines(ax, model, q, scale, stress, "beam stress |N|/A + |M|c/I (MPa)", loops, "jet")
     e, xi, _ = static.state.max_stress_location
     a, b = model.elements[int(e)]
@@ -137,7 +137,7 @@ def beam_mode_figure(model, modes, k: int, loops, source: str):
     scale = DEFORMED_SHARE * _extent(model) / 1e3 / top
     per_element = amplitude[model.elements].mean(axis=1) / top
     f = float(modes.frequencies_hz[k])
-    fig, ax = _axes(f"{source}: beam model, mode {k + 1}, {f:.4g} Hz")
+    fig, ax = axes(f"{source}: beam model, mode {k + 1}, {f:.4g} Hz")
     _moved_lines(ax, model, shape, scale, per_element, "relative amplitude", loops, "viridis")
     caption = (f"The beam model's mode {k + 1} at {f:.4g} Hz, its largest displacement drawn "
                "a tenth of the mechanism's size (undeformed dashed), the beams coloured by "

@@ -46,7 +46,7 @@ def continuum_mesh(model: Model, point: dict, element: dict) -> meshio.Mesh:
     return meshio.Mesh(m.points, m.cells, point_data=point, cell_data=cell_data)
 
 
-def _beam_cells(model: BeamModel) -> list[tuple[str, np.ndarray, str]]:
+def beam_cells(model: BeamModel) -> list[tuple[str, np.ndarray, str]]:
     """[(kind, (n, 2) node pairs)] of the beam model's lines."""
     links = [(link.master, s) for link in model.rigid_links for s in link.slaves]
     blocks = [("beam", model.elements), ("condensed pair", model.pairs),
@@ -57,7 +57,7 @@ def _beam_cells(model: BeamModel) -> list[tuple[str, np.ndarray, str]]:
 def beam_mesh(model: BeamModel, point: dict, stress=None) -> meshio.Mesh:
     """The beam model's lines (see the module's docstring) with ``point`` data at its nodes
     and the beam ``stress`` (Pa, one value per beam element) as cell data."""
-    blocks = _beam_cells(model)
+    blocks = beam_cells(model)
     cells = [("line", c) for _, c in blocks]
     cell_data = {"kind": [np.full(len(c), BEAM_KINDS[k], dtype=np.int32) for k, c in blocks]}
     if stress is not None:

@@ -86,7 +86,7 @@ def _size(xy: np.ndarray) -> float:
     return float(np.linalg.norm(xy.max(axis=0) - xy.min(axis=0))) or 1.0
 
 
-def _axes(title: str, width: float = 7.0):
+def axes(title: str, width: float = 7.0):
     plt = pyplot()
     fig, ax = plt.subplots(figsize=(width, 5.2))
     ax.set_aspect("equal", adjustable="datalim")
@@ -130,7 +130,7 @@ def _part_centres(seg: np.ndarray, gap: float) -> list[np.ndarray]:
     return [points[part == k].mean(axis=0) for k in np.unique(part)]
 
 
-def _colours(n: int) -> list:
+def colours(n: int) -> list:
     cmap = pyplot().get_cmap("tab10")
     return [cmap(i % 10) for i in range(n)]
 
@@ -143,11 +143,11 @@ def _label(ax, xy, text: str, colour) -> None:
 def mechanism_figure(model, source: str):
     """The continuum's mesh (grey) with each boundary group drawn and labelled."""
     xy, tri = continuum_view(model)
-    fig, ax = _axes(f"{source}: the mechanism and its groups{_projection(model)}")
+    fig, ax = axes(f"{source}: the mechanism and its groups{_projection(model)}")
     ax.tripcolor(xy[:, 0] * 1e3, xy[:, 1] * 1e3, tri, np.zeros(len(tri)), cmap="Greys",
                  vmin=0, vmax=5, edgecolors="#bbbbbb", linewidth=0.15)
     names = sorted(model.mesh.boundaries)
-    for name, colour in zip(names, _colours(len(names))):
+    for name, colour in zip(names, colours(len(names))):
         seg = _group_segments(model.mesh, name)
         ax.add_collection(LineCollection(seg[:, :, :2] * 1e3, colors=[colour], linewidths=2.5,
                                          label=name))
@@ -180,7 +180,7 @@ def deformed_figure(model, static, source: str):
     u = np.asarray(static.displacement)[:, :2]
     scale = nice_scale(float(np.linalg.norm(static.displacement, axis=1).max()), _size(xy))
     vm = np.asarray(static.von_mises_nodal) / 1e6
-    fig, ax = _axes(f"{source}: deformed shape, {scale_text(scale)}{_projection(model)}")
+    fig, ax = axes(f"{source}: deformed shape, {scale_text(scale)}{_projection(model)}")
     moved = _deformed(ax, xy, u, tri, vm, scale, "von Mises stress (MPa)", cmap="jet")
     peak = int(np.argmax(vm))
     ax.plot(*moved[peak], marker="*", markersize=14, color="white", markeredgecolor="black")
@@ -200,7 +200,7 @@ def continuum_mode_figure(model, modes, k: int, source: str):
     amplitude = np.linalg.norm(shape, axis=1)
     scale = DEFORMED_SHARE * _size(xy) / amplitude.max() if amplitude.max() > 0 else 0.0
     f = float(modes.frequencies_hz[k])
-    fig, ax = _axes(f"{source}: mode {k + 1}, {f:.4g} Hz{_projection(model)}")
+    fig, ax = axes(f"{source}: mode {k + 1}, {f:.4g} Hz{_projection(model)}")
     _deformed(ax, xy, shape[:, :2], tri, amplitude / (amplitude.max() or 1.0), scale,
               "relative amplitude")
     caption = (f"Mode {k + 1} at {f:.4g} Hz, drawn with its largest displacement a tenth of "
