@@ -108,7 +108,7 @@ def _group_segments(femesh, name: str) -> np.ndarray:
     return np.concatenate([np.stack([p[f[:, a]], p[f[:, b]]], axis=1) for a, b in cycle])
 
 
-def _part_centres(seg: np.ndarray, gap: float) -> list[np.ndarray]:
+def part_centres(seg: np.ndarray, gap: float) -> list[np.ndarray]:
     """The mean point of each part of the segments (s, 2, 2), parts closer than ``gap``
     joined: one label per body of a group (a ground in two blocks gets two; an outline that
     the flexures interrupt, one)."""
@@ -124,6 +124,8 @@ def _part_centres(seg: np.ndarray, gap: float) -> list[np.ndarray]:
                 if j is not None:
                     rows.append(i)
                     cols.append(j)
+    ends = index.reshape(-1, 2)  # a segment joins the cells of its two ends
+    rows, cols = rows + ends[:, 0].tolist(), cols + ends[:, 1].tolist()
     graph = coo_matrix((np.ones(len(rows)), (rows, cols)), shape=(len(cells), len(cells)))
     _, part = connected_components(graph, directed=False)
     part = part[index.ravel()]
@@ -151,7 +153,7 @@ def mechanism_figure(model, source: str):
         seg = _group_segments(model.mesh, name)
         ax.add_collection(LineCollection(seg[:, :, :2] * 1e3, colors=[colour], linewidths=2.5,
                                          label=name))
-        for centre in _part_centres(seg[:, :, :2], 0.05 * _size(xy)):
+        for centre in part_centres(seg[:, :, :2], 0.05 * _size(xy)):
             _label(ax, centre * 1e3, name, colour)
     if names:
         ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize="small",

@@ -205,3 +205,18 @@ def test_the_summary_says_what_was_written(tmp_path):
     code, out, _ = _analyze(COMPOUND, "--model", "beam", "--out", str(tmp_path))
     assert code == 0
     assert f"the page {tmp_path / 'index.html'}" in out.splitlines()[-1]
+
+
+def test_a_group_is_labelled_once_per_body():
+    """Labels: a ground of two blocks twice, an edge meshed coarser than the gap once, an
+    outline interrupted by the flexures' roots once."""
+    def box(x0, y0, x1, y1):
+        c = np.array([[x0, y0], [x1, y0], [x1, y1], [x0, y1]])
+        return np.stack([c, np.roll(c, -1, axis=0)], axis=1)
+
+    two = np.concatenate([box(0, 0, 1, 1), box(3, 0, 4, 1)])
+    assert len(pictures.part_centres(two, gap=0.2)) == 2
+    edge = np.array([[[0.0, 0.0], [1.0, 0.0]], [[1.0, 0.0], [2.0, 0.0]]])
+    assert len(pictures.part_centres(edge, gap=0.1)) == 1
+    cut = np.array([[[0.0, 0.0], [0.95, 0.0]], [[1.05, 0.0], [2.0, 0.0]]])
+    assert len(pictures.part_centres(cut, gap=0.2)) == 1
