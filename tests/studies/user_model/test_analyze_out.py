@@ -220,3 +220,21 @@ def test_a_group_is_labelled_once_per_body():
     assert len(pictures.part_centres(edge, gap=0.1)) == 1
     cut = np.array([[[0.0, 0.0], [0.95, 0.0]], [[1.05, 0.0], [2.0, 0.0]]])
     assert len(pictures.part_centres(cut, gap=0.2)) == 1
+
+
+@pytest.mark.slow
+def test_the_solid_is_written_and_drawn_as_a_projection(tmp_path):
+    """--dim 3: tetrahedra with the groups' triangles in the VTU; the pictures say they are a
+    projection and show the model (the guide's upper face seen from +z)."""
+    code, out, err = _analyze(str(ROOT / "examples/bodies/guide.toml"), "--dim", "3",
+                              "--out", str(tmp_path), "--json")
+    assert code == 0, err
+    result = json.loads(out)
+    m = meshio.read(tmp_path / "static.vtu")
+    assert {b.type for b in m.cells} == {"tetra", "triangle"}
+    assert m.point_data["von_mises"].max() == pytest.approx(result["max_von_mises"], rel=1e-9)
+    assert np.linalg.norm(m.point_data["displacement"], axis=1).max() >= np.linalg.norm(
+        result["mean_displacement"]["stage"])
+    for name in ("mechanism.png", "deformed.png", "mode_1.png"):
+        assert mpimg.imread(tmp_path / name)[..., :3].std() > 0.05
+    assert "projected onto the x-y plane" in (tmp_path / "index.html").read_text()
