@@ -127,15 +127,18 @@ def summarize_convergence(result: dict) -> str:
         lines.append(f"converged within {100 * result['gci']:.2g} % on every level (tolerance "
                      f"{tol:.3g} %); order not measurable")
     elif result["behaviour"] == "divergent":
-        lines.append("not converging: the finest levels differ more than the coarser ones; "
-                     "refine further or check the model")
+        lines.append("diverging (singular): the changes do not shrink under refinement, so "
+                     "the finest value is no converged value and none is within tolerance; a "
+                     "stress at a sharp re-entrant corner grows without bound (give it a "
+                     "fillet), otherwise refine further or check the model")
     else:
         lines.append(f"observed order {result['order']:.3g} ({result['behaviour']}); "
                      f"extrapolated {result['extrapolated']:.6g} +- "
                      f"{result['error_estimate']:.2g} (GCI {100 * result['gci']:.2g} %)")
-    lines.append(f"coarsest level within {tol:.3g} %: "
-                 + (f"{within} ({_level(result['levels'][within])})" if within is not None
-                    else "none: refine further"))
+    if result["behaviour"] != "divergent":  # a diverging series has no level to recommend
+        lines.append(f"coarsest level within {tol:.3g} %: "
+                     + (f"{within} ({_level(result['levels'][within])})" if within is not None
+                        else "none: refine further"))
     if result.get("store"):
         reused = result.get("reused") or []
         lines.append(f"levels stored in {result['store']}" + (

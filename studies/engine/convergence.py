@@ -89,6 +89,19 @@ def _describe(options: dict) -> str:
 MIN_ORDER = 0.5
 
 
+def diverging(f_coarse: float, f_medium: float, f_fine: float, p: float) -> bool:
+    """True for three levels whose changes do not shrink: the last change at least as large
+    as the one before (the ratio of differences >= 1, whatever their signs), or changes of
+    one sign shrinking slower than order :data:`MIN_ORDER` (p <= 0 included), or an order
+    that cannot be measured although the levels differ."""
+    e_cm, e_mf = f_medium - f_coarse, f_fine - f_medium
+    if e_mf == 0:
+        return False
+    if e_cm == 0 or abs(e_mf) >= abs(e_cm) or math.isnan(p):
+        return True
+    return e_cm * e_mf > 0 and p < MIN_ORDER
+
+
 def grid_convergence_index(f_medium: float, f_fine: float, r_mf: float, p: float) -> float:
     """Relative fine-grid convergence index 1.25 |(f_f - f_m)/f_f| / (r^p - 1) (eq. 6)."""
     return SAFETY_FACTOR * abs((f_fine - f_medium) / f_fine) / (r_mf**p - 1)
@@ -182,8 +195,7 @@ def converge(evaluate, metric: str, levels: list, mesh_size_key: str | None = No
     one_way = all(s * steps[0] > 0 for s in steps)
     if f_f == f_m:
         behaviour, extrapolated, error, gci = "exact", f_f, 0.0, 0.0
-    elif math.isnan(p) or (f_m - f_c) * (f_f - f_m) > 0 and (
-            abs(f_f - f_m) >= abs(f_m - f_c) or p < MIN_ORDER):
+    elif diverging(f_c, f_m, f_f, p):
         # the changes do not shrink, or so slowly that no extrapolation can be trusted: a
         # singular quantity (a stress at a sharp re-entrant corner grows as h^-0.46)
         behaviour, extrapolated, error, gci = "divergent", f_f, math.nan, math.nan
@@ -196,7 +208,9 @@ def converge(evaluate, metric: str, levels: list, mesh_size_key: str | None = No
     if behaviour in ("divergent", "oscillatory") and tol is not None and spread <= tol:
         # every level within the tolerance of the finest: converged, the order lost in noise
         behaviour, extrapolated, error, gci = "converged", f_f, spread * abs(f_f), spread
-    within = coarsest_within(values, extrapolated, tol) if tol is not None else None
+    within = (coarsest_within(values, extrapolated, tol)
+              if tol is not None and behaviour != "divergent" else None)  # no level of a
+    # diverging series is "within tolerance": its finest value is no converged value
     return ConvergenceResult(
         metric=metric, size_key=key, levels=[dict(level) for level in levels], values=values,
         sizes=sizes, dofs=[o.get("dofs") for o in outputs], wall_times_s=times, order=p,
