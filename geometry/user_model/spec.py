@@ -12,6 +12,7 @@ from .geo_guard import check_inside
 from .mechanism_tables import parse_mechanism
 from .names import check_override_key, nearest, unknown_name
 from .outputs_table import parse_outputs
+from .quantities import with_si_units
 from .geometry import CAD_SUFFIXES, GEO_SUFFIXES, SUFFIXES, inspect_geometry
 from .tables import (Analysis, Load, Locator, MeshOptions, Section, Support, is_number,
                      parse_analysis, parse_loads, parse_material, parse_mesh, parse_section,
@@ -329,7 +330,7 @@ def load_spec(path, overrides: dict | None = None, allow_code: bool = False,
     loc = Locator(path, text)
     overridden = set((overrides or {}).keys())
     declared = parameter_names(raw)
-    raw = _apply_overrides(raw, overrides, path)
+    raw = with_si_units(_apply_overrides(raw, overrides, path), path)
     unknown = sorted(set(raw) - set(TOP_KEYS))
     if unknown:
         name = unknown[0]
