@@ -146,7 +146,8 @@ def write_outputs(path, spec, result: dict, kept: dict, summary: str) -> list[st
     figs = _figures(out, spec, model, kept)
     names += [v["file"] for v in vtus] + [f["file"] for f in figs] + ["index.html"]
     files = [str(out / n) for n in names]
-    _text(out, "index.html", render_page(result, summary, figs, vtus))
+    kind = "beam model" if isinstance(model, BeamModel) else "continuum"
+    _text(out, "index.html", render_page(result, summary, figs, vtus, kind))
     _text(out, "summary.json", json.dumps(jsonable({**result, "files": files}), indent=1))
     return files
 
@@ -166,11 +167,12 @@ def _rows(summary: str) -> tuple[str, list[tuple[str, str]]]:
     return (lines[0] if lines else ""), rows
 
 
-def render_page(result: dict, summary: str, figs: list[dict], vtus: list[dict]) -> str:
+def render_page(result: dict, summary: str, figs: list[dict], vtus: list[dict],
+                kind: str = "continuum") -> str:
     """index.html: the human summary's numbers as a table, the pictures with their captions,
     links to the field files and to summary.json (relative links: the folder can be moved)."""
     run, rows = _rows(summary)
-    title = f"flexfem analyze {Path(result['model']).name} ({result.get('dim', 2)}-D)"
+    title = f"flexfem analyze {Path(result['model']).name}: {kind}, {result.get('dim', 2)}-D"
     body = "".join(f"<tr><td>{html.escape(q)}</td><td>{html.escape(v)}</td></tr>"
                    for q, v in rows)
     parts = ["<!DOCTYPE html><html><head><meta charset='utf-8'>",
