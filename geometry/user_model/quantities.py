@@ -32,7 +32,7 @@ _PINT_DIMENSIONS = {"length": "[length]", "pressure": "[pressure]", "density": "
                     "force": "[force]", "frequency": "[frequency]", "dimensionless": ""}
 _UNIT = r"[A-Za-zµμ°Ω][A-Za-z0-9_µμ°Ω]*(?:\s*(?:\^|\*\*)\s*-?\d+)?"
 _QUANTITY = re.compile(
-    rf"(?<![\w.])(?P<number>(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*"
+    rf"(?<![\w.])(?P<number>(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)(?![\d.]|[eE][-+]?\d)\s*"
     rf"(?P<unit>{_UNIT}(?:\s*/\s*{_UNIT})*)")
 
 

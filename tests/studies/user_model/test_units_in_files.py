@@ -67,3 +67,14 @@ def test_a_set_with_a_unit(tmp_path, capsys):
     assert main(["analyze", str(GUIDE), "--model", "beam", "--set", "t=0.0012", "--json"]) == 0
     assert with_unit == pytest.approx(json.loads(capsys.readouterr().out)["stiffness"]["stage"]["x"],
                                       rel=1e-12)
+
+
+@pytest.mark.parametrize("text, expected", [
+    ("L + 5.39e-12", "L + 5.39e-12"),  # an exponent is not a unit 'e'
+    ("1e-3 * L", "1e-3 * L"), ("2 * t", "2 * t"),  # a parameter is not a unit (t: tonne)
+    ("L + 2 mm", "L + (0.002)"), ("3.5mm", 0.0035), (".5 mm", 0.0005), ("2e-3 m", 0.002)])
+def test_quantities_are_found_where_they_are_and_nowhere_else(text, expected):
+    from flexfem.geometry.user_model.quantities import with_si_units
+
+    raw = {"parameters": {"L": 0.04, "t": 0.001}, "flexure": [{"thickness": text}]}
+    assert with_si_units(raw, "f.toml")["flexure"][0]["thickness"] == expected
