@@ -20,6 +20,7 @@ from .beam_analysis import (check_beam_analyses, lifted_outputs, out_of_plane, p
                             spatial_modes, spatial_static)
 from .observe import observation_metrics, observed, observed_path
 from .outputs import check_finite, check_loaded_supports, groups_of as _groups, stiffness
+from .corners import sharp_corner
 from .stroke import stroke_limits
 
 MODELS = ("continuum", "beam")
@@ -158,15 +159,25 @@ def analyze_model(spec: ModelSpec, size_factor: float = 1.0, model: str = "conti
     if solid is not None:
         out.update(lifted_outputs(out))
         spec = solid
-    nominal = None
-    if model == "continuum" and spec.beams is not None:
-        nominal = lambda: analyze_model(spec, model="beam")  # noqa: E731
-    limits = stroke_limits(spec, out, nominal)
+    limits = _stroke(spec, out, fe, model)
     out.update({**limits, "not_available": {**out.get("not_available", {}),
                                             **limits.get("not_available", {})}})
     if not out["not_available"]:
         del out["not_available"]
     return check_finite(out, spec.source)
+
+
+def _stroke(spec: ModelSpec, out: dict, fe, model: str) -> dict:
+    """The stroke limits (stroke.py) of the analysis ``out`` of ``fe``: for the continuum,
+    the sharp re-entrant corner of its mesh at its peak (corners.py), and the beam model's
+    nominal stress to stand in for a singular peak."""
+    nominal, corner = None, None
+    if model == "continuum":
+        corner = (sharp_corner(fe.mesh.mesh, out["max_von_mises_location"]) if fe.dim == 2
+                  else "unchecked")
+        if spec.beams is not None:
+            nominal = lambda: analyze_model(spec, model="beam")  # noqa: E731
+    return stroke_limits(spec, out, nominal, corner)
 
 
 def _kept(fields: dict | None, name: str, value):

@@ -5,12 +5,15 @@ fatigue set them). Lengths in m.
 
 The stress they are sized by: a linear solve's peak von Mises stress over the stroke it comes
 with. At a filleted root or a notch that peak converges under refinement; at a sharp
-re-entrant corner (a leaf with square roots meeting its body) it is singular: it grows as the
-mesh is refined and converges to nothing. A model of bodies and flexures knows where its sharp
-corners are: where the continuum's peak sits within a thickness of one, the limits are sized
-by the beam model's nominal stress (|N|/A + |M| c/I at the root) instead, and the output says
-so. A drawing (.geo, STEP, mesh) does not: its peak is used as it is, with the advice to check
-it with ``flexfem converge --metric max_von_mises``.
+re-entrant corner (a leaf with square roots meeting its body, two leaves fused where they
+cross, a 45-degree chamfer) it is singular: it grows as the mesh is refined and converges to
+nothing. Such a corner is found from the mesh itself (corners.py: the outline's interior
+angle at the peak above 180 deg, with no fillet spreading it), and from a model's declared
+square roots. Where the continuum's peak sits at one, the limits of a model of bodies and
+flexures are sized by the beam model's nominal stress (|N|/A + |M| c/I) instead, and the
+output says so; a drawing's are sized by the singular peak, and stroke_stress_singular and
+stroke_stress_basis say that they shrink as the mesh is refined. A 3-D drawing's corners are
+not checked: check its peak with ``flexfem converge --metric max_von_mises``.
 """
 import numpy as np
 
@@ -37,42 +40,26 @@ def sharp_root_near(mechanism, point, reach: float = 1.0):
     return None
 
 
-def stroke_limits(spec, result: dict, nominal=None) -> dict:
+def stroke_limits(spec, result: dict, nominal=None, corner=None) -> dict:
     """The stroke-limit keys of ``result`` (analyze_model's dict) for its single force load:
     stroke_limit_yield (m), stroke_limit_fatigue (m, amplitude about mean_stroke; None without
     fatigue data), fatigue_cycles, fatigue_criterion, fatigue_source, stroke_group,
-    stroke_direction (unit vector), stroke_limit_where (m), stroke_stress_basis, and
-    stress_per_stroke (Pa/m); {} without a single force load. ``nominal``: a callable giving
-    the beam model's result, used where the continuum's peak is at a sharp root."""
+    stroke_direction (unit vector), stroke_limit_where (m), stroke_stress_basis,
+    stroke_stress_singular (the stress sizing them is a singular peak) and stress_per_stroke
+    (Pa/m); {} without a single force load. ``nominal``: a callable giving the beam model's
+    result, used where the continuum's peak is at a sharp corner; ``corner``: the sharp
+    re-entrant corner of the continuum's mesh at its peak (corners.py; None: none), or
+    "unchecked" (a 3-D mesh)."""
     load = single_force(spec)
     if load is None:
         return {}
     direction = np.asarray(load.vector, float) / np.linalg.norm(load.vector)
-    stroke = _along(result["mean_displacement"][load.group], direction)
-    stress, where = result["max_von_mises"], result["max_von_mises_location"]
-    basis = "peak von Mises stress of the continuum"
-    if result.get("solver") == "beam":
-        basis = "nominal beam stress |N|/A + |M| c/I (no stress concentration)"
-    elif spec.mechanism is not None:
-        leaf = sharp_root_near(spec.mechanism, where)
-        try:
-            beam = nominal() if leaf is not None and nominal is not None else None
-        except ValueError as error:  # the beam model cannot stand in: say so, size by nothing
-            return {"stroke_group": load.group, "stroke_stress_basis": "none: the continuum's "
-                    f"peak sits at the square root of flexure {leaf + 1} (singular) and the "
-                    f"beam model cannot give the nominal stress ({error})",
-                    "stroke_limit_yield": None, "stroke_limit_fatigue": None}
-        if beam is not None:
-            stroke = _along(beam["mean_displacement"][load.group], direction)
-            stress, where = beam["max_von_mises"], beam["max_von_mises_location"]
-            basis = (f"nominal beam stress: the continuum's peak sits at the square root of "
-                     f"flexure {leaf + 1}, a singular corner (it grows under refinement); give "
-                     "the leaf a fillet to size the stroke by the fillet's stress")
-        else:
-            basis += " (at a fillet or notch: converges under refinement)"
-    else:
-        basis += (" (not checked for a singular corner: see flexfem converge --metric "
-                  "max_von_mises)")
+    sized = _sized_by(spec, result, nominal, corner)
+    if "stroke_limit_yield" in sized:  # sized by nothing: the reason
+        return {"stroke_group": load.group, **sized}
+    source, basis = sized["source"], sized["basis"]
+    stroke = _along(source["mean_displacement"][load.group], direction)
+    stress, where = source["max_von_mises"], source["max_von_mises_location"]
     if not (stroke > 0 and stress > 0):
         return {}
     per_stroke = stress / stroke
@@ -82,6 +69,7 @@ def stroke_limits(spec, result: dict, nominal=None) -> dict:
     missing = {k: v for k, v in missing.items() if v is not None}
     out = {"stroke_group": load.group, "stroke_direction": direction.tolist(),
            "stress_per_stroke": per_stroke, "stroke_stress_basis": basis,
+           "stroke_stress_singular": sized["singular"],
            "stroke_limit_where": [float(v) for v in where],
            "stroke_limit_yield": (None if "stroke_limit_yield" in missing else
                                   yield_stroke(per_stroke, m.yield_strength, a.safety_factor)),
@@ -94,6 +82,51 @@ def stroke_limits(spec, result: dict, nominal=None) -> dict:
     if missing:
         out["not_available"] = missing
     return out
+
+
+def _corner_text(corner, leaf) -> str:
+    if corner is None:
+        return f"the square root of flexure {leaf + 1}"
+    x, y = (round(1e3 * v, 6) + 0.0 for v in corner["point"])  # mm, no -1e-15
+    return (f"a sharp re-entrant corner of the outline at ({x:.4g}, {y:.4g}) mm (interior "
+            f"angle {corner['angle_deg']:.0f} deg, no fillet)")
+
+
+def _sized_by(spec, result, nominal, corner) -> dict:
+    """{"source": the result whose peak sizes the limits, "basis": its description,
+    "singular": whether that peak is singular}, or the keys of no limit where the continuum's
+    peak is singular and the beam model cannot stand in."""
+    basis = "peak von Mises stress of the continuum"
+    if result.get("solver") == "beam":
+        return {"source": result, "singular": False,
+                "basis": "nominal beam stress |N|/A + |M| c/I (no stress concentration)"}
+    where = result["max_von_mises_location"]
+    leaf = sharp_root_near(spec.mechanism, where) if spec.mechanism is not None else None
+    found = corner if isinstance(corner, dict) else None
+    if found is None and leaf is None:
+        if corner == "unchecked" and spec.mechanism is None:
+            return {"source": result, "singular": False, "basis": basis + (
+                " (a 3-D drawing: not checked for a singular corner; see flexfem converge "
+                "--metric max_von_mises)")}
+        return {"source": result, "singular": False, "basis": basis + (
+            " (no sharp re-entrant corner at the peak: at a fillet or notch it converges "
+            "under refinement)")}
+    at = _corner_text(found, leaf)
+    try:
+        beam = nominal() if nominal is not None else None
+    except ValueError as error:  # the beam model cannot stand in: say so, size by nothing
+        return {"stroke_stress_basis": f"none: the continuum's peak sits at {at} (singular) "
+                f"and the beam model cannot give the nominal stress ({error})",
+                "stroke_stress_singular": True,
+                "stroke_limit_yield": None, "stroke_limit_fatigue": None}
+    if beam is not None:
+        return {"source": beam, "singular": False, "basis": (
+            f"nominal beam stress: the continuum's peak sits at {at}, a singular corner (it "
+            "grows under refinement); give it a fillet to size the stroke by the fillet's "
+            "stress")}
+    return {"source": result, "singular": True, "basis": basis + (
+        f" at {at}: singular, it grows without bound under refinement, so these limits "
+        "shrink as the mesh is refined and are no material limit; give the corner a fillet")}
 
 
 def yield_needs(material) -> str | None:
