@@ -1,6 +1,5 @@
 """A problem made numeric: the stiffness system, load vector, filter, design map and the
 responses with their gradients (one factorisation per design, state and adjoints together)."""
-from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
@@ -12,7 +11,9 @@ from .large_displacement import LargeDisplacement
 from .filters import Filter
 from .problem import Problem
 from .projection import project, project_derivative
+from .evaluation import Evaluation
 from .responses import RESPONSES, State
+from .robust_model import robust_evaluate
 
 AXIS = {"x": 0, "y": 1}
 
@@ -31,20 +32,6 @@ def design_map(grid, symmetry: tuple) -> sp.csr_matrix:
         rep = np.minimum(rep, (grid.nelx - 1 - ix) * grid.nely + (grid.nely - 1 - iy))
     _, column = np.unique(rep, return_inverse=True)
     return sp.csr_matrix((np.ones(grid.n_elements), (np.arange(grid.n_elements), column.ravel())))
-
-
-@dataclass
-class Evaluation:
-    """Responses of one design: values and gradients with respect to the design variables."""
-
-    objective: float
-    objective_grad: np.ndarray
-    constraints: np.ndarray       # each response's value, in its own units
-    constraint_grads: np.ndarray  # (n_constraints, n_variables)
-    physical: np.ndarray
-    u: np.ndarray                 # load case 1's displacements (m)
-    displacements: dict           # each spring's, load case 1
-    compliances: np.ndarray       # f_k.u_k of every load case (J)
 
 
 class Discrete:
@@ -75,6 +62,7 @@ class Discrete:
         self.lower, self.upper = self._bounds()
         self.beta = p.projection.beta if p.projection else None
         self.large = LargeDisplacement(self, p.nonlinear) if p.nonlinear else None
+        self.volume_ratio = 1.0   # robust: the intermediate over the dilated volume
 
     def _bounds(self):
         """Bounds of the design variables: passive elements pinned at 0 or 1."""
@@ -116,13 +104,15 @@ class Discrete:
         start = p.initial or p.volume_limit or 0.5
         return np.clip(np.full(self.n_variables, float(start)), self.lower, self.upper)
 
-    def physical(self, z: np.ndarray, filtered: np.ndarray | None = None) -> np.ndarray:
+    def physical(self, z: np.ndarray, filtered: np.ndarray | None = None,
+                 eta: float | None = None) -> np.ndarray:
         """Physical densities of the elements from design variables z (filtered, then
-        projected at ``self.beta`` where the problem has a projection); ``filtered``: the
-        filtered densities of z, if known."""
+        projected at ``self.beta`` where the problem has a projection, at the threshold
+        ``eta``, default the problem's); ``filtered``: the filtered densities of z, if
+        known."""
         rho = self.filter.physical(self.P @ z) if filtered is None else filtered.copy()
         if self.beta is not None:
-            rho = project(rho, self.beta, self.problem.projection.eta)
+            rho = project(rho, self.beta, self.problem.projection.eta if eta is None else eta)
         rho[self.solid], rho[self.void] = 1.0, 0.0
         return rho
 
@@ -142,13 +132,15 @@ class Discrete:
         return float(w @ z) + c
 
     def back(self, x: np.ndarray, g: np.ndarray, objective: bool = False,
-             filtered: np.ndarray | None = None) -> np.ndarray:
+             filtered: np.ndarray | None = None, eta: float | None = None) -> np.ndarray:
         """The gradient with respect to the design variables of a function whose gradient
         with respect to the physical densities is g (x: the element design densities;
-        ``filtered``: their filtered values, if known)."""
+        ``filtered``: their filtered values, if known; ``eta``: the projection's threshold,
+        default the problem's)."""
         if self.beta is not None:
             filtered = self.filter.physical(x) if filtered is None else filtered
-            g = g * project_derivative(filtered, self.beta, self.problem.projection.eta)
+            eta = self.problem.projection.eta if eta is None else eta
+            g = g * project_derivative(filtered, self.beta, eta)
         return self.P.T @ self.filter.back(x, g, objective=objective)
 
     def _linear_state(self, rho, E, dE) -> State:
@@ -173,12 +165,11 @@ class Discrete:
         l = self.spring_vectors[r.spring] if r.kind == "displacement" else self.forces[:, 0]
         return float(l @ large.u), self.large.gradient(large, l)
 
-    def evaluate(self, z: np.ndarray) -> Evaluation:
-        """All responses at z, one factorisation for the states of every load case and
-        every adjoint."""
-        p, x = self.problem, self.P @ z
-        filtered = self.filter.physical(x)
-        rho = self.physical(z, filtered)
+    def responses(self, rho: np.ndarray) -> tuple:
+        """(state, displacements, objective, its gradient, constraint values, their
+        gradients) of physical densities ``rho``, the gradients with respect to rho (pinned
+        elements 0), the objective's of sign * objective (sign 1 for 'min', -1 for 'max')."""
+        p = self.problem
         interp = p.interpolation
         E, dE = interp.modulus(rho), interp.derivative(rho)
         large = None if self.large is None else self.large.equilibrium(E, rho, dE)
@@ -195,13 +186,22 @@ class Discrete:
             return value, g
 
         f0, g0 = value_grad(p.objective)
-        sign = 1.0 if p.sense == "min" else -1.0
-        g0 = self.back(x, sign * g0, objective=True, filtered=filtered)
-        values, grads = [], []
-        for c in p.constraints:
-            v, g = value_grad(c.response)
-            values.append(v)
-            grads.append(self.back(x, g, filtered=filtered))
-        grads = np.array(grads).reshape(len(values), self.n_variables)
+        g0 = (1.0 if p.sense == "min" else -1.0) * g0
+        pairs = [value_grad(c.response) for c in p.constraints]
+        return (state, disp, f0, g0, [v for v, _ in pairs], [g for _, g in pairs])
+
+    def evaluate(self, z: np.ndarray) -> Evaluation:
+        """All responses at z, one factorisation for the states of every load case and
+        every adjoint (three, one a design, with the robust formulation)."""
+        if self.problem.robust is not None:
+            return robust_evaluate(self, z)
+        x = self.P @ z
+        filtered = self.filter.physical(x)
+        rho = self.physical(z, filtered)
+        state, disp, f0, g0, values, grads = self.responses(rho)
+        g0 = self.back(x, g0, objective=True, filtered=filtered)
+        grads = np.array([self.back(x, g, filtered=filtered) for g in grads])
+        grads = grads.reshape(len(values), self.n_variables)
         compliances = np.einsum("ik,ik->k", self.forces, state.U)
-        return Evaluation(f0, g0, np.array(values), grads, rho, u, disp, compliances)
+        return Evaluation(f0, g0, np.array(values), grads, rho, state.U[:, 0], disp,
+                          compliances)

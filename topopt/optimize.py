@@ -9,6 +9,8 @@ from .mma import MMAState, mma_update
 from .model import Discrete
 from .oc import oc_update
 from .problem import Problem
+from .robust import VOLUME_UPDATE
+from .robust_model import volume_ratio
 from .state import load_state, save_state
 
 
@@ -42,6 +44,7 @@ class Result:
     design: np.ndarray = field(repr=False, default=None)   # the design variables
     beta: float | None = None                               # the projection's last
     start_iterations: int = 0       # those of the small-displacement start (large ones)
+    designs: dict | None = None     # robust: each design's objective and volume
 
     def summary(self) -> dict:
         """The JSON-able numbers: objective, iterations, volume_fraction, converged and,
@@ -60,7 +63,19 @@ class Result:
         for key, name in (("u_in", "input"), ("u_out", "output")):
             if name in self.displacements:
                 out[key] = self.displacements[name]
+        if self.problem.robust is not None:
+            out["robust"] = robust_summary(self.problem, self.designs)
         return out
+
+
+def robust_summary(problem, designs) -> dict:
+    """The robust formulation's thresholds, filter radius (elements), the minimum solid and
+    void sizes it imposes on the blueprint (m) and each design's objective and volume."""
+    r = problem.robust
+    sizes = r.minimum_sizes(problem.radius, problem.grid.dx)
+    return {"thresholds": list(r.thresholds), "filter_radius": problem.radius,
+            "min_solid": sizes["solid"], "min_void": sizes["void"],
+            "min_hinge": r.min_size, "designs": designs}
 
 
 def _normalised(problem, values, grads):
@@ -86,7 +101,8 @@ def _resume(discrete, out_dir, start=None):
     z, beta = (discrete.initial(), discrete.beta) if start is None else start
     fresh = (z, 0, np.inf, np.zeros((0, 2)), MMAState.start(z), 0.0, beta, 0)
     keys = ("digest", "z", "iteration", "change", "history", "xold1", "xold2", "low", "upp",
-            "scale") + (("beta", "at_beta") if p.projection else ())
+            "scale") + (("beta", "at_beta") if p.projection else ()) + (
+            ("volume_ratio",) if p.robust else ())
     state = load_state(out_dir, keys) if out_dir is not None else None
     if state is None:
         return fresh
@@ -94,6 +110,8 @@ def _resume(discrete, out_dir, start=None):
         raise ValueError(f"--out {out_dir}: its state.npz belongs to another problem; "
                          "choose another folder or delete the file")
     mma = MMAState(*(state[k] for k in ("xold1", "xold2", "low", "upp")))
+    if p.robust:
+        discrete.volume_ratio = float(state["volume_ratio"])
     beta = float(state["beta"]) if p.projection else None
     return (state["z"], int(state["iteration"]), float(state["change"]), state["history"], mma,
             float(state["scale"]), beta, int(state["at_beta"]) if p.projection else 0)
@@ -154,6 +172,8 @@ def _optimize(discrete, out_dir, progress, start=None) -> Result:
     while not _done(proj, change, opt.tolerance, beta, at_beta) and it < opt.max_iterations:
         it += 1
         discrete.beta = beta
+        if p.robust is not None and (it - 1) % VOLUME_UPDATE == 0:
+            discrete.volume_ratio = volume_ratio(discrete, z)
         ev = discrete.evaluate(z)
         znew, scale = _step(discrete, ev, z, it, mma, scale)
         change = float(np.max(np.abs(znew - z)))
@@ -166,7 +186,8 @@ def _optimize(discrete, out_dir, progress, start=None) -> Result:
         if out_dir is not None:
             save_state(out_dir, z=z, iteration=it, change=change, history=history,
                        xold1=mma.xold1, xold2=mma.xold2, low=mma.low, upp=mma.upp, scale=scale,
-                       digest=p.digest(), beta=beta if proj else 0.0, at_beta=at_beta)
+                       digest=p.digest(), beta=beta if proj else 0.0, at_beta=at_beta,
+                       volume_ratio=discrete.volume_ratio)
         if progress is not None:
             progress(it, ev.objective, float(ev.physical.mean()), change)
     discrete.beta = beta
@@ -177,4 +198,5 @@ def _optimize(discrete, out_dir, progress, start=None) -> Result:
     return Result(final.objective, it, float(final.physical.mean()), converged,
                   change, final.physical, final.displacements,
                   dict(zip(names, map(float, final.constraints))),
-                  tuple(map(float, final.compliances)), history, p, z, beta)
+                  tuple(map(float, final.compliances)), history, p, z, beta,
+                  designs=final.designs)

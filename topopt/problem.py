@@ -13,6 +13,7 @@ from .interpolation import Interpolation
 from .large_displacement import Nonlinear
 from .projection import Projection
 from .regions import Region
+from .robust import Robust, radius_for
 
 DOFS = ("x", "y")
 RESPONSES = ("compliance", "volume", "displacement", "frequency", "stress")
@@ -121,6 +122,7 @@ class Problem:
     initial: float | None = None
     projection: Projection | None = None
     nonlinear: Nonlinear | None = None
+    robust: Robust | None = None
 
     def __post_init__(self):
         check_problem(self)
@@ -160,7 +162,8 @@ class Problem:
                      self.supports, self.loads, self.springs, self.constraints, self.passive,
                      self.symmetry, limits, self.initial)
                     + ((self.projection,) if self.projection else ())
-                    + ((self.nonlinear,) if self.nonlinear else ()))
+                    + ((self.nonlinear,) if self.nonlinear else ())
+                    + ((self.robust,) if self.robust else ()))
         return hashlib.sha256(text.encode()).hexdigest()[:16]
 
 
@@ -193,6 +196,8 @@ def check_problem(p: Problem) -> None:
     for s in p.supports:
         if not s.fix or not set(s.fix) <= set(DOFS):
             raise ValueError(f"support.fix = {list(s.fix)!r}: give DOFs among 'x', 'y'")
+    if p.robust is not None:
+        _check_min_hinge(p)
     if p.filter_kind not in FILTERS:
         raise ValueError(f"filter.kind = {p.filter_kind!r}: choose one of {list(FILTERS)}")
     if p.filter_kind != "none" and not (isinstance(p.radius, (int, float)) and p.radius > 1):
@@ -215,6 +220,29 @@ def check_problem(p: Problem) -> None:
     _check_optimizer(p)
     if p.nonlinear is not None:
         _check_nonlinear(p)
+    if p.robust is not None:
+        _check_robust(p)
+
+
+def _check_robust(p: Problem) -> None:
+    """The combinations the robust formulation takes: the hat (density) filter, whose
+    radius the minimum size relation is for, a projection at 0.5 (its beta schedule), MMA,
+    small displacements, square elements, one bound per constraint."""
+    if p.filter_kind != "density":
+        raise ValueError(f"robust: needs filter.kind 'density' (the hat filter its minimum "
+                         f"size relation is for), not {p.filter_kind!r}")
+    if p.projection is None or p.projection.eta != 0.5:
+        raise ValueError("robust: needs a [projection] (its beta schedule) with eta = 0.5 "
+                         "(the intermediate design's threshold)")
+    if p.optimizer.kind != "mma":
+        raise ValueError("robust: needs optimizer.kind 'mma'")
+    if p.nonlinear is not None:
+        raise ValueError("robust: not with [nonlinear] (large displacements: one "
+                         "equilibrium path a design, not three)")
+    for c in p.constraints:
+        if c.response.kind != "volume" and c.upper is not None and c.lower is not None:
+            raise ValueError(f"robust: constraint {c.response.kind!r}: give max or min, not "
+                             "both (each bounds the worst of the three designs)")
 
 
 def _check_nonlinear(p: Problem) -> None:
@@ -280,3 +308,20 @@ def _check_optimizer(p: Problem) -> None:
         raise ValueError(f"volume max = {vol!r}: must be a fraction in (0, 1]")
     if p.initial is not None and not 0 < p.initial <= 1:
         raise ValueError(f"optimizer.initial = {p.initial!r}: must be in (0, 1]")
+
+
+def _check_min_hinge(p: Problem) -> None:
+    """robust.min_hinge against the grid and the filter's radius."""
+    g = p.grid
+    if abs(g.dx - g.dy) > 1e-9 * max(g.dx, g.dy):
+        raise ValueError(f"robust: needs square elements (the filter's radius is in "
+                         f"elements), not {g.dx:.4g} x {g.dy:.4g} m")
+    if p.robust.min_size > 0:
+        r = radius_for(p.robust.min_size, g.dx, p.robust.eta)
+        if r <= 1.0:
+            raise ValueError(f"robust.min_hinge = {p.robust.min_size!r} m: gives a filter "
+                             f"radius of {r:.3g} elements, which must exceed 1: refine the "
+                             "grid")
+        if abs(r - p.radius) > 1e-9 * r:
+            raise ValueError(f"filter.radius = {p.radius!r}: robust.min_hinge asks for "
+                             f"{r!r} elements (robust.radius_for)")

@@ -10,6 +10,7 @@ from .problem import (Constraint, Load, Optimizer, Passive, Problem, Response, S
                       Support)
 from .projection import Projection
 from .regions import parse_region
+from .robust import Robust, radius_for
 
 TABLES = {
     "domain": {"nelx", "nely", "size", "thickness", "symmetry"},
@@ -21,6 +22,7 @@ TABLES = {
     "projection": {"beta", "eta", "beta_max", "every"},
     "shape": {"rho", "yield_strength", "min_member"},
     "nonlinear": {"steps", "max_iterations", "tolerance"},
+    "robust": {"min_hinge", "eta"},
 }
 LISTS = {
     "support": {"where", "fix"},
@@ -158,6 +160,26 @@ def _nonlinear(data: dict, t: dict) -> Nonlinear | None:
                      _number(d.get("tolerance", default.tolerance), "nonlinear.tolerance"))
 
 
+def _robust(data: dict, t: dict) -> Robust | None:
+    """[robust]: ``min_hinge`` (m, the blueprint's minimum solid and void size) and ``eta``
+    (the dilated threshold, default 0.25)."""
+    if "robust" not in data:
+        return None
+    d = t["robust"]
+    if "min_hinge" in d and "radius" in t["filter"]:
+        raise ValueError("filter.radius: give robust.min_hinge or filter.radius, not both "
+                         "(the radius is derived from min_hinge)")
+    return Robust(_number(d.get("eta", 0.25), "robust.eta"),
+                  _number(d.get("min_hinge", 0.0), "robust.min_hinge"))
+
+
+def _radius(f: dict, robust: Robust | None, grid: Grid) -> float:
+    """The filter's radius (elements): derived from robust.min_hinge where given."""
+    if robust is not None and robust.min_size > 0:
+        return radius_for(robust.min_size, grid.dx, robust.eta)
+    return _number(f.get("radius", 1.5), "filter.radius")
+
+
 def problem_from_dict(data: dict) -> Problem:
     """The Problem a parsed problem file describes."""
     unknown = sorted(set(data) - set(TABLES) - set(LISTS))
@@ -171,8 +193,9 @@ def problem_from_dict(data: dict) -> Problem:
     symmetry = t["domain"].get("symmetry", [])
     if not isinstance(symmetry, list):
         raise ValueError(f"domain.symmetry = {symmetry!r}: give a list of 'x', 'y'")
+    grid, robust = _grid(t["domain"]), _robust(data, t)
     return Problem(
-        grid=_grid(t["domain"]),
+        grid=grid,
         objective=_response(t["objective"], "objective"),
         sense=t["objective"].get("sense", "max" if t["objective"].get("kind") == "frequency"
                                  else "min"),
@@ -183,7 +206,7 @@ def problem_from_dict(data: dict) -> Problem:
                                     _number(i.get("penal", 3.0), "interpolation.penal"), E,
                                     _number(m.get("Emin", 1e-9 * E), "material.Emin")),
         filter_kind=f.get("kind", "sensitivity"),
-        radius=_number(f.get("radius", 1.5), "filter.radius"),
+        radius=_radius(f, robust, grid),
         supports=tuple(_support(k, r) for k, r in enumerate(_rows(data, "support"))),
         loads=tuple(_load(k, r) for k, r in enumerate(_rows(data, "load"))),
         springs=tuple(_spring(k, r) for k, r in enumerate(_rows(data, "spring"))),
@@ -193,7 +216,8 @@ def problem_from_dict(data: dict) -> Problem:
         optimizer=_optimizer(o),
         initial=_number(o["initial"], "optimizer.initial") if "initial" in o else None,
         projection=_projection(data, t),
-        nonlinear=_nonlinear(data, t))
+        nonlinear=_nonlinear(data, t),
+        robust=robust)
 
 
 def read_problem_file(path) -> dict:
