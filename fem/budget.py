@@ -4,16 +4,25 @@ An analysis whose mesh would not fit the machine should be refused in seconds, w
 estimate and the way to raise the limit, not die of memory after minutes. The budget is a
 number of unknowns (DOFs); by default what half the memory available now (MemAvailable)
 affords at BYTES_PER_DOF, which covers the sparse direct factorisation (its fill-in) and the
-modal solve of flexfem's quadratic elements: measured peaks of the DBMA analysis are about
-2.8 kB per DOF in 2-D (106k DOFs) and 11 kB in 3-D (100k DOFs); the constants keep a
-factor ~2 of margin.
+modal solve of flexfem's quadratic elements (:func:`memory_bytes`). 2-D: measured peaks of
+the DBMA analysis are about 2.8 kB per DOF (106k DOFs), the constant keeps a factor ~2 of
+margin. 3-D: the peaks of ``flexfem analyze --dim 3`` of the bodies-and-flexures examples
+(50k-144k DOFs, the interpreter's import subtracted) are 60 MiB plus 4.3-8.8 kB a DOF
+(docs/performance.md); above GROWTH_FROM DOFs the bytes a DOF grow as the factor's fill-in,
+~N^(1/3) (the 3-D cantilever: 6.5 kB a DOF at 95k DOFs, 9.8 kB at 351k).
 """
 import contextlib
 import contextvars
 import math
 import os
 
-BYTES_PER_DOF = {2: 5_000, 3: 20_000}
+BYTES_PER_DOF = {2: 5_000, 3: 5_500}
+#: Bytes of an analysis beyond the interpreter's import, whatever its size (MKL's libraries,
+#: PARDISO's workspace, gmsh's model).
+BASE_BYTES = {2: 0, 3: 64 * 2**20}
+#: DOFs above which the bytes a DOF grow as (dofs / GROWTH_FROM) ** GROWTH.
+GROWTH_FROM = {2: math.inf, 3: 150_000}
+GROWTH = {2: 0.0, 3: 1 / 3}
 #: Elements of a size h: a triangle's area (x h^2), tetrahedra in a cube of side h.
 TRIANGLE = math.sqrt(3) / 4
 TETRAHEDRA_PER_CUBE = 8.5  # regular tetrahedra of edge h: h^3 / (6 sqrt 2) each
@@ -49,7 +58,7 @@ class Estimated(Exception):
 
     @property
     def memory_gib(self) -> float:
-        return self.estimate["dofs"] * BYTES_PER_DOF.get(self.dim, BYTES_PER_DOF[3]) / 2**30
+        return memory_bytes(self.estimate["dofs"], self.dim) / 2**30
 
     @property
     def fits(self) -> bool:
@@ -106,9 +115,26 @@ def available_memory_bytes() -> int:
         return FALLBACK_MEMORY
 
 
+def memory_bytes(dofs: float, dim: int) -> float:
+    """The peak memory (bytes) expected of the solve of ``dofs`` unknowns in ``dim``-D:
+    BASE_BYTES + dofs x BYTES_PER_DOF, the bytes a DOF growing above GROWTH_FROM."""
+    dim = dim if dim in BYTES_PER_DOF else 3
+    growth = max(1.0, dofs / GROWTH_FROM[dim]) ** GROWTH[dim]
+    return BASE_BYTES[dim] + dofs * BYTES_PER_DOF[dim] * growth
+
+
+def max_dofs_for(memory: float, dim: int) -> int:
+    """The most DOFs whose :func:`memory_bytes` is within ``memory`` (bytes)."""
+    low, high = 0, max(1, int(memory / BYTES_PER_DOF[dim]) + 1)
+    while high - low > 1:
+        mid = (low + high) // 2
+        low, high = (mid, high) if memory_bytes(mid, dim) <= memory else (low, mid)
+    return max(low, 1)
+
+
 def default_max_dofs(dim: int) -> int:
     """DOFs whose solve fits in half the available memory."""
-    return int(0.5 * available_memory_bytes() / BYTES_PER_DOF[dim])
+    return max_dofs_for(0.5 * available_memory_bytes(), dim)
 
 
 def check_grid(nelx: int, nely: int, what: str) -> None:
@@ -136,7 +162,7 @@ def check_budget(estimate: dict, dim: int, max_dofs: int | None = None,
         raise Estimated(dict(estimate), limit, source, what, dim)
     if estimate["dofs"] <= limit:
         return
-    memory = estimate["dofs"] * BYTES_PER_DOF[dim] / 2**30
+    memory = memory_bytes(estimate["dofs"], dim) / 2**30
     raise BudgetError(
         f"{what}: about {estimate['elements']:,} elements and {estimate['dofs']:,} DOFs "
         f"(~{memory:.1f} GiB to solve), above the budget of {limit:,} DOFs ({source}); "

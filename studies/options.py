@@ -18,6 +18,21 @@ def positive(text: str) -> float:
     return value
 
 
+def length(text: str) -> str | float:
+    """A length > 0: a number (m), or a number with a unit ("2 mm"; the model file's reading
+    checks that the unit is a length)."""
+    try:
+        value = float(text)
+    except ValueError:
+        if text.strip()[:1].isdigit() or text.strip()[:1] == ".":
+            return text.strip()
+        raise argparse.ArgumentTypeError(f"{text!r} is not a length; expected a number > 0 (m) "
+                                         "or one with a unit, e.g. 0.002 or '2 mm'") from None
+    if not (math.isfinite(value) and value > 0):
+        raise argparse.ArgumentTypeError(f"{text!r} must be a finite length > 0 (m)")
+    return value
+
+
 def count(text: str) -> int:
     """A whole number >= 1 (1e6 is accepted as 1000000)."""
     try:

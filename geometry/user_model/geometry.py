@@ -11,8 +11,8 @@ from pathlib import Path
 import re
 
 from ...fem import FEMesh, gmsh_session, mesh_from_gmsh, read_mesh
-from ...fem.budget import BYTES_PER_DOF, NODES_PER_ELEMENT, TETRAHEDRA_PER_CUBE, TRIANGLE, \
-    BudgetError, check_budget, default_max_dofs
+from ...fem.budget import NODES_PER_ELEMENT, TETRAHEDRA_PER_CUBE, TRIANGLE, BudgetError, \
+    check_budget, default_max_dofs, memory_bytes
 from ..mechanism import mesh_mechanism
 from .bounded import run_bounded
 from .estimate import check_outlines, estimate_geometry_mesh
@@ -86,7 +86,7 @@ READ_CPU_SECONDS = 60
 
 
 def _read_limits() -> dict:
-    return {"memory_bytes": default_max_dofs(3) * BYTES_PER_DOF[3],
+    return {"memory_bytes": int(memory_bytes(default_max_dofs(3), 3)),
             "cpu_seconds": READ_CPU_SECONDS, "wall_seconds": 2 * READ_CPU_SECONDS + 10}
 
 
@@ -94,7 +94,7 @@ def _mesh_limits(dim: int, max_dofs: int) -> dict:
     """The meshing child's limits from the DOF budget: the memory the budget's solve would
     take, and a CPU time that grows with it (gmsh makes ~1e5 elements a second)."""
     cpu = 60 + max_dofs / 10_000
-    return {"memory_bytes": max_dofs * BYTES_PER_DOF[dim], "cpu_seconds": cpu,
+    return {"memory_bytes": int(memory_bytes(max_dofs, dim)), "cpu_seconds": cpu,
             "wall_seconds": 2 * cpu + 10}
 
 

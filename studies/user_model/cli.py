@@ -5,8 +5,9 @@ import argparse
 from pathlib import Path
 
 from ...geometry.user_model import load_spec
-from ..options import count
+from ..options import count, length, positive
 from .analysis import analyze_model
+from .mesh_choice import cli_size_factor, with_mesh_size
 
 _AXES = ("x", "y", "z")
 
@@ -36,11 +37,15 @@ def run(args) -> dict:
         from .page import check_out, write_outputs
 
         check_out(out)
-    spec = load_spec(args.model, parse_sets(args.set), allow_code=args.allow_code,
+    sets = with_mesh_size(parse_sets(args.set), getattr(args, "mesh_size", None))
+    spec = load_spec(args.model, sets, allow_code=args.allow_code,
                      dim=getattr(args, "dim", None))
+    factor, choice = cli_size_factor(spec, args)  # mesh_choice.py: fits the budget in 3-D
     kept = {} if out is not None else None
-    result = analyze_model(spec, model=args.reduced, max_dofs=getattr(args, "max_dofs", None),
-                           fields=kept)
+    result = analyze_model(spec, factor, model=args.reduced,
+                           max_dofs=getattr(args, "max_dofs", None), fields=kept)
+    if choice is not None:
+        result.update(size_factor=factor, mesh_choice=choice)
     if out is not None:
         result["files"] = write_outputs(out, spec, result, kept, summarize(result))
     return result
@@ -61,6 +66,9 @@ def _vector(v, unit: str) -> str:
 def summarize(result: dict) -> str:
     lines = [f"{result['model']}: {result['dim']}-D, {result['dofs']} DOFs, solver "
              f"{result['solver']}, element size h = {result['h']:.4g} m"]
+    if result.get("mesh_choice") not in (None, "default"):
+        lines.append(f"mesh: {result['mesh_choice']}" if result["mesh_choice"] != "given" else
+                     f"mesh: size_factor {result['size_factor']:g} (given)")
     vm = result["max_von_mises"]
     where = _vector(result["max_von_mises_location"], "m")
     strength = result["yield_strength"]
@@ -161,6 +169,12 @@ def register(subparsers):
     parser.add_argument("--max-dofs", type=count, default=None, metavar="N",
                         help="refuse a mesh estimated above N unknowns, before meshing "
                              "(default: what half the available memory affords)")
+    parser.add_argument("--size-factor", type=positive, default=None, metavar="F",
+                        help="multiply every element size by F (default 1; with --dim 3, the "
+                             "smallest F whose mesh fits the DOF budget)")
+    parser.add_argument("--mesh-size", type=length, default=None, metavar="M",
+                        help="the bodies' element size, m or with a unit ('2 mm'): "
+                             "--set mesh.size=M")
     parser.add_argument("--dim", type=int, choices=(2, 3), default=None,
                         help="bodies and flexures: 2 (default) or 3, the continuum extruded by "
                              "the [section] thickness")
