@@ -14,7 +14,7 @@ OVERRIDE_KEYS = {
     "section": ("kind", "thickness"),
     "mesh": ("order", "size", "refine"),
     "analysis": ("modes", "steps", "solver", "compliance", "buckling", "harmonic",
-                 "safety_factor", "mean_stroke", "fatigue"),
+                 "safety_factor", "mean_stroke", "fatigue", "stroke_check"),
     "beam_model": OPTION_KEYS,
 }
 

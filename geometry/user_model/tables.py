@@ -119,7 +119,8 @@ class Analysis:
     buckling: number of linear buckling factors of the loads (None: none); harmonic: a
     Harmonic (None: none); the stroke limits' safety_factor (>= 1), mean_stroke (m, the
     offset or preload the stroke cycles about) and fatigue criterion ('goodman' or
-    'soderberg'; studies/user_model/stroke.py)."""
+    'soderberg'; studies/user_model/stroke.py); stroke_check: check them by a large-deflection
+    solve (studies/user_model/stroke_check.py)."""
 
     modes: int | None = None
     steps: int | None = None
@@ -130,6 +131,7 @@ class Analysis:
     safety_factor: float = 1.0
     mean_stroke: float = 0.0
     fatigue: str = "goodman"
+    stroke_check: bool = False
 
 
 def check_keys(raw, allowed, loc: Locator, table, index: int = 0, what=None) -> dict:
@@ -349,7 +351,13 @@ def parse_harmonic(raw, loc: Locator) -> Harmonic:
 
 def parse_analysis(raw, loc: Locator) -> Analysis:
     raw = check_keys(raw, ("modes", "steps", "solver", "compliance", "buckling", "harmonic",
-                           "safety_factor", "mean_stroke", "fatigue"), loc, "analysis")
+                           "safety_factor", "mean_stroke", "fatigue", "stroke_check"), loc,
+                     "analysis")
+    check = {"true": True, "false": False}.get(raw.get("stroke_check"), raw.get("stroke_check",
+                                                                          False))  # or --set
+    if not isinstance(check, bool):
+        raise loc.error(f"[analysis] stroke_check = {raw['stroke_check']!r} must be true or "
+                        "false", "analysis", "stroke_check")
     values = {}
     if "safety_factor" in raw and not (is_number(raw["safety_factor"])
                                        and 1 <= raw["safety_factor"] <= 100):
@@ -388,4 +396,4 @@ def parse_analysis(raw, loc: Locator) -> Analysis:
     return Analysis(values.get("modes"), values.get("steps"), solver,
                     values.get("compliance"), values.get("buckling"), values.get("harmonic"),
                     float(raw.get("safety_factor", 1.0)), float(raw.get("mean_stroke", 0.0)),
-                    raw.get("fatigue", "goodman"))
+                    raw.get("fatigue", "goodman"), check)

@@ -22,6 +22,7 @@ from .observe import observation_metrics, observed, observed_path
 from .outputs import check_finite, check_loaded_supports, groups_of as _groups, stiffness
 from .corners import sharp_corner
 from .stroke import stroke_limits
+from .stroke_check import UNCHECKED, stroke_check
 
 MODELS = ("continuum", "beam")
 
@@ -177,7 +178,19 @@ def _stroke(spec: ModelSpec, out: dict, fe, model: str) -> dict:
                   else "unchecked")
         if spec.beams is not None:
             nominal = lambda: analyze_model(spec, model="beam")  # noqa: E731
-    return stroke_limits(spec, out, nominal, corner)
+    limits = stroke_limits(spec, out, nominal, corner)
+    if not limits.get("stroke_limit_yield") and not limits.get("stroke_limit_fatigue"):
+        return limits
+    if not spec.analysis.stroke_check:
+        return {**limits, "stroke_limit_basis": UNCHECKED}
+    if fe.dim != 2 or spec.dim != 2:
+        return {**limits, "stroke_limit_basis": "linear (the large-deflection check is planar "
+                "only)"}
+    if model == "continuum" and limits["stroke_stress_basis"].startswith("nominal beam"):
+        fe = build(spec, "beam")[0]  # the path of the model whose stress sized the limits
+    checked = stroke_check(spec, {**limits, "groups": list(out["mean_displacement"])}, fe,
+                           supports_and_loads(spec)[0])
+    return {**limits, **checked}
 
 
 def _kept(fields: dict | None, name: str, value):

@@ -152,7 +152,20 @@ def _stroke_lines(result: dict) -> list[str]:
                      f"{missing.get('stroke_limit_fatigue', 'no fatigue data')}")
     lines.append(f"  sized by the {result['stroke_stress_basis']}, at "
                  f"{_vector(result['stroke_limit_where'], 'm')}")
+    if result.get("stroke_limit_basis"):
+        lines.append(f"  stroke limits: {result['stroke_limit_basis']}" + _departed(result))
     return lines
+
+
+def _departed(result: dict) -> str:
+    """How far the large-deflection path departs from linear at the linear yield stroke."""
+    check = result.get("stroke_check")
+    if not check:
+        return ""
+    d = check["departure"]
+    return (f" (at {check['at_stroke'] * 1e3:.4g} mm the {check['model']} model's force, "
+            f"outputs and peak stress depart from linear by {100 * d['force']:+.1f} %, "
+            f"{100 * d['output']:.1f} %, {100 * d['stress']:+.1f} %)")
 
 
 def register(subparsers):
