@@ -1,11 +1,12 @@
 """Supports and loads, addressed by group name, and how they become DOFs and load vectors."""
 import math
-import numbers
 from dataclasses import dataclass
 
 import numpy as np
 import skfem
 from skfem.helpers import dot
+
+from .checks import is_real
 
 _AXES = ("x", "y", "z")
 
@@ -14,7 +15,7 @@ def _finite_vector(value, name: str) -> tuple:
     """A tuple of 2 or 3 finite floats; a string ("12" is not (1, 2)), a mapping, a bool
     component or a number written as a string are refused."""
     try:
-        if isinstance(value, (str, bytes, dict)) or not all(_is_number(c) for c in value):
+        if isinstance(value, (str, bytes, dict)) or not all(is_real(c) for c in value):
             raise TypeError
         v = tuple(float(c) for c in value)
     except (TypeError, ValueError):
@@ -28,10 +29,6 @@ def _finite_vector(value, name: str) -> tuple:
 def _check_group(owner: str, group) -> None:
     if not (isinstance(group, str) and group):
         raise ValueError(f"{owner}: group = {group!r} must be a group's name (a string)")
-
-
-def _is_number(value) -> bool:
-    return isinstance(value, numbers.Real) and not isinstance(value, bool)
 
 
 @dataclass(frozen=True)
@@ -63,7 +60,7 @@ class Prescribed:
             value = getattr(self, axis)
             if value is None or callable(value):
                 continue
-            if not (_is_number(value) and math.isfinite(value)):
+            if not (is_real(value) and math.isfinite(value)):
                 raise ValueError(f"Prescribed({self.group!r}).{axis} = {value!r} must be a finite "
                                  "number (m) or a function of the coordinates")
 
@@ -113,7 +110,7 @@ class Pressure:
 
     def __post_init__(self):
         _check_group("Pressure", self.group)
-        if not callable(self.p) and not (_is_number(self.p) and math.isfinite(self.p)):
+        if not callable(self.p) and not (is_real(self.p) and math.isfinite(self.p)):
             raise ValueError(f"Pressure({self.group!r}).p = {self.p!r} must be a finite number "
                              "(Pa) or a function of the coordinates")
 

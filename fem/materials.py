@@ -1,9 +1,9 @@
 """Linear-elastic isotropic materials: a small library with sources, and user-defined ones."""
 import math
-import numbers
 from dataclasses import dataclass
 
 from ..data import shared_toml
+from .checks import is_real
 
 
 @dataclass(frozen=True)
@@ -32,11 +32,11 @@ class Material:
         _require(self, "E", lambda v: v > 0, "> 0 (Pa)")
         _require(self, "nu", lambda v: -1.0 < v < 0.5, "in (-1, 0.5)")
         _require(self, "rho", lambda v: v > 0, "> 0 (kg/m^3)")
-        if not (_is_number(self.yield_strength) and self.yield_strength > 0):
+        if not (is_real(self.yield_strength) and self.yield_strength > 0):
             raise ValueError(f"material {self.name!r}: yield_strength = {self.yield_strength!r} "
                              "must be > 0 (Pa; math.inf for none)")
         object.__setattr__(self, "yield_strength", float(self.yield_strength))
-        if not (_is_number(self.ultimate_strength) and self.ultimate_strength > 0):
+        if not (is_real(self.ultimate_strength) and self.ultimate_strength > 0):
             raise ValueError(f"material {self.name!r}: ultimate_strength = "
                              f"{self.ultimate_strength!r} must be > 0 (Pa; math.inf for none)")
         if (self.fatigue_strength is None) != (self.fatigue_cycles is None):
@@ -61,14 +61,10 @@ class Material:
                 "fatigue_cycles": self.fatigue_cycles}
 
 
-def _is_number(value) -> bool:
-    return isinstance(value, numbers.Real) and not isinstance(value, bool)
-
-
 def _require(material, name, ok, bound):
     """Check the field ``name`` of ``material`` and store it as a float."""
     value = getattr(material, name)
-    if not (_is_number(value) and math.isfinite(value) and ok(value)):
+    if not (is_real(value) and math.isfinite(value) and ok(value)):
         raise ValueError(f"material {material.name!r}: {name} = {value!r} must be a finite "
                          f"number {bound}")
     object.__setattr__(material, name, float(value))

@@ -6,22 +6,13 @@ prescribed (a number, scaled by the load factor) or free (None, loaded by the ap
 or moment component, zero by default).
 """
 import math
-import numbers
 from dataclasses import dataclass
 
 import numpy as np
 
-
-def _is_number(value) -> bool:
-    return isinstance(value, numbers.Real) and not isinstance(value, bool)
+from .checks import finite_or_none, is_real
 
 
-def _finite_or_none(value, name):
-    if value is None:
-        return None
-    if not (_is_number(value) and math.isfinite(value)):
-        raise ValueError(f"{name} = {value!r} must be a finite number or None (free)")
-    return float(value)
 
 
 def _vector(value, name, sizes, what, allow_none=False):
@@ -33,7 +24,7 @@ def _vector(value, name, sizes, what, allow_none=False):
     if len(items) not in sizes:
         raise ValueError(f"{name} = {value!r} has {len(items)} components; it must be {what}")
     for item in items:
-        if not ((allow_none and item is None) or (_is_number(item) and math.isfinite(item))):
+        if not ((allow_none and item is None) or (is_real(item) and math.isfinite(item))):
             raise ValueError(f"{name} = {value!r} must be {what}")
     return tuple(None if item is None else float(item) for item in items)
 
@@ -62,16 +53,16 @@ class RigidFace:
     def __post_init__(self):
         name = f"RigidFace({self.group!r})"
         for coord in ("x", "y", "z"):
-            object.__setattr__(self, coord, _finite_or_none(getattr(self, coord), f"{name}.{coord}"))
-        if self.rotation is not None and not _is_number(self.rotation):
+            object.__setattr__(self, coord, finite_or_none(f"{name}.{coord}", getattr(self, coord)))
+        if self.rotation is not None and not is_real(self.rotation):
             rotation = _vector(self.rotation, f"{name}.rotation", (3,),
                                "a number (2-D) or 3 numbers or None (3-D rotation vector, rad)",
                                allow_none=True)
         else:
-            rotation = _finite_or_none(self.rotation, f"{name}.rotation")
+            rotation = finite_or_none(f"{name}.rotation", self.rotation)
         object.__setattr__(self, "rotation", rotation)
-        if _is_number(self.moment):
-            moment = _finite_or_none(self.moment, f"{name}.moment")
+        if is_real(self.moment):
+            moment = finite_or_none(f"{name}.moment", self.moment)
         else:
             moment = _vector(self.moment, f"{name}.moment", (3,),
                              "a number (2-D, N m) or 3 numbers (Mx, My, Mz) (3-D, N m)")

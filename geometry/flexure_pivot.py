@@ -24,16 +24,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..fem.checks import positive
 from ..fem.gmsh_session import gmsh_session
 from ..fem.mesh import FEMesh, mesh_from_gmsh
 
 KINDS = ("cross", "single")
-
-
-def _positive(name, value):
-    if not (isinstance(value, numbers.Real) and not isinstance(value, bool)
-            and math.isfinite(value) and value > 0):
-        raise ValueError(f"{name} = {value!r} must be a finite number > 0")
 
 
 @dataclass(frozen=True)
@@ -53,8 +48,8 @@ class PivotGeometry:
     def __post_init__(self):
         if self.kind not in KINDS:
             raise ValueError(f"kind = {self.kind!r} must be one of {KINDS}")
-        _positive("L", self.L)
-        _positive("t", self.t)
+        positive("L", self.L)
+        positive("t", self.t)
         if not self.t <= 0.2 * self.L:
             raise ValueError(f"t = {self.t!r} m must be <= L / 5 = {0.2 * self.L!r} m (a leaf)")
         if not (isinstance(self.crossing_angle, numbers.Real)
@@ -178,7 +173,7 @@ def mesh_pivot(g: PivotGeometry, elements_through_thickness: int = 2,
             and elements_through_thickness >= 1):
         raise ValueError(f"elements_through_thickness = {elements_through_thickness!r} must be "
                          "an integer >= 1")
-    _positive("block_size_factor", block_size_factor)
+    positive("block_size_factor", block_size_factor)
     fine = g.t / elements_through_thickness
     with gmsh_session("flexure_pivot") as gmsh:
         draw_pivot(gmsh, g)

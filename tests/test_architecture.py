@@ -115,15 +115,15 @@ def test_fem_knows_no_mechanism_and_the_engine_no_mechanism_by_name():
 
 
 # what geometry/ may use of fem: meshes, gmsh, materials and the mesh budget, never a solver
-DRAWING_MODULES = {"fem.gmsh_session", "fem.mesh", "fem.materials", "fem.budget"}
+DRAWING_MODULES = {"fem.gmsh_session", "fem.mesh", "fem.materials", "fem.budget", "fem.checks"}
 DRAWING_NAMES = {"FEMesh", "gmsh_session", "mesh_from_gmsh", "read_mesh", "facets_where",
                  "drop_unused_vertices", "Material", "material", "material_names"}
 
 
 def solver_imports(sources) -> list[str]:
     """The imports of ``sources`` ((path, text) pairs) that reach a solver: a fem module
-    beyond meshes, gmsh, materials and the budget (or a solver's name from flexfem.fem), or
-    the reduced models."""
+    beyond meshes, gmsh, materials, the budget and the input checks (or a solver's name from
+    flexfem.fem), or the reduced models."""
     found = []
     for path, text in sources:
         for node in ast.walk(ast.parse(text)):

@@ -12,7 +12,8 @@ import math
 
 import numpy as np
 
-from .model import Section, positive
+from ..checks import positive
+from .model import Section
 
 
 @dataclass

@@ -9,28 +9,15 @@ DOFs per node: (u, v, theta) = x and y displacement (m) and rotation (rad, count
 from dataclasses import dataclass
 from functools import cached_property
 import math
-import numbers
 
 import numpy as np
 
+from ..checks import positive
 from ..materials import Material
 from .groups import BeamGroup
 from .superelement import Superelement
 
 DOF_NAMES = {"x": 0, "u": 0, "y": 1, "v": 1, "theta": 2, "t": 2, "rz": 2}
-
-
-def positive(name, value, allow_none=False):
-    """``value`` as a float if it is a finite number > 0 (None if allowed), else a
-    ValueError naming ``name``."""
-    if type(value) in (float, np.float64) and 0.0 < value < math.inf:  # fast common case
-        return value
-    if value is None and allow_none:
-        return None
-    ok = isinstance(value, numbers.Real) and not isinstance(value, bool)
-    if not (ok and math.isfinite(value) and value > 0):
-        raise ValueError(f"{name} = {value!r} must be a finite number > 0")
-    return float(value)
 
 
 def dof_index(dof) -> int:

@@ -15,7 +15,8 @@ import math
 import numpy as np
 
 from ..beam.groups import BeamGroup
-from ..beam.model import RigidLink, link_masters, positive
+from ..beam.model import RigidLink, link_masters
+from ..checks import positive
 from ..materials import Material
 
 DOF_NAMES = {"x": 0, "y": 1, "z": 2, "rx": 3, "ry": 4, "rz": 5}

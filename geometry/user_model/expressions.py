@@ -11,8 +11,9 @@ on conditions) is refused with a ValueError naming the expression and the proble
 import ast
 from functools import lru_cache
 import math
-import numbers
 import operator
+
+from ...fem.checks import is_finite as is_number
 
 FUNCTIONS = {"sqrt": (math.sqrt, 1), "sin": (math.sin, 1), "cos": (math.cos, 1),
              "tan": (math.tan, 1), "atan": (math.atan, 1), "atan2": (math.atan2, 2),
@@ -26,11 +27,6 @@ _COMPARE = {ast.Lt: operator.lt, ast.LtE: operator.le, ast.Gt: operator.gt,
             ast.GtE: operator.ge,
             ast.Eq: lambda a, b: math.isclose(a, b, rel_tol=1e-9, abs_tol=1e-12)}
 _ARITHMETIC = f"+ - * / **, parentheses, pi and {', '.join(FUNCTIONS)}"
-
-
-def is_number(value) -> bool:
-    """A finite real number, not a bool."""
-    return isinstance(value, numbers.Real) and not isinstance(value, bool) and math.isfinite(value)
 
 
 class Expression:

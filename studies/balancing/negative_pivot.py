@@ -44,13 +44,9 @@ from scipy.integrate import solve_bvp, solve_ivp
 from scipy.optimize import brentq
 
 from ...fem import Material
+from ...fem.checks import positive
 
 KL_DEFAULT = 0.75 * math.pi
-
-
-def _check_positive(name, value):
-    if not (isinstance(value, (int, float, np.floating)) and math.isfinite(value) and value > 0):
-        raise ValueError(f"{name} = {value!r} must be a finite number > 0")
 
 
 def stiffness_factor(kL):
@@ -66,7 +62,7 @@ def beam_column_rotational_stiffness(E, I, L, P):
     < 0): (E I / L) k L cot k L, k^2 = P / (E I); tension gives (E I / L) k L coth k L.
     Raises ValueError at or beyond the guided buckling load P = pi^2 E I / L^2."""
     for name, value in (("E", E), ("I", I), ("L", L)):
-        _check_positive(name, value)
+        positive(name, value)
     if not math.isfinite(P):
         raise ValueError(f"P = {P!r} must be finite")
     p_guided = math.pi**2 * E * I / L**2
@@ -91,7 +87,7 @@ def kL_for_stiffness_factor(f):
 def preload_for_stiffness(K, E, I, L):
     """Compressive force P (N) giving the small-angle hub stiffness K (N m/rad, < E I / L)."""
     for name, value in (("E", E), ("I", I), ("L", L)):
-        _check_positive(name, value)
+        positive(name, value)
     kL = kL_for_stiffness_factor(K * L / (E * I))
     return kL**2 * E * I / L**2
 
@@ -120,7 +116,7 @@ def compressed_leaf_elastica(E, I, L, P, theta, n_nodes=201) -> Elastica:
     """Solve E I phi'' + P sin phi = 0, phi(0) = 0, phi(L) = theta (inextensible elastica,
     dead compressive P along the unloaded axis, no shear at the hub). SI units."""
     for name, value in (("E", E), ("I", I), ("L", L)):
-        _check_positive(name, value)
+        positive(name, value)
     if not (math.isfinite(P) and P >= 0):
         raise ValueError(f"P = {P!r} N must be >= 0 (compression)")
     if not (math.isfinite(theta) and abs(theta) <= math.pi / 2):
@@ -176,7 +172,7 @@ class CompressedLeafPivot:
     def __post_init__(self):
         for attr in ("L", "t", "w", "P", "transmission_ratio", "theta_max", "max_stress",
                      "safety_factor"):
-            _check_positive(attr, getattr(self, attr))
+            positive(attr, getattr(self, attr))
         if not self.t <= 0.2 * self.L:
             raise ValueError(f"t = {self.t} m must be <= L / 5 = {0.2 * self.L} m (a leaf)")
         if not self.kL < math.pi:
@@ -231,7 +227,7 @@ def size_negative_pivot(K, theta_range_rad, material: Material, safety_factor=2.
                          "guided buckling load")
     if not safety_factor >= 1.0:
         raise ValueError(f"safety_factor = {safety_factor} must be >= 1")
-    _check_positive("transmission_ratio", transmission_ratio)
+    positive("transmission_ratio", transmission_ratio)
     theta_max = float(np.max(np.abs(theta_range_rad))) / transmission_ratio
     if not theta_max > 0.0:
         raise ValueError(f"theta_range_rad = {theta_range_rad} must not be all zero")
