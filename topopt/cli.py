@@ -61,7 +61,9 @@ def summarize(result: dict) -> str:
     for key, unit in (("frequency", "Hz"), ("stress", "Pa")):
         if key in result["constraints"]:
             lines.append(f"{key}: {result['constraints'][key]:.6g} {unit}")
+    lines += _robust_lines(result)
     shape = result.get("shape", {})
+    lines += _neck_lines(shape.get("necks"))
     tol = shape.get("tolerance")
     if tol:
         large = shape.get("body_fitted_large")
@@ -78,3 +80,31 @@ def summarize(result: dict) -> str:
                      f"{tol['u']:.6g} J, tolerance {tol['tolerance']:.3g} J)")
     lines.append(f"written: {', '.join(result['files'])} in {result['out']}")
     return "\n".join(lines)
+
+
+def _robust_lines(result: dict) -> list:
+    """The robust formulation's sizes and designs, if any."""
+    robust = result.get("robust")
+    if not robust:
+        return []
+    eroded, middle, dilated = robust["thresholds"]
+    lines = [f"robust: thresholds {eroded:g} / {middle:g} / {dilated:g}, filter radius "
+             f"{robust['filter_radius']:.4g} elements: minimum solid "
+             f"{robust['min_solid'] * 1e3:.4g} mm, minimum void {robust['min_void'] * 1e3:.4g} mm"]
+    for name, d in (robust.get("designs") or {}).items():
+        lines.append(f"  {name}: objective {d['objective']:.6g}, volume {d['volume']:.4f}")
+    return lines
+
+
+def _neck_lines(necks: dict | None) -> list:
+    """The outline's necks, narrowest first."""
+    if necks is None:
+        return []
+    if not necks["necks"]:
+        return [f"necks: none thinner than {necks['detect'] * 1e3:.4g} mm"]
+    lines = [f"necks thinner than {necks['detect'] * 1e3:.4g} mm (on the outline):"]
+    for n in necks["necks"]:
+        x, y = n["where"]
+        lines.append(f"  {n['width'] * 1e3:.4g} mm at ({x * 1e3:.4g}, {y * 1e3:.4g}) mm, "
+                     f"peak von Mises {n['peak_stress'] / 1e6:.4g} MPa (body-fitted)")
+    return lines

@@ -5,6 +5,7 @@ from pathlib import Path
 
 from .export import write_step
 from .model_file import write_model
+from .neck_check import detect_width, neck_report
 from .outline import extract_outline, problem_anchors, write_dxf
 from .tolerance import body_fitted_tolerance
 from .verify import verify_compliances, verify_large, verify_mechanism
@@ -36,7 +37,9 @@ def shape_options(data: dict) -> dict | None:
 def write_shape(result, folder, options: dict) -> dict:
     """Write outline.dxf, outline.step, design.geo and design.toml (with several load cases
     also design_case<c>.toml) into ``folder``; returns {files, parts, islands (m^2),
-    thin_area (m^2)} and the body-fitted checks: with springs body_fitted {spring: m} (load
+    thin_area (m^2)}, necks ({detect (m), necks: [{width (m), where (m), peak_stress (Pa)}]}:
+    the outline's necks thinner than detect, :func:`~.neck_check.neck_report`) and the
+    body-fitted checks: with springs body_fitted {spring: m} (load
     case 1, small displacements), with several load cases body_fitted_cases (one such dict
     a case), and tolerance; without springs body_fitted_compliances (J, one a load case:
     :func:`~.verify.verify_compliances`) and compliance_tolerances (each case's
@@ -54,6 +57,8 @@ def write_shape(result, folder, options: dict) -> dict:
     out = {"files": ["outline.dxf", "outline.step", "design.geo", "design.toml", *cases],
            "parts": len(outline.parts), "islands": list(outline.islands),
            "thin_area": outline.thin_area}
+    detect = detect_width(problem, options["min_member"])
+    out["necks"] = {"detect": detect, "necks": neck_report(problem, outline, detect)}
     if problem.springs and problem.nonlinear is not None:
         out["body_fitted_large"] = verify_large(problem, outline)
     if not problem.springs:
