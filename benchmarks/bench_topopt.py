@@ -9,7 +9,8 @@ Rows: the MBB beam (volume 0.5, SIMP p = 3, sensitivity filter of radius 3 eleme
 move 0.2) by flexfem and by the port, each made to run exactly ``--iterations`` iterations;
 the force inverter (volume 0.3, density filter of radius 3, MMA with move 0.2) by flexfem and
 by the educational-style port (tests/topopt/inverter_port.py: top88's loop, spsolve, mmapy's
-``mmasub`` as the MMA codes call it). Each row runs in its own process, after its imports.
+``mmasub`` as the MMA codes call it); the inverter by the robust formulation
+(inverter-robust: three designs an iteration, docs/topopt.md). Each row runs in its own process, after its imports.
 """
 import argparse
 import json
@@ -62,10 +63,11 @@ def mbb_top88(iterations: int) -> dict:
     return _timed(lambda: top88(NELX, NELY, 0.5, 3.0, RMIN, 1, max_loop=iterations)[1::-1])
 
 
-def inverter_flexfem(iterations: int) -> dict:
+def inverter_problem(iterations: int, **options):
+    """The 200 x 100 force inverter of the rows below (``options``: more Problem keys)."""
     from flexfem.topopt import (Constraint, Grid, Load, Optimizer, Problem, Region, Response,
                                 Spring, Support)
-    problem = Problem(Grid(NELX, NELY, float(NELX), float(NELY)),
+    return Problem(Grid(NELX, NELY, float(NELX), float(NELY)),
                       Response("displacement", "output"), filter_kind="density", radius=RMIN,
                       supports=(Support(Region("edge", "bottom"), ("y",)),
                                 Support(Region("box", ((0.0, NELY - 5.0), (0.0, float(NELY)))),
@@ -74,8 +76,20 @@ def inverter_flexfem(iterations: int) -> dict:
                       springs=(Spring("input", Region("point", (0.0, 0.0)), "x", 0.1),
                                Spring("output", Region("point", (float(NELX), 0.0)), "x", 0.1)),
                       constraints=(Constraint(Response("volume"), upper=0.3),),
-                      optimizer=Optimizer("mma", 0.2, iterations, 1e-12))
-    return timed_optimize(problem)
+                      optimizer=Optimizer("mma", 0.2, iterations, 1e-12), **options)
+
+
+def inverter_flexfem(iterations: int) -> dict:
+    return timed_optimize(inverter_problem(iterations))
+
+
+def inverter_robust(iterations: int) -> dict:
+    """The inverter by the robust formulation (thresholds 0.75 / 0.5 / 0.25: three solves an
+    iteration), projection from beta 1 doubling every 50 iterations to 16."""
+    from flexfem.topopt import Projection
+    from flexfem.topopt.robust import Robust
+    return timed_optimize(inverter_problem(
+        iterations, projection=Projection(1.0, 0.5, 16.0, 50), robust=Robust(0.25)))
 
 
 def inverter_port(iterations: int) -> dict:
@@ -85,7 +99,7 @@ def inverter_port(iterations: int) -> dict:
 
 
 ROWS = {"mbb-flexfem": mbb_flexfem, "mbb-top88": mbb_top88, "inverter-flexfem": inverter_flexfem,
-        "inverter-port": inverter_port}
+        "inverter-port": inverter_port, "inverter-robust": inverter_robust}
 
 
 def main() -> None:

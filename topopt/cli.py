@@ -43,7 +43,8 @@ def run(args) -> dict:
 
 
 def summarize(result: dict) -> str:
-    lines = [f"objective ({result['objective_kind']}): {result['objective']:.6g}",
+    worst = ", the worst of the robust designs (KS)" if result.get("robust") else ""
+    lines = [f"objective ({result['objective_kind']}{worst}): {result['objective']:.6g}",
              f"iterations: {result['iterations']}"
              f" ({'converged' if result['converged'] else 'not converged'})",
              f"volume fraction: {result['volume_fraction']:.4f}"]
