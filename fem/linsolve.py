@@ -1,6 +1,7 @@
 """Sparse linear solvers: a direct factorization (MKL PARDISO where MKL is installed, as it is
 by default on x86-64; CHOLMOD or SuperLU otherwise) and smoothed-aggregation AMG-preconditioned CG with rigid-body
-modes as the near null space. :func:`choose_solver` picks one by problem size.
+modes as the near null space. :func:`factor_bytes` says, from PARDISO's analysis alone, how much memory a factor
+will take (fem/solver_choice.py picks the solver by it).
 
 A factorization is kept in a :class:`Factorization` object: factorize once, call it for many
 right-hand sides (the static solve, every Lanczos step of the modal solve), then ``free()`` it
@@ -21,11 +22,6 @@ import scipy.sparse.linalg as spla
 from . import memory
 from .restriction import Restriction  # noqa: F401 (part of this module's interface)
 from .symmetric import symmetric_from_upper
-
-# Above these sizes (free DOFs) "auto" uses AMG-CG, where the direct factor's memory would
-# crowd a 2-core machine (docs/performance.md, "AMG-CG for the largest meshes"); direct
-# factorization fill grows much faster in 3-D.
-AMG_THRESHOLD = {2: 2_000_000, 3: 400_000}
 
 # matrix kinds -> PARDISO matrix type: real SPD (Cholesky on the upper triangle), real
 # symmetric indefinite (Bunch-Kaufman on the upper triangle), real non-symmetric (LU)
@@ -126,10 +122,11 @@ class Factorization:
     b of shape (n,) or (n, k). ``kind``: 'spd' (symmetric positive definite: Cholesky),
     'symmetric' (indefinite) or 'general'; symmetric kinds read the upper triangle only.
     ``backend``: :func:`direct_backend` of ``kind``, 'mkl-pardiso', 'cholmod' or 'superlu'.
-    Free its memory with ``free()`` or ``with``.
+    Free its memory with ``free()`` or ``with``. ``analysis_only``: PARDISO's reordering
+    alone, no factor (:func:`factor_bytes`).
     """
 
-    def __init__(self, A, kind: str = "general"):
+    def __init__(self, A, kind: str = "general", analysis_only: bool = False):
         if kind not in MATRIX_KINDS:
             raise ValueError(f"kind = {kind!r}; choose one of {sorted(MATRIX_KINDS)}")
         A = sp.csr_matrix(A, dtype=float)
@@ -140,7 +137,7 @@ class Factorization:
         self.holds_matrix = False  # whether the solves still read A's arrays (PARDISO)
         self.backend = direct_backend(kind)
         if self.backend == "mkl-pardiso":
-            self._init_pardiso(A)
+            self._init_pardiso(A, keep_matrix=analysis_only, phase=11 if analysis_only else 12)
         elif self.backend == "cholmod":
             try:
                 self._factor = _cholmod().cholesky(A.tocsc())
@@ -152,7 +149,7 @@ class Factorization:
             except RuntimeError as error:  # "Factor is exactly singular"
                 raise SingularSystemError(f"SuperLU: {error}") from None
 
-    def _init_pardiso(self, A, keep_matrix: bool = False):
+    def _init_pardiso(self, A, keep_matrix: bool = False, phase: int = 12):
         self._mtype = MATRIX_KINDS[self.kind]
         if self.kind != "general" and not _is_upper(A):
             A = sp.triu(A, format="csr")
@@ -187,11 +184,13 @@ class Factorization:
                                           self._iparm)
         dummy = np.zeros(self.n)
         try:
-            pardiso_call(self._pt, self._mtype, 12, self.n, self._data, self._indptr,
+            pardiso_call(self._pt, self._mtype, phase, self.n, self._data, self._indptr,
                           self._indices, self._iparm, dummy, dummy.copy())
         except BaseException:
             self.free()
             raise
+        if phase == 11:
+            return  # the analysis only: nothing to drop
         # no perturbed pivot: PARDISO's Cholesky solves read the factor only (checked once
         # per process), so the matrix, as big as K's upper triangle, is dropped before the
         # solves; with perturbed pivots they refine iteratively on the matrix
@@ -355,13 +354,15 @@ def solve_amg(A, b, near_null_space: np.ndarray, tol: float = 1e-10) -> np.ndarr
     return d * y
 
 
-def choose_solver(n_unknowns: int, dim: int, solver: str = "auto") -> str:
-    """'direct' or 'amg' for ``solver='auto'`` by size; a named solver is checked and kept."""
-    if solver not in ("auto", "direct", "amg"):
-        raise ValueError(f"solver = {solver!r}; choose 'auto', 'direct' or 'amg'")
-    if solver != "auto":
-        return solver
-    return "amg" if n_unknowns > AMG_THRESHOLD[dim] else "direct"
+def factor_bytes(A, kind: str = "spd") -> int | None:
+    """Peak memory (bytes) of PARDISO's factorization of ``A`` (upper triangle if symmetric)
+    from its analysis phase alone: max(symbolic peak, permanent + numerical), MKL's
+    iparm[14..16] (KiB). None where PARDISO is not the backend."""
+    if direct_backend(kind) != "mkl-pardiso":
+        return None
+    with Factorization(A, kind, analysis_only=True) as probe:
+        symbolic, permanent, numerical = (int(v) for v in probe._iparm[14:17])
+    return max(symbolic, permanent + numerical) * 1024
 
 
 # check_solution: a direct solve's residual is at most ROUNDOFF_FACTOR eps ||A|| ||x|| (measured

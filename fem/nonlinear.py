@@ -25,6 +25,7 @@ from .pressure import FollowerPressure
 from .preload import PreloadedSpace, preload_faces, split_preloads
 from .rigid_face import ReducedSpace
 from .rigid_static import check_held
+from .solver_choice import choose_solver
 from .arclength import limit_points, trace
 from .newton import (NonConvergenceError, newton_step, solve_tangent,  # noqa: F401
                      check_step_arguments)
@@ -43,7 +44,7 @@ class _Problem:
         self.f_ext, self.follower = load_vector(model, loads), FollowerPressure(model, loads)
         self.f_pre = load_vector(model, preloads)
         self.pre_follower = FollowerPressure(model, preloads)
-        self.solver = linsolve.choose_solver(space.n, model.dim, solver)
+        self.solver = choose_solver(space.n, model.dim, solver)
         follower = self.follower.active or self.pre_follower.active
         if self.solver == "amg" and (space.faces or follower):
             raise ValueError(f"solver = {solver!r} with rigid faces or follower pressure: AMG is "

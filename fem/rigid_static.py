@@ -11,6 +11,7 @@ from . import linsolve
 from .boundary import component_indices, constrained_dofs, load_vector
 from .model import von_mises
 from .rigid_face import ReducedSpace
+from .solver_choice import choose_solver
 from .static_result import (StaticResult, UnderConstrainedError, check_supports, nodal_average,
                      vertex_displacement)
 
@@ -60,7 +61,7 @@ def solve_static_faces(model, supports, loads, rigid_faces, solver: str = "auto"
     M_z) (N, N m): on a free coordinate the applied load, on a prescribed one the reaction."""
     if solver == "amg":
         raise ValueError(f"solver = {solver!r} with rigid faces: use 'direct' or 'auto'")
-    linsolve.choose_solver(1, model.dim, solver)  # validates the name
+    choose_solver(1, model.dim, solver)  # validates the name
     D, xD, owned = constrained_dofs(model, supports)
     space = ReducedSpace(model, D, xD, rigid_faces)
     check_held(model, space)

@@ -6,6 +6,7 @@ from .block_factor import BlockFactorization
 from .boundary import component_indices, constrained_dofs, load_vector
 from .model import Model, von_mises
 from .rigid_static import solve_static_faces
+from .solver_choice import solver_choice
 from .symmetric import symmetric_matvec
 from .static_result import (StaticResult, UnderConstrainedError, body_parts,  # noqa: F401
                             check_supports, mean_field, nodal_average, rigid_body_dof_modes,
@@ -32,9 +33,11 @@ def solve_static(model: Model, supports, loads, solver: str = "auto",
     # of the full block
     K_II = linsolve.Restriction(K, I, upper=True)
     if not np.any(rhs):
-        chosen = "none"
+        chosen, why = "none", "no load"
     else:
-        chosen = linsolve.choose_solver(len(I), model.dim, solver)
+        chosen, why = solver_choice(
+            len(I), model.dim, solver,
+            lambda: linsolve.block_to_factorize(K, I, "spd", upper=True))
         if chosen == "amg":
             u[I] = linsolve.solve_amg(linsolve.block_to_factorize(K, I, "general", upper=True),
                                       rhs, rigid_body_dof_modes(model)[I])
@@ -62,5 +65,6 @@ def solve_static(model: Model, supports, loads, solver: str = "auto",
         model=model, u=u, displacement=vertex_displacement(model, u),
         von_mises_nodal=von_mises(nodal), von_mises_element_max=vm_qp.max(axis=1),
         reactions=reactions, applied_force=applied, strain_energy=0.5 * float(u @ Ku),
-        solver=chosen, info={"n_dofs": model.n_dofs, "n_constrained": len(D)},
+        solver=chosen, info={"n_dofs": model.n_dofs, "n_constrained": len(D),
+                             "solver_choice": why},
         nodal_stress_full=np.moveaxis(nodal, 2, 0))

@@ -93,12 +93,14 @@ def test_amg_matches_direct(steel):
     assert solve_static(model, *args).solver == direct.solver  # small model: auto picks direct
 
 
-def test_auto_switches_to_amg_above_the_threshold(steel, monkeypatch):
-    from flexfem.fem import linsolve
+def test_auto_switches_to_amg_where_the_factor_does_not_fit(steel, monkeypatch):
+    from flexfem.fem import solver_choice
+    from flexfem.fem.budget import MEMORY_VARIABLE
     model = Model(beam_2d(L, H, H / 3), steel, PlaneStress(W), order=2)
     args = ([Fixed("fixed")], [Force("tip", (0.0, -P))])
     direct = solve_static(model, *args, solver="direct")
-    monkeypatch.setattr(linsolve, "AMG_THRESHOLD", {2: 10, 3: 10})
+    monkeypatch.setattr(solver_choice, "AMG_THRESHOLD", {2: 10, 3: 10})
+    monkeypatch.setenv(MEMORY_VARIABLE, "1e-6")  # ~1 KiB: no factor fits
     auto = solve_static(model, *args)
     assert auto.solver == "amg-cg"
     # CG stops at a relative residual of 1e-10; the error is at most cond(K) times that in

@@ -1,0 +1,49 @@
+"""solver='auto' above the size threshold: the direct solver wherever PARDISO's analysis says
+its factor fits half the available memory, AMG-CG only beyond; the result says which and why.
+The threshold is lowered so that a small solid exercises the rule."""
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+from flexfem.fem import Fixed, Force, Material, Model, linsolve, solve_static, solver_choice
+from flexfem.fem.budget import MEMORY_VARIABLE
+from flexfem.fem.model import Solid3D
+
+sys.path.insert(0, str(Path(__file__).parent))
+from meshes import beam_3d  # noqa: E402
+
+STEEL = Material("steel", E=200e9, nu=0.3, rho=7800.0)
+pytestmark = pytest.mark.skipif(linsolve.direct_backend("spd") != "mkl-pardiso",
+                                reason="the factor's size comes from PARDISO's analysis")
+
+
+@pytest.fixture(scope="module")
+def solid():
+    return Model(beam_3d(0.1, 0.01, 0.01, 0.004), STEEL, Solid3D(), order=2)
+
+
+def _solve(model):
+    return solve_static(model, [Fixed("fixed")], [Force("tip", (0.0, -10.0, 0.0))])
+
+
+def test_the_factor_is_measured_before_it_is_made(solid):
+    K = linsolve.block_to_factorize(solid.stiffness_upper, np.arange(solid.n_dofs), "spd",
+                                    upper=True)
+    small = linsolve.factor_bytes(K[:3000][:, :3000])
+    whole = linsolve.factor_bytes(K)
+    assert 0 < small < whole < 2**31  # a few MiB for some 10^4 unknowns
+
+
+def test_auto_keeps_the_direct_solver_where_its_factor_fits(solid, monkeypatch):
+    monkeypatch.setitem(solver_choice.AMG_THRESHOLD, 3, 100)
+    result = _solve(solid)
+    assert result.solver == "mkl-pardiso" and "fits half the available memory" in \
+        result.info["solver_choice"]
+    monkeypatch.setenv(MEMORY_VARIABLE, "1e-6")  # ~1 KiB: no factor fits
+    K = linsolve.block_to_factorize(solid.stiffness_upper, np.arange(solid.n_dofs), "spd",
+                                    upper=True)
+    chosen, why = solver_choice.solver_choice(solid.n_dofs, 3, "auto", lambda: K)
+    assert chosen == "amg" and "is above half the available memory" in why
+    assert solver_choice.solver_choice(solid.n_dofs, 3, "direct", lambda: K) == ("direct",
+                                                                            "asked for")
