@@ -17,7 +17,7 @@ CONSTRAINTS = (Constraint(Response("volume"), upper=0.4),
                Constraint(Response("displacement", "output"), lower=-2.0))
 
 
-def _fd_check(problem, seed=0, beta=None, low=0.3, span=0.5):
+def fd_check(problem, seed=0, beta=None, low=0.3, span=0.5):
     d = Discrete(problem)
     d.beta = beta if beta is not None else d.beta
     rng = np.random.default_rng(seed)
@@ -42,35 +42,35 @@ def _fd_check(problem, seed=0, beta=None, low=0.3, span=0.5):
 
 @pytest.mark.parametrize("kind", ["simp", "ramp"])
 def test_compliance_and_volume_gradients(kind):
-    _fd_check(mbb(6, 4, "density", 1.5, interpolation=Interpolation(kind, 3.0)))
+    fd_check(mbb(6, 4, "density", 1.5, interpolation=Interpolation(kind, 3.0)))
 
 
 @pytest.mark.parametrize("kind", ["simp", "ramp"])
 @pytest.mark.parametrize("sense", ["min", "max"])
 def test_mechanism_gradients_of_every_response(kind, sense):
-    _fd_check(inverter(6, 4, "density", constraints=CONSTRAINTS, sense=sense,
+    fd_check(inverter(6, 4, "density", constraints=CONSTRAINTS, sense=sense,
                        interpolation=Interpolation(kind, 3.0)))
 
 
 def test_gradients_with_passive_regions_and_symmetry():
     passive = (Passive(Region("box", ((0.0, 0.0), (1.0, 1.0))), "solid"),
                Passive(Region("box", ((5.0, 3.0), (6.0, 4.0))), "void"))
-    _fd_check(mbb(6, 4, "density", 1.5, passive=passive, symmetry=("y",)))
-    _fd_check(inverter(6, 4, "none", constraints=CONSTRAINTS, symmetry=("x",)))
+    fd_check(mbb(6, 4, "density", 1.5, passive=passive, symmetry=("y",)))
+    fd_check(inverter(6, 4, "none", constraints=CONSTRAINTS, symmetry=("x",)))
 
 
 @pytest.mark.parametrize("beta", [1.0, 8.0])
 def test_gradients_through_the_heaviside_projection(beta):
     projection = Projection(beta=1.0, eta=0.4, beta_max=64.0)
-    _fd_check(mbb(6, 4, "density", 1.5, projection=projection), beta=beta)
-    _fd_check(inverter(6, 4, "density", constraints=CONSTRAINTS, projection=projection,
+    fd_check(mbb(6, 4, "density", 1.5, projection=projection), beta=beta)
+    fd_check(inverter(6, 4, "density", constraints=CONSTRAINTS, projection=projection,
                        passive=(Passive(Region("box", ((0.0, 0.0), (1.0, 1.0))), "solid"),)),
               beta=beta)
 
 
 def test_gradients_of_weighted_compliance_over_two_load_cases():
     weighted = Response("compliance", weights=(1.0, 2.5))
-    _fd_check(mbb(6, 4, "density", 1.5, second_load=(-0.5, -0.3), objective=weighted,
+    fd_check(mbb(6, 4, "density", 1.5, second_load=(-0.5, -0.3), objective=weighted,
                   optimizer=Optimizer("mma"),
                   constraints=(Constraint(Response("volume"), upper=0.4),
                                Constraint(Response("compliance", weights=(0.0, 1.0)),
@@ -78,7 +78,7 @@ def test_gradients_of_weighted_compliance_over_two_load_cases():
 
 
 def test_gradient_of_a_displacement_in_the_second_load_case():
-    _fd_check(inverter(6, 4, "density", second_load=(0.0, -1.0), constraints=(
+    fd_check(inverter(6, 4, "density", second_load=(0.0, -1.0), constraints=(
         Constraint(Response("displacement", "output", case=2), upper=1.0),)))
 
 
@@ -87,7 +87,7 @@ def test_gradient_of_the_lowest_eigenfrequency(low):
     """Above and below 0.1, where the mass interpolation changes (z in [low, low + 0.5]
     or [0.02, 0.07]: every physical density on one side)."""
     frequency = Constraint(Response("frequency"), lower=0.01)
-    _fd_check(mbb(6, 4, "density", 1.5, mass_density=2.0, optimizer=Optimizer("mma"),
+    fd_check(mbb(6, 4, "density", 1.5, mass_density=2.0, optimizer=Optimizer("mma"),
                   constraints=(Constraint(Response("volume"), upper=0.4), frequency)),
               low=low, span=0.5 if low > 0.1 else 0.05)
 
@@ -95,13 +95,13 @@ def test_gradient_of_the_lowest_eigenfrequency(low):
 @pytest.mark.parametrize("relaxation", [0.5, 1.0])
 def test_gradient_of_the_stress_norm(relaxation):
     stress = Constraint(Response("stress", pnorm=8.0, relaxation=relaxation), upper=1.0)
-    _fd_check(mbb(6, 4, "density", 1.5, second_load=(-0.5, -0.3), optimizer=Optimizer("mma"),
+    fd_check(mbb(6, 4, "density", 1.5, second_load=(-0.5, -0.3), optimizer=Optimizer("mma"),
                   constraints=(stress,)))
-    _fd_check(inverter(6, 4, "density", constraints=(stress,),
+    fd_check(inverter(6, 4, "density", constraints=(stress,),
                        projection=Projection(beta=4.0, eta=0.5)))
 
 
 def test_gradients_through_the_helmholtz_filter():
-    _fd_check(mbb(6, 4, "helmholtz", 2.5, optimizer=Optimizer("mma")))
-    _fd_check(inverter(6, 4, "helmholtz", constraints=CONSTRAINTS,
+    fd_check(mbb(6, 4, "helmholtz", 2.5, optimizer=Optimizer("mma")))
+    fd_check(inverter(6, 4, "helmholtz", constraints=CONSTRAINTS,
                        projection=Projection(beta=4.0, eta=0.5), symmetry=("x",)))

@@ -5,7 +5,7 @@ refused combinations and a short run."""
 import numpy as np
 import pytest
 from problems import inverter, mbb
-from test_gradients import CONSTRAINTS, _fd_check
+from test_gradients import CONSTRAINTS, fd_check
 
 from flexfem.topopt import (Constraint, Optimizer, Projection, Response, optimize,
                             problem_from_dict)
@@ -76,7 +76,7 @@ def test_ks_aggregate_bounds_the_worst():
 @pytest.mark.parametrize("sense", ["min", "max"])
 def test_robust_gradients_of_objective_and_constraints(beta, sense):
     stress = Constraint(Response("stress", pnorm=8.0), upper=1.0)
-    _fd_check(inverter(6, 4, "density", constraints=CONSTRAINTS + (stress,), sense=sense,
+    fd_check(inverter(6, 4, "density", constraints=CONSTRAINTS + (stress,), sense=sense,
                        **ROBUST), beta=beta)
 
 
@@ -84,7 +84,7 @@ def test_robust_gradients_with_a_frequency_constraint_and_a_volume_ratio():
     problem = mbb(6, 4, "density", 1.5, mass_density=2.0, optimizer=Optimizer("mma"),
                   constraints=(Constraint(Response("volume"), upper=0.4),
                                Constraint(Response("frequency"), lower=0.01)), **ROBUST)
-    _fd_check(problem, beta=4.0)
+    fd_check(problem, beta=4.0)
 
 
 INVERTER_FILE = "examples/topopt/inverter_robust.toml"
