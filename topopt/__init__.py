@@ -1,6 +1,7 @@
 """flexfem.topopt: density-based topology optimisation of 2-D plane-stress structures and
 compliant mechanisms on a structured grid of bilinear quads (SIMP or RAMP, sensitivity,
-density or Helmholtz filter, Heaviside projection, several load cases, compliance,
+density or Helmholtz filter, Heaviside projection, the robust formulation (a minimum
+hinge width), several load cases, compliance,
 displacement, volume, lowest-eigenfrequency and stress-norm responses, optimality criteria
 or MMA).
 
@@ -16,7 +17,8 @@ from .problem import (Constraint, Load, Optimizer, Passive, Problem, Response, S
 from .problem_file import load_problem, problem_from_dict
 from .projection import Projection
 from .regions import Region
+from .robust import Robust
 
 __all__ = ["Constraint", "Grid", "Interpolation", "Load", "Optimizer", "Passive", "Problem",
-           "Projection", "Region", "Response", "Result", "Spring", "Support", "load_problem",
+           "Projection", "Region", "Response", "Result", "Robust", "Spring", "Support", "load_problem",
            "optimize", "problem_from_dict"]

@@ -152,3 +152,16 @@ def test_robust_inverter_keeps_its_minimum_hinge_on_the_body_fitted_shape():
             assert fitted == pytest.approx(result.summary()["u_out"], rel=0.15)
     assert widths["robust"] and min(widths["robust"]) >= hinge
     assert min(widths["plain"]) < hinge
+
+
+def test_robust_run_resumes_to_the_same_design(tmp_path):
+    """Stopped at iteration 7 (after the volume ratio's update at 1, before the one at 21)
+    and rerun: the same design as one run, the ratio restored from state.npz."""
+    from problems import interrupt_at
+
+    problem = inverter(20, 10, "density", iterations=25, **ROBUST)
+    whole = optimize(problem)
+    interrupt_at(problem, tmp_path, 7)
+    resumed = optimize(problem, out_dir=tmp_path)
+    assert resumed.iterations == whole.iterations
+    np.testing.assert_allclose(resumed.density, whole.density, atol=1e-10)
