@@ -227,7 +227,7 @@ def _mechanism_spec(path: Path, raw: dict, loc: Locator, overridden: set, dim: i
         "material": parse_material(raw["material"], loc),
         "section": section if dim == 2 else Section("solid"),
         "mesh": parse_mesh(raw.get("mesh", {}), loc),
-        "supports": parse_supports(raw.get("supports", []), 2, loc),
+        "supports": _body_supports(raw.get("supports", []), dim, loc),
         "loads": _body_loads(raw.get("loads", []), dim, loc),
         "analysis": parse_analysis(raw.get("analysis", {}), loc),
     }
@@ -266,6 +266,25 @@ def _mechanism_spec(path: Path, raw: dict, loc: Locator, overridden: set, dim: i
                      constants=dict(parameters), description=str(raw.get("description", "")),
                      beams=beams, allow_code=allow_code, mechanism=mechanism, selects=(),
                      outputs=outputs, **parts)
+
+
+def _body_supports(raw, dim: int, loc: Locator) -> tuple:
+    """The [[supports]] of bodies and flexures: x, y and z (m, prescribed displacements). A z
+    holds the extruded solid's out-of-plane motion (--dim 3: with x or y alone the solid could
+    slide along z); in the plane, where nothing moves out of it, z = 0 is what the plane holds
+    already and any other z needs --dim 3."""
+    entries = raw
+    if isinstance(raw, list) and dim == 2:
+        entries = []
+        for i, entry in enumerate(raw):
+            if isinstance(entry, dict) and "z" in entry:
+                if not (is_number(entry["z"]) and entry["z"] == 0):
+                    raise loc.error(f"[[supports]] z = {entry['z']!r}: an out-of-plane "
+                                    "displacement needs --dim 3 (the plane holds z = 0)",
+                                    "supports", "z", i)
+                entry = {k: v for k, v in entry.items() if k != "z"}
+            entries.append(entry)
+    return parse_supports(entries, dim, loc)
 
 
 def _body_loads(raw, dim: int, loc: Locator) -> tuple:

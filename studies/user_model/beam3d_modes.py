@@ -15,12 +15,16 @@ from ...geometry.user_model.tables import Section
 
 def planar_twin(spec):
     """The 2-D spec of a 3-D spec of bodies and flexures: the plane-stress section of the
-    mechanism's depth, the loads' in-plane components."""
+    mechanism's depth, the loads' and supports' in-plane components (a support holding z
+    alone holds nothing in the plane)."""
     depth = spec.mechanism.depth
     loads = tuple(replace(load, vector=tuple(load.vector)[:2]) for load in spec.loads)
+    supports = tuple(s if s.components is None else
+                     replace(s, components={k: v for k, v in s.components.items() if k < 2})
+                     for s in spec.supports if s.components is None or set(s.components) - {2})
     groups = {name: 1 for name, d in spec.groups.items() if d == 2} | {"solid": 2}
     return replace(spec, dim=2, section=Section("plane_stress", depth), loads=loads,
-                   groups=groups)
+                   supports=supports, groups=groups)
 
 
 def _box_inertias(body, rho: float, depth: float) -> tuple:
