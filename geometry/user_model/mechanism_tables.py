@@ -1,12 +1,14 @@
 """The ``[[body]]`` and ``[[flexure]]`` tables of a model file (docs/model_files.md, "Bodies
-and flexures") -> :class:`flexfem.geometry.mechanism.Mechanism`. Every coordinate and size is a
+and flexures") -> :class:`flexfem.geometry.mechanism.Mechanism`, and the [[supports]] and
+[[loads]] such a file gives (x, y and, for the extruded solid, z). Every coordinate and size is a
 number (m) or an expression of the ``[parameters]`` (expressions.evaluate_expression); errors
 name the model file, the line and the body or flexure."""
+from dataclasses import replace
 import math
 
 from ..mechanism import Body, Leaf, Mechanism, Notch
-from .expressions import evaluate_expression
-from .tables import Locator, check_keys
+from .expressions import evaluate_expression, is_number
+from .tables import Locator, check_keys, parse_loads, parse_supports
 
 BODY_KEYS = ("name", "box", "polygon")
 FLEXURE_KEYS = {"leaf": ("kind", "name", "between", "from", "to", "thickness", "fillet"),
@@ -144,3 +146,42 @@ def parse_mechanism(raw: dict, names: dict, depth: float, loc: Locator,
     mechanism = Mechanism(bodies, flexures, depth, str(loc.path))
     mechanism.check(supported)
     return mechanism
+
+
+def body_supports(raw, dim: int, loc: Locator) -> tuple:
+    """The [[supports]] of bodies and flexures: x, y and z (m, prescribed displacements). A z
+    holds the extruded solid's out-of-plane motion (--dim 3: with x or y alone the solid could
+    slide along z); in the plane, where nothing moves out of it, z = 0 is what the plane holds
+    already and any other z needs --dim 3."""
+    entries = raw
+    if isinstance(raw, list) and dim == 2:
+        entries = []
+        for i, entry in enumerate(raw):
+            if isinstance(entry, dict) and "z" in entry:
+                if not (is_number(entry["z"]) and entry["z"] == 0):
+                    raise loc.error(f"[[supports]] z = {entry['z']!r}: an out-of-plane "
+                                    "displacement needs --dim 3 (the plane holds z = 0)",
+                                    "supports", "z", i)
+                entry = {k: v for k, v in entry.items() if k != "z"}
+            entries.append(entry)
+    return parse_supports(entries, dim, loc)
+
+
+def body_loads(raw, dim: int, loc: Locator) -> tuple:
+    """The [[loads]] of bodies and flexures: in-plane forces (F_x, F_y), or (F_x, F_y, F_z)
+    pushing out of the plane, which only the 3-D models (--dim 3) take; dim components each."""
+    entries, out_of_plane = raw, {}
+    if isinstance(raw, list):
+        entries = []
+        for i, entry in enumerate(raw):
+            force = entry.get("force") if isinstance(entry, dict) else None
+            if isinstance(force, list) and len(force) == 3 and is_number(force[2]):
+                if dim == 2 and force[2] != 0:
+                    raise loc.error(f"[[loads]] force = {force!r}: an out-of-plane force "
+                                    "(F_z) needs --dim 3 (the extruded solid or the spatial "
+                                    "beam model)", "loads", "force", i)
+                out_of_plane[i], entry = float(force[2]), {**entry, "force": force[:2]}
+            entries.append(entry)
+    loads = parse_loads(entries, 2, loc)
+    return tuple(replace(load, vector=tuple(load.vector) + (out_of_plane.get(i, 0.0),)
+                         * (dim - 2)) for i, load in enumerate(loads))

@@ -1,7 +1,7 @@
 """A model file (TOML) -> :class:`ModelSpec`: a user's flexure given by a geometry file and
 what to do with it. Every error is a ValueError naming the model file and, where the key can
 be found, its line."""
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from pathlib import Path
 import tomllib
 
@@ -9,7 +9,7 @@ from ...fem.materials import Material
 from ..mechanism import Mechanism
 from .beam_tables import BeamSpec, beam_options, parse_beams
 from .geo_guard import check_inside
-from .mechanism_tables import parse_mechanism
+from .mechanism_tables import body_loads, body_supports, parse_mechanism
 from .names import check_override_key, nearest, unknown_name
 from .outputs_table import parse_outputs
 from .quantities import with_si_units
@@ -227,8 +227,8 @@ def _mechanism_spec(path: Path, raw: dict, loc: Locator, overridden: set, dim: i
         "material": parse_material(raw["material"], loc),
         "section": section if dim == 2 else Section("solid"),
         "mesh": parse_mesh(raw.get("mesh", {}), loc),
-        "supports": _body_supports(raw.get("supports", []), dim, loc),
-        "loads": _body_loads(raw.get("loads", []), dim, loc),
+        "supports": body_supports(raw.get("supports", []), dim, loc),
+        "loads": body_loads(raw.get("loads", []), dim, loc),
         "analysis": parse_analysis(raw.get("analysis", {}), loc),
     }
     if parts["mesh"].refine:
@@ -266,45 +266,6 @@ def _mechanism_spec(path: Path, raw: dict, loc: Locator, overridden: set, dim: i
                      constants=dict(parameters), description=str(raw.get("description", "")),
                      beams=beams, allow_code=allow_code, mechanism=mechanism, selects=(),
                      outputs=outputs, **parts)
-
-
-def _body_supports(raw, dim: int, loc: Locator) -> tuple:
-    """The [[supports]] of bodies and flexures: x, y and z (m, prescribed displacements). A z
-    holds the extruded solid's out-of-plane motion (--dim 3: with x or y alone the solid could
-    slide along z); in the plane, where nothing moves out of it, z = 0 is what the plane holds
-    already and any other z needs --dim 3."""
-    entries = raw
-    if isinstance(raw, list) and dim == 2:
-        entries = []
-        for i, entry in enumerate(raw):
-            if isinstance(entry, dict) and "z" in entry:
-                if not (is_number(entry["z"]) and entry["z"] == 0):
-                    raise loc.error(f"[[supports]] z = {entry['z']!r}: an out-of-plane "
-                                    "displacement needs --dim 3 (the plane holds z = 0)",
-                                    "supports", "z", i)
-                entry = {k: v for k, v in entry.items() if k != "z"}
-            entries.append(entry)
-    return parse_supports(entries, dim, loc)
-
-
-def _body_loads(raw, dim: int, loc: Locator) -> tuple:
-    """The [[loads]] of bodies and flexures: in-plane forces (F_x, F_y), or (F_x, F_y, F_z)
-    pushing out of the plane, which only the 3-D models (--dim 3) take; dim components each."""
-    entries, out_of_plane = raw, {}
-    if isinstance(raw, list):
-        entries = []
-        for i, entry in enumerate(raw):
-            force = entry.get("force") if isinstance(entry, dict) else None
-            if isinstance(force, list) and len(force) == 3 and is_number(force[2]):
-                if dim == 2 and force[2] != 0:
-                    raise loc.error(f"[[loads]] force = {force!r}: an out-of-plane force "
-                                    "(F_z) needs --dim 3 (the extruded solid or the spatial "
-                                    "beam model)", "loads", "force", i)
-                out_of_plane[i], entry = float(force[2]), {**entry, "force": force[:2]}
-            entries.append(entry)
-    loads = parse_loads(entries, 2, loc)
-    return tuple(replace(load, vector=tuple(load.vector) + (out_of_plane.get(i, 0.0),)
-                         * (dim - 2)) for i, load in enumerate(loads))
 
 
 def mechanism_spec(mechanism: Mechanism, material: Material, supports, loads,
