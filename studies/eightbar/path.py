@@ -226,7 +226,7 @@ def comparisons(summary: dict, thesis, table_band: float, targets: dict) -> list
         C("eight-bar travel", summary["travel_m"], targets["travel_m"], "m", "Ch. 5", "input",
           note="the trace is run over the thesis' travel: an input, not a result"),
         C("eight-bar path deviation (band, % of travel)", summary["band_pct"],
-          targets["max_deviation_pct"], "-", "Ch. 5 design bound", limit="upper",
+          targets["max_deviation_pct"], "% of travel", "Ch. 5 design bound", limit="upper",
           note="band = max - min across the best-fit line", headline=True),
         C("eight-bar path deviation band", summary["band_m"], targets["max_deviation_m"], "m",
           "Appendix A", note="flexfem's own link dimensions: not the thesis' design, not judged"),

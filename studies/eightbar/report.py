@@ -236,12 +236,12 @@ def comparisons(out: dict, mems: dict) -> list[Comparison]:
         C("travel traced by the flexure FEM", out["fem_travel_m"], targets["travel_mm"] * 1e-3,
           "m", "Ch. 5", "input", note="the end-effector face is driven over the thesis' stroke"),
         C("flexure FEM path deviation (% of travel)", out["fem_deviation_pct"],
-          targets["max_deviation_pct"], "-", "Ch. 5 design bound", limit="upper",
+          targets["max_deviation_pct"], "% of travel", "Ch. 5 design bound", limit="upper",
           note=f"the bound is the thesis' for its rigid path; the long flexures' pivots shift "
                f"under load and bow the path (band {out['fem_band_m'] * 1e6:.0f} um); a longer "
                "coupler straightens it (docs/eightbar_driving.md)", headline=True),
         C("rigid-body path deviation (% of travel)", out["rigid_deviation_pct"],
-          targets["max_deviation_pct"], "-", "Ch. 5 design bound", limit="upper",
+          targets["max_deviation_pct"], "% of travel", "Ch. 5 design bound", limit="upper",
           note="flexfem's linkage (Ch. 5 rigid design), same measure"),
         C("micro version: stress-limited travel, flexures widened to 3 um",
           mems["widened"]["stress_limited_travel_m"], mems["published_travel_m"], "m", "Ch. 8",
