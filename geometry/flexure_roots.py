@@ -16,11 +16,6 @@ import math
 import numpy as np
 
 
-def fillet_area(radius: float) -> float:
-    """Area (m^2) one quarter-circle fillet of ``radius`` (m) adds to a right-angled corner."""
-    return radius ** 2 * (1.0 - math.pi / 4.0)
-
-
 def root_zone_depth(radius: float, width: float) -> float:
     """Length (m) of a flexure's root zone along its axis: the fillet (radius) plus one
     flexure width, so the fillet's tangent point, near which the stress peaks, lies inside
@@ -94,11 +89,3 @@ def draw_filleted_flexure(occ, part, radius: float) -> list:
     middle = occ.addPlaneSurface([occ.addCurveLoop(lines)])
     return [(zones[0], "root"), (middle, "middle"), (zones[1], "root")]
 
-
-def arc_curves(gmsh, surface: int) -> list:
-    """Tags of the circle arcs bounding ``surface`` in the open gmsh model."""
-    out = []
-    for _, c in gmsh.model.getBoundary([(2, surface)], oriented=False):
-        if gmsh.model.getType(1, abs(c)) == "Circle":
-            out.append(abs(c))
-    return out

@@ -150,17 +150,6 @@ class Space:
         T = self.jacobian(w)
         return (T.T @ K_full @ T).tocsc()
 
-    def condense_diagonal(self, diagonal, w) -> sp.csc_matrix:
-        """T^T diag(d) T (CSC) of a full diagonal d (n_dofs,) at link weights w (point
-        masses: a slave's lands on its master's DOFs), entry by entry."""
-        dofs = np.flatnonzero(diagonal)
-        C, W, d = self.col[dofs], w[dofs], diagonal[dofs]
-        r = np.concatenate([C[:, a] for a in (0, 0, 1, 1)])
-        c = np.concatenate([C[:, b] for b in (0, 1, 0, 1)])
-        v = np.concatenate([d * W[:, a] * W[:, b] for a, b in ((0, 0), (0, 1), (1, 0), (1, 1))])
-        keep = (r >= 0) & (r < self.n) & (c >= 0) & (c < self.n)
-        return sp.csc_matrix((v[keep], (r[keep], c[keep])), shape=(self.n, self.n))
-
     def condense(self, ke, w, diagonal=None) -> sp.csc_matrix:
         """T^T K T (CSC) of the element matrices ``ke`` (n_e, 6, 6) plus the full diagonal
         ``diagonal`` (n_dofs,) at link weights w: by sparse products the first time (a

@@ -137,11 +137,6 @@ def parse_outputs(raw, parameters: dict, groups, dim: int, loc) -> tuple:
     return tuple(out)
 
 
-def observed_groups(outputs) -> list[str]:
-    """The groups the outputs observe, in order, once each."""
-    return list(dict.fromkeys(g for o in outputs for g in o.groups))
-
-
 def output_names(raw: dict) -> list[str]:
     """The [outputs] names of a model file's raw TOML (for the study engine's metric names)."""
     table = raw.get("outputs", {})

@@ -7,7 +7,6 @@ each balancer adds a torque tau_k(q) and its parameters minimise f = sum (tau + 
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import least_squares
 
 # ---------------------------------------------------------------- balancer torques
 
@@ -197,24 +196,3 @@ def optimal_coupled_springs(q_a, q_b, tau_a, tau_b):
     ua, va, ub, vb, c = x
     return (SpringBalance(float(np.hypot(ua, va)), float(np.arctan2(-va, ua))),
             SpringBalance(float(np.hypot(ub, vb)), float(np.arctan2(-vb, ub))), float(c))
-
-
-# ---------------------------------------------------------------- numerical check
-
-def minimise_rms_numerically(torque_model, q, tau, starts):
-    """Brute force: minimise sum (tau + torque_model(q, *p))^2 from every start p0.
-
-    torque_model(q, *p) -> N m; starts: iterable of parameter tuples. Each start is driven to
-    a local minimum by Levenberg-Marquardt on the residuals with finite-difference Jacobians
-    (scipy.optimize.least_squares), independent of the closed forms above; the best is kept.
-    """
-    def residual(p):
-        return tau + torque_model(q, *p)
-
-    best = None
-    for p0 in starts:
-        r = least_squares(residual, np.asarray(p0, float), method="lm",
-                          xtol=1e-15, ftol=1e-15, gtol=1e-15)
-        if best is None or r.cost < best.cost:
-            best = r
-    return best.x

@@ -136,21 +136,21 @@ def test_sharp_root_mesh_is_the_rectangle_and_the_default_keyword_changes_nothin
 
 
 def test_each_root_fillet_adds_r2_one_minus_pi_over_4():
-    from flexfem.geometry.flexure_roots import fillet_area
     r = 0.3e-3
+    fillet_area = r ** 2 * (1.0 - np.pi / 4.0)  # one quarter-circle fillet in a right angle
     p = EightBarFlexureParams(root_fillet_radius=r)
     mesh, sizes = mesh_eightbar_flexure(p, size_factor=2.0)
     h = sizes["root_size"]
     assert h <= r / 3 * (1 + 1e-12)
     for j in ("A_L", "O_R", "P_L"):
         L, w = p.flexure_size(j)
-        exact = L * w + 4 * fillet_area(r)
+        exact = L * w + 4 * fillet_area
         # the mesh's straight chords cut the arcs: each chord of angle theta = h / r adds the
         # circular segment r^2 (theta - sin theta) / 2 ~ h^3 / (12 r); (pi / 2) r / h chords per
         # arc, 4 arcs: at most pi h^2 / 6 more than the exact area, never less
         excess = _subdomain_area(mesh, f"flexure_{j}") - exact
         assert 0 <= excess <= np.pi * h ** 2 / 6 * 1.05
-        assert excess < 0.1 * 4 * fillet_area(r)
+        assert excess < 0.1 * 4 * fillet_area
 
 
 @pytest.mark.parametrize("bad", [-1e-4, float("nan"), 2.4e-3, 5.7e-3])

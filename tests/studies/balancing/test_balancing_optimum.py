@@ -1,11 +1,11 @@
 """RMS-optimal balancers (Eqs. 13-26, Appendix 2) against brute-force minimisation."""
 import numpy as np
 import pytest
+from scipy.optimize import least_squares
 from flexfem.studies.balancing.gravity import load_robot, workspace_torques
 from flexfem.studies.balancing.optimum import (
     counterweight_torque,
     max_reduction_pct,
-    minimise_rms_numerically,
     optimal_counterweight,
     optimal_coupled_springs,
     optimal_spring,
@@ -17,6 +17,26 @@ from flexfem.studies.balancing.optimum import (
     torsion_spring_torque,
 )
 from flexfem.studies.balancing.report import default_workspace
+
+
+def minimise_rms_numerically(torque_model, q, tau, starts):
+    """Brute force: minimise sum (tau + torque_model(q, *p))^2 from every start p0.
+
+    torque_model(q, *p) -> N m; starts: iterable of parameter tuples. Each start is driven to
+    a local minimum by Levenberg-Marquardt on the residuals with finite-difference Jacobians
+    (scipy.optimize.least_squares), independent of the closed forms; the best is kept.
+    """
+    def residual(p):
+        return tau + torque_model(q, *p)
+
+    best = None
+    for p0 in starts:
+        r = least_squares(residual, np.asarray(p0, float), method="lm",
+                          xtol=1e-15, ftol=1e-15, gtol=1e-15)
+        if best is None or r.cost < best.cost:
+            best = r
+    return best.x
+
 
 WT = workspace_torques(load_robot(), default_workspace(quick=True))
 MOTORS = range(4)
