@@ -46,6 +46,8 @@ def run(args) -> dict:
                            max_dofs=getattr(args, "max_dofs", None), fields=kept)
     if choice is not None:
         result.update(size_factor=factor, mesh_choice=choice)
+    if getattr(args, "units", "m") != "m" and not args.json:  # the summary's lengths only
+        result["display_units"] = args.units
     if out is not None:
         result["files"] = write_outputs(out, spec, result, kept, summarize(result))
     return result
@@ -59,29 +61,40 @@ def summarize_run(result: dict) -> str:
     return summarize(result) + tail
 
 
-def _vector(v, unit: str) -> str:
-    return "(" + ", ".join(f"{c:.4g}" for c in v) + f") {unit}"
+#: Length units of the human summary (--units): metres by default; --json stays SI.
+LENGTH_UNITS = {"m": 1.0, "mm": 1e3, "um": 1e6}
+
+
+def _vector(v, unit: str, scale: float = 1.0) -> str:
+    return "(" + ", ".join(f"{c * scale:.4g}" for c in v) + f") {unit}"
+
+
+def _lengths(result: dict) -> tuple[str, float]:
+    """(unit, scale from m) of the summary's lengths."""
+    unit = result.get("display_units", "m")
+    return unit, LENGTH_UNITS[unit]
 
 
 def summarize(result: dict) -> str:
+    m, to = _lengths(result)
     lines = [f"{result['model']}: {result['dim']}-D, {result['dofs']} DOFs, solver "
-             f"{result['solver']}, element size h = {result['h']:.4g} m"]
+             f"{result['solver']}, element size h = {result['h'] * to:.4g} {m}"]
     if result.get("mesh_choice") not in (None, "default"):
         lines.append(f"mesh: {result['mesh_choice']}" if result["mesh_choice"] != "given" else
                      f"mesh: size_factor {result['size_factor']:g} (given)")
     vm = result["max_von_mises"]
-    where = _vector(result["max_von_mises_location"], "m")
+    where = _vector(result["max_von_mises_location"], m, to)
     strength = result["yield_strength"]
     share = (f" ({100 * vm / strength:.4g} % of yield)" if strength is not None and vm > 0 else
              " (% of yield not available: needs yield_strength)" if strength is None else "")
     lines.append(f"max von Mises stress {vm / 1e6:.4g} MPa at {where}{share}")
     for group, u in result["mean_displacement"].items():
-        lines.append(f"mean displacement of {group!r}: {_vector(u, 'm')}")
+        lines.append(f"mean displacement of {group!r}: {_vector(u, m, to)}")
     for group, f in result["reactions"].items():
         lines.append(f"reaction on {group!r}: {_vector(f, 'N')}")
     for group, by_axis in result["stiffness"].items():
         for axis, k in by_axis.items():
-            lines.append(f"stiffness of {group!r} along {axis}: {k:.4g} N/m")
+            lines.append(f"stiffness of {group!r} along {axis}: {k / to:.4g} N/{m}")
     if result.get("stroke_limit_yield") is not None or "stroke_group" in result:
         lines += _stroke_lines(result)
     if "frequencies_hz" in result:
@@ -89,7 +102,7 @@ def summarize(result: dict) -> str:
                                                           result["frequencies_hz"]) + " Hz")
     if "compliance" in result:
         c = result["compliance"]
-        lines.append(f"compliance of {c['group']!r} (rigid face at {_vector(c['point_m'], 'm')}"
+        lines.append(f"compliance of {c['group']!r} (rigid face at {_vector(c['point_m'], m, to)}"
                      "): diagonal " + _vector([r[i] for i, r in enumerate(c["matrix"])],
                                               "(m/N, rad/(N m))"))
     if "buckling" in result:
@@ -98,14 +111,14 @@ def summarize(result: dict) -> str:
     if "harmonic" in result:
         h = result["harmonic"]
         lines.append(f"harmonic response of {h['group']!r} along {h['component']} "
-                     f"({100 * h['damping']:.3g} % damping): static {h['static']:.4g} m, "
+                     f"({100 * h['damping']:.3g} % damping): static {h['static'] * to:.4g} {m}, "
                      "resonances " + (", ".join(f"{f:.4g}" for f in h["resonances_hz"])
                                       or "none in range") + " Hz")
     if "nonlinear" in result:
         nl = result["nonlinear"]
         for group, u in nl["mean_displacement"].items():
             lines.append(f"large deflection ({nl['steps']} steps), mean displacement of "
-                         f"{group!r}: {_vector(u, 'm')}")
+                         f"{group!r}: {_vector(u, m, to)}")
     return "\n".join(lines + _output_lines(result))
 
 
@@ -113,6 +126,7 @@ def _output_lines(result: dict) -> list[str]:
     """The [outputs] (and, with steps, at the final step) and the rotations of the bodies
     and faces observed."""
     lines, why = [], result.get("not_available", {})
+    m, to = _lengths(result)
     for name, value in result.get("outputs", {}).items():
         lines.append(f"output {name} = {value:.6g}" if value is not None else
                      f"output {name}: not available: {why.get('outputs.' + name, '')}")
@@ -122,7 +136,7 @@ def _output_lines(result: dict) -> list[str]:
     for group, o in result.get("observations", {}).items():
         turns = {k: v for k, v in o.items() if k.startswith("r") and v is not None}
         if turns and group not in result["mean_displacement"]:
-            u = _vector([v for k, v in o.items() if k[0] == "u"], "m")
+            u = _vector([v for k, v in o.items() if k[0] == "u"], m, to)
             lines.append(f"observed {group!r}: u = {u}"
                          + "".join(f", {k} = {v:.4g} rad" for k, v in turns.items()))
     return lines
@@ -151,7 +165,7 @@ def _stroke_lines(result: dict) -> list[str]:
         lines.append(f"fatigue-limited stroke amplitude of {group!r}: not available: "
                      f"{missing.get('stroke_limit_fatigue', 'no fatigue data')}")
     lines.append(f"  sized by the {result['stroke_stress_basis']}, at "
-                 f"{_vector(result['stroke_limit_where'], 'm')}")
+                 f"{_vector(result['stroke_limit_where'], *_lengths(result))}")
     if result.get("stroke_limit_basis"):
         lines.append(f"  stroke limits: {result['stroke_limit_basis']}" + _departed(result))
     return lines
@@ -198,6 +212,9 @@ def register(subparsers):
     parser.add_argument("--allow-code", action="store_true",
                         help="trust the model file: its .geo may run programs, write files "
                              "and read outside its folder (refused by default)")
+    parser.add_argument("--units", choices=sorted(LENGTH_UNITS), default="m",
+                        help="lengths of the human summary (stiffness per that length); "
+                             "--json and the files stay SI")
     parser.add_argument("--json", action="store_true", help="print one JSON object")
     parser.set_defaults(run=run, summarize=summarize_run)
     register_export(subparsers)

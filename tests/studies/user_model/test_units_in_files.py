@@ -78,3 +78,15 @@ def test_quantities_are_found_where_they_are_and_nowhere_else(text, expected):
 
     raw = {"parameters": {"L": 0.04, "t": 0.001}, "flexure": [{"thickness": text}]}
     assert with_si_units(raw, "f.toml")["flexure"][0]["thickness"] == expected
+
+
+def test_the_summary_in_a_designers_units(capsys):
+    assert main(["analyze", str(GUIDE), "--model", "beam", "--json", "--units", "mm"]) == 0
+    si = json.loads(capsys.readouterr().out)
+    assert "display_units" not in si  # --json stays SI
+    assert main(["analyze", str(GUIDE), "--model", "beam", "--units", "mm"]) == 0
+    text = capsys.readouterr().out
+    k = si["stiffness"]["stage"]["x"]
+    assert f"stiffness of 'stage' along x: {k / 1e3:.4g} N/mm" in text
+    ux = si["mean_displacement"]["stage"][0]
+    assert f"mean displacement of 'stage': ({ux * 1e3:.4g}, " in text and ") mm" in text
