@@ -4,15 +4,18 @@ spatial Beam3DModel alike.
     result = solve_static(model, [Fixed("ground")], [Force("stage", (1.0, 0.0))])
     result.mean_displacement("stage"), result.reactions["ground"], result.max_von_mises
 
-Each takes the supports and loads of :mod:`.boundary` by group name and returns results with
-the same names whichever model it is given: a continuum :class:`.model.Model` is solved by
-the continuum's function (:mod:`.static`, :mod:`.modal`, ...), a beam model with named groups
-by :mod:`.beam.face` (planar :class:`.beam.BeamModel`) or :mod:`.beam3d.face` (spatial
-:class:`.beam3d.Beam3DModel`); what a group is on a beam model, and what its stress means,
-is there (linear buckling: :mod:`.beam.buckling`, :mod:`.beam3d.buckling`). Options that
-only the continuum has (a rigid face, a prestress, arc-length control) raise a TypeError or
-ValueError naming them on a beam model.
+Each function is a :func:`functools.singledispatch` on the model's type (``DISPATCH[name]``):
+a continuum :class:`.model.Model` goes to the continuum's function (:mod:`.static`,
+:mod:`.modal`, ...), a planar :class:`.beam.BeamModel` to :mod:`.beam.face` and a spatial
+:class:`.beam3d.Beam3DModel` to :mod:`.beam3d.face` (linear buckling: :mod:`.beam.buckling`,
+:mod:`.beam3d.buckling`); any other type is a TypeError. The public function takes ``model``
+by position or keyword and hands it to the dispatcher. The results carry the same names
+(:data:`.result_face.SHARED`); what a beam model cannot give raises
+:class:`.result_face.NotOnModel`. Options that only the continuum has (a rigid face in 3-D, a
+prestress, arc-length control) raise a TypeError or ValueError naming them on a beam model.
 """
+from functools import singledispatch
+
 from . import buckling, compliance, harmonic, modal, nonlinear, static
 from .beam import buckling as beam_buckling
 from .beam import face as beam_face
@@ -20,59 +23,73 @@ from .beam.model import BeamModel
 from .beam3d import buckling as beam3d_buckling
 from .beam3d import face as beam3d_face
 from .beam3d.model import Beam3DModel
+from .model import Model
 
 BEAM_MODELS = (BeamModel, Beam3DModel)
 
 
-def _pick(model, continuum, beam, spatial=None):
-    """The function for ``model``: the continuum's, the planar beam's (``beam``) or the
-    spatial beam's (``spatial``; default the spatial face's function of ``beam``'s name)."""
-    if isinstance(model, Beam3DModel):
-        return spatial or getattr(beam3d_face, beam.__name__)
-    return beam if isinstance(model, BeamModel) else continuum
+def dispatcher(name: str, continuum, planar, spatial):
+    """A singledispatch function ``name`` with the three models' implementations."""
+    def unknown(model, *args, **options):
+        raise TypeError(f"{name}: model is a {type(model).__name__}; it takes a Model, a "
+                        "BeamModel or a Beam3DModel")
+
+    unknown.__name__ = name
+    function = singledispatch(unknown)
+    function.register(Model, continuum)
+    function.register(BeamModel, planar)
+    function.register(Beam3DModel, spatial)
+    return function
+
+
+DISPATCH = {
+    "solve_static": dispatcher("solve_static", static.solve_static, beam_face.solve_static,
+                               beam3d_face.solve_static),
+    "solve_modes": dispatcher("solve_modes", modal.solve_modes, beam_face.solve_modes,
+                              beam3d_face.solve_modes),
+    "solve_nonlinear": dispatcher("solve_nonlinear", nonlinear.solve_nonlinear,
+                                  beam_face.solve_nonlinear, beam3d_face.solve_nonlinear),
+    "compliance_matrix": dispatcher("compliance_matrix", compliance.compliance_matrix,
+                                    beam_face.compliance_matrix,
+                                    beam3d_face.compliance_matrix),
+    "solve_harmonic": dispatcher("solve_harmonic", harmonic.solve_harmonic,
+                                 beam_face.solve_harmonic, beam3d_face.solve_harmonic),
+    "solve_buckling": dispatcher("solve_buckling", buckling.solve_buckling,
+                                 beam_buckling.solve_buckling, beam3d_buckling.solve_buckling),
+}
 
 
 def solve_static(model, supports, loads=(), **options):
-    return _pick(model, static.solve_static, beam_face.solve_static)(model, supports, loads,
-                                                                     **options)
+    """Linear static solve (:func:`.static.solve_static`; on a beam model
+    :func:`.beam.face.solve_static`, :func:`.beam3d.face.solve_static`)."""
+    return DISPATCH["solve_static"](model, supports, loads, **options)
 
 
 def solve_modes(model, n: int = 6, supports=(), **options):
-    return _pick(model, modal.solve_modes, beam_face.solve_modes)(model, n, supports, **options)
+    """The ``n`` lowest natural frequencies and shapes (:func:`.modal.solve_modes`; on a beam
+    model :func:`.beam.face.solve_modes`, :func:`.beam3d.face.solve_modes`)."""
+    return DISPATCH["solve_modes"](model, n, supports, **options)
 
 
 def solve_nonlinear(model, supports, loads, **options):
-    return _pick(model, nonlinear.solve_nonlinear, beam_face.solve_nonlinear)(
-        model, supports, loads, **options)
+    """Geometrically nonlinear static solve (:func:`.nonlinear.solve_nonlinear`; on a beam
+    model :func:`.beam.face.solve_nonlinear`, :func:`.beam3d.face.solve_nonlinear`)."""
+    return DISPATCH["solve_nonlinear"](model, supports, loads, **options)
 
 
 def compliance_matrix(model, supports, face, **options):
-    return _pick(model, compliance.compliance_matrix, beam_face.compliance_matrix)(
-        model, supports, face, **options)
+    """Compliance of a face (:func:`.compliance.compliance_matrix`; on a beam model
+    :func:`.beam.face.compliance_matrix`, :func:`.beam3d.face.compliance_matrix`)."""
+    return DISPATCH["compliance_matrix"](model, supports, face, **options)
 
 
 def solve_harmonic(model, supports, loads, frequencies_hz, **options):
-    return _pick(model, harmonic.solve_harmonic, beam_face.solve_harmonic)(
-        model, supports, loads, frequencies_hz, **options)
+    """Steady-state harmonic response (:func:`.harmonic.solve_harmonic`; on a beam model
+    :func:`.beam.face.solve_harmonic`, :func:`.beam3d.face.solve_harmonic`)."""
+    return DISPATCH["solve_harmonic"](model, supports, loads, frequencies_hz, **options)
 
 
 def solve_buckling(model, supports, loads, n: int = 3, **options):
-    return _pick(model, buckling.solve_buckling, beam_buckling.solve_buckling,
-                 beam3d_buckling.solve_buckling)(model, supports, loads, n, **options)
-
-
-def _describe(function, continuum, beam=None) -> None:
-    """The face's docstring: the continuum's, then what the beam model does."""
-    text = continuum.__doc__ or ""
-    if beam is not None:
-        text += (f"\n\n    On a beam model (:mod:`flexfem.fem.beam.face`, "
-                 f":mod:`flexfem.fem.beam3d.face` in space): {beam.__doc__}")
-    function.__doc__ = text
-
-
-_describe(solve_static, static.solve_static, beam_face.solve_static)
-_describe(solve_modes, modal.solve_modes, beam_face.solve_modes)
-_describe(solve_nonlinear, nonlinear.solve_nonlinear, beam_face.solve_nonlinear)
-_describe(compliance_matrix, compliance.compliance_matrix, beam_face.compliance_matrix)
-_describe(solve_harmonic, harmonic.solve_harmonic, beam_face.solve_harmonic)
-_describe(solve_buckling, buckling.solve_buckling, beam_buckling.solve_buckling)
+    """Linear buckling load factors and shapes (:func:`.buckling.solve_buckling`; on a beam
+    model :func:`.beam.buckling.solve_buckling`, :func:`.beam3d.buckling.solve_buckling`)."""
+    return DISPATCH["solve_buckling"](model, supports, loads, n, **options)

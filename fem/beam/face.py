@@ -30,8 +30,10 @@ from .model import BeamGroup, BeamModel
 from .model import Fixed as NodeFixed
 from .model import NodalLoad
 from .model import Prescribed as NodePrescribed
-from .nonlinear import BeamNonlinearResult, solve_beam_nonlinear
-from .static import BeamState, solve_beam_static
+from ..beam_result import BeamPath, BeamResult
+from ..result_face import BeamFace
+from .nonlinear import solve_beam_nonlinear
+from .static import solve_beam_static
 
 AXES = ("x", "y")
 
@@ -94,72 +96,18 @@ def supported_groups(supports) -> list:
     return [s.group for s in supports if isinstance(s, (Fixed, Prescribed))]
 
 
-@dataclass(frozen=True, eq=False)
-class BeamResult:
-    """A beam state read by group: the continuum StaticResult's names. ``state``: the
-    BeamState (q, element forces, stresses, node reactions)."""
-
-    model: BeamModel
-    state: BeamState
-    supported: tuple = ()
-    solver: str = "beam"
-    faces: tuple = ()  # the groups of the solve's rigid_faces
-
-    @property
-    def face_motion(self) -> dict:
-        """{face: (c_x, c_y, theta)} (m, m, rad) of each rigid face's node."""
-        return {f: self.state.q[group(self.model, f).nodes[0]].copy() for f in self.faces}
-
-    @property
-    def displacement(self) -> np.ndarray:
-        """(n_nodes, 2) displacement, m."""
-        return self.state.displacement
-
-    def mean_displacement(self, name: str) -> np.ndarray:
-        """(2,) mean displacement of the group's nodes, m."""
-        return self.state.q[list(group(self.model, name).nodes), :2].mean(axis=0)
-
-    def rotation(self, name: str) -> float:
-        """Mean rotation of the group's nodes, rad (counter-clockwise)."""
-        return float(self.state.q[list(group(self.model, name).nodes), 2].mean())
-
-    @property
-    def reactions(self) -> dict:
-        """{group: (F_x, F_y) N} of every supported group, summed over its nodes."""
-        out = {}
-        for name in self.supported:
-            rows = [self.state.reactions.get(n, np.zeros(3))[:2]
-                    for n in group(self.model, name).nodes]
-            out[name] = np.sum(rows, axis=0)
-        return out
-
-    @property
-    def max_von_mises(self) -> float:
-        """Largest beam stress |N|/A + |M| c / I, Pa."""
-        return self.state.max_stress
-
-    @property
-    def max_von_mises_element(self) -> float:
-        """The beam stress has no smoothing: max_von_mises, Pa."""
-        return self.state.max_stress
-
-    @property
-    def max_von_mises_location(self) -> np.ndarray:
-        """Where max_von_mises is, m (on the element's centre line)."""
-        return np.asarray(self.state.max_stress_location[2], dtype=float)
-
-
 def solve_static(model: BeamModel, supports, loads=(), rigid_faces=(),
                  **options) -> BeamResult:
     """Linear static solve of a grouped beam model (the continuum's supports and loads;
     ``rigid_faces``: RigidFace on one-node groups, a prescribed x, y or rotation held, a free
     one carrying the face's force or moment; face_motion reads them)."""
     no_options("solve_static", options, ("solver",))
-    held, face_loads, _ = rigid_face_conditions(model, rigid_faces)
-    state = solve_beam_static(model, node_supports(model, supports) + held,
-                              node_loads(model, loads) + face_loads)
+    held, face_loads, applied = rigid_face_conditions(model, rigid_faces)
+    nodal = node_loads(model, loads) + face_loads
+    state = solve_beam_static(model, node_supports(model, supports) + held, nodal)
     return BeamResult(model, state, tuple(supported_groups(supports)),
-                      faces=tuple(f.group for f in rigid_faces))
+                      faces=tuple(f.group for f in rigid_faces), face_loads=applied,
+                      applied=load_array(model, nodal).ravel())
 
 
 def solve_modes(model: BeamModel, n: int = 6, supports=(), **options) -> BeamModes:
@@ -175,75 +123,6 @@ def _at_zero(support):
     if isinstance(support, NodePrescribed):
         return NodePrescribed(support.node, support.dof, 0.0)
     return support
-
-
-@dataclass(frozen=True, eq=False)
-class BeamPath:
-    """Converged steps of a large-rotation solve, read by group as the continuum's
-    NonlinearResult. ``result``: the BeamNonlinearResult (states per step); ``faces``: the
-    rigid faces' groups."""
-
-    model: BeamModel
-    result: BeamNonlinearResult
-    supported: tuple = ()
-    faces: tuple = ()
-    applied: dict = field(default_factory=dict)  # {face: (F_x, F_y, M)} at load factor 1
-
-    @property
-    def load_factors(self) -> np.ndarray:
-        return self.result.load_factors
-
-    @property
-    def iterations(self) -> list:
-        return self.result.iterations
-
-    def step(self, k: int = -1) -> BeamResult:
-        """Step ``k`` as a BeamResult."""
-        return BeamResult(self.model, self.result.states[k], self.supported)
-
-    def mean_displacement(self, name: str, step: int = -1) -> np.ndarray:
-        """(2,) mean displacement of the group's nodes at ``step``, m."""
-        return self.step(step).mean_displacement(name)
-
-    def path(self, name: str) -> np.ndarray:
-        """(n_steps + 1, 2) mean displacement of the group over the steps, m."""
-        return np.array([self.mean_displacement(name, k) for k in range(len(self.load_factors))])
-
-    @property
-    def reactions(self) -> list:
-        """Per step {group: (F_x, F_y) N}."""
-        return [self.step(k).reactions for k in range(len(self.load_factors))]
-
-    @property
-    def face_motion(self) -> list:
-        """Per step {face: (c_x, c_y, theta)} (m, m, rad) of each rigid face's node."""
-        return [{f: s.q[group(self.model, f).nodes[0]].copy() for f in self.faces}
-                for s in self.result.states]
-
-    @property
-    def face_reactions(self) -> list:
-        """Per step {face: (F_x, F_y, M)} (N, N, N m) on each rigid face's node: the support's
-        reaction on a held coordinate, the applied load on a free one."""
-        out = []
-        for lam, s in zip(self.load_factors, self.result.states):
-            row = {}
-            for f in self.faces:
-                node = group(self.model, f).nodes[0]
-                row[f] = s.reactions.get(node, np.zeros(3)) + lam * self.applied.get(f, 0.0)
-            out.append(row)
-        return out
-
-    def stress_at_step(self, k: int) -> tuple:
-        """(stress, stress) per element (Pa) at step ``k``: the continuum's (nodal, element
-        maximum) pair; the beam stress has no smoothing (0 on an element without a stress: a
-        section given without its outer-fibre distance c)."""
-        stress = np.nan_to_num(self.result.states[k].stress, nan=0.0)
-        return stress, stress
-
-    @property
-    def max_von_mises(self) -> float:
-        """Largest beam stress at the last step, Pa."""
-        return self.result.final.max_stress
 
 
 def rigid_face_conditions(model: BeamModel, faces) -> tuple:
@@ -276,11 +155,13 @@ def solve_nonlinear(model: BeamModel, supports, loads, steps: int = 10,
     (halved on failure down to ``min_step``)."""
     no_options("solve_nonlinear", options, ("solver", "check_stability"))
     held, applied_loads, applied = rigid_face_conditions(model, rigid_faces)
-    result = solve_beam_nonlinear(model, node_supports(model, supports) + held,
-                                  node_loads(model, loads) + applied_loads, steps=steps,
-                                  max_iterations=max_iterations, tol=tol, min_step=min_step)
+    nodal = node_loads(model, loads) + applied_loads
+    result = solve_beam_nonlinear(model, node_supports(model, supports) + held, nodal,
+                                  steps=steps, max_iterations=max_iterations, tol=tol,
+                                  min_step=min_step)
     return BeamPath(model, result, tuple(supported_groups(supports)),
-                    tuple(f.group for f in rigid_faces), applied)
+                    tuple(f.group for f in rigid_faces), applied,
+                    load_array(model, nodal).ravel())
 
 
 def compliance_matrix(model: BeamModel, supports, face, point=None, angle: float = 0.0,
@@ -299,14 +180,22 @@ def compliance_matrix(model: BeamModel, supports, face, point=None, angle: float
 
 
 @dataclass(frozen=True, eq=False)
-class BeamHarmonic:
-    """Steady-state amplitudes: frequencies_hz (n,); q (n, n_nodes, 3) complex (m, rad)."""
+class BeamHarmonic(BeamFace):
+    """Steady-state amplitudes: frequencies_hz (n,); q (n, n_nodes, 3) complex (m, rad);
+    u (n, n_nodes, 2) their translations; method 'modal'."""
 
     model: BeamModel
     frequencies_hz: np.ndarray
     q: np.ndarray
     modes: BeamModes
     info: dict = field(default_factory=dict)
+
+    method = "modal"
+
+    @property
+    def u(self) -> np.ndarray:
+        """(n, n_nodes, 2) complex translation amplitudes, m."""
+        return self.q[..., :2]
 
     def mean_displacement(self, name: str) -> np.ndarray:
         """(n, 2) complex mean displacement amplitude of the group, m."""
@@ -331,9 +220,7 @@ def solve_harmonic(model: BeamModel, supports, loads, frequencies_hz, damping=0.
     nodal = node_loads(model, loads)
     modes = solve_beam_modes(model, held, n=n_modes)
     static = solve_beam_static(model, held, nodal).q
-    f = np.zeros((model.n_nodes, 3))
-    for load in nodal:
-        f[load.node] += (load.fx, load.fy, load.m)
+    f = load_array(model, nodal)
     q, zeta = modal_superposition(modes.frequencies_hz, modes.shapes, f, static, f_hz, damping)
     return BeamHarmonic(model, f_hz, q.reshape(len(f_hz), model.n_nodes, 3), modes,
                         info={"n_modes": n_modes, "damping_ratios": zeta})
@@ -352,6 +239,14 @@ def modal_superposition(modes_hz, shapes, f, static, f_hz, damping) -> tuple:
     with np.errstate(divide="ignore", invalid="ignore"):
         h = 1.0 / (w_r[None, :] ** 2 - omega[:, None] ** 2 + 2j * zeta * w_r * omega[:, None])
     return (h * p) @ phi + residual, zeta
+
+
+def load_array(model: BeamModel, nodal) -> np.ndarray:
+    """(n_nodes, 3) nodal loads (F_x, F_y N, M N m) of NodalLoads."""
+    f = np.zeros((model.n_nodes, 3))
+    for load in nodal:
+        f[load.node] += (load.fx, load.fy, load.m)
+    return f
 
 
 def no_options(what: str, options: dict, ignored: tuple) -> None:

@@ -52,6 +52,16 @@ class BeamModes:
         """(n, 2) effective mass over the total mass."""
         return self.effective_mass / self.total_mass
 
+    solver = "beam"
+
+    def dominant_direction(self, k: int) -> int:
+        """Translation axis (0 = x, 1 = y) with the largest effective mass of mode k."""
+        return int(np.argmax(self.effective_mass[k]))
+
+    def vertex_shape(self, k: int) -> np.ndarray:
+        """(n_nodes, 2) translations of mode k at the nodes."""
+        return self.shapes[k][:, :2].copy()
+
 
 def _state_z(asm, about):
     """Unknowns z and load factor of a converged state (BeamState) ``about``."""

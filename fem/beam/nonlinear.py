@@ -87,6 +87,7 @@ class _Stepper:
                 # converged; or at round-off: the last Newton correction ~ machine precision
                 floor = np.linalg.norm(dz) <= 1e-12 * np.linalg.norm(z) and norm <= 1e-6 * ref
                 if (norm <= self.tol * ref and self._small(dz, z)) or floor:
+                    self.last_sign = signs[-1]  # det K's sign at the last factored iterate
                     return z, lam, q, r, it - 1, signs[0] != signs[-1]
             try:
                 F = Factor(ev.K)
@@ -149,7 +150,7 @@ def solve_beam_nonlinear(model: BeamModel, supports, loads=(), steps: int = 10,
     states, lams, its = [make_state(asm, ev0.q, ev0.r, 0.0, w=ev0.w)], [0.0], [0]
     goal = 1.0 if control is None else float(stepper.c_value)
     path = {"z": np.zeros(asm.space.n), "lam": 0.0}
-    crossings = []
+    crossings, signs = [], [1]  # the unloaded state: the linear K, positive definite
 
     def advance(t, dt, _):
         z_new, lam_new, q, r, n_it, flipped = stepper.newton(path["z"], path["lam"],
@@ -164,10 +165,12 @@ def solve_beam_nonlinear(model: BeamModel, supports, loads=(), steps: int = 10,
         states.append(make_state(asm, q, r, lam_new))
         lams.append(lam_new)
         its.append(n_it)
+        signs.append(stepper.last_sign)
         return False
 
     cuts = march(advance, steps, min_step,
                  lambda t, dt, cuts, failure: step_failure(t, dt, path["lam"], cuts, failure))
     return BeamNonlinearResult(model=model, load_factors=np.array(lams), states=states,
                                iterations=its, info={"step_cuts": cuts, "n_unknowns": asm.space.n,
-                                     "definiteness_changes": crossings})
+                                     "definiteness_changes": crossings,
+                                     "tangent_signs": signs})

@@ -17,7 +17,7 @@ Results carry the continuum's names: ``mean_displacement(group)`` (3,), ``reacti
 concentration) with ``max_von_mises_location``, ``frequencies_hz`` and ``effective_mass``
 (n, 3), and a 6 x 6 :class:`~flexfem.fem.compliance.Compliance`. SI units.
 """
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -30,8 +30,10 @@ from .model import Beam3DModel
 from .model import Fixed as NodeFixed
 from .model import NodalLoad
 from .model import Prescribed as NodePrescribed
-from .nonlinear import Beam3DNonlinearResult, solve_beam3d_nonlinear
-from .static import Beam3DState, compliance3d, solve_beam3d_static
+from ..beam3d_result import Beam3DPath, Beam3DResult
+from ..result_face import BeamFace
+from .nonlinear import solve_beam3d_nonlinear
+from .static import compliance3d, solve_beam3d_static
 
 AXES = ("x", "y", "z")
 ROTATIONS = ("rx", "ry", "rz")
@@ -101,58 +103,14 @@ def supported_groups(supports) -> tuple:
     return tuple(s.group for s in supports if isinstance(s, (Fixed, Prescribed)))
 
 
-@dataclass(frozen=True, eq=False)
-class Beam3DResult:
-    """A spatial beam state read by group: the continuum StaticResult's names. ``state``:
-    the Beam3DState (u, rotations, reactions, element forces)."""
-
-    model: Beam3DModel
-    state: Beam3DState
-    supported: tuple = ()
-    solver: str = "beam3d"
-
-    @property
-    def displacement(self) -> np.ndarray:
-        """(n_nodes, 3) displacement, m."""
-        return self.state.u
-
-    def mean_displacement(self, name: str) -> np.ndarray:
-        """(3,) mean displacement of the group's nodes, m."""
-        return self.state.u[list(group(self.model, name).nodes)].mean(axis=0)
-
-    def rotation(self, name: str) -> np.ndarray:
-        """(3,) mean rotation vector of the group's nodes, rad."""
-        return self.state.rotation[list(group(self.model, name).nodes)].mean(axis=0)
-
-    @property
-    def reactions(self) -> dict:
-        """{group: (F_x, F_y, F_z) N} of every supported group, summed over its nodes."""
-        return {name: np.sum([self.state.reactions.get(n, np.zeros(6))[:3]
-                              for n in group(self.model, name).nodes], axis=0)
-                for name in self.supported}
-
-    @property
-    def max_von_mises(self) -> float:
-        """Largest von Mises bound of the rectangular sections, Pa."""
-        return self.state.max_stress
-
-    @property
-    def max_von_mises_location(self) -> np.ndarray:
-        """Where max_von_mises is, m (on the element's centre line)."""
-        from .stress import peak_stress
-
-        _, e, xi = peak_stress(self.model, self.state.local_forces)
-        a, b = self.model.nodes[self.model.elements[e]]
-        return a + xi * (b - a)
-
-
 def solve_static(model: Beam3DModel, supports, loads=(), **options) -> Beam3DResult:
     """Linear static solve of a grouped spatial beam model (the continuum's supports and
     loads)."""
     no_options("solve_static", options, ("solver",))
-    state = solve_beam3d_static(model, node_supports(model, supports),
-                                node_loads(model, loads))
-    return Beam3DResult(model, state, supported_groups(supports))
+    nodal = node_loads(model, loads)
+    state = solve_beam3d_static(model, node_supports(model, supports), nodal)
+    return Beam3DResult(model, state, supported_groups(supports),
+                        applied=load_array(model, nodal).ravel())
 
 
 def _at_zero(support):
@@ -169,55 +127,18 @@ def solve_modes(model: Beam3DModel, n: int = 6, supports=(), **options) -> Beam3
     return solve_beam3d_modes(model, held, n=n)
 
 
-@dataclass(frozen=True, eq=False)
-class Beam3DPath:
-    """Converged steps of a large-rotation spatial solve, read by group."""
-
-    model: Beam3DModel
-    result: Beam3DNonlinearResult
-    supported: tuple = ()
-
-    @property
-    def load_factors(self) -> np.ndarray:
-        return self.result.load_factors
-
-    @property
-    def iterations(self) -> list:
-        return self.result.iterations
-
-    def step(self, k: int = -1) -> Beam3DResult:
-        """Step ``k`` as a Beam3DResult."""
-        return Beam3DResult(self.model, self.result.states[k], self.supported)
-
-    def mean_displacement(self, name: str, step: int = -1) -> np.ndarray:
-        """(3,) mean displacement of the group's nodes at ``step``, m."""
-        return self.step(step).mean_displacement(name)
-
-    def path(self, name: str) -> np.ndarray:
-        """(n_steps + 1, 3) mean displacement of the group over the steps, m."""
-        return np.array([self.mean_displacement(name, k) for k in range(len(self.load_factors))])
-
-    @property
-    def reactions(self) -> list:
-        """Per step {group: (F_x, F_y, F_z) N}."""
-        return [self.step(k).reactions for k in range(len(self.load_factors))]
-
-    @property
-    def max_von_mises(self) -> float:
-        """Largest von Mises bound at the last step, Pa."""
-        return self.result.final.max_stress
-
-
 def solve_nonlinear(model: Beam3DModel, supports, loads, steps: int = 10,
                     max_iterations: int = 30, tol: float = 1e-9, min_step: float = 1e-4,
                     **options) -> Beam3DPath:
     """Large-rotation (co-rotational) static solve, the loads and prescribed values scaled
     0 -> 1 in ``steps`` increments (halved on failure down to ``min_step``)."""
     no_options("solve_nonlinear", options, ("solver", "check_stability"))
-    result = solve_beam3d_nonlinear(model, node_supports(model, supports),
-                                    node_loads(model, loads), steps=steps,
-                                    max_iterations=max_iterations, tol=tol, min_step=min_step)
-    return Beam3DPath(model, result, supported_groups(supports))
+    nodal = node_loads(model, loads)
+    result = solve_beam3d_nonlinear(model, node_supports(model, supports), nodal,
+                                    steps=steps, max_iterations=max_iterations, tol=tol,
+                                    min_step=min_step)
+    return Beam3DPath(model, result, supported_groups(supports),
+                      load_array(model, nodal).ravel())
 
 
 def compliance_matrix(model: Beam3DModel, supports, face, point=None, frame=None,
@@ -236,13 +157,17 @@ def compliance_matrix(model: Beam3DModel, supports, face, point=None, frame=None
 
 
 @dataclass(frozen=True, eq=False)
-class Beam3DHarmonic:
-    """Steady-state amplitudes: frequencies_hz (n,); u (n, n_nodes, 3) complex (m)."""
+class Beam3DHarmonic(BeamFace):
+    """Steady-state amplitudes: frequencies_hz (n,); u (n, n_nodes, 3) complex (m); method
+    'modal'; info."""
 
     model: Beam3DModel
     frequencies_hz: np.ndarray
     u: np.ndarray
     modes: Beam3DModes
+    info: dict = field(default_factory=dict)
+
+    method = "modal"
 
     def mean_displacement(self, name: str) -> np.ndarray:
         """(n, 3) complex mean displacement amplitude of the group, m."""
@@ -267,12 +192,19 @@ def solve_harmonic(model: Beam3DModel, supports, loads, frequencies_hz, damping=
     nodal = node_loads(model, loads)
     modes = solve_beam3d_modes(model, held, n=n_modes)
     static = solve_beam3d_static(model, held, nodal)
+    f = load_array(model, nodal)
+    q, zeta = modal_superposition(modes.frequencies_hz, modes.shapes, f, static.q, f_hz,
+                                  damping)
+    return Beam3DHarmonic(model, f_hz, q.reshape(len(f_hz), model.n_nodes, 6)[..., :3], modes,
+                          info={"n_modes": n_modes, "damping_ratios": zeta})
+
+
+def load_array(model: Beam3DModel, nodal) -> np.ndarray:
+    """(n_nodes, 6) nodal loads (F N, M N m) of NodalLoads."""
     f = np.zeros((model.n_nodes, 6))
     for load in nodal:
         f[load.node] += load.vector
-    q, _ = modal_superposition(modes.frequencies_hz, modes.shapes, f, static.q, f_hz,
-                               damping)
-    return Beam3DHarmonic(model, f_hz, q.reshape(len(f_hz), model.n_nodes, 6)[..., :3], modes)
+    return f
 
 
 __all__ = ["Beam3DHarmonic", "Beam3DPath", "Beam3DResult", "compliance_matrix",

@@ -32,6 +32,16 @@ class Beam3DModes:
         """(n, 3) effective mass over the total mass."""
         return self.effective_mass / self.total_mass
 
+    solver = "beam3d"
+
+    def dominant_direction(self, k: int) -> int:
+        """Translation axis (0 = x, 1 = y, 2 = z) with the largest effective mass of mode k."""
+        return int(np.argmax(self.effective_mass[k]))
+
+    def vertex_shape(self, k: int) -> np.ndarray:
+        """(n_nodes, 3) translations of mode k at the nodes."""
+        return self.shapes[k][:, :3].copy()
+
 
 def solve_beam3d_modes(model: Beam3DModel, supports, n: int = 6, about=None,
                        loads=()) -> Beam3DModes:

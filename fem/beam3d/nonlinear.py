@@ -91,6 +91,7 @@ class _Stepper:
                     return u, R, lam, r, it - 1, T, Tp, fl
             try:
                 F = Factor(K)
+                self.last_sign = F.sign  # det K's sign at the last factored iterate
                 a, b = F.solve(np.column_stack([-rz, self.dr_dlam(Kf, T, Tp)])).T
             except SingularBeamError as exc:
                 raise _StepFailed(str(exc), history) from None
@@ -128,6 +129,7 @@ def solve_beam3d_nonlinear(model: Beam3DModel, supports, loads=(), steps: int = 
     states, lams, its = [make_state(asm, u, R, r0, 0.0, fl0, T0, Tp0)], [0.0], [0]
     goal = 1.0 if control is None else float(stepper.c_value)
     path = {"u": u, "R": R, "lam": 0.0}
+    signs = [1]  # the unloaded state: the linear K, positive definite
 
     def advance(t, dt, _):
         u_new, R_new, lam_new, r, n_it, T, Tp, fl = stepper.newton(
@@ -136,10 +138,12 @@ def solve_beam3d_nonlinear(model: Beam3DModel, supports, loads=(), steps: int = 
         states.append(make_state(asm, u_new, R_new, r, lam_new, fl, T, Tp))
         lams.append(lam_new)
         its.append(n_it)
+        signs.append(stepper.last_sign)
         return False
 
     cuts = march(advance, steps, min_step,
                  lambda t, dt, cuts, failure: step_failure(t, dt, path["lam"], cuts, failure))
     return Beam3DNonlinearResult(model=model, load_factors=np.array(lams), states=states,
                                  iterations=its, info={"step_cuts": cuts,
-                                                       "n_unknowns": asm.space.n})
+                                                       "n_unknowns": asm.space.n,
+                                                       "tangent_signs": signs})
