@@ -30,7 +30,7 @@ import tomllib
 
 
 @dataclass(frozen=True)
-class Section:
+class ReportSection:
     """One report section: its folder, its title and ``"module:function"``, a
     ``reproduce(out_dir, quick=False[, full=False]) -> summary``."""
 
@@ -40,7 +40,7 @@ class Section:
 
 
 @dataclass(frozen=True)
-class Mechanism:
+class RegisteredMechanism:
     """One registry entry; targets are relative to ``flexfem.studies.<package>``.
 
     evaluate : "module:function" for studies ("" when the mechanism has no study metrics)
@@ -72,67 +72,67 @@ class Mechanism:
 
 
 BUILTIN = (
-    Mechanism(
+    RegisteredMechanism(
         "dbma", "Double-row bow-type micro-displacement amplifier (servo valve)", "dbma",
         evaluate="evaluate:evaluate", commands="cli", optimizer="cli_optimize", document="dbma",
         units="evaluate:UNITS",
         # coarser start: halving the size three times from 4x stays affordable
         coarsest_size_factor=4.0,
         sections=(
-            Section("dbma_analytical", "DBMA: pseudo-rigid-body and enhanced analytical models",
+            ReportSection("dbma_analytical", "DBMA: pseudo-rigid-body and enhanced analytical models",
                     "figures:reproduce_analytical"),
-            Section("dbma_fem", "DBMA: FEM amplification ratio, stress, modes and convergence",
+            ReportSection("dbma_fem", "DBMA: FEM amplification ratio, stress, modes and convergence",
                     "report:reproduce"),
-            Section("dbma_optimize", "DBMA: FEM-decided hinge design search (beyond the sources)",
+            ReportSection("dbma_optimize", "DBMA: FEM-decided hinge design search (beyond the sources)",
                     "optimize_output:reproduce"),
-            Section("dbma_dynamics", "DBMA: output compliance, FRF, bandwidth, buckling",
+            ReportSection("dbma_dynamics", "DBMA: output compliance, FRF, bandwidth, buckling",
                     "dynamics_report:reproduce"),
-            Section("dbma_beam", "DBMA: beam model beside the closed forms and the FEM",
+            ReportSection("dbma_beam", "DBMA: beam model beside the closed forms and the FEM",
                     "beam_report:reproduce"),
-            Section("dbma_topopt", "DBMA: a topology-optimised amplifier in its envelope",
+            ReportSection("dbma_topopt", "DBMA: a topology-optimised amplifier in its envelope",
                     "topopt_report:reproduce"),
         )),
-    Mechanism(
+    RegisteredMechanism(
         "eightbar", "Symmetric rectilinear eight-bar flexure suspension", "eightbar",
         evaluate="evaluate:evaluate", commands="cli", document="eightbar", units="evaluate:UNITS",
         sections=(
-            Section("eightbar_rigid",
+            ReportSection("eightbar_rigid",
                     "Eight-bar and straight-line linkages: rigid-body paths and synthesis",
                     "path:reproduce"),
-            Section("eightbar_fem",
+            ReportSection("eightbar_fem",
                     "Eight-bar flexure suspension: FEM, stress and large-deflection path",
                     "report:reproduce"),
-            Section("eightbar_stage", "Eight-bar as a stage: compliance, modes, buckling",
+            ReportSection("eightbar_stage", "Eight-bar as a stage: compliance, modes, buckling",
                     "stage_report:reproduce"),
-            Section("eightbar_beam",
+            ReportSection("eightbar_beam",
                     "Eight-bar flexure suspension: beam model beside the PRBM and the FEM",
                     "beam_report:reproduce"),
         )),
-    Mechanism(
+    RegisteredMechanism(
         "eightbar_driving", "Eight-bar thesis' driving linkage: two lambdas, two suspensions",
         "eightbar", evaluate="driving_models:evaluate", document="eightbar",
         units="driving_models:UNITS"),
-    Mechanism(
+    RegisteredMechanism(
         "balancing", "Five-bar parallel robot: optimum static balancing and flexure pivots",
         "balancing", commands="cli", document="balancing",
         sections=(
-            Section("balancing", "Five-bar robot: optimum static balancing and flexure pivots",
+            ReportSection("balancing", "Five-bar robot: optimum static balancing and flexure pivots",
                     "report:reproduce"),
-            Section("balancing_pivot_stability",
+            ReportSection("balancing_pivot_stability",
                     "Flexure pivots: limit point, stability margin, centre shift",
                     "pivot_stability_report:reproduce"),
-            Section("balancing_beam",
+            ReportSection("balancing_beam",
                     "Balancing pivots: beam model beside beam theory and the FEM",
                     "beam_report:reproduce"),
         )),
-    Mechanism(
+    RegisteredMechanism(
         "model", "Your own flexure from a model file (TOML + .geo, .step or .msh)", "user_model",
         evaluate="analysis:evaluate", commands="cli", units="analysis:UNITS"),
-    Mechanism(
+    RegisteredMechanism(
         "toy", "Tapered cantilever (closed form): the study engine's own check", "toy",
         evaluate="model:evaluate", units="model:UNITS",
         sections=(
-            Section("studies_engine",
+            ReportSection("studies_engine",
                     "Study engine: sweep and Richardson convergence checked on a closed form",
                     "report:reproduce"),
         )),
@@ -297,7 +297,7 @@ def coarsest_size_factor(name: str) -> float:
     return MECHANISMS[name].coarsest_size_factor if name in MECHANISMS else 1.0
 
 
-def report_sections() -> list[tuple[Mechanism, Section]]:
+def report_sections() -> list[tuple[RegisteredMechanism, ReportSection]]:
     """Every report section, in report order (registry order, then each entry's own)."""
     return [(m, s) for m in BUILTIN for s in m.sections]
 

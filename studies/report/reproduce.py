@@ -15,7 +15,7 @@ import sys
 import time
 import traceback
 
-from ..mechanisms import Mechanism, Section, report_sections
+from ..mechanisms import RegisteredMechanism, ReportSection, report_sections
 from .render import write_report
 from ..engine.serialize import jsonable
 
@@ -33,7 +33,8 @@ class Settings:
             raise ValueError("choose at most one of quick and full")
 
 
-def run_section(folder: Path, mechanism: Mechanism, section: Section, settings: Settings) -> dict:
+def run_section(folder: Path, mechanism: RegisteredMechanism, section: ReportSection,
+                settings: Settings) -> dict:
     """Run one section into ``folder``; never raises: a failure becomes ``{"error": ...}``."""
     done = folder / "summary.json"
     if settings.resume and done.exists():

@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 
 from flexfem.studies.cli import main
-from flexfem.studies.mechanisms import Mechanism, Section
+from flexfem.studies.mechanisms import RegisteredMechanism, ReportSection
 from flexfem.studies.report import reproduce as reproduce_module
 from flexfem.studies.report.comparison import Comparison, rows
 from flexfem.studies.report.figures import entry, pyplot, save
@@ -52,9 +52,9 @@ def fake_sections(monkeypatch):
     module = types.ModuleType("flexfem.studies.fake.sections")
     module.good, module.bad = _fake_section, _broken_section
     monkeypatch.setitem(sys.modules, "flexfem.studies.fake.sections", module)
-    fake = Mechanism("fake", "A fake mechanism", "fake", document="dbma",
-                     sections=(Section("good", "A good section", "sections:good"),
-                               Section("bad", "A broken section", "sections:bad")))
+    fake = RegisteredMechanism("fake", "A fake mechanism", "fake", document="dbma",
+                               sections=(ReportSection("good", "A good section", "sections:good"),
+                                         ReportSection("bad", "A broken section", "sections:bad")))
     monkeypatch.setattr(reproduce_module, "report_sections",
                         lambda: [(fake, s) for s in fake.sections])
 
