@@ -96,7 +96,7 @@ Tolerance ToleranceBoolean AutoCoherence OCCAutoFix OCCBooleanPreserveNumbering 
 OCCFixSmallEdges OCCFixSmallFaces OCCSewFaces OCCMakeSolids OCCParallel OCCScaling OCCUnionUnify
 OCCBoundsUseStl ExactExtrusion ExtrudeReturnLateralEntities ExtrudeSplinePoints
 CopyMeshingMethod MatchMeshTolerance Points Curves Surfaces Volumes PointNumbers CurveNumbers
-SurfaceNumbers VolumeNumbers LabelType
+SurfaceNumbers VolumeNumbers LabelType OCCTargetUnit
 """.split())
 FIELD_TYPES = frozenset("Box Ball Cylinder Frustum Distance Attractor Threshold Min Max "
                         "Constant Restrict".split())

@@ -188,3 +188,35 @@ def test_a_msh_claiming_1e11_nodes_is_refused_by_analyze(tmp_path, capsys):
     model.write_text(text[:text.index("[parameters]")] + text[text.index("[material]"):])
     _refused(capsys, ["analyze", str(model)], "guide.msh: its $Nodes header claims "
                                                 "100,000,000,000 nodes")
+
+
+def test_the_commands_of_an_ordinary_geometry_pass(tmp_path):
+    """A built-in kernel drawing with what geometry scripts commonly use: lists, loops,
+    conditionals, extrusion with layers, duplication, transfinite curves and mesh options."""
+    geo = tmp_path / "t.geo"
+    geo.write_text('''SetFactory("Built-in");
+lc = 0.1;
+Point(1) = {0, 0, 0, lc}; Point(2) = {1, 0, 0, lc}; Point(3) = {1, 1, 0, lc};
+Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 1};
+Line Loop(1) = {1, 2, 3}; Plane Surface(1) = {1};
+Transfinite Line{1} = 10 Using Progression 1.2;
+Recombine Surface{1};
+Characteristic Length {1, 2} = 0.05;
+Geometry.OCCTargetUnit = "M";
+Mesh.Algorithm = 6;
+n = 4;
+For i In {1:n}
+  p[i] = newp;
+EndFor
+If (n > 2)
+  Printf("n = %g", n);
+ElseIf (n == 1)
+  Warning("one");
+Else
+  Error("none");
+EndIf
+out[] = Extrude {0, 0, 1} { Surface{1}; Layers{5}; Recombine; };
+Physical Volume("body") = {out[1]};
+Translate {1, 0, 0} { Duplicata { Surface{1}; } }
+''')
+    check_geo(geo)
