@@ -5,7 +5,7 @@
 :class:`.nonlinear_result.NonlinearResult`, :class:`.compliance.Compliance`,
 :class:`.harmonic.HarmonicResult`) and the planar and spatial beam models' results give
 under the same name. A member a beam model cannot give (a nodal stress field, an
-eigenvalue count) is in its result's ``unsupported`` and raises :class:`NotOnModel`, an
+point stress) is in its result's ``unsupported`` and raises :class:`NotOnModel`, an
 AttributeError naming the member, the result and what the beam model gives instead.
 """
 import numpy as np
@@ -18,7 +18,8 @@ SHARED = {
     "modes": ("model", "frequencies_hz", "shapes", "effective_mass", "total_mass",
               "effective_mass_fraction", "solver", "dominant_direction", "vertex_shape"),
     "nonlinear": ("model", "load_factors", "u", "reactions", "face_reactions",
-                  "face_motion", "iterations", "applied", "info", "stable", "strain_valid",
+                  "face_motion", "iterations", "applied", "info", "negative_eigenvalues", "stable",
+                  "strain_valid",
                   "max_strain", "strain_limit", "preload_factors", "preload_end",
                   "preloaded", "preloading", "stress_at_step", "mean_displacement", "path",
                   "force_displacement", "max_von_mises", "max_von_mises_element",
@@ -63,9 +64,6 @@ STATIC_UNSUPPORTED = {
 
 PATH_UNSUPPORTED = {
     "von_mises_nodal": ("nodal stress field", NODAL_STRESS),
-    "negative_eigenvalues": ("count of negative tangent eigenvalues",
-                             "the beam path gives the sign of the tangent's determinant per "
-                             "step (stable)"),
 }
 
 
@@ -139,15 +137,16 @@ class BeamPathFace(BeamFace):
         return self.path(name), force
 
     @property
+    def negative_eigenvalues(self) -> list:
+        """Per step the number of negative eigenvalues of the tangent stiffness at the
+        converged state (a Sturm count of its LDL^T; None where it is singular)."""
+        return self.info.get("negative_eigenvalues", [None] * len(self.load_factors))
+
+    @property
     def stable(self) -> np.ndarray:
-        """(n,) bool per step: det of the tangent stiffness positive (the sign of its LU
-        factor at the last Newton iterate; the unloaded state's linear stiffness is positive
-        definite). It is positive definiteness while at most one eigenvalue has crossed zero
-        (a limit or simple bifurcation point); False where not recorded."""
-        signs = self.info.get("tangent_signs", [])
-        if len(signs) != len(self.load_factors):
-            return np.zeros(len(self.load_factors), dtype=bool)
-        return np.asarray(signs) > 0
+        """(n,) bool per step: the tangent stiffness is positive definite (no negative
+        eigenvalue); False at a critical or unstable state."""
+        return np.array([n == 0 for n in self.negative_eigenvalues], dtype=bool)
 
     @property
     def max_strain(self) -> np.ndarray:

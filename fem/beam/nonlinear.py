@@ -13,6 +13,8 @@ from dataclasses import dataclass, field
 import math
 
 import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
 
 from ..newton import NonConvergenceError, check_step_arguments
 from ..stepping import StepFailed as _StepFailed
@@ -87,7 +89,7 @@ class _Stepper:
                 # converged; or at round-off: the last Newton correction ~ machine precision
                 floor = np.linalg.norm(dz) <= 1e-12 * np.linalg.norm(z) and norm <= 1e-6 * ref
                 if (norm <= self.tol * ref and self._small(dz, z)) or floor:
-                    self.last_sign = signs[-1]  # det K's sign at the last factored iterate
+                    self.last_count = negative_eigenvalues(ev.K)
                     return z, lam, q, r, it - 1, signs[0] != signs[-1]
             try:
                 F = Factor(ev.K)
@@ -117,6 +119,23 @@ class _Stepper:
 
     def _small(self, dz, z):
         return np.linalg.norm(dz) <= math.sqrt(self.tol) * max(np.linalg.norm(z), 1e-14)
+
+
+def negative_eigenvalues(K):
+    """The number of negative eigenvalues of (the symmetric part of) the tangent ``K``, a
+    Sturm count: the negative pivots of its LDL^T (SuperLU without row pivoting, Jacobi
+    scaled); None where a pivot is (nearly) zero or SuperLU had to pivot."""
+    K = sp.csc_matrix(0.5 * (K + K.T))
+    scale = sp.diags(1.0 / np.sqrt(np.abs(K.diagonal())))
+    try:
+        lu = spla.splu(sp.csc_matrix(scale @ K @ scale), permc_spec="MMD_AT_PLUS_A",
+                       diag_pivot_thresh=0.0, options={"SymmetricMode": True})
+    except RuntimeError:
+        return None
+    d = lu.U.diagonal()
+    if not np.array_equal(lu.perm_r, lu.perm_c) or np.abs(d).min() <= 1e-13:
+        return None
+    return int(np.count_nonzero(d < 0))
 
 
 def step_failure(t, dt, lam, cuts, failure) -> NonConvergenceError:
@@ -150,7 +169,7 @@ def solve_beam_nonlinear(model: BeamModel, supports, loads=(), steps: int = 10,
     states, lams, its = [make_state(asm, ev0.q, ev0.r, 0.0, w=ev0.w)], [0.0], [0]
     goal = 1.0 if control is None else float(stepper.c_value)
     path = {"z": np.zeros(asm.space.n), "lam": 0.0}
-    crossings, signs = [], [1]  # the unloaded state: the linear K, positive definite
+    crossings, counts = [], [0]  # the unloaded state: the linear K, positive definite
 
     def advance(t, dt, _):
         z_new, lam_new, q, r, n_it, flipped = stepper.newton(path["z"], path["lam"],
@@ -165,7 +184,7 @@ def solve_beam_nonlinear(model: BeamModel, supports, loads=(), steps: int = 10,
         states.append(make_state(asm, q, r, lam_new))
         lams.append(lam_new)
         its.append(n_it)
-        signs.append(stepper.last_sign)
+        counts.append(stepper.last_count)
         return False
 
     cuts = march(advance, steps, min_step,
@@ -173,4 +192,4 @@ def solve_beam_nonlinear(model: BeamModel, supports, loads=(), steps: int = 10,
     return BeamNonlinearResult(model=model, load_factors=np.array(lams), states=states,
                                iterations=its, info={"step_cuts": cuts, "n_unknowns": asm.space.n,
                                      "definiteness_changes": crossings,
-                                     "tangent_signs": signs})
+                                     "negative_eigenvalues": counts})

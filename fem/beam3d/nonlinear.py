@@ -15,7 +15,7 @@ import math
 import numpy as np
 
 from ..beam.assembly import Factor, SingularBeamError
-from ..beam.nonlinear import step_failure
+from ..beam.nonlinear import negative_eigenvalues, step_failure
 from ..newton import NonConvergenceError, check_step_arguments  # noqa: F401 (public here)
 from ..stepping import StepFailed as _StepFailed
 from ..stepping import march
@@ -88,10 +88,10 @@ class _Stepper:
                 floor = step <= 1e-10 * size
                 if (norm <= self.tol * ref and step <= math.sqrt(self.tol) * max(size, 1e-14)) \
                         or floor:
+                    self.last_count = negative_eigenvalues(K)
                     return u, R, lam, r, it - 1, T, Tp, fl
             try:
                 F = Factor(K)
-                self.last_sign = F.sign  # det K's sign at the last factored iterate
                 a, b = F.solve(np.column_stack([-rz, self.dr_dlam(Kf, T, Tp)])).T
             except SingularBeamError as exc:
                 raise _StepFailed(str(exc), history) from None
@@ -129,7 +129,7 @@ def solve_beam3d_nonlinear(model: Beam3DModel, supports, loads=(), steps: int = 
     states, lams, its = [make_state(asm, u, R, r0, 0.0, fl0, T0, Tp0)], [0.0], [0]
     goal = 1.0 if control is None else float(stepper.c_value)
     path = {"u": u, "R": R, "lam": 0.0}
-    signs = [1]  # the unloaded state: the linear K, positive definite
+    counts = [0]  # the unloaded state: the linear K, positive definite
 
     def advance(t, dt, _):
         u_new, R_new, lam_new, r, n_it, T, Tp, fl = stepper.newton(
@@ -138,7 +138,7 @@ def solve_beam3d_nonlinear(model: Beam3DModel, supports, loads=(), steps: int = 
         states.append(make_state(asm, u_new, R_new, r, lam_new, fl, T, Tp))
         lams.append(lam_new)
         its.append(n_it)
-        signs.append(stepper.last_sign)
+        counts.append(stepper.last_count)
         return False
 
     cuts = march(advance, steps, min_step,
@@ -146,4 +146,4 @@ def solve_beam3d_nonlinear(model: Beam3DModel, supports, loads=(), steps: int = 
     return Beam3DNonlinearResult(model=model, load_factors=np.array(lams), states=states,
                                  iterations=its, info={"step_cuts": cuts,
                                                        "n_unknowns": asm.space.n,
-                                                       "tangent_signs": signs})
+                                                       "negative_eigenvalues": counts})

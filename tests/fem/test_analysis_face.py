@@ -131,3 +131,21 @@ def test_the_analyses_dispatch_on_the_model_type():
     assert solve_modes(model=model, n=2, supports=[Fixed("root")]).frequencies_hz.shape == (2,)
     with pytest.raises(TypeError, match="solve_static: model is a str"):
         solve_static("model", [Fixed("root")])
+
+
+def test_stable_counts_the_tangents_negative_eigenvalues_through_a_snap_through():
+    """A shallow clamped arch pushed down at its apex (displacement control): two eigenvalues
+    cross zero within one step near the load peak (the determinant's sign would not see it),
+    the Sturm count does; the arch is stable again once inverted."""
+    from flexfem.fem.beam import Fixed as NodeFixed, NodalLoad, solve_beam_nonlinear
+    from flexfem.fem.beam_result import BeamPath
+    x = np.linspace(0.0, L, 41)
+    mesh = beam_chain(list(zip(x, 0.002 * np.sin(np.pi * x / L))), Section.rect(W, 0.3e-3), 1)
+    model = BeamModel(mesh.nodes, mesh.elements, mesh.sections, STEEL)
+    result = solve_beam_nonlinear(model, [NodeFixed([0, 40])], [NodalLoad(20, 0.0, -1.0)],
+                                  steps=40, control=(20, "y", -0.0044))
+    path = BeamPath(model, result)
+    stable, lam = path.stable, path.load_factors
+    assert stable[:6].all() and not stable[6:25].any() and stable[25:].all()
+    assert lam[5] < lam[6] and lam[24] < lam[23] and set(path.negative_eigenvalues) == {0, 2}
+    assert not path.strain_valid.all() and path.strain_valid[:10].all()
