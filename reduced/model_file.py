@@ -348,7 +348,9 @@ def _check_groups(spec, groups: dict) -> None:
     needed += [(load.group, load.source) for load in spec.loads]
     if spec.analysis.compliance:
         needed.append((spec.analysis.compliance, spec.source))
-    needed += [(g, o.source) for o in getattr(spec, "outputs", ()) for g in o.groups]
+    points = getattr(spec, "points", {})  # [points] ride on their bodies (observe.py)
+    needed += [(g, o.source) for o in getattr(spec, "outputs", ()) for g in o.groups
+               if g not in points]
     for group, where in needed:
         if group not in groups:
             raise _error(where or spec.source, f"group {group!r} has no point in the beam "

@@ -12,15 +12,16 @@ from .geo_guard import check_inside
 from .mechanism_tables import body_loads, body_supports, parse_mechanism
 from .names import check_override_key, nearest, unknown_name
 from .outputs_table import parse_outputs
+from .points_table import parse_points
 from .quantities import with_si_units
 from .geometry import CAD_SUFFIXES, GEO_SUFFIXES, SUFFIXES, inspect_geometry
-from .tables import (Analysis, Load, Locator, MeshOptions, Section, Support, is_number,
+from .tables import (Analysis, Load, Locator, MeshOptions, SectionSpec, Support, is_number,
                      parse_analysis, parse_loads, parse_material, parse_mesh, parse_section,
                      parse_selects, parse_supports)
 
 TOP_KEYS = ("geometry", "dim", "description", "parameters", "material", "section", "mesh",
             "supports", "loads", "select", "analysis", "beam", "rigid", "beam_model", "body",
-            "flexure", "outputs")
+            "flexure", "outputs", "points")
 OVERRIDE_TABLES = ("material", "section", "mesh", "analysis", "beam_model")
 
 
@@ -33,14 +34,15 @@ class ModelSpec:
     beam model (BeamSpec, [[beam]] and [[rigid]]) or None; allow_code: the user trusts the
     file (its .geo may run code and read outside its folder); mechanism: the bodies and
     flexures of a file that describes its mechanism so (then ``geometry`` is the model file
-    itself, and both the continuum and the beam model are derived from it); outputs: the
+    itself, and both the continuum and the beam model are derived from it); points: the
+    [points] {name: (body, coordinates (m))} observed with their bodies; outputs: the
     [outputs] metrics (outputs_table.Output)."""
 
     path: Path
     geometry: Path
     dim: int
     material: Material
-    section: Section
+    section: SectionSpec
     parameters: dict = field(default_factory=dict)
     mesh: MeshOptions = MeshOptions()
     supports: tuple = ()
@@ -54,6 +56,7 @@ class ModelSpec:
     allow_code: bool = False
     mechanism: Mechanism | None = None
     outputs: tuple = ()
+    points: dict = field(default_factory=dict)
 
     @property
     def source(self) -> str:
@@ -225,7 +228,7 @@ def _mechanism_spec(path: Path, raw: dict, loc: Locator, overridden: set, dim: i
                         "(m; kind plane_stress, the default)", "section")
     parts = {
         "material": parse_material(raw["material"], loc),
-        "section": section if dim == 2 else Section("solid"),
+        "section": section if dim == 2 else SectionSpec("solid"),
         "mesh": parse_mesh(raw.get("mesh", {}), loc),
         "supports": body_supports(raw.get("supports", []), dim, loc),
         "loads": body_loads(raw.get("loads", []), dim, loc),
@@ -253,8 +256,10 @@ def _mechanism_spec(path: Path, raw: dict, loc: Locator, overridden: set, dim: i
     from ..mechanism.faces import face_names, named_faces, with_face_points
 
     bodies = [b.name for b in mechanism.bodies]
-    outputs = parse_outputs(raw.get("outputs"), parameters,
-                            set(groups) | set(face_names(bodies, dim)), dim, loc)
+    taken = set(groups) | set(face_names(bodies, dim))
+    points = {name: (body, at if len(at) == dim else (*at, mechanism.depth / 2)) for name, (
+        body, at) in parse_points(raw.get("points"), parameters, bodies, dim, taken, loc).items()}
+    outputs = parse_outputs(raw.get("outputs"), parameters, taken | set(points), dim, loc)
     faces = named_faces(parts, outputs, bodies, dim)
     groups |= {name: dim - 1 for name in faces}
     _check_groups(parts, groups, path, dim, loc)
@@ -265,7 +270,7 @@ def _mechanism_spec(path: Path, raw: dict, loc: Locator, overridden: set, dim: i
     return ModelSpec(path=path, geometry=path, dim=dim, parameters=parameters, groups=groups,
                      constants=dict(parameters), description=str(raw.get("description", "")),
                      beams=beams, allow_code=allow_code, mechanism=mechanism, selects=(),
-                     outputs=outputs, **parts)
+                     outputs=outputs, points=points, **parts)
 
 
 def mechanism_spec(mechanism: Mechanism, material: Material, supports, loads,
@@ -285,7 +290,7 @@ def mechanism_spec(mechanism: Mechanism, material: Material, supports, loads,
         if name not in groups:
             raise ValueError(f"group {name!r} is no body of the mechanism; bodies: "
                              f"{', '.join(b.name for b in mechanism.bodies)}")
-    section = Section("plane_stress", mechanism.depth) if dim == 2 else Section("solid")
+    section = SectionSpec("plane_stress", mechanism.depth) if dim == 2 else SectionSpec("solid")
     forces = tuple(Load(g, "force", tuple(float(v) for v in f) + (0.0,) * (dim - 2))
                    for g, f in loads.items())
     path = Path(mechanism.source or "<mechanism>")
@@ -358,6 +363,10 @@ def load_spec(path, overrides: dict | None = None, allow_code: bool = False,
         raise loc.error(f"dim = {dim} but {geometry.name} is {info.dim}-D", None,
                         "dim" if "dim" in raw else None)
     _check_groups(parts, info.groups, geometry, dim, loc)
+    if "points" in raw:
+        raise loc.error("[points] are points of bodies: a file of [[body]] and [[flexure]] "
+                        "names them (a geometry file's groups are observed as they are)",
+                        "points")
     observable = {g for g, d in info.groups.items() if d in (dim - 1, dim)}
     outputs = parse_outputs(raw.get("outputs"), {**info.constants, **parameters}, observable,
                             dim, loc)

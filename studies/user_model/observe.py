@@ -16,6 +16,8 @@ import re
 
 import numpy as np
 
+from ...fem.beam.face import group as beam_group
+from ...fem.beam3d.face import group as beam3d_group
 from ...fem.static_result import group_basis
 
 _AXES = ("x", "y", "z")
@@ -113,6 +115,49 @@ def lift(observations: dict) -> dict:
             for g, o in observations.items()}
 
 
+def centroid(result, group) -> np.ndarray:
+    """Where a group's observation refers to (m): the continuum's weighted centroid of its
+    points (their mean displacement is the displacement there for a rigid motion), the beam
+    model's node (the mean of its nodes)."""
+    if hasattr(result, "state"):
+        model = result.model
+        face = (beam3d_group if model.nodes.shape[1] == 3 else beam_group)(model, group)
+        return np.asarray(model.nodes)[list(face.nodes)].mean(axis=0)
+    x, _, w = _points(result.model, np.zeros(result.model.n_dofs), group)
+    return x @ w / w.sum()
+
+
+def carried(observation: dict, frm, to, large: bool = False) -> dict:
+    """The observation of a rigid body at ``frm`` carried to the point ``to`` (m): the same
+    rotation, the displacement plus the rotation's motion of the offset (linear, or with
+    ``large`` the finite rotation's)."""
+    r = np.asarray(to, float) - np.asarray(frm, float)
+    u = np.array([observation[f"u{a}"] for a in _AXES[:len(r)]])
+    if len(r) == 2:
+        t = observation["rz"] or 0.0
+        turn = (np.array([[np.cos(t) - 1, -np.sin(t)], [np.sin(t), np.cos(t) - 1]]) @ r
+                if large else t * np.array([-r[1], r[0]]))
+    else:
+        w = np.array([observation[f"r{a}"] or 0.0 for a in _AXES])
+        if large:
+            from scipy.spatial.transform import Rotation
+
+            turn = Rotation.from_rotvec(w).apply(r) - r
+        else:
+            turn = np.cross(w, r)
+    return {**observation, **{f"u{a}": float(v) for a, v in zip(_AXES, u + turn)}}
+
+
+def with_points(spec, result, observations: dict, large: bool = False) -> dict:
+    """``observations`` and those of the file's [points], each carried from its body."""
+    if not spec.points:
+        return observations
+    centres = {body: centroid(result, body) for body, _ in spec.points.values()}
+    return {**observations, **{  # a planar result of a 3-D file: the points in its plane
+        name: carried(observations[body], centres[body], at[:len(centres[body])], large)
+        for name, (body, at) in spec.points.items()}}
+
+
 def output_values(spec, observations: dict) -> tuple[dict, dict]:
     """({output: value}, {output: why not}) of the model file's [outputs] from
     ``observations``: an output that cannot be evaluated (a division by zero: no load on the
@@ -130,7 +175,8 @@ def watched_groups(spec, groups) -> list:
     """The groups a model file's analysis observes: its support and load ``groups``, every
     body (bodies and flexures) and every group its [outputs] name."""
     bodies = [b.name for b in spec.mechanism.bodies] if spec.mechanism is not None else []
-    named = [g for o in spec.outputs for g in o.groups]
+    points = set(spec.points)
+    named = [g for o in spec.outputs for g in o.groups if g not in points]
     return list(dict.fromkeys([*groups, *bodies, *named]))
 
 
@@ -138,7 +184,7 @@ def observed(spec, result, groups, lifted: bool = False) -> dict:
     """{"observations": {group: {component: value}}, "outputs": {name: value}} of a static
     ``result`` (``lifted``: a planar result standing for a 3-D file), and "not_available"
     {"outputs.NAME": why} for an output that cannot be evaluated."""
-    obs = observe(result, watched_groups(spec, groups))
+    obs = with_points(spec, result, observe(result, watched_groups(spec, groups)))
     if lifted and obs and "uz" not in next(iter(obs.values())):
         obs = lift(obs)
     values, missing = output_values(spec, obs)
@@ -157,6 +203,8 @@ def observed_path(spec, path, groups, lifted: bool = False) -> dict:
     watched = watched_groups(spec, groups)
     steps = observe_steps(path, watched) if spec.outputs else [observe(_last(path), watched,
                                                                        large=True)]
+    last = _last(path)
+    steps = [with_points(spec, last, o, large=True) for o in steps]
     if lifted:
         steps = [lift(o) for o in steps]
     out = {"observations": steps[-1]}
