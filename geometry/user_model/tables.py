@@ -39,7 +39,7 @@ class Locator:
 
 
 @dataclass(frozen=True)
-class Section:
+class SectionSpec:
     """kind: plane_stress | plane_strain | solid; thickness: out-of-plane thickness (m), 1
     for plane strain by default and for solids."""
 
@@ -197,7 +197,7 @@ def parse_material(raw, loc: Locator) -> Material:
         raise loc.error(f"[material]: {error}", "material") from None
 
 
-def parse_section(raw, dim: int, loc: Locator) -> Section:
+def parse_section(raw, dim: int, loc: Locator) -> SectionSpec:
     raw = check_keys(raw, ("kind", "thickness"), loc, "section")
     kind = raw.get("kind")
     if kind not in SECTION_KINDS:
@@ -210,16 +210,16 @@ def parse_section(raw, dim: int, loc: Locator) -> Section:
         if "thickness" in raw:
             raise loc.error("[section] thickness is for 2-D sections; a solid has none",
                             "section", "thickness")
-        return Section(kind)
+        return SectionSpec(kind)
     if "thickness" not in raw:
         if kind == "plane_stress":
             raise loc.error("[section] plane_stress needs thickness (m, out of plane)", "section")
-        return Section(kind)
+        return SectionSpec(kind)
     thickness = positive(raw, "thickness", loc, "section")
     if not LENGTHS[0] <= thickness <= LENGTHS[1]:
         raise loc.error(f"[section] thickness = {thickness!r} m is outside {LENGTHS[0]:g} to "
                         f"{LENGTHS[1]:g} m; lengths are in m", "section", "thickness")
-    return Section(kind, thickness)
+    return SectionSpec(kind, thickness)
 
 
 def parse_mesh(raw, loc: Locator) -> MeshOptions:

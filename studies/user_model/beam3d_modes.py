@@ -10,7 +10,7 @@ import numpy as np
 from ...fem import Fixed, Force, solve_modes, solve_static
 from ...geometry.polygon import moments as polygon_moments
 from ...reduced.spatial import lifted_model
-from ...geometry.user_model.tables import Section
+from ...geometry.user_model.tables import SectionSpec
 
 
 def planar_twin(spec):
@@ -23,7 +23,7 @@ def planar_twin(spec):
                      replace(s, components={k: v for k, v in s.components.items() if k < 2})
                      for s in spec.supports if s.components is None or set(s.components) - {2})
     groups = {name: 1 for name, d in spec.groups.items() if d == 2} | {"solid": 2}
-    return replace(spec, dim=2, section=Section("plane_stress", depth), loads=loads,
+    return replace(spec, dim=2, section=SectionSpec("plane_stress", depth), loads=loads,
                    supports=supports, groups=groups)
 
 
