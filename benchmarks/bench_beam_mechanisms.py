@@ -131,8 +131,8 @@ def _fresh_patches(fn, *args, **kwargs):
 def dbma_modes3d(rows, p):
     """Six modes of the DBMA in 3-D: the spatial beam model (Vlasov torsion on the hinges)
     against the 3-D solid (size_factor 1), mesh and model builds included."""
-    from flexfem.studies.dbma.modes3d import beam_modes3d, continuum_modes3d
-    from flexfem.studies.modes3d import SPLIT, working_index
+    from flexfem.studies.dbma.dbma_modes3d import beam_modes3d, continuum_modes3d
+    from flexfem.studies.mode_pairing import SPLIT, working_index
 
     def summary(out):
         oop = [f for f, s in zip(out["f_hz"], out["out_of_plane_share"]) if s > SPLIT]

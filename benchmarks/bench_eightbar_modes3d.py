@@ -20,7 +20,7 @@ def run(kind: str) -> list:
     from flexfem.fem import Fixed, solve_modes
     from flexfem.geometry.eightbar.flexure import EightBarFlexureParams
     from flexfem.studies.eightbar.analysis import build_model
-    from flexfem.studies.eightbar.modes3d import beam_modes
+    from flexfem.studies.eightbar.eightbar_modes3d import beam_modes
 
     params = EightBarFlexureParams()
     if kind in ("beam", "beam_rigid"):

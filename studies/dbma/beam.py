@@ -31,8 +31,8 @@ def beam_modal3d(p: DBMAParams, layout: DBMALayout, n_modes: int,
     """modal_response's keys from the spatial beam model (in-plane and out-of-plane modes;
     effective_mass n x 3), the hinges' torsion with Vlasov's warping restraint where they
     are leaves ("torsion": "Vlasov" or "Saint-Venant")."""
-    from ..modes3d import working_index
-    from .modes3d import beam_modes3d
+    from ..mode_pairing import working_index
+    from .dbma_modes3d import beam_modes3d
 
     leaf = layout.hinge_profile == "leaf"
     modes = beam_modes3d(p, layout, n_modes, warping=leaf, root_extension=root_extension)

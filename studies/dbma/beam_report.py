@@ -61,8 +61,8 @@ def out_of_plane_metric(p) -> tuple:
     """(Metric, the solid's working-mode frequency Hz): the lowest out-of-plane mode of the
     spatial beam model (the hinges' torsion with Vlasov's warping restraint) against the 3-D
     solid (size_factor 1), no closed form."""
-    from ..modes3d import working_index
-    from .modes3d import compare_modes3d
+    from ..mode_pairing import working_index
+    from .dbma_modes3d import compare_modes3d
 
     out = compare_modes3d(p, n_modes=6)
     row = next(r for r in out["rows"] if r["family"] == "out of plane")

@@ -53,7 +53,7 @@ def spatial_beam_modes(params: EightBarFlexureParams, n: int = 4,
     """modal_analysis' rows from the spatial beam model (flexible links, the flexures'
     torsion with Vlasov's warping restraint; docs/beam.md), with "m_eff_z_kg", as the 3-D
     FEM's."""
-    from .modes3d import beam_modes as spatial
+    from .eightbar_modes3d import beam_modes as spatial
 
     out = spatial(params, n, warping=True, root_extension=root_extension)
     mass = np.array(out["mass_fraction"]) * out["total_mass_kg"]

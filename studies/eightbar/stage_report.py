@@ -6,8 +6,8 @@ from ...geometry.eightbar.flexure import EightBarFlexureParams
 from ..engine.tables import write_rows
 from ..report.comparison import Comparison, rows as comparison_rows
 from ..report.figures import axis_label, legend_outside, pyplot, save
-from ..modes3d import SPLIT
-from .modes3d import beam_modes
+from ..mode_pairing import SPLIT
+from .eightbar_modes3d import beam_modes
 from .stage import stage_study
 
 STROKE_COLUMNS = ["x_m", "y_m", "rotation_rad", "force_x_n", "k_x", "k_y", "support_ratio",

@@ -8,8 +8,8 @@ from flexfem.reduced.dbma import dbma_beam_model
 from flexfem.geometry.dbma.drawing import DBMALayout
 from flexfem.geometry.dbma.params import paper_design
 from flexfem.studies.dbma.analysis import modal_response
-from flexfem.studies.dbma.modes3d import beam_modes3d, compare_modes3d
-from flexfem.studies.modes3d import SPLIT
+from flexfem.studies.dbma.dbma_modes3d import beam_modes3d, compare_modes3d
+from flexfem.studies.mode_pairing import SPLIT
 
 
 def _family(out, out_of_plane):
@@ -149,7 +149,7 @@ def test_report_row_of_the_lowest_out_of_plane_mode(paper_modes3d, monkeypatch):
     among the 6 lowest, the same eigenpairs either way."""
     import math
 
-    from flexfem.studies.dbma import modes3d
+    from flexfem.studies.dbma import dbma_modes3d
     from flexfem.studies.dbma.beam_report import out_of_plane_metric
 
     def the_same_solid(p, layout=None, n_modes=10, size_factor=1.0, max_dofs=None):
@@ -157,7 +157,7 @@ def test_report_row_of_the_lowest_out_of_plane_mode(paper_modes3d, monkeypatch):
         assert n_modes <= 12
         return paper_modes3d
 
-    monkeypatch.setattr(modes3d, "compare_modes3d", the_same_solid)
+    monkeypatch.setattr(dbma_modes3d, "compare_modes3d", the_same_solid)
     metric, solid_working = out_of_plane_metric(paper_design())
     assert math.isnan(metric.prbm) and metric.unit == "Hz"
     assert metric.beam == pytest.approx(metric.continuum, rel=0.03)

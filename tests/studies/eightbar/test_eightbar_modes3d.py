@@ -10,9 +10,9 @@ from flexfem.geometry.eightbar.flexure import EightBarFlexureParams
 from flexfem.studies.cli import main
 from flexfem.studies.eightbar.analysis import analyze_eightbar
 from flexfem.studies.eightbar.analysis import build_model
-from flexfem.studies.eightbar.modes3d import beam_modes, compare_modes, energy_share
+from flexfem.studies.eightbar.eightbar_modes3d import beam_modes, compare_modes, energy_share
 from flexfem.reduced.torsion import vlasov_factor
-from flexfem.studies.modes3d import mirror_vertices, out_of_plane_share, pair_modes
+from flexfem.studies.mode_pairing import mirror_vertices, out_of_plane_share, pair_modes
 
 
 def test_mirror_split_sorts_in_plane_and_out_of_plane_motion():

@@ -1,6 +1,6 @@
 """Modes of a part and of its spatial beam model side by side, in plane and out of plane
-(shared by the mechanisms' 3-D modal comparisons: studies/eightbar/modes3d.py,
-studies/dbma/modes3d.py).
+(shared by the mechanisms' 3-D modal comparisons: studies/eightbar/eightbar_modes3d.py,
+studies/dbma/dbma_modes3d.py).
 
 A part symmetric about its mid-plane z = 0 has each mode either in plane (u_x, u_y even in z,
 u_z odd) or out of plane (u_x, u_y odd, u_z even): the share of a mode's vertex motion in the

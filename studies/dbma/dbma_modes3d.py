@@ -9,7 +9,7 @@ thickness d in layers of quadratic hexahedra) beside the spatial beam model
 Both held as the 2-D modal analysis: the mounting face clamped, the pads held along x by the
 actuator (the beam: each pad-face node's x and its rotations about y and z, which a face held
 along x cannot have). The modes are sorted into an in-plane and an out-of-plane family and
-paired within each (:mod:`flexfem.studies.modes3d`). SI units; frequencies in Hz.
+paired within each (:mod:`flexfem.studies.mode_pairing`). SI units; frequencies in Hz.
 """
 import time
 
@@ -22,7 +22,7 @@ from ...reduced.dbma import dbma_beam3d_model
 from ...geometry.dbma.drawing import DBMALayout
 from ...geometry.dbma.params import DBMAParams, paper_design
 from ...reduced.torsion import TorsionScaled, vlasov_factor
-from ..modes3d import (SPLIT, mirror_vertices, out_of_plane_share, pair_modes)
+from ..mode_pairing import (SPLIT, mirror_vertices, out_of_plane_share, pair_modes)
 from .analysis import build_model, modal_supports
 
 PAD_DOFS = ("x", "ry", "rz")  # what the actuator holds on a pad face
@@ -98,7 +98,7 @@ def compare_modes3d(p: DBMAParams | None = None, layout: DBMALayout | None = Non
                     n_modes: int = 10, size_factor: float = 1.0,
                     max_dofs: int | None = None) -> dict:
     """Beam and continuum modes side by side: {"rows" (see
-    :func:`~flexfem.studies.modes3d.pair_modes`; the beam with the hinges' warping
+    :func:`~flexfem.studies.mode_pairing.pair_modes`; the beam with the hinges' warping
     restraint where they are leaves, else Saint-Venant's), "saint_venant_rows" (without
     it), "beam", "saint_venant", "continuum"}."""
     p, layout = p or paper_design(), layout or DBMALayout()

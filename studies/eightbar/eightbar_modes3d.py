@@ -6,7 +6,7 @@ through its thickness, quadratic tetrahedra) beside the spatial beam model
     out["rows"]  # family, k, beam_hz, continuum_hz, diff_pct, effective mass fractions
 
 The modes are sorted into an in-plane and an out-of-plane family by their shapes and paired
-within each (:mod:`flexfem.studies.modes3d`); the effective mass fractions (x, y, z) of both
+within each (:mod:`flexfem.studies.mode_pairing`); the effective mass fractions (x, y, z) of both
 are kept beside each pair to check the pairing.
 Anchors clamped in both models. SI units; frequencies in Hz.
 """
@@ -24,7 +24,7 @@ from ...reduced.layout import ROOT_EXTENSION
 from ...reduced.eightbar3d import eightbar_beam3d_model
 from ...geometry.eightbar.flexure import EightBarFlexureParams
 from ...reduced.torsion import TorsionScaled, vlasov_factor
-from ..modes3d import mirror_vertices, out_of_plane_share, pair_modes
+from ..mode_pairing import mirror_vertices, out_of_plane_share, pair_modes
 from .continuum_model import build_model
 
 
