@@ -241,7 +241,7 @@ def _body_mass(body, rho_t) -> tuple:
     return m, c, J
 
 
-class _Nodes:
+class _BodyNodes:
     """The beam mesh's nodes plus the points the rigid bodies add (reusing a node there)."""
 
     def __init__(self, nodes, tol):
@@ -280,7 +280,7 @@ def beam_model(spec) -> tuple:
                                                                       line.points[1:]))
     tol = 1e-9 * scale
     mesh, ends, joints = _mesh(beams, tol, spec.material.nu)
-    nodes = _Nodes(mesh.nodes, tol)
+    nodes = _BodyNodes(mesh.nodes, tol)
     supported = {s.group for s in spec.supports}
     groups, links, masses, owner, masters = {}, [], {}, {}, []
     for i, body in enumerate(beams.rigid):

@@ -128,7 +128,7 @@ def link_skeleton(parts, link: str, tol: float = 1e-9) -> Skeleton:
     return Skeleton(pieces, offsets)
 
 
-class _Nodes:
+class _MergedPoints:
     """Points (m) merged within ``tol``."""
 
     def __init__(self, tol: float):
@@ -153,7 +153,7 @@ def mesh_skeleton(skeleton: Skeleton, stations, size: float, tol: float = 1e-9) 
     stations = [np.asarray(s, float) for s in stations]
     feet = [nearest_on(skeleton.pieces, s)[0] for s in stations]
     cuts = [j for _, j in skeleton.offsets] + feet
-    nodes, elements = _Nodes(tol), []
+    nodes, elements = _MergedPoints(tol), []
     for a, b in skeleton.pieces:
         e = b - a
         length = float(np.linalg.norm(e))

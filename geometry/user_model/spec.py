@@ -15,7 +15,7 @@ from .outputs_table import parse_outputs
 from .points_table import parse_points
 from .quantities import with_si_units
 from .geometry import CAD_SUFFIXES, GEO_SUFFIXES, SUFFIXES, inspect_geometry
-from .tables import (Analysis, Load, Locator, MeshOptions, SectionSpec, Support, is_number,
+from .tables import (Analysis, LoadSpec, Locator, MeshOptions, SectionSpec, SupportSpec, is_number,
                      parse_analysis, parse_loads, parse_material, parse_mesh, parse_section,
                      parse_selects, parse_supports)
 
@@ -291,12 +291,12 @@ def mechanism_spec(mechanism: Mechanism, material: Material, supports, loads,
             raise ValueError(f"group {name!r} is no body of the mechanism; bodies: "
                              f"{', '.join(b.name for b in mechanism.bodies)}")
     section = SectionSpec("plane_stress", mechanism.depth) if dim == 2 else SectionSpec("solid")
-    forces = tuple(Load(g, "force", tuple(float(v) for v in f) + (0.0,) * (dim - 2))
+    forces = tuple(LoadSpec(g, "force", tuple(float(v) for v in f) + (0.0,) * (dim - 2))
                    for g, f in loads.items())
     path = Path(mechanism.source or "<mechanism>")
     return ModelSpec(path=path, geometry=path, dim=dim, material=material, section=section,
                      mesh=MeshOptions(order, mesh_size), supports=tuple(
-                         Support(g, None) for g in supports), loads=forces,
+                         SupportSpec(g, None) for g in supports), loads=forces,
                      analysis=analysis, groups=groups, beams=beam_spec(mechanism),
                      mechanism=mechanism)
 

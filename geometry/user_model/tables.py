@@ -68,7 +68,7 @@ class MeshOptions:
 
 
 @dataclass(frozen=True)
-class Support:
+class SupportSpec:
     """group held: all components at 0 (components None) or {axis index: value (m)}."""
 
     group: str
@@ -77,7 +77,7 @@ class Support:
 
 
 @dataclass(frozen=True)
-class Load:
+class LoadSpec:
     """kind 'force' (total force on the group, N) or 'traction' (Pa): vector per axis."""
 
     group: str
@@ -270,7 +270,7 @@ def parse_supports(raw, dim: int, loc: Locator) -> tuple:
                     raise loc.error(f"[[supports]] {axis} = {entry[axis]!r} must be a number "
                                     "(prescribed displacement, m)", "supports", axis, i)
                 components[k] = float(entry[axis])
-        out.append(Support(group, components or None, loc.at("supports", "group", i)))
+        out.append(SupportSpec(group, components or None, loc.at("supports", "group", i)))
     return tuple(out)
 
 
@@ -291,7 +291,7 @@ def parse_loads(raw, dim: int, loc: Locator) -> tuple:
         if not (isinstance(value, list) and len(value) == dim and all(map(is_number, value))):
             raise loc.error(f"[[loads]] {kind} = {value!r} must be a list of {dim} numbers "
                             f"({'N' if kind == 'force' else 'Pa'})", "loads", kind, i)
-        out.append(Load(group, kind, tuple(float(v) for v in value), loc.at("loads", kind, i)))
+        out.append(LoadSpec(group, kind, tuple(float(v) for v in value), loc.at("loads", kind, i)))
     return tuple(out)
 
 

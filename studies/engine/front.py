@@ -187,7 +187,7 @@ def search_front(front: Front, evaluate, store_path) -> dict:
         def point(x) -> dict:
             return {**front.base, **{n: float(v) for n, v in zip(names, x)}}
 
-        class Problem(ElementwiseProblem):
+        class FrontProblem(ElementwiseProblem):
             def __init__(self):
                 super().__init__(n_var=len(names), n_obj=len(signs), n_ieq_constr=n_con,
                                  xl=lows, xu=highs)
@@ -204,7 +204,7 @@ def search_front(front: Front, evaluate, store_path) -> dict:
                 out["G"] = [_violation(metrics[m], sense, bound)
                             for m, sense, bound in front.constraints]
 
-        result = minimize(Problem(), NSGA2(pop_size=front.population),
+        result = minimize(FrontProblem(), NSGA2(pop_size=front.population),
                           ("n_gen", front.generations), seed=front.seed, verbose=False)
         designs = []
         for x in np.atleast_2d(result.X) if result.X is not None else []:
