@@ -147,7 +147,8 @@ def test_html_renders_in_chromium(tmp_path, fake_sections):
     counts = rendered_counts(tmp_path / "index.html")
     assert counts["images-total"] == 1
     assert counts["images-loaded"] == counts["images-total"]
-    assert counts["tables-total"] == 2  # the headline table and the section's comparisons
+    # the sources at a glance, the headline table and the section's comparisons
+    assert counts["tables-total"] == 3
     assert counts["tables-with-rows"] == counts["tables-total"]
     assert counts["tables-overflowing"] == 0
 
@@ -293,8 +294,9 @@ def test_quick_report_answers_in_one_screen_per_source(quick_report):
             cells = re.findall(r"<td[^>]*>(.*?)</td>", row, re.S)
             if cells[4].startswith(("differs", "beyond limit")):
                 assert cells[5] not in ("-", "(no reason given)"), (key, cells)
-            if cells[4].startswith(("within limit", "beyond limit")):
-                assert "limit" in cells[3] and "%" not in cells[3], (key, cells)
+            if cells[4].startswith(("within limit", "beyond limit")):  # a margin, not a %
+                assert re.search(r"(maximum|minimum)$|, over it$", cells[3]), (key, cells)
+                assert not re.fullmatch(r"[+-][\d.]+ %", cells[3]), (key, cells)
         assert "Stroke limits" in screen and "before yield" in screen, key
     assert "None" not in re.sub(r"<[^>]+>", " ", page)
     for value in re.findall(r"(-?\d+(?:\.\d+)?) deg\b", re.sub(r"<[^>]+>", " ", page)):
