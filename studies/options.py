@@ -28,8 +28,22 @@ def length(text: str) -> str | float:
             return text.strip()
         raise argparse.ArgumentTypeError(f"{text!r} is not a length; expected a number > 0 (m) "
                                          "or one with a unit, e.g. 0.002 or '2 mm'") from None
-    if not (math.isfinite(value) and value > 0):
-        raise argparse.ArgumentTypeError(f"{text!r} must be a finite length > 0 (m)")
+    if not (math.isfinite(value) and 1e-9 <= value <= 10.0):
+        raise argparse.ArgumentTypeError(f"{text!r} must be a length from 1e-09 to 10 (m): a "
+                                         "flexure mechanism is 1 um to 10 m")
+    return value
+
+
+def size_factor(text: str) -> float:
+    """A size factor from 0.001 to 1000 (1: the default mesh)."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number; expected a size factor "
+                                         "from 0.001 to 1000 (1: the default mesh)") from None
+    if not (math.isfinite(value) and 1e-3 <= value <= 1e3):
+        raise argparse.ArgumentTypeError(f"{text!r} must be a size factor from 0.001 to 1000 "
+                                         "(1: the default mesh)")
     return value
 
 

@@ -161,6 +161,11 @@ def inspect_geometry(path: Path, parameters: dict | None = None, selects=(), roo
     check_geometry_file(path, root, allow_code)
     if suffix_is_mesh(path):
         check_msh_counts(path)
+    if path.suffix.lower() in CAD_SUFFIXES:
+        # a STEP/BREP file is data for OpenCASCADE, no script: read in this process (a
+        # forked child can wait forever on OpenCASCADE's thread pool, copied without its
+        # threads from a parent that used it)
+        return _inspect(path, parameters, selects, root, allow_code)
     return run_bounded(_inspect, path, parameters, selects, root, allow_code,
                        what=f"reading {path.name}", **_read_limits())
 
@@ -230,6 +235,8 @@ def mesh_geometry(spec, size_factor: float = 1.0, max_dofs: int | None = None) -
     check_geometry_file(spec.geometry, spec.path.parent, spec.allow_code)
     if suffix_is_mesh(spec.geometry):
         check_msh_counts(spec.geometry)
+    if spec.geometry.suffix.lower() in CAD_SUFFIXES:  # see _inspect's call above
+        return _mesh(spec, size_factor, max_dofs, limit)
     return run_bounded(_mesh, spec, size_factor, max_dofs, limit,
                        what=f"meshing {spec.geometry.name}", **_mesh_limits(spec.dim, limit))
 

@@ -5,7 +5,7 @@ import argparse
 from pathlib import Path
 
 from ...geometry.user_model import load_spec
-from ..options import count, length, positive
+from ..options import count, length, size_factor
 from .analysis import analyze_model
 from .mesh_choice import cli_size_factor, with_mesh_size
 
@@ -196,7 +196,7 @@ def register(subparsers):
     parser.add_argument("--max-dofs", type=count, default=None, metavar="N",
                         help="refuse a mesh estimated above N unknowns, before meshing "
                              "(default: what half the available memory affords)")
-    parser.add_argument("--size-factor", type=positive, default=None, metavar="F",
+    parser.add_argument("--size-factor", type=size_factor, default=None, metavar="F",
                         help="multiply every element size by F (default 1; with --dim 3, the "
                              "smallest F whose mesh fits the DOF budget)")
     parser.add_argument("--mesh-size", type=length, default=None, metavar="M",

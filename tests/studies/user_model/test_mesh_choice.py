@@ -46,10 +46,12 @@ def test_size_factor_and_mesh_size_are_accepted(capsys):
 
 
 @pytest.mark.parametrize("argv, words", [
-    (["--size-factor", "0"], "argument --size-factor: '0' must be a finite number > 0"),
-    (["--size-factor", "nan"], "must be a finite number > 0"),
+    (["--size-factor", "0"], "argument --size-factor: '0' must be a size factor from 0.001"),
+    (["--size-factor", "nan"], "must be a size factor from 0.001 to 1000"),
+    (["--size-factor", "1e-300"], "must be a size factor from 0.001 to 1000"),
     (["--size-factor", "big"], "'big' is not a number"),
-    (["--mesh-size", "-1"], "argument --mesh-size: '-1' must be a finite length > 0"),
+    (["--mesh-size", "-1"], "argument --mesh-size: '-1' must be a length from 1e-09 to 10"),
+    (["--mesh-size", "1e-300"], "must be a length from 1e-09 to 10 (m)"),
     (["--mesh-size", "wide"], "'wide' is not a length"),
     (["--mesh-size", "2 kg"], "is of dimension [mass], but this value is a length"),
     (["--mesh-size", "1e-5"], "cannot be honoured"),

@@ -273,7 +273,8 @@ def test_evaluate_metric_names():
         "dofs", "h", "max_von_mises", "mean_displacement_fixed_x", "mean_displacement_fixed_y",
         "mean_displacement_stage_x", "mean_displacement_stage_y", "reaction_fixed_x",
         "reaction_fixed_y", "stiffness_stage_x", "f1_hz", "f2_hz", "stroke_limit_yield",
-        "stroke_limit_fatigue"}
+        "stroke_limit_fatigue"} | {f"observed_{g}_{c}" for g in ("fixed", "stage")
+                                   for c in ("ux", "uy", "rz")}  # the groups' observations
     assert all(isinstance(v, float) for v in metrics.values())
     assert metrics["h"] < 0.002 and metrics["f1_hz"] < metrics["f2_hz"]
     with pytest.raises(ValueError, match="unknown option"):
