@@ -59,6 +59,21 @@ def _child(write_fd: int, log, function, args, memory_bytes: int, cpu_seconds: i
         view = view[os.write(write_fd, view):]
 
 
+#: A child that uses no CPU for this long (s) is waiting forever (a lock or a thread pool
+#: copied by fork without its threads): it is stopped instead of waited for.
+STALL_SECONDS = 30.0
+
+
+def _cpu_seconds(pid: int):
+    """The CPU time (s) process ``pid`` has used, None where /proc cannot tell."""
+    try:
+        with open(f"/proc/{pid}/stat") as f:
+            fields = f.read().rpartition(")")[2].split()
+        return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+    except (OSError, ValueError, IndexError):
+        return None
+
+
 def _tail(log, lines: int = 3) -> str:
     """The last ``lines`` non-empty lines the child printed, one line."""
     log.seek(0, os.SEEK_END)
@@ -86,11 +101,16 @@ def run_bounded(function, *args, memory_bytes: int, cpu_seconds: int, wall_secon
             os._exit(0)
     os.close(write_fd)
     chunks, deadline, timed_out = [], time.monotonic() + wall_seconds, False
+    cpu, working = _cpu_seconds(pid), time.monotonic()
     try:
         while True:
             left = deadline - time.monotonic()
-            if left <= 0:
-                timed_out = True
+            now, used = time.monotonic(), _cpu_seconds(pid)
+            if used is not None and cpu is not None and used > cpu:
+                cpu, working = used, now
+            stalled = now - working > STALL_SECONDS
+            if left <= 0 or stalled:
+                timed_out = "stalled" if stalled else "slow"
                 os.kill(pid, signal.SIGKILL)
                 break
             ready, _, _ = select.select([read_fd], [], [], min(left, 1.0))
@@ -107,6 +127,10 @@ def run_bounded(function, *args, memory_bytes: int, cpu_seconds: int, wall_secon
         _, status = os.waitpid(pid, 0)
     with log:
         said = _tail(log) if not chunks or timed_out else ""
+    if timed_out == "stalled":
+        raise ChildLimit(f"{what}: gmsh stopped working ({STALL_SECONDS:.0f} s without CPU "
+                         "time: waiting on something that never comes)"
+                         + (f"; gmsh's last words: {said}" if said else ""))
     if timed_out:
         raise ChildLimit(f"{what}: gmsh did not finish within {wall_seconds:.0f} s (a loop or "
                          "a mesh far larger than the budget?)")

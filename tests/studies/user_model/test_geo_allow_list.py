@@ -220,3 +220,24 @@ Physical Volume("body") = {out[1]};
 Translate {1, 0, 0} { Duplicata { Surface{1}; } }
 ''')
     check_geo(geo)
+
+
+def _sleep_long():
+    time.sleep(120)
+
+
+def _sum_up(n):
+    return sum(range(n))
+
+
+def test_a_child_that_stops_working_is_stopped(monkeypatch):
+    from flexfem.geometry.user_model import bounded
+
+    monkeypatch.setattr(bounded, "STALL_SECONDS", 1.5)
+    start = time.monotonic()
+    with pytest.raises(bounded.ChildLimit, match="probe: gmsh stopped working"):
+        bounded.run_bounded(_sleep_long, memory_bytes=0, cpu_seconds=200, wall_seconds=200,
+                            what="probe")
+    assert time.monotonic() - start < 20
+    assert bounded.run_bounded(_sum_up, 10**6, memory_bytes=0, cpu_seconds=60,
+                               wall_seconds=60, what="probe") == sum(range(10**6))
