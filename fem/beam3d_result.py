@@ -5,12 +5,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from .beam3d.stress import peak_stress, section_stresses
-from .beam_result import reaction_vector
-from .result_face import STATIC_UNSUPPORTED, BeamFace, BeamPathFace, NotOnModel, group_nodes
+from .result_face import STATIC_UNSUPPORTED, BeamPathFace, BeamStateFace, group_nodes
 
 
 @dataclass(frozen=True, eq=False)
-class Beam3DResult(BeamFace):
+class Beam3DResult(BeamStateFace):
     """A spatial beam state read by group: the continuum StaticResult's names. ``state``:
     the Beam3DState (u, rotations, reactions, element forces); ``applied``: the nodal load
     vector (N, N m)."""
@@ -56,40 +55,11 @@ class Beam3DResult(BeamFace):
                 for name in self.supported}
 
     @property
-    def applied_force(self) -> np.ndarray:
-        """The nodal load vector (F N, M N m; six per node)."""
-        if self.applied is None:
-            raise NotOnModel(f"{type(self).__name__} has no applied_force: this state was "
-                             "built without its loads (a buckling's prebuckling state)")
-        return self.applied
-
-    @property
-    def strain_energy(self) -> float:
-        """1/2 q.K.q = 1/2 q.(f + reactions), J."""
-        r = reaction_vector(self.model.n_nodes, self.state.reactions, 6)
-        return 0.5 * float(self.u @ (self.applied_force + r))
-
-    @property
     def beam_stress(self) -> np.ndarray:
         """(n_elements,) largest von Mises bound of the rectangular sections per element, Pa
         (0 on a general section)."""
         vm = section_stresses(self.model, self.state.local_forces)["von_mises"]
         return np.nan_to_num(vm, nan=0.0).max(axis=1)
-
-    @property
-    def von_mises_element_max(self) -> np.ndarray:
-        """The beam stress per element (beam_stress), Pa."""
-        return self.beam_stress
-
-    @property
-    def max_von_mises(self) -> float:
-        """Largest von Mises bound of the rectangular sections, Pa."""
-        return self.state.max_stress
-
-    @property
-    def max_von_mises_element(self) -> float:
-        """The beam stress has no smoothing: max_von_mises, Pa."""
-        return self.state.max_stress
 
     @property
     def max_von_mises_location(self) -> np.ndarray:

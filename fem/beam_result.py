@@ -4,19 +4,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .result_face import STATIC_UNSUPPORTED, BeamFace, BeamPathFace, NotOnModel, group_nodes
-
-
-def reaction_vector(n_nodes: int, reactions: dict, per_node: int) -> np.ndarray:
-    """The node reactions {node: (per_node,)} as one DOF vector (N, N m)."""
-    r = np.zeros((n_nodes, per_node))
-    for node, value in reactions.items():
-        r[node] = value
-    return r.ravel()
+from .result_face import STATIC_UNSUPPORTED, BeamPathFace, BeamStateFace, group_nodes
 
 
 @dataclass(frozen=True, eq=False)
-class BeamResult(BeamFace):
+class BeamResult(BeamStateFace):
     """A beam state read by group: the continuum StaticResult's names. ``state``: the
     BeamState (q, element forces, stresses, node reactions); ``face_loads``: {face: (F_x,
     F_y, M)} applied on each rigid face; ``applied_force``: the nodal load vector (N, N m)."""
@@ -77,39 +69,10 @@ class BeamResult(BeamFace):
         return out
 
     @property
-    def applied_force(self) -> np.ndarray:
-        """The nodal load vector (F_x, F_y N, M N m per node)."""
-        if self.applied is None:
-            raise NotOnModel(f"{type(self).__name__} has no applied_force: this state was "
-                             "built without its loads (a buckling's prebuckling state)")
-        return self.applied
-
-    @property
-    def strain_energy(self) -> float:
-        """1/2 q.K.q = 1/2 q.(f + reactions), J."""
-        r = reaction_vector(len(self.state.q), self.state.reactions, self.state.q.shape[1])
-        return 0.5 * float(self.u @ (self.applied_force + r))
-
-    @property
     def beam_stress(self) -> np.ndarray:
         """(n_elements,) largest beam stress |N|/A + |M| c / I per element, Pa (0 on an
         element without its outer-fibre distance c)."""
         return np.nan_to_num(self.state.stress, nan=0.0)
-
-    @property
-    def von_mises_element_max(self) -> np.ndarray:
-        """The beam stress per element (beam_stress), Pa."""
-        return self.beam_stress
-
-    @property
-    def max_von_mises(self) -> float:
-        """Largest beam stress |N|/A + |M| c / I, Pa."""
-        return self.state.max_stress
-
-    @property
-    def max_von_mises_element(self) -> float:
-        """The beam stress has no smoothing: max_von_mises, Pa."""
-        return self.state.max_stress
 
     @property
     def max_von_mises_location(self) -> np.ndarray:

@@ -83,6 +83,50 @@ def strain_per_step(fibre_stresses, E: float) -> np.ndarray:
                      for s in fibre_stresses])
 
 
+def reaction_vector(n_nodes: int, reactions: dict, per_node: int) -> np.ndarray:
+    """The node reactions {node: (per_node,)} as one DOF vector (N, N m)."""
+    r = np.zeros((n_nodes, per_node))
+    for node, value in reactions.items():
+        r[node] = value
+    return r.ravel()
+
+
+class BeamStateFace(BeamFace):
+    """The static members both beam results give alike, from ``state`` (q (n_nodes, DOFs a
+    node), reactions {node: vector}, max_stress), ``applied`` (the nodal load vector, or
+    None) and ``beam_stress`` (Pa per element)."""
+
+    @property
+    def applied_force(self) -> np.ndarray:
+        """The nodal load vector (N, N m per node)."""
+        if self.applied is None:
+            raise NotOnModel(f"{type(self).__name__} has no applied_force: this state was "
+                             "built without its loads (a buckling's prebuckling state)")
+        return self.applied
+
+    @property
+    def strain_energy(self) -> float:
+        """1/2 q.K.q = 1/2 q.(f + reactions), J."""
+        q = self.state.q
+        r = reaction_vector(len(q), self.state.reactions, q.shape[1])
+        return 0.5 * float(self.u @ (self.applied_force + r))
+
+    @property
+    def von_mises_element_max(self) -> np.ndarray:
+        """The beam stress per element (beam_stress), Pa."""
+        return self.beam_stress
+
+    @property
+    def max_von_mises(self) -> float:
+        """Largest beam stress (beam_stress), Pa."""
+        return self.state.max_stress
+
+    @property
+    def max_von_mises_element(self) -> float:
+        """The beam stress has no smoothing: max_von_mises, Pa."""
+        return self.state.max_stress
+
+
 class BeamPathFace(BeamFace):
     """The nonlinear members both beam paths give alike, from ``result`` (states,
     load_factors, info), ``step(k)`` (the static result of step k), ``applied`` (the nodal
