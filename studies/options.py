@@ -7,12 +7,18 @@ import math
 from .engine.convergence import parse_tolerance
 
 
+def _number(text: str, expected: str) -> float:
+    """``text`` as a float, else the refusal naming what is ``expected``."""
+    try:
+        return float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number; expected {expected}"
+                                         ) from None
+
+
 def positive(text: str) -> float:
     """A finite number > 0."""
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not a number; expected a number > 0") from None
+    value = _number(text, "a number > 0")
     if not (math.isfinite(value) and value > 0):
         raise argparse.ArgumentTypeError(f"{text!r} must be a finite number > 0")
     return value
@@ -36,11 +42,7 @@ def length(text: str) -> str | float:
 
 def size_factor(text: str) -> float:
     """A size factor from 0.001 to 1000 (1: the default mesh)."""
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not a number; expected a size factor "
-                                         "from 0.001 to 1000 (1: the default mesh)") from None
+    value = _number(text, "a size factor from 0.001 to 1000 (1: the default mesh)")
     if not (math.isfinite(value) and 1e-3 <= value <= 1e3):
         raise argparse.ArgumentTypeError(f"{text!r} must be a size factor from 0.001 to 1000 "
                                          "(1: the default mesh)")
@@ -49,11 +51,7 @@ def size_factor(text: str) -> float:
 
 def count(text: str) -> int:
     """A whole number >= 1 (1e6 is accepted as 1000000)."""
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not a number; expected a whole number "
-                                         ">= 1") from None
+    value = _number(text, "a whole number >= 1")
     if not (math.isfinite(value) and value >= 1 and value == int(value)):
         raise argparse.ArgumentTypeError(f"{text!r} must be a whole number >= 1")
     return int(value)
