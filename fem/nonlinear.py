@@ -14,6 +14,7 @@ by arc-length continuation; preloads (:mod:`.preload`) are applied first and the
 import math
 
 import numpy as np
+import scipy.sparse as sp
 
 from . import linsolve
 from .boundary import component_indices, constrained_dofs, load_vector
@@ -21,6 +22,7 @@ from .hyperelastic import (STRAIN_LIMIT, Assembler, StepFailed, cauchy_stress,  
                            deformation, final_stress, green_lagrange, max_strain, svk_stress,
                            tangent_modulus)
 from .model import Model
+from .pmultigrid import solve_pmg
 from .pressure import FollowerPressure
 from .preload import PreloadedSpace, preload_faces, split_preloads
 from .rigid_face import ReducedSpace
@@ -91,7 +93,9 @@ class _Problem:
 
     def solve(self, K, b):
         try:
-            if self.solver == "amg":
+            if self.solver == "amg" and self.model.order > 1:  # p-multigrid CG
+                x = solve_pmg(self.model, sp.triu(K, format="csr"), self.space.I, b)[0]
+            elif self.solver == "amg":
                 x = linsolve.solve_amg(K, b, self._near_null_space())
             else:
                 x = solve_tangent(K, b, self.matrix_kind)

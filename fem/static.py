@@ -5,6 +5,7 @@ from . import linsolve, memory
 from .block_factor import BlockFactorization
 from .boundary import component_indices, constrained_dofs, load_vector
 from .model import Model, von_mises
+from .pmultigrid import solve_pmg
 from .rigid_static import solve_static_faces
 from .solver_choice import solver_choice
 from .symmetric import symmetric_matvec
@@ -17,7 +18,8 @@ def solve_static(model: Model, supports, loads, solver: str = "auto",
                  rigid_faces=()) -> StaticResult:
     """Solve K u = f with the displacement ``supports`` (Fixed, Prescribed) and ``loads``
     (Force, Traction, Pressure, PointForce, BodyForce, Gravity). ``solver``: 'auto', 'direct'
-    or 'amg'; the one used, by name, is ``result.solver``. ``rigid_faces``: RigidFace (2-D),
+    or 'amg' (the iterative path: p-multigrid CG on quadratic elements, 'pmg-cg', AMG-CG on
+    linear ones, 'amg-cg'); the one used, by name, is ``result.solver``. ``rigid_faces``: RigidFace (2-D),
     linearised; see :mod:`.rigid_static`."""
     if rigid_faces:
         return solve_static_faces(model, supports, loads, rigid_faces, solver)
@@ -38,7 +40,12 @@ def solve_static(model: Model, supports, loads, solver: str = "auto",
         chosen, why = solver_choice(
             len(I), model.dim, solver,
             lambda: linsolve.block_to_factorize(K, I, "spd", upper=True))
-        if chosen == "amg":
+        if chosen == "amg" and model.order > 1:
+            # quadratic elements: p-multigrid CG, AMG on the P1 level (fem/pmultigrid.py)
+            u[I], iterative = solve_pmg(model, K, I, rhs)
+            linsolve.check_solution(K_II, u[I], rhs, rtol=1e-6)
+            chosen, why = "pmg-cg", f"{why}; {iterative['iterations']} CG iterations"
+        elif chosen == "amg":
             u[I] = linsolve.solve_amg(linsolve.block_to_factorize(K, I, "general", upper=True),
                                       rhs, rigid_body_dof_modes(model)[I])
             linsolve.check_solution(K_II, u[I], rhs, rtol=1e-6)

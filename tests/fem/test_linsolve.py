@@ -159,7 +159,7 @@ def test_results_name_their_solver():
     assert modes.solver == linsolve.direct_backend("spd")  # negative shift: Cholesky
     assert result.solver in ("mkl-pardiso", "cholmod", "superlu")
     amg = solve_static(model, [Fixed("fixed")], [Force("tip", (0.0, -1.0))], solver="amg")
-    assert amg.solver == "amg-cg"
+    assert amg.solver == "pmg-cg"  # P2: p-multigrid CG
 
 
 @pytest.mark.skipif(not HAS_PARDISO, reason="MKL (a default dependency on x86-64) not installed")
