@@ -100,6 +100,23 @@ def largest_eigenvalue(apply_A, inverse_diagonal, n, steps=20, seed=0) -> float:
     return lam
 
 
+class UpperRestriction(Restriction):
+    """K[I][:, I] of a symmetric K kept as its upper triangle, as an operator: the
+    :class:`~flexfem.fem.restriction.Restriction` with K's diagonal read once, not at every
+    product (a CG iteration makes several)."""
+
+    def __init__(self, K, I: np.ndarray):
+        super().__init__(K, I, upper=True)
+        self.full_diagonal = K.diagonal()
+
+    def _product(self, full):
+        d = self.full_diagonal if full.ndim == 1 else self.full_diagonal[:, None]
+        return self.A @ full + self.A.T @ full - d * full
+
+    def diagonal(self) -> np.ndarray:
+        return self.full_diagonal[self.I]
+
+
 @dataclass
 class PMultigrid:
     """The two-level preconditioner of the free-DOF stiffness K_II of ``model``: ``K`` the
@@ -129,7 +146,7 @@ class PMultigrid:
             raise ValueError(f"K of shape {self.K.shape} is neither on the model's {n} DOFs "
                              f"nor on the {len(self.I)} free ones")
         P_K.eliminate_zeros()
-        self.operator = Restriction(self.K, local, upper=True)
+        self.operator = UpperRestriction(self.K, local)
         self.P = P_K[local].tocsr()
         self.PT = self.P.T.tocsr()
         # Galerkin coarse operator P^T (U + U^T - D) P from the upper triangle U
@@ -140,7 +157,7 @@ class PMultigrid:
         modes = rigid_body_modes(points)  # (n_modes, n_vertices, dim)
         near_null = modes.reshape(len(modes), -1).T[np.flatnonzero(keep)]
         self.amg = pyamg.smoothed_aggregation_solver(
-            coarse, B=near_null, symmetry="symmetric", max_coarse=1000,
+            coarse, B=near_null, symmetry="symmetric", max_coarse=1000, coarse_solver="splu",
             strength=("symmetric", {"theta": 0.0}), smooth=("jacobi", {"omega": 4.0 / 3.0}))
         self.coarse_cycle = self.amg.aspreconditioner(cycle="V")
         self.two_level = self.model.order > 1
