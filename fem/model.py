@@ -162,18 +162,17 @@ class Model:
     @cached_property
     def stiffness_upper(self):
         """Upper triangle (diagonal included) of the global stiffness matrix K (N/m), CSR:
-        :func:`.assembly.elasticity_stiffness`, the matrix of skfem's BilinearForm
+        :func:`.assembly.elasticity_stiffness_upper`, the matrix of skfem's BilinearForm
         t (2 mu eps(u):eps(v) + lam tr eps(u) tr eps(v)) on ``stiffness_basis``."""
         return self.assemble_stiffness_upper()
 
     def assemble_stiffness_upper(self):
         """``stiffness_upper`` assembled anew and not kept on the model."""
         lam, mu = self.lame
-        K = assembly.elasticity_stiffness(
+        K = assembly.elasticity_stiffness_upper(
             self.mesh.mesh, scalar_element(self.mesh.mesh, self.order), self.stiffness_quadrature,
             self.node_pattern, self.dim, lam, mu, self.thickness)
-        K = symmetric.upper(K)
-        memory.release_freed()  # the element blocks' and the full matrix's temporaries
+        memory.release_freed()  # the element blocks' temporaries
         return K
 
     @cached_property
