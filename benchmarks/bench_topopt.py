@@ -10,7 +10,8 @@ move 0.2) by flexfem and by the port, each made to run exactly ``--iterations`` 
 the force inverter (volume 0.3, density filter of radius 3, MMA with move 0.2) by flexfem and
 by the educational-style port (tests/topopt/inverter_port.py: top88's loop, spsolve, mmapy's
 ``mmasub`` as the MMA codes call it); the inverter by the robust formulation
-(inverter-robust: three designs an iteration, docs/topopt.md). Each row runs in its own process, after its imports.
+(inverter-robust: three designs an iteration, docs/topopt.md), printed with its time over the
+plain inverter's of the same run. Each row runs in its own process, after its imports.
 """
 import argparse
 import json
@@ -119,10 +120,12 @@ def main() -> None:
         line = json.loads(out.stdout.strip().splitlines()[-1])
         times[row] = line["seconds"]
         print(json.dumps(line), flush=True)
-    for name, ours, port in (("mbb", "mbb-flexfem", "mbb-top88"),
-                             ("inverter", "inverter-flexfem", "inverter-port")):
+    for name, ours, port in (("mbb flexfem / port", "mbb-flexfem", "mbb-top88"),
+                             ("inverter flexfem / port", "inverter-flexfem", "inverter-port"),
+                             ("inverter robust / plain", "inverter-robust",
+                              "inverter-flexfem")):
         if ours in times and port in times:
-            print(json.dumps({f"{name} flexfem / port": times[ours] / times[port]}))
+            print(json.dumps({name: times[ours] / times[port]}))
 
 
 if __name__ == "__main__":

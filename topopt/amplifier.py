@@ -4,12 +4,15 @@ top pushed along +y, the symmetry lines x = 0 and y = 0 held normal to themselve
 actuator's room (|y| below the DBMA's arm gap, inside the pads) kept void, the pad and the
 output face solid. R = u_out / u_in of the quarter is the full part's output over the
 actuator's elongation (the DBMA's R_fem)."""
+import math
+
 from .grid import Grid
 from .interpolation import Interpolation
 from .problem import (Constraint, Load, Optimizer, Passive, Problem, Response, Spring,
                       Support)
 from .projection import Projection
 from .regions import Region
+from .robust import Robust, radius_for
 
 
 def dbma_envelope(params=None, layout=None) -> dict:
@@ -30,24 +33,37 @@ def dbma_envelope(params=None, layout=None) -> dict:
 def amplifier_problem(force: float, k_in_min: float, k_actuator: float, k_output: float,
                       element: float = 1e-3, volume: float = 0.3, iterations: int = 300,
                       radius: float = 3.0, envelope: dict | None = None,
-                      fn_min: float | None = None, stress_max: float | None = None) -> Problem:
+                      fn_min: float | None = None, stress_max: float | None = None,
+                      min_hinge: float | None = None, eta: float = 0.25) -> Problem:
     """Maximise the output's displacement. ``force`` (N): the actuator's push on one pad
     (the quarter carries half); ``k_in_min`` (N/m): the least input stiffness (force over
     elongation, the DBMA's k_in), a limit on u_in; ``k_actuator``, ``k_output`` (N/m): the
     input and output springs of the full part; ``element`` (m): grid size; ``volume``: the
     solid fraction of the quarter; ``radius`` (elements): the density filter's; ``fn_min``
     (Hz): a least lowest eigenfrequency of the density model (its springs, the quarter's
-    symmetric modes); ``stress_max`` (Pa): a limit on the p-norm (P = 8) of its stresses."""
+    symmetric modes); ``stress_max`` (Pa): a limit on the p-norm (P = 8) of its stresses;
+    ``min_hinge`` (m): the blueprint's minimum solid and void size by the robust formulation
+    (thresholds 1 - ``eta``, 0.5, ``eta``; the filter's radius from topopt.robust.radius_for,
+    ``radius`` then unused), on square elements of ``element``, the grid the whole elements
+    that fit inside the envelope."""
     env = envelope or dbma_envelope()
-    nelx, nely = round(env["width"] / element), round(env["height"] / element)
-    dx, h = env["width"] / nelx, env["height"] / nely
+    robust = None
+    if min_hinge is None:
+        nelx, nely = round(env["width"] / element), round(env["height"] / element)
+        dx, h = env["width"] / nelx, env["height"] / nely
+    else:
+        nelx, nely = (math.floor(env[k] / element + 1e-9) for k in ("width", "height"))
+        dx = h = element
+        robust = Robust(eta, min_hinge)
+        radius = radius_for(min_hinge, element, eta)
+    width, height = nelx * dx, nely * h
     (px0, px1), (_, py1) = env["pad"]
     px0, px1, py1 = round(px0 / dx) * dx, round(px1 / dx) * dx, round(py1 / h) * h
-    (_, ox1), top = env["output"]
-    ox1 = round(ox1 / dx) * dx
+    (_, ox1), _ = env["output"]
+    ox1, top = round(ox1 / dx) * dx, height
     f = force / 2
     return Problem(
-        Grid(nelx, nely, env["width"], env["height"]), Response("displacement", "output"),
+        Grid(nelx, nely, width, height), Response("displacement", "output"),
         sense="max", nu=env["nu"], thickness=env["thickness"], mass_density=env["rho"],
         interpolation=Interpolation("simp", 3.0, env["E"], 1e-9 * env["E"]),
         filter_kind="density", radius=radius,
@@ -65,10 +81,10 @@ def amplifier_problem(force: float, k_in_min: float, k_actuator: float, k_output
                  Passive(Region("box", ((px0, 0.0), (px1, py1))), "solid"),
                  Passive(Region("box", ((0.0, top - 2 * h), (ox1, top))), "solid")),
         optimizer=Optimizer("mma", 0.2, iterations, 0.01),
-        projection=Projection(beta=1.0, beta_max=16.0, every=40))
+        projection=Projection(beta=1.0, beta_max=16.0, every=40), robust=robust)
 
 
-def _spring_free(problem) -> Problem:
+def spring_free(problem) -> Problem:
     """The problem with its springs made negligible (1e-9 of their stiffness)."""
     from dataclasses import replace
 
@@ -126,7 +142,7 @@ def verify_amplifier(result, threshold: float = 0.3, neck: float = 0.6e-3,
 
     problem = result.problem
     size = size or min(problem.grid.dx, problem.grid.dy) / 2
-    d = Discrete(_spring_free(problem))
+    d = Discrete(spring_free(problem))
     u = d.system.solve(problem.interpolation.modulus(result.density), d.force)[:, 0]
     free = {name: float(v @ u) for name, v in d.spring_vectors.items()}
     push = sum(ld.force[0] for ld in problem.case_loads(1))
