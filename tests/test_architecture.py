@@ -236,12 +236,12 @@ def classes_defined_twice(sources) -> dict:
     return {name: where for name, where in places.items() if len(where) > 1}
 
 
-# names still defined twice, each for a reason; the list only shrinks. The planar beam
-# (fem/beam/) and the spatial one (fem/beam3d/) mirror each other's API (Section, Fixed,
-# Prescribed, NodalLoad: the names docs/beam.md shows users, with fem/boundary.py's continuum
-# supports) and their internals; topopt's Evaluation is its own
-STILL_TWICE = {"Section", "Fixed", "Prescribed", "NodalLoad", "Space", "Assembler", "_Stepper",
-               "Evaluation"}
+# names still defined twice, each for a reason; the list only shrinks. The beam models' node
+# supports Fixed and Prescribed (fem/beam/supports.py, one for both dimensions) share their
+# names with fem/boundary.py's continuum group supports (the names docs/beam.md shows users);
+# the planar beam (fem/beam/) and the spatial one (fem/beam3d/) still mirror Section and their
+# internals; topopt's Evaluation is its own
+STILL_TWICE = {"Section", "Fixed", "Prescribed", "Space", "Assembler", "_Stepper", "Evaluation"}
 
 
 def test_no_class_name_is_defined_twice():

@@ -15,9 +15,10 @@ import scipy.sparse.linalg as spla
 
 from .element import (basic_stiffness, corotational, local_mass, rotation_to_global,
                       undeformed)
-from .model import BeamModel, NodalLoad
+from .model import BeamModel
 from .pattern import block_dofs, global_matrix
 from .space import Space
+from .supports import load_vector
 
 DENSE_EIGEN_LIMIT = 800  # unknowns up to which modal analysis uses a dense eigensolver
 ORDERING = "MMD_AT_PLUS_A"  # SuperLU column ordering: the reduced K's pattern is symmetric
@@ -71,18 +72,6 @@ def mass_matrix(model: BeamModel) -> sp.csr_matrix:
     """Consistent global mass matrix (kg, kg m, kg m^2), point masses included (cached)."""
     return model.cached("mass_matrix", lambda: global_matrix(model, element_mass(model),
                                                              point_mass_diagonal(model)))
-
-
-def load_vector(model: BeamModel, loads) -> np.ndarray:
-    """Full-load vector (N, N m) from NodalLoad objects."""
-    f = np.zeros(model.n_dofs)
-    for load in loads:
-        if not isinstance(load, NodalLoad):
-            raise ValueError(f"loads: {load!r} is not a NodalLoad")
-        if not 0 <= int(load.node) < model.n_nodes:
-            raise ValueError(f"loads: node {load.node} outside 0..{model.n_nodes - 1}")
-        f[3 * int(load.node):3 * int(load.node) + 3] += (load.fx, load.fy, load.m)
-    return f
 
 
 @dataclass(frozen=True, eq=False)

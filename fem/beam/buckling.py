@@ -18,7 +18,8 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from .assembly import DENSE_EIGEN_LIMIT, SingularBeamError, load_vector
+from .assembly import DENSE_EIGEN_LIMIT, SingularBeamError
+from .supports import load_vector
 from .banded import spd_factor
 from .element import (AXIAL, BEND, WXI, XI, gram, bending_shape_functions,
                       rotation_to_global, shear_parameter)

@@ -27,9 +27,9 @@ from ..rigid_face_input import RigidFace
 from .compliance import shared_compliance
 from .modal import BeamModes, solve_beam_modes
 from .model import BeamGroup, BeamModel
-from .model import Fixed as NodeFixed
-from .model import NodalLoad
-from .model import Prescribed as NodePrescribed
+from .supports import Fixed as NodeFixed
+from .supports import NodalLoad
+from .supports import Prescribed as NodePrescribed
 from ..beam_result import BeamPath, BeamResult
 from ..result_face import BeamFace
 from .nonlinear import solve_beam_nonlinear
@@ -142,7 +142,7 @@ def rigid_face_conditions(model: BeamModel, faces) -> tuple:
         supports += [NodePrescribed(nodes[0], dof, float(v))
                      for dof, v in zip(("x", "y", "theta"), values) if v is not None]
         force = (*face.force[:2], face.moment)
-        loads.append(NodalLoad(nodes[0], *force))
+        loads.append(NodalLoad(nodes[0], *force[:2], m=force[2]))
         applied[face.group] = np.array(force, dtype=float)
     return supports, loads, applied
 
@@ -245,7 +245,7 @@ def load_array(model: BeamModel, nodal) -> np.ndarray:
     """(n_nodes, 3) nodal loads (F_x, F_y N, M N m) of NodalLoads."""
     f = np.zeros((model.n_nodes, 3))
     for load in nodal:
-        f[load.node] += (load.fx, load.fy, load.m)
+        f[load.node] += load.vector(3)
     return f
 
 

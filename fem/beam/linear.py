@@ -12,7 +12,8 @@ import numpy as np
 from .assembly import (Assembler, Evaluation, SingularBeamError, element_mass,
                        point_mass_blocks)
 from .banded import spd_factor
-from .model import BeamModel, Fixed
+from .model import BeamModel
+from .supports import Fixed
 from .space import held_values
 
 MAX_EXTRA = 12  # extra prescribed DOFs solved by the Schur complement (more: own factor)

@@ -17,18 +17,6 @@ from ..materials import Material
 from .groups import BeamGroup
 from .superelement import Superelement
 
-DOF_NAMES = {"x": 0, "u": 0, "y": 1, "v": 1, "theta": 2, "t": 2, "rz": 2}
-
-
-def dof_index(dof) -> int:
-    """Index 0, 1, 2 of a DOF given as 0/1/2 or 'x'/'y'/'theta' (also 'u', 'v')."""
-    if isinstance(dof, str) and dof.lower() in DOF_NAMES:
-        return DOF_NAMES[dof.lower()]
-    if isinstance(dof, (int, np.integer)) and not isinstance(dof, bool) and 0 <= dof <= 2:
-        return int(dof)
-    raise ValueError(f"dof = {dof!r} must be 0/1/2 or one of 'x', 'y', 'theta'")
-
-
 SECTION_COLUMNS = 12  # Section.row()'s length: the model's section_table columns
 BENDING_FACTOR, AXIAL_FACTOR, MASS_FACTOR = 9, 10, 11  # their columns in section_table
 
@@ -115,43 +103,6 @@ class RigidLink:
     def __post_init__(self):
         object.__setattr__(self, "slaves", tuple(int(s) for s in np.atleast_1d(self.slaves)))
         object.__setattr__(self, "master", int(self.master))
-
-
-@dataclass(frozen=True)
-class Fixed:
-    """Hold ``dofs`` (default all three) of ``nodes`` at zero."""
-
-    nodes: tuple
-    dofs: tuple = ("x", "y", "theta")
-
-    def prescribed(self):
-        nodes = np.atleast_1d(self.nodes).tolist()
-        dofs = [dof_index(d) for d in np.atleast_1d(self.dofs).tolist()] if nodes else []
-        for n in nodes:
-            for d in dofs:
-                yield int(n), d, 0.0
-
-
-@dataclass(frozen=True)
-class Prescribed:
-    """Prescribe DOF ``dof`` of ``node`` to ``value`` (m or rad) times the load factor."""
-
-    node: int
-    dof: object
-    value: float
-
-    def prescribed(self):
-        yield int(self.node), dof_index(self.dof), float(self.value)
-
-
-@dataclass(frozen=True)
-class NodalLoad:
-    """Dead force (fx, fy) in N and moment m in N m on ``node``, times the load factor."""
-
-    node: int
-    fx: float = 0.0
-    fy: float = 0.0
-    m: float = 0.0
 
 
 def link_masters(rigid_links, n_nodes: int, link_type) -> np.ndarray:

@@ -20,7 +20,8 @@ from ..newton import NonConvergenceError, check_step_arguments
 from ..stepping import StepFailed as _StepFailed
 from ..stepping import march
 from .assembly import Assembler, Factor, SingularBeamError
-from .model import BeamModel, dof_index
+from .model import BeamModel
+from .supports import dof_index
 from .static import BeamState, make_state
 
 

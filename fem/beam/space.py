@@ -14,7 +14,8 @@ rotation), ``col`` (n_dofs, 2) their indices (free unknowns z first, then the he
 import numpy as np
 import scipy.sparse as sp
 
-from .model import BeamModel, Fixed, Prescribed
+from .model import BeamModel
+from .supports import Fixed, Prescribed
 from .pattern import Condensed, block_dofs, global_matrix, shared
 
 
@@ -26,7 +27,7 @@ def held_values(model, supports, kinds=(Fixed, Prescribed)) -> np.ndarray:
     for sup in supports:
         if not isinstance(sup, kinds):
             raise ValueError(f"supports: {sup!r} is not a Fixed or Prescribed")
-        for node, dof, value in sup.prescribed():
+        for node, dof, value in sup.prescribed(per_node):
             if not 0 <= node < model.n_nodes:
                 raise ValueError(f"supports: node {node} outside 0..{model.n_nodes - 1}")
             if model.master_of[node] >= 0:

@@ -3,7 +3,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .assembly import Assembler, load_vector
+from .assembly import Assembler
+from .supports import load_vector
 from .element import bending_stress
 from .linear import solve_linear
 from .model import BeamModel

@@ -9,8 +9,9 @@
 """
 from ..beam.assembly import SingularBeamError
 from .modal import Beam3DModes, solve_beam3d_modes
-from .model import (Beam3DModel, Fixed, NodalLoad, Prescribed, RigidLink, Section,
-                    element_frames, rect_torsion_constant, rect_torsion_shear)
+from ..beam.supports import Fixed, NodalLoad, Prescribed
+from .model import (Beam3DModel, RigidLink, Section, element_frames, rect_torsion_constant,
+                    rect_torsion_shear)
 from .nonlinear import Beam3DNonlinearResult, NonConvergenceError, solve_beam3d_nonlinear
 from .static import Beam3DState, compliance3d, solve_beam3d_static
 

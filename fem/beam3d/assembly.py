@@ -11,7 +11,8 @@ import scipy.sparse as sp
 from ..beam.space import held_values
 from .corotational import internal_forces, local_deformations
 from .element import basic_stiffness, local_matrices, to_global
-from .model import Beam3DModel, Fixed, NodalLoad, Prescribed
+from ..beam.supports import load_vector
+from .model import Beam3DModel
 from .rotations import expm, skew
 
 
@@ -55,18 +56,6 @@ def mass_matrix(model: Beam3DModel, u=None, R=None) -> sp.csr_matrix:
     return Mg.tocsr()
 
 
-def load_vector(model: Beam3DModel, loads) -> np.ndarray:
-    """Full-load vector (N, N m) from NodalLoad objects."""
-    f = np.zeros(model.n_dofs)
-    for load in loads:
-        if not isinstance(load, NodalLoad):
-            raise ValueError(f"loads: {load!r} is not a NodalLoad")
-        if not 0 <= int(load.node) < model.n_nodes:
-            raise ValueError(f"loads: node {load.node} outside 0..{model.n_nodes - 1}")
-        f[6 * int(load.node):6 * int(load.node) + 6] += load.vector
-    return f
-
-
 class Space:
     """Unknowns: the DOF increments of independent (non-slave) nodes that are not held.
     Held DOFs move by the load factor's increment times their value (a prescribed
@@ -75,7 +64,7 @@ class Space:
     def __init__(self, model: Beam3DModel, supports):
         self.model = model
         n = model.n_dofs
-        values = held_values(model, supports, (Fixed, Prescribed))
+        values = held_values(model, supports)
         self.slaves = np.flatnonzero(model.master_of >= 0)
         self.masters = model.master_of[self.slaves]
         self.arm = model.nodes[self.slaves] - model.nodes[self.masters]

@@ -27,9 +27,9 @@ from ..beam.face import no_options, modal_superposition
 from ..harmonic import FRF, check_frequencies
 from .modal import Beam3DModes, solve_beam3d_modes
 from .model import Beam3DModel
-from .model import Fixed as NodeFixed
-from .model import NodalLoad
-from .model import Prescribed as NodePrescribed
+from ..beam.supports import Fixed as NodeFixed
+from ..beam.supports import NodalLoad
+from ..beam.supports import Prescribed as NodePrescribed
 from ..beam3d_result import Beam3DPath, Beam3DResult
 from ..result_face import BeamFace
 from .nonlinear import solve_beam3d_nonlinear
@@ -92,7 +92,7 @@ def node_loads(model: Beam3DModel, loads) -> list:
             nodes = group(model, load.group).nodes
             f = np.zeros(3)
             f[:len(load.vector)] = np.asarray(load.vector, dtype=float) / len(nodes)
-            out += [NodalLoad(n, *f) for n in nodes]
+            out += [NodalLoad(n, f[0], f[1], fz=f[2]) for n in nodes]
         else:
             raise ValueError(f"loads: {type(load).__name__} on the spatial beam model: it "
                              "takes forces (Force, the group's total in N)")
@@ -203,7 +203,7 @@ def load_array(model: Beam3DModel, nodal) -> np.ndarray:
     """(n_nodes, 6) nodal loads (F N, M N m) of NodalLoads."""
     f = np.zeros((model.n_nodes, 6))
     for load in nodal:
-        f[load.node] += load.vector
+        f[load.node] += load.vector(6)
     return f
 
 

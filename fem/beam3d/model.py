@@ -19,19 +19,6 @@ from ..beam.model import RigidLink, link_masters
 from ..checks import positive
 from ..materials import Material
 
-DOF_NAMES = {"x": 0, "y": 1, "z": 2, "rx": 3, "ry": 4, "rz": 5}
-ALL_DOFS = ("x", "y", "z", "rx", "ry", "rz")
-
-
-def dof_index(dof) -> int:
-    """Index 0..5 of a DOF given as 0..5 or 'x', 'y', 'z', 'rx', 'ry', 'rz'."""
-    if isinstance(dof, str) and dof.lower() in DOF_NAMES:
-        return DOF_NAMES[dof.lower()]
-    if isinstance(dof, (int, np.integer)) and not isinstance(dof, bool) and 0 <= dof <= 5:
-        return int(dof)
-    raise ValueError(f"dof = {dof!r} must be 0..5 or one of {', '.join(ALL_DOFS)}")
-
-
 def rect_torsion_constant(a, b):
     """Saint-Venant torsion constant J (m^4) of a x b rectangles (arrays broadcast): the
     series solution for rectangular bars (Timoshenko & Goodier, Theory of Elasticity, 3rd
@@ -127,50 +114,6 @@ class Section:
     def Ip(self) -> float:
         """Polar second moment Iy + Iz (m^4): the section's torsional inertia per rho."""
         return self.Iy + self.Iz
-
-
-@dataclass(frozen=True)
-class Fixed:
-    """Hold ``dofs`` (default all six) of ``nodes`` at zero."""
-
-    nodes: tuple
-    dofs: tuple = ALL_DOFS
-
-    def prescribed(self):
-        for n in np.atleast_1d(self.nodes):
-            for d in np.atleast_1d(self.dofs):
-                yield int(n), dof_index(d.item() if hasattr(d, "item") else d), 0.0
-
-
-@dataclass(frozen=True)
-class Prescribed:
-    """Prescribe DOF ``dof`` of ``node`` to ``value`` (m or rad) times the load factor. A
-    prescribed rotation is applied as a rotation about that fixed global axis."""
-
-    node: int
-    dof: object
-    value: float
-
-    def prescribed(self):
-        yield int(self.node), dof_index(self.dof), float(self.value)
-
-
-@dataclass(frozen=True)
-class NodalLoad:
-    """Dead force (fx, fy, fz) in N and moment (mx, my, mz) in N m about the global axes on
-    ``node``, times the load factor."""
-
-    node: int
-    fx: float = 0.0
-    fy: float = 0.0
-    fz: float = 0.0
-    mx: float = 0.0
-    my: float = 0.0
-    mz: float = 0.0
-
-    @property
-    def vector(self) -> np.ndarray:
-        return np.array([self.fx, self.fy, self.fz, self.mx, self.my, self.mz], dtype=float)
 
 
 def element_frames(nodes, elements, orientation=None) -> np.ndarray:

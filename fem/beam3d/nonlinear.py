@@ -20,7 +20,8 @@ from ..newton import NonConvergenceError, check_step_arguments  # noqa: F401 (pu
 from ..stepping import StepFailed as _StepFailed
 from ..stepping import march
 from .assembly import Assembler
-from .model import Beam3DModel, dof_index
+from ..beam.supports import dof_index
+from .model import Beam3DModel
 from .rotations import logm
 from .static import Beam3DState, make_state
 
@@ -53,7 +54,7 @@ class _Stepper:
         self.c_index = None
         if control is not None:
             node, dof, self.c_value = control
-            k = dof_index(dof)
+            k = dof_index(dof, 6)
             where = np.flatnonzero(asm.space.free == 6 * int(node) + k)
             if k > 2 or not len(where):
                 raise ValueError(f"control = {control!r}: control a free translation DOF (not "

@@ -59,7 +59,7 @@ def test_tangent_compliance_matches_finite_differences(steel):
     """compliance(about=state) = d(stage motion)/d(load) at a deflected state."""
     model, supports, stage = parallel_guide(steel, L, W, T, GAP, n=20)
     F = np.array([2.0, 30.0, 0.05])
-    load = lambda f: [NodalLoad(stage, *f)]
+    load = lambda f: [NodalLoad(stage, f[0], f[1], m=f[2])]
     state = solve_beam_nonlinear(model, supports, load(F), steps=5).final
     assert state.q[stage, 1] > 0.1 * L                    # large stroke
     C = compliance(model, supports, stage, about=state, loads=load(F))

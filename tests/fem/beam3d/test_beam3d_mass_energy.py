@@ -48,7 +48,7 @@ def test_element_energies_add_up_to_the_work_of_the_tip_load(steel):
     rot = Rotation.from_matrix(state.R).as_rotvec()
     shape = np.hstack([state.u, rot])[None]
     e = element_energies(model, shape)[0]
-    work = 0.5 * load.vector @ shape[0, tip]
+    work = 0.5 * load.vector(6) @ shape[0, tip]
     assert e.sum() == pytest.approx(work, rel=1e-10)
     E, G, L = steel.E, steel.E / (2 * (1 + steel.nu)), 0.1
     bend = sum(F**2 * L**3 / (6 * E * I) for F, I in ((0.3, section.Iz), (0.2, section.Iy)))
