@@ -1,5 +1,7 @@
 """Which linear solver ``solver="auto"`` runs: the direct factorization wherever its factor
-fits the memory, AMG-CG beyond (docs/performance.md, "AMG-CG for the largest meshes")."""
+fits the memory, the iterative path ('amg') beyond: p-multigrid CG on quadratic elements
+(fem/pmultigrid.py), AMG-CG on linear ones (docs/performance.md, "The iterative path for the
+largest meshes")."""
 from .budget import available_memory_bytes
 from .linsolve import factor_bytes
 
@@ -14,7 +16,7 @@ def solver_choice(n_unknowns: int, dim: int, solver: str = "auto", matrix=None,
     """('direct' or 'amg', why) for ``solver='auto'``; a named solver is checked and kept.
     Up to AMG_THRESHOLD unknowns the direct solver; above it, with the ``matrix`` (a callable
     giving it, built only then), the direct solver still wherever PARDISO's analysis says
-    its factor fits half the memory available (fem/budget.py), AMG-CG beyond."""
+    its factor fits half the memory available (fem/budget.py), the iterative path beyond."""
     if solver not in ("auto", "direct", "amg"):
         raise ValueError(f"solver = {solver!r}; choose 'auto', 'direct' or 'amg'")
     if solver != "auto":
