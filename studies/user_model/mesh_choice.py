@@ -80,14 +80,3 @@ def with_mesh_size(sets: dict, mesh_size) -> dict:
         raise ValueError("give the bodies' element size once: --mesh-size or --set mesh.size")
     return {**sets, "mesh.size": mesh_size}
 
-
-def cli_size_factor(spec, args) -> tuple[float, str | None]:
-    """(size factor, how it was chosen) of ``flexfem analyze``'s ``args`` (None for the beam
-    model, which has no mesh: --size-factor and --mesh-size are refused with it)."""
-    given = getattr(args, "size_factor", None)
-    if getattr(args, "reduced", "continuum") == "beam":
-        if given is not None or getattr(args, "mesh_size", None) is not None:
-            raise ValueError(f"{spec.source}: --size-factor and --mesh-size set the continuum's "
-                             "mesh; the beam model (--model beam) has none")
-        return 1.0, None
-    return choose_size_factor(spec, given, getattr(args, "max_dofs", None))

@@ -179,7 +179,7 @@ def test_the_beam_model_writes_its_lines_and_pictures(beam, tmp_path):
 def test_an_existing_file_as_out_is_refused_in_one_line(tmp_path, monkeypatch):
     target = tmp_path / "results.txt"
     target.write_text("keep me")
-    monkeypatch.setattr("flexfem.studies.user_model.cli.analyze_model",
+    monkeypatch.setattr("flexfem.studies.user_model.cli.analyze",
                         lambda *a, **k: pytest.fail("solved before refusing --out"))
     code, out, err = _analyze(COMPOUND, "--out", str(target))
     assert code == 2 and out == ""
