@@ -21,6 +21,7 @@ from .boundary import (BodyForce, Fixed, Force, Gravity, PointForce, Prescribed,
                        Traction)
 from .export import write_mesh, write_result
 from .gmsh_session import gmsh_session
+from .factor import SingularStiffness
 from .linsolve import SingularSystemError
 from .materials import Material, material, material_names
 from .mesh import FEMesh, drop_unused_vertices, facets_where, mesh_from_gmsh, read_mesh
@@ -41,7 +42,7 @@ from .stress import nonlinear_stress, nonlinear_stress_at
 __all__ = [
     "BodyForce", "FEMesh", "Fixed", "Force", "Gravity", "Material", "Model", "Modes",
     "NonConvergenceError", "NonlinearResult", "PlaneStrain", "PlaneStress", "PointForce", "Pressure",
-    "Prescribed", "RigidFace", "SingularSystemError", "Solid3D", "StaticResult", "Traction",
+    "Prescribed", "RigidFace", "SingularStiffness", "SingularSystemError", "Solid3D", "StaticResult", "Traction",
     "UnderConstrainedError", "drop_unused_vertices", "facets_where", "gmsh_session", "material", "material_names",
     "mesh_from_gmsh", "nonlinear_stress", "nonlinear_stress_at", "read_mesh", "solve_modes", "solve_nonlinear", "solve_static",
     "von_mises", "write_mesh", "write_result",

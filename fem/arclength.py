@@ -16,7 +16,7 @@ import math
 
 import numpy as np
 
-from . import linsolve
+from .factor import SingularStiffness, factor
 from .stepping import StepFailed
 from .newton import NonConvergenceError, newton_step
 
@@ -30,9 +30,9 @@ def _load_direction(problem, z, lam, rz) -> np.ndarray:
 
 def _solve2(K, a, b, kind="symmetric"):
     try:
-        with linsolve.factorize(K, kind=kind) as solve:
-            x = solve(np.column_stack([a, b]))
-    except (RuntimeError, linsolve.SingularSystemError) as error:
+        with factor(K, kind) as F:
+            x = F.solve(np.column_stack([a, b]))
+    except (RuntimeError, SingularStiffness) as error:
         raise StepFailed(f"the tangent is singular ({error})", []) from None
     if not np.all(np.isfinite(x)):
         raise StepFailed("the tangent is singular (non-finite increment)", [])

@@ -5,6 +5,7 @@ copy of the block is made (the static and modal solves' memory peak is the facto
 import numpy as np
 
 from . import linsolve
+from .factor import LinearFactor
 
 
 def decouple(A, I: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -31,7 +32,7 @@ def _diagonal_first(A, I: np.ndarray) -> bool:
     return bool(np.all(A.indices[starts] == held) and np.all(A.data[starts] > 0))
 
 
-class BlockFactorization:
+class BlockFactorization(LinearFactor):
     """``x = fact(b)`` solves ``A[I][:, I] x = b`` (``b``, ``x`` over ``I``: (len(I),) or
     (len(I), k)) for the symmetric ``A`` kept as its upper triangle (CSR, sorted; ``I``
     sorted). With PARDISO the factorization reads ``A``'s own arrays, decoupled in place
@@ -65,7 +66,8 @@ class BlockFactorization:
             A.data[positions] = values
             self._undo = None
 
-    def __call__(self, b) -> np.ndarray:
+    def solve(self, b) -> np.ndarray:
+        """x over ``I`` of A[I][:, I] x = b (fem/factor.py's protocol)."""
         b = np.asarray(b, dtype=float)
         if not self._embedded:
             return self._factor(b)
@@ -79,9 +81,3 @@ class BlockFactorization:
         """Release the factor and write back the held entries; idempotent."""
         self._factor.free()
         self._restore()
-
-    def __enter__(self):
-        return self
-
-    def __exit__(self, *exc):
-        self.free()

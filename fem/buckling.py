@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 import scipy.sparse.linalg as spla
 
-from . import linsolve
+from .factor import factor
 from .boundary import constrained_dofs
 from .hyperelastic import geometric_stiffness
 from .model import Model
@@ -77,8 +77,8 @@ def solve_buckling(model: Model, supports, loads, n: int = 3) -> Buckling:
     if not np.any(G.data):
         raise ValueError("the loads leave the body unstressed: no buckling")
     k = min(len(I) - 1, n + 4)  # a few more than asked: tension modes may take some slots
-    with linsolve.factorize(K, kind="spd") as solve:
-        op = spla.LinearOperator(K.shape, matvec=solve, matmat=solve, dtype=float)
+    with factor(K, "spd") as F:
+        op = spla.LinearOperator(K.shape, matvec=F.solve, matmat=F.solve, dtype=float)
         try:
             mu, vectors = spla.eigsh(-G, k=k, M=K, Minv=op, which="LA", tol=1e-10,
                                      maxiter=100 * k)

@@ -13,7 +13,7 @@ import math
 import numpy as np
 import scipy.sparse as sp
 
-from . import linsolve
+from .factor import factor
 from .boundary import constrained_dofs
 from .hyperelastic import Assembler
 from .rigid_face import ReducedSpace, RigidFace
@@ -184,8 +184,8 @@ def _face_compliance(model, supports, group, state):
     slots = space.slots[0]
     E = np.zeros((K_zz.shape[0], len(slots)))
     E[slots, np.arange(len(slots))] = 1.0
-    with linsolve.Factorization(K_zz, "symmetric" if symmetric else "general") as solve:
-        X = solve(E)
+    with factor(K_zz, "symmetric" if symmetric else "general") as F:
+        X = F.solve(E)
     C = X[slots] / np.outer(fk.scale, fk.scale)  # coordinates per generalised loads
     if symmetric:
         C = 0.5 * (C + C.T)

@@ -20,6 +20,8 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from . import memory
+from .amg import AmgFactor
+from .factor_protocol import LinearFactor, SingularStiffness
 from .restriction import Restriction  # noqa: F401 (part of this module's interface)
 from .symmetric import symmetric_from_upper
 
@@ -35,8 +37,8 @@ _PARDISO_ERRORS = {-1: "input inconsistent", -2: "not enough memory", -3: "reord
                    -10: "error opening out-of-core files", -11: "read/write error with OOC files"}
 
 
-class SingularSystemError(ValueError):
-    """The stiffness matrix is singular: the model can move without straining."""
+#: the singular-matrix error of every factorisation (fem/factor.py), by its older name
+SingularSystemError = SingularStiffness
 
 
 def _mkl_candidates() -> list:
@@ -98,7 +100,7 @@ def pardiso_call(pt, mtype, phase, n, data, indptr, indices, iparm, b, x) -> Non
        ctypes.byref(ctypes.c_int32(0)), b.ctypes.data_as(ctypes.c_void_p),
        x.ctypes.data_as(ctypes.c_void_p), ctypes.byref(error))
     if error.value == -4 or error.value == -7:
-        raise SingularSystemError(f"PARDISO: {_PARDISO_ERRORS[error.value]}; the model is "
+        raise SingularStiffness(f"PARDISO: {_PARDISO_ERRORS[error.value]}; the model is "
                                   "under-constrained, has disconnected parts or a mechanism")
     if error.value in (-2, -9):
         raise MemoryError(f"PARDISO error {error.value}: {_PARDISO_ERRORS[error.value]}")
@@ -117,16 +119,17 @@ def pardiso_release(pt, mtype, n, iparm) -> None:
         pt[:] = 0
 
 
-class Factorization:
-    """A sparse direct factorization of ``A``, kept for many solves: ``x = fact(b)`` for
-    b of shape (n,) or (n, k). ``kind``: 'spd' (symmetric positive definite: Cholesky),
-    'symmetric' (indefinite) or 'general'; symmetric kinds read the upper triangle only.
-    ``backend``: :func:`direct_backend` of ``kind``, 'mkl-pardiso', 'cholmod' or 'superlu'.
-    Free its memory with ``free()`` or ``with``. ``analysis_only``: PARDISO's reordering
-    alone, no factor (:func:`factor_bytes`).
+class Factorization(LinearFactor):
+    """A sparse direct factorization of ``A``, kept for many solves: ``x = fact.solve(b)``
+    (or ``fact(b)``) for b of shape (n,) or (n, k). ``kind``: 'spd' (symmetric positive
+    definite: Cholesky), 'symmetric' (indefinite) or 'general'; symmetric kinds read the upper
+    triangle only. ``backend``: 'mkl-pardiso', 'cholmod' or 'superlu' (None: :func:`direct_backend`
+    of ``kind``). Free its memory with ``free()`` or ``with``. ``analysis_only``: PARDISO's
+    reordering alone, no factor (:func:`factor_bytes`). Through fem/factor.py's ``factor``.
     """
 
-    def __init__(self, A, kind: str = "general", analysis_only: bool = False):
+    def __init__(self, A, kind: str = "general", analysis_only: bool = False,
+                 backend: str | None = None):
         if kind not in MATRIX_KINDS:
             raise ValueError(f"kind = {kind!r}; choose one of {sorted(MATRIX_KINDS)}")
         A = sp.csr_matrix(A, dtype=float)
@@ -135,19 +138,23 @@ class Factorization:
         self.kind, self.n = kind, A.shape[0]
         self._finalizer = None
         self.holds_matrix = False  # whether the solves still read A's arrays (PARDISO)
-        self.backend = direct_backend(kind)
+        self.backend = direct_backend(kind) if backend is None else backend
+        if self.backend == "mkl-pardiso" and _mkl_pardiso() is None:
+            raise ValueError("backend 'mkl-pardiso': MKL's runtime library is not installed")
+        if self.backend == "cholmod" and (kind != "spd" or _cholmod() is None):
+            raise ValueError("backend 'cholmod': SPD matrices only, with scikit-sparse installed")
         if self.backend == "mkl-pardiso":
             self._init_pardiso(A, keep_matrix=analysis_only, phase=11 if analysis_only else 12)
         elif self.backend == "cholmod":
             try:
                 self._factor = _cholmod().cholesky(A.tocsc())
             except Exception as error:  # sksparse's CholmodNotPositiveDefiniteError
-                raise SingularSystemError(f"CHOLMOD: {error}") from None
+                raise SingularStiffness(f"CHOLMOD: {error}") from None
         else:
             try:
                 self._factor = spla.splu(A.tocsc(), permc_spec="MMD_AT_PLUS_A")
             except RuntimeError as error:  # "Factor is exactly singular"
-                raise SingularSystemError(f"SuperLU: {error}") from None
+                raise SingularStiffness(f"SuperLU: {error}") from None
 
     def _init_pardiso(self, A, keep_matrix: bool = False, phase: int = 12):
         self._mtype = MATRIX_KINDS[self.kind]
@@ -156,7 +163,7 @@ class Factorization:
         A.sum_duplicates()
         A.sort_indices()
         if np.any(np.diff(A.indptr) == 0):
-            raise SingularSystemError("the matrix has an empty row: a DOF that nothing stiffens")
+            raise SingularStiffness("the matrix has an empty row: a DOF that nothing stiffens")
         self._data = np.ascontiguousarray(A.data, dtype=float)
         self.holds_matrix = True
         self._indptr = A.indptr.astype(np.int32, copy=False)
@@ -199,7 +206,8 @@ class Factorization:
             self._data, self._indices = np.zeros(1), np.zeros(1, dtype=np.int32)
             self.holds_matrix = False
 
-    def __call__(self, b) -> np.ndarray:
+    def solve(self, b) -> np.ndarray:
+        """x of A x = b, b of shape (n,) or (n, k)."""
         b = np.asarray(b, dtype=float)
         if b.shape[0] != self.n:
             raise ValueError(f"right-hand side has {b.shape[0]} rows, the matrix {self.n}")
@@ -220,12 +228,6 @@ class Factorization:
         if self._finalizer is not None:
             self._finalizer()
         self._factor = None
-
-    def __enter__(self):
-        return self
-
-    def __exit__(self, *exc):
-        self.free()
 
 
 @functools.cache
@@ -293,17 +295,10 @@ def direct_backend(kind: str = "spd") -> str:
     return "superlu"
 
 
-def factorize(A: sp.spmatrix, kind: str = "general") -> Factorization:
-    """Factorize the square sparse matrix ``A`` once; return ``solve(b) -> x`` (a
-    :class:`Factorization`: call ``.free()`` when done). ``kind``: 'spd', 'symmetric' or
-    'general' (see :class:`Factorization`)."""
-    return Factorization(A, kind)
-
-
 def solve_direct(A, b, kind: str = "general") -> np.ndarray:
     """One direct solve of ``A x = b``; the factor is freed before returning."""
-    with Factorization(A, kind) as solve:
-        return solve(b)
+    with Factorization(A, kind) as F:
+        return F.solve(b)
 
 
 def solve_and_check(A, b, kind: str = "spd", what: str = "static solve",
@@ -329,29 +324,9 @@ def refine_and_check(A, b, solve, what: str = "static solve", rtol: float = 1e-6
 
 
 def solve_amg(A, b, near_null_space: np.ndarray, tol: float = 1e-10) -> np.ndarray:
-    """Solve the SPD system with CG preconditioned by smoothed-aggregation AMG.
-
-    near_null_space : (n, k) rigid-body modes restricted to the unknowns. The system is
-    scaled symmetrically to unit diagonal first, and the prolongator is energy-minimising:
-    on P2 elasticity plain smoothed aggregation stalls (hundreds of CG iterations), this
-    setup converges in a few dozen.
-    """
-    import pyamg
-
-    d = 1.0 / np.sqrt(sp.csr_matrix(A).diagonal())
-    scale = sp.diags(d)
-    As = (scale @ A @ scale).tocsr()
-    ml = pyamg.smoothed_aggregation_solver(
-        As, B=near_null_space / d[:, None], symmetry="symmetric", max_coarse=1000,
-        strength=("symmetric", {"theta": 0.02}), smooth=("energy", {"degree": 2, "maxiter": 2}))
-    residuals = []
-    bs = d * b
-    y = ml.solve(bs, tol=tol, accel="cg", maxiter=1000, residuals=residuals)
-    if not residuals[-1] <= 10 * tol * np.linalg.norm(bs):
-        raise SingularSystemError(
-            f"AMG-CG did not converge (relative residual {residuals[-1] / np.linalg.norm(bs):.1e} "
-            f"after {len(residuals) - 1} iterations); try solver='direct'")
-    return d * y
+    """Solve the SPD system with CG preconditioned by smoothed-aggregation AMG (fem/factor.py's
+    'amg-cg' backend: ``near_null_space`` (n, k) the rigid-body modes on the unknowns)."""
+    return AmgFactor(A, "spd", near_null_space, tol).solve(b)
 
 
 def factor_bytes(A, kind: str = "spd") -> int | None:
@@ -373,7 +348,7 @@ FLOOR_CAP = 1e-2
 
 
 def check_solution(A, x, b, what: str = "static solve", rtol: float = 1e-6) -> None:
-    """Raise :class:`SingularSystemError` if ``x`` does not solve ``A x = b``.
+    """Raise :class:`SingularStiffness` if ``x`` does not solve ``A x = b``.
 
     Accepted: a residual ||A x - b|| of at most ``rtol`` ||b||, or one at the round-off floor
     of evaluating A x (at most ROUNDOFF_FACTOR eps ||A||_inf ||x||) that is still below
@@ -383,7 +358,7 @@ def check_solution(A, x, b, what: str = "static solve", rtol: float = 1e-6) -> N
     ||b|| itself, or one far above the floor, and is refused.
     """
     if not np.all(np.isfinite(x)):
-        raise SingularSystemError(f"{what}: the solution is not finite; the model is singular "
+        raise SingularStiffness(f"{what}: the solution is not finite; the model is singular "
                                   "(under-constrained, or parts not connected to a support)")
     r = np.linalg.norm(A @ x - b)
     nb = max(np.linalg.norm(b), 1e-300)
@@ -392,7 +367,7 @@ def check_solution(A, x, b, what: str = "static solve", rtol: float = 1e-6) -> N
     floor = ROUNDOFF_FACTOR * np.finfo(float).eps * _norm_inf(A) * np.linalg.norm(x)
     if r <= floor and r <= FLOOR_CAP * nb:
         return
-    raise SingularSystemError(f"{what}: residual {r / nb:.1e} relative to the load (bound "
+    raise SingularStiffness(f"{what}: residual {r / nb:.1e} relative to the load (bound "
                               f"{rtol:.0e}, or the round-off floor {min(floor, FLOOR_CAP * nb) / nb:.1e}"
                               "); the stiffness matrix is singular or nearly so (under-constrained "
                               "model, disconnected parts, or a mechanism)")

@@ -17,6 +17,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from . import linsolve
+from .factor import SingularStiffness, factor
 from .boundary import component_indices, constrained_dofs, load_vector
 from .hyperelastic import (STRAIN_LIMIT, Assembler, StepFailed, cauchy_stress,  # noqa: F401
                            deformation, final_stress, green_lagrange, max_strain, svk_stress,
@@ -96,11 +97,12 @@ class _Problem:
             if self.solver == "amg" and self.model.order > 1:  # p-multigrid CG
                 x = solve_pmg(self.model, sp.triu(K, format="csr"), self.space.I, b)[0]
             elif self.solver == "amg":
-                x = linsolve.solve_amg(K, b, self._near_null_space())
+                with factor(K, "spd", "amg-cg", near_null_space=self._near_null_space()) as F:
+                    x = F.solve(b)
             else:
                 x = solve_tangent(K, b, self.matrix_kind)
             linsolve.check_solution(K, x, b, "Newton step", rtol=1e-6)
-        except (RuntimeError, linsolve.SingularSystemError) as error:
+        except (RuntimeError, SingularStiffness) as error:
             raise StepFailed(f"the tangent is singular ({error})", []) from None
         if not np.all(np.isfinite(x)):
             raise StepFailed("the tangent is singular (non-finite increment)", [])
@@ -115,7 +117,7 @@ def _stability(problem, z, u, r, lam):
     K = problem.reduced_tangent(z, lam, u, r, problem.space.jacobian(z, lam))
     try:
         return count_negative_eigenvalues(K)
-    except linsolve.SingularSystemError:
+    except SingularStiffness:
         return None
 
 

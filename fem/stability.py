@@ -9,6 +9,7 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
+from .factor import SingularStiffness
 from .hyperelastic import Assembler, geometric_stiffness
 from .model import Model
 from .nonlinear_result import NonlinearResult
@@ -18,19 +19,18 @@ from .static_result import StaticResult
 def count_negative_eigenvalues(K) -> int:
     """Number of negative eigenvalues of the symmetric sparse matrix ``K``: the negative
     pivots of K = P^T L D L^T P with diagonal pivots (SuperLU in symmetric mode, no pivoting
-    threshold). A zero pivot (K singular: a critical state) raises SingularSystemError;
+    threshold). A zero pivot (K singular: a critical state) raises SingularStiffness;
     where SuperLU leaves the diagonal (non-symmetric permutation) the count falls back to
     shift-invert Lanczos about 0 (the 6 eigenvalues nearest 0). Without 2 x 2 pivots the
     factorization of a strongly indefinite matrix may be inaccurate; tangents of
     structures near their stability limit, the case of interest, are nearly definite."""
-    from .linsolve import SingularSystemError
 
     K = sp.csc_matrix(K, dtype=float)
     try:
         lu = spla.splu(K, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
                        options=dict(SymmetricMode=True))
     except RuntimeError as error:
-        raise SingularSystemError(f"the tangent is singular ({error}): a critical state") from None
+        raise SingularStiffness(f"the tangent is singular ({error}): a critical state") from None
     if np.array_equal(lu.perm_r, lu.perm_c):
         d = lu.U.diagonal()
         if np.all(np.isfinite(d)):

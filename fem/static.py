@@ -3,6 +3,7 @@ import numpy as np
 
 from . import linsolve, memory
 from .block_factor import BlockFactorization
+from .factor import factor
 from .boundary import component_indices, constrained_dofs, load_vector
 from .model import Model, von_mises
 from .pmultigrid import solve_pmg
@@ -46,16 +47,17 @@ def solve_static(model: Model, supports, loads, solver: str = "auto",
             linsolve.check_solution(K_II, u[I], rhs, rtol=1e-6)
             chosen, why = "pmg-cg", f"{why}; {iterative['iterations']} CG iterations"
         elif chosen == "amg":
-            u[I] = linsolve.solve_amg(linsolve.block_to_factorize(K, I, "general", upper=True),
-                                      rhs, rigid_body_dof_modes(model)[I])
+            with factor(linsolve.block_to_factorize(K, I, "general", upper=True), "spd",
+                        "amg-cg", near_null_space=rigid_body_dof_modes(model)[I]) as F:
+                u[I] = F.solve(rhs)
             linsolve.check_solution(K_II, u[I], rhs, rtol=1e-6)
             chosen = "amg-cg"
         else:
             # K_II is symmetric positive definite once check_supports has passed: Cholesky,
             # on K's own arrays (no copy of the block)
-            with BlockFactorization(K, I, "spd") as solve:
-                u[I] = linsolve.refine_and_check(K_II, rhs, solve, rtol=1e-6)
-                chosen = solve.backend
+            with BlockFactorization(K, I, "spd") as F:
+                u[I] = linsolve.refine_and_check(K_II, rhs, F.solve, rtol=1e-6)
+                chosen = F.backend
 
     Ku = symmetric_matvec(K, u)
     residual = Ku - f

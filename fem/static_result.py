@@ -6,13 +6,14 @@ import scipy.sparse as sp
 import skfem
 from scipy.sparse.csgraph import connected_components
 
-from . import linsolve, stress
+from . import stress
+from .factor import SingularStiffness
 from .boundary import component_indices
 from .model import Model, rigid_body_modes
 from .projection import nodal_average  # noqa: F401 (public here too)
 
 
-class UnderConstrainedError(linsolve.SingularSystemError):
+class UnderConstrainedError(SingularStiffness):
     """The supports leave rigid-body motions free."""
 
 
@@ -130,16 +131,45 @@ def check_supports(model: Model, D: np.ndarray) -> None:
         free = n_modes - int(np.sum(s >= 1e-9 * max(np.abs(modes).max(), 1.0) * np.sqrt(len(D))))
         if not free:
             continue
+        unheld = free_rigid_motions(rows, free)
         if len(parts) == 1:
             raise UnderConstrainedError(
-                f"the supports leave {free} of {n_modes} rigid-body modes free (e.g. a "
-                "translation along an unheld axis, or a rotation about a point or line of held "
-                "nodes); add supports")
+                f"the supports leave {free} of {n_modes} rigid-body modes free: no support "
+                f"holds {unheld}; add supports", free=unheld)
         where = model.basis.doflocs[:, part].mean(axis=1)
         raise UnderConstrainedError(
             f"the mesh has {len(parts)} disconnected parts and part {k + 1} (centred near "
-            f"{np.round(where, 6).tolist()} m) has {free} of {n_modes} rigid-body modes free: "
-            "connect it to the rest of the body or give it its own supports")
+            f"{np.round(where, 6).tolist()} m) has {free} of {n_modes} rigid-body modes free "
+            f"(nothing holds {unheld}): connect it to the rest of the body or give it its own "
+            "supports", free=unheld)
+
+
+#: the rigid-body modes of rigid_body_dof_modes, in its order, in words
+RIGID_MOTION_NAMES = {3: ("the rigid motion along x", "the rigid motion along y",
+                          "the rotation about z"),
+                      6: ("the rigid motion along x", "the rigid motion along y",
+                          "the rigid motion along z", "the rotation about z",
+                          "the rotation about x", "the rotation about y")}
+
+
+def free_rigid_motions(rows: np.ndarray, free: int) -> str:
+    """Words for the ``free`` rigid-body motions that the held rows ``rows`` ((n_held,
+    n_modes) of rigid_body_dof_modes) leave free: each free combination of the modes (scaled
+    to unit norm on the held DOFs' scale) by its largest mode, 'a combination of ...' where
+    none has 90 % of it."""
+    n_modes = rows.shape[1]
+    names = RIGID_MOTION_NAMES[n_modes]
+    if len(rows) == 0:
+        return "any rigid motion"
+    scale = np.maximum(np.linalg.norm(rows, axis=0), 1e-300)
+    _, _, vt = np.linalg.svd(rows / scale, full_matrices=True)
+    words = []
+    for c in vt[n_modes - free:]:
+        c = np.abs(c) / np.abs(c).sum()
+        main = np.argsort(-c)
+        words.append(names[main[0]] if c[main[0]] >= 0.9 else
+                     "a combination of " + " and ".join(names[i] for i in main[:2] if c[i] > 0.05))
+    return ", ".join(dict.fromkeys(words))
 
 
 def body_parts(model: Model) -> list[np.ndarray]:

@@ -82,10 +82,10 @@ class Filter:
     @cached_property
     def _helmholtz(self):
         """(factorisation of K, T), made on first use."""
-        from ..fem.linsolve import factorize
+        from ..fem.factor import factor
 
         K, T = helmholtz_matrices(self.grid, self.radius)
-        return factorize(K, kind="spd"), T
+        return factor(K, "spd"), T
 
     def _pde(self, x: np.ndarray) -> np.ndarray:
         solve, T = self._helmholtz

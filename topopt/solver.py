@@ -1,13 +1,15 @@
 """One factorisation per design, the fill-reducing ordering computed once: a matrix of fixed
 sparsity pattern is analysed once (MKL PARDISO phase 11) and refactorised numerically for
 every new set of values (phase 22); elsewhere each design is factorised anew through
-flexfem's ``factorize`` (CHOLMOD or SuperLU)."""
+flexfem's ``factor`` (CHOLMOD or SuperLU). A :class:`PatternSolver` is a factor of
+fem/factor.py's protocol (``solve``, ``free``, ``backend``)."""
 import weakref
 
 import numpy as np
 import scipy.sparse as sp
 
 from ..fem import linsolve
+from ..fem.factor import LinearFactor, factor
 
 SPD = 2  # PARDISO's real symmetric positive definite matrix type
 
@@ -26,7 +28,7 @@ def _iparm() -> np.ndarray:
     return iparm
 
 
-class PatternSolver:
+class PatternSolver(LinearFactor):
     """Factorise SPD matrices sharing the CSR pattern (``indptr``, ``indices``; upper
     triangle for PARDISO, full otherwise): ``factor(data)`` then ``solve(b)``."""
 
@@ -49,7 +51,7 @@ class PatternSolver:
             if self._factor is not None:
                 self._factor.free()
             A = sp.csr_matrix((self._data, self._indices, self._indptr), shape=(self.n, self.n))
-            self._factor = linsolve.factorize(A, kind="spd")
+            self._factor = factor(A, "spd")
             return
         dummy = np.zeros(self.n)
         if not self._analysed:
@@ -60,7 +62,7 @@ class PatternSolver:
     def solve(self, b: np.ndarray) -> np.ndarray:
         """x of A x = b, b of shape (n,) or (n, k)."""
         if self.backend != "mkl-pardiso":
-            return np.asarray(self._factor(b))
+            return np.asarray(self._factor.solve(b))
         b = np.asfortranarray(b, dtype=float)
         x = np.zeros_like(b, order="F")
         self._call(33, b, x)

@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 import scipy.sparse as sp
 import skfem
+from flexfem.fem.factor import factor
 from flexfem.fem import (
     FEMesh,
     Fixed,
@@ -50,7 +51,7 @@ def test_factorization_solves_many_right_hand_sides(backend, kind):
     A = A.tocsr()
     rng = np.random.default_rng(0)
     b, B = rng.standard_normal(n), rng.standard_normal((n, 3))
-    with linsolve.factorize(A, kind) as solve:
+    with factor(A, kind) as solve:
         assert solve.backend in (("mkl-pardiso",) if backend == "pardiso" else ("cholmod", "superlu"))
         assert solve.backend == linsolve.direct_backend(kind)
         x, X = solve(b), solve(B)
@@ -73,7 +74,7 @@ def test_pardiso_symmetric_indefinite_and_not_positive_definite():
 @pytest.mark.skipif(not HAS_PARDISO, reason="MKL (a default dependency on x86-64) not installed")
 def test_pardiso_memory_is_released():
     A = laplacian(100)
-    solve = linsolve.factorize(A, "spd")
+    solve = factor(A, "spd")
     finalizer = solve._finalizer
     assert finalizer.alive
     solve.free()
@@ -82,7 +83,7 @@ def test_pardiso_memory_is_released():
     with pytest.raises(RuntimeError, match="freed"):
         solve(np.ones(100))
     # without free(): released when the object is collected
-    solve = linsolve.factorize(A, "spd")
+    solve = factor(A, "spd")
     finalizer = solve._finalizer
     del solve
     gc.collect()
@@ -91,9 +92,9 @@ def test_pardiso_memory_is_released():
 
 def test_bad_kind_and_shape():
     with pytest.raises(ValueError, match="kind = 'lu'"):
-        linsolve.factorize(laplacian(4), "lu")
+        factor(laplacian(4), "lu")
     with pytest.raises(ValueError, match="square"):
-        linsolve.factorize(sp.random(3, 4, density=1.0), "general")
+        factor(sp.random(3, 4, density=1.0), "general")
 
 
 def test_singular_matrix_is_refused(backend):

@@ -7,6 +7,7 @@ import scipy.sparse as sp
 import skfem
 from flexfem.fem import FEMesh, Fixed, Material, Model, Solid3D, facets_where, linsolve, solve_modes
 from flexfem.fem.assembly import elasticity_stiffness
+from flexfem.fem.factor import factor
 from flexfem.fem.model import scalar_element
 from flexfem.fem.symmetric import symmetric_from_upper, symmetric_matvec, upper
 
@@ -93,7 +94,7 @@ def test_modes_without_a_kept_stiffness_do_not_keep_it_and_are_the_same():
 def test_spd_factorization_solves_after_dropping_the_matrix():
     A = (_symmetric(60, seed=4) + 20 * sp.identity(60)).tocsr()
     b = np.arange(60.0)
-    with linsolve.factorize(A, "spd") as solve:
+    with factor(A, "spd") as solve:
         dropped = len(solve._data) == 1  # the matrix dropped, where PARDISO does not read it
         assert dropped == (not linsolve._spd_solve_reads_matrix())
         assert np.allclose(solve(b), np.linalg.solve(A.toarray(), b), rtol=1e-10, atol=0)

@@ -18,10 +18,10 @@ import numpy as np
 import scipy.sparse as sp
 if sys.argv[2] == "perturbed":
     # other work first: a PARDISO factorisation of another size, a threaded matmul
-    from flexfem.fem.linsolve import factorize
+    from flexfem.fem.factor import factor
     n = 5000
     A = sp.diags([-np.ones(n - 1), 4 * np.ones(n), -np.ones(n - 1)], [-1, 0, 1], format="csr")
-    with factorize(A + sp.diags(np.ones(n - 50), 50) + sp.diags(np.ones(n - 50), -50),
+    with factor(A + sp.diags(np.ones(n - 50), 50) + sp.diags(np.ones(n - 50), -50),
                    "spd") as solve:
         solve(np.ones(n))
     a = np.random.default_rng(1).random((400, 400))
