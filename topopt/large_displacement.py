@@ -14,7 +14,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..fem.linsolve import SingularSystemError
+from ..fem.newton import newton
+from ..fem.stepping import StepFailed
 from .element import element_stiffness
 from .large_strain import LargeStrainQ4, centre_stress, energy_gamma, interpolated
 from .responses import pnorm
@@ -88,24 +89,21 @@ class LargeDisplacement:
 
     def _newton(self, u, E, gamma, factor):
         """(u, iterations, g, dg/dgamma at u) at load ``factor``, the tangent at u
-        factorised; None on failure."""
+        factorised; None on failure (fem/newton.py's driver and divergence rule)."""
         s = self.settings
-        scale = max(np.linalg.norm(factor * self.force), 1e-300)
-        previous = np.inf
-        for it in range(s.max_iterations + 1):
+
+        def residual(u):
             r, K, g, dg = self._residual(u, E, gamma, factor)
-            norm = np.linalg.norm(r)
-            if not np.isfinite(norm) or norm > 1e3 * max(previous, scale):
-                return None
-            try:
-                self.system.factor_elements(K)
-            except SingularSystemError:   # the tangent lost definiteness: a limit point
-                return None
-            if norm <= s.tolerance * scale:
-                return u, it, g, dg
-            previous = norm
-            u = u - self.system.resolve(r)[:, 0]
-        return None
+            if np.all(np.isfinite(r)):
+                self.system.factor_elements(K)  # kept: the adjoint solves use it
+            return r, max(np.linalg.norm(factor * self.force), 1e-300), (g, dg)
+
+        try:
+            found = newton(u, residual, lambda u, r, state: -self.system.resolve(r)[:, 0],
+                           tol=s.tolerance, max_iterations=s.max_iterations)
+        except StepFailed:   # diverged, or the tangent lost definiteness: a limit point
+            return None
+        return found.x, found.iterations, *found.state
 
     def equilibrium(self, E: np.ndarray, rho: np.ndarray, dE: np.ndarray) -> LargeState:
         """The state of the design of moduli ``E`` (Pa), densities ``rho``, dE/drho ``dE``."""
