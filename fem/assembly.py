@@ -261,6 +261,23 @@ def consistent_mass(mesh: skfem.Mesh, element: skfem.Element, quadrature,
     return sp.kron(symmetric_from_upper(scalar_upper), sp.identity(dim), format="csr")
 
 
+def geometric_stiffness(mesh: skfem.Mesh, element: skfem.Element, quadrature,
+                        pattern: NodePattern, dim: int, stress: np.ndarray, thickness: float):
+    """Initial-stress (geometric) stiffness (N/m), CSR, of the in-plane Cauchy ``stress``
+    (dim, dim, n_elements, n_points) (Pa) at the points of ``quadrature``:
+    K_e[a i, b j] = delta_ij t sum_q w_q grad phi_a . sigma . grad phi_b; other arguments as
+    :func:`elasticity_stiffness`. Only the delta_ij entries are stored."""
+    values = np.zeros((len(pattern.indices), 1, 1))
+    for block, G, dx in block_gradients(mesh, element, quadrature):
+        stressed = np.einsum("jleq,eblq->ebjq", stress[:, :, block], G, optimize=True)
+        g = np.einsum("eajq,ebjq->eab", G * (thickness * dx)[:, None, None, :], stressed,
+                      optimize=True)
+        add_node_blocks(values, pattern, block, g)
+    scalar_upper = sp.csr_matrix((values.ravel(), pattern.indices, pattern.indptr),
+                                 shape=(pattern.n, pattern.n))
+    return sp.kron(symmetric_from_upper(scalar_upper), sp.identity(dim), format="csr")
+
+
 def displacement_gradient(mesh: skfem.Mesh, element: skfem.Element, quadrature,
                           element_dofs: np.ndarray, dim: int, u: np.ndarray) -> np.ndarray:
     """(dim, dim, n_elements, n_points) gradient du_i/dx_j of the DOF vector ``u`` (m) at the

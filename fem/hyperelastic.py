@@ -14,7 +14,8 @@ import scipy.sparse as sp
 import skfem
 from skfem.helpers import ddot, eye, grad, mul, transpose, trace
 
-from .model import Model, PlaneStrain, von_mises
+from . import assembly
+from .model import Model, PlaneStrain, scalar_element, von_mises
 from .projection import nodal_average
 from .stepping import StepFailed  # raised here, caught by the step driver
 
@@ -131,25 +132,16 @@ def final_stress(model: Model, u: np.ndarray):
     return von_mises(nodal_average(model, sig)), von_mises(sig).max(axis=1)
 
 
-@skfem.BilinearForm
-def _geometric(du, v, w):
-    return w.t * np.einsum("ij...,jl...,il...->...", grad(v), w.S, grad(du))
-
-
-def linear_stress(model: Model, u: np.ndarray, basis) -> np.ndarray:
-    """In-plane (dim, dim, n_elements, n_points) Cauchy stress (Pa) of the small-strain
-    state ``u`` at the quadrature points of ``basis``."""
-    return model.stress(u, basis)[:model.dim, :model.dim]
-
-
 def geometric_stiffness(model: Model, u: np.ndarray) -> sp.csr_matrix:
     """Initial-stress (geometric) stiffness K_sigma (N/m) of the linear stress of ``u``:
     K_sigma(du, v) = t int grad v . sigma . grad du^T dX, on the mass-matrix quadrature
-    (exact for sigma of degree order - 1). (K + K_sigma) is the tangent about a prestressed
+    (exact for sigma of degree order - 1), on the model's node pattern
+    (:func:`.assembly.geometric_stiffness`). (K + K_sigma) is the tangent about a prestressed
     reference configuration."""
-    basis = model.basis
-    S = linear_stress(model, u, basis)
-    return _geometric.assemble(basis, S=S, t=model.thickness).tocsr()
+    mesh = model.mesh.mesh
+    stress = model.stress(u)[:model.dim, :model.dim]  # (dim, dim, e, q) on model.quadrature
+    return assembly.geometric_stiffness(mesh, scalar_element(mesh, model.order), model.quadrature,
+                                        model.node_pattern, model.dim, stress, model.thickness)
 
 
 def max_strain(model: Model, u: np.ndarray) -> float:
