@@ -14,10 +14,10 @@ from dataclasses import dataclass, field
 import math
 
 import numpy as np
-import scipy.sparse.linalg as spla
 import skfem
 
 from . import linsolve
+from .factor import factor
 from .boundary import component_indices, constrained_dofs, group_dofs, load_vector
 from .modal import Modes, solve_modes
 from .model import Model
@@ -178,7 +178,8 @@ def solve_harmonic(model: Model, supports, loads, frequencies_hz, damping=0.0,
         K, M = model.stiffness[I][:, I], model.mass[I][:, I]
         for k, w in enumerate(omega):
             A = (K - w ** 2 * M + 1j * w * (r.alpha * M + r.beta * K)).tocsc()
-            u[k, I] = spla.splu(A).solve(f[I].astype(complex))
+            with factor(A, "general", "superlu") as F:
+                u[k, I] = F.solve(f[I].astype(complex))
         return HarmonicResult(model, f_hz, u, "direct", info={"n_dofs": model.n_dofs})
     if not (isinstance(n_modes, int) and 1 <= n_modes < len(I)):
         raise ValueError(f"n_modes = {n_modes!r} must be an integer in [1, {len(I) - 1}]")

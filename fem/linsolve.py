@@ -124,7 +124,7 @@ class Factorization(LinearFactor):
     (or ``fact(b)``) for b of shape (n,) or (n, k). ``kind``: 'spd' (symmetric positive
     definite: Cholesky), 'symmetric' (indefinite) or 'general'; symmetric kinds read the upper
     triangle only. ``backend``: 'mkl-pardiso', 'cholmod' or 'superlu' (None: :func:`direct_backend`
-    of ``kind``). Free its memory with ``free()`` or ``with``. ``analysis_only``: PARDISO's
+    of ``kind``; a complex ``A``: 'superlu' only). Free its memory with ``free()`` or ``with``. ``analysis_only``: PARDISO's
     reordering alone, no factor (:func:`factor_bytes`). Through fem/factor.py's ``factor``.
     """
 
@@ -132,7 +132,10 @@ class Factorization(LinearFactor):
                  backend: str | None = None):
         if kind not in MATRIX_KINDS:
             raise ValueError(f"kind = {kind!r}; choose one of {sorted(MATRIX_KINDS)}")
-        A = sp.csr_matrix(A, dtype=float)
+        self.dtype = complex if np.iscomplexobj(A.data if sp.issparse(A) else A) else float
+        if self.dtype is complex and backend != "superlu":
+            raise ValueError("a complex matrix is factorised by backend='superlu' only")
+        A = sp.csr_matrix(A, dtype=self.dtype)
         if A.shape[0] != A.shape[1]:
             raise ValueError(f"the matrix must be square, not {A.shape}")
         self.kind, self.n = kind, A.shape[0]
@@ -208,7 +211,7 @@ class Factorization(LinearFactor):
 
     def solve(self, b) -> np.ndarray:
         """x of A x = b, b of shape (n,) or (n, k)."""
-        b = np.asarray(b, dtype=float)
+        b = np.asarray(b, dtype=self.dtype)
         if b.shape[0] != self.n:
             raise ValueError(f"right-hand side has {b.shape[0]} rows, the matrix {self.n}")
         if self.backend == "mkl-pardiso":
@@ -243,6 +246,7 @@ def _spd_solve_reads_matrix() -> bool:
     b = np.arange(1.0, A.shape[0] + 1.0)
     fact = Factorization.__new__(Factorization)
     fact.kind, fact.n, fact._finalizer, fact.backend = "spd", A.shape[0], None, "mkl-pardiso"
+    fact.dtype = float
     with fact:
         fact._init_pardiso(sp.triu(A, format="csr"), keep_matrix=True)
         x = fact(b)
