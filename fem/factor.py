@@ -4,8 +4,10 @@ where A is singular.
 
 Backends (:data:`BACKENDS`, name -> constructor ``(A, kind, **options) -> LinearFactor``):
 'mkl-pardiso', 'cholmod', 'superlu' (fem/linsolve.py's direct factorisations), 'banded' (LAPACK's
-banded Cholesky of an SPD matrix of narrow band, fem/beam/banded.py) and 'amg-cg' (CG
-preconditioned by smoothed-aggregation AMG, ``near_null_space`` its option); 'auto' is the
+banded Cholesky of an SPD matrix of narrow band, fem/beam/banded.py), 'amg-cg' (CG
+preconditioned by smoothed-aggregation AMG, ``near_null_space`` its option) and 'pmg-cg'
+(p-multigrid CG of a quadratic model's free-DOF stiffness, fem/pmultigrid.py: ``model`` and
+``free`` its options, ``needs_model``); 'auto' is the
 direct backend of :func:`.linsolve.direct_backend`. A new backend is one more entry.
 
 Usage::
@@ -24,6 +26,7 @@ import scipy.sparse.linalg as spla
 from .amg import AmgFactor
 from .factor_protocol import LinearFactor, SingularStiffness, checked_rhs
 from .linsolve import Factorization, direct_backend, refine_and_check
+from .pmultigrid import PMultigridFactor
 
 __all__ = ["BACKENDS", "AmgFactor", "BandedFactor", "CheckedFactor", "LinearFactor",
            "SingularStiffness", "factor", "free_motion"]
@@ -66,6 +69,7 @@ BACKENDS = {
     "superlu": _direct("superlu"),
     "banded": BandedFactor,
     "amg-cg": AmgFactor,
+    "pmg-cg": PMultigridFactor,  # needs model= and free= (fem/pmultigrid.py)
 }
 
 

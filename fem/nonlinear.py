@@ -14,7 +14,6 @@ by arc-length continuation; preloads (:mod:`.preload`) are applied first and the
 import math
 
 import numpy as np
-import scipy.sparse as sp
 
 from . import linsolve
 from .factor import SingularStiffness, factor
@@ -23,7 +22,6 @@ from .hyperelastic import (STRAIN_LIMIT, Assembler, StepFailed, cauchy_stress,  
                            deformation, final_stress, green_lagrange, max_strain, svk_stress,
                            tangent_modulus)
 from .model import Model
-from .pmultigrid import solve_pmg
 from .pressure import FollowerPressure
 from .preload import PreloadedSpace, preload_faces, split_preloads
 from .rigid_face import ReducedSpace
@@ -95,7 +93,8 @@ class _Problem:
     def solve(self, K, b):
         try:
             if self.solver == "amg" and self.model.order > 1:  # p-multigrid CG
-                x = solve_pmg(self.model, sp.triu(K, format="csr"), self.space.I, b)[0]
+                with factor(K, "spd", "pmg-cg", model=self.model, free=self.space.I) as F:
+                    x = F.solve(b)
             elif self.solver == "amg":
                 with factor(K, "spd", "amg-cg", near_null_space=self._near_null_space()) as F:
                     x = F.solve(b)

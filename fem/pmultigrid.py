@@ -24,6 +24,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 import skfem
 
+from .factor_protocol import LinearFactor, checked_rhs
 from .linsolve import Restriction, SingularSystemError
 from .model import rigid_body_modes, scalar_element
 
@@ -185,12 +186,11 @@ class PMultigrid:
         return spla.LinearOperator((n, n), matvec=self, dtype=float)
 
 
-def solve_pmg(model, K, I: np.ndarray, b: np.ndarray, rtol: float = 1e-9,
-              maxiter: int = 1000) -> tuple[np.ndarray, dict]:
-    """Solve K_II x = b (``K`` as :class:`PMultigrid` reads it; ``b`` in N) by CG preconditioned with :class:`PMultigrid` to the
-    relative residual ``rtol``. Returns (x (m), info: iterations, relative residual, levels).
-    Raises :class:`SingularSystemError` where it does not converge in ``maxiter``."""
-    preconditioner = PMultigrid(model, K, I)
+def preconditioned_cg(preconditioner: PMultigrid, b: np.ndarray, rtol: float = 1e-9,
+                      maxiter: int = 1000) -> tuple[np.ndarray, dict]:
+    """CG on ``preconditioner``'s K_II with it as the preconditioner, to the relative
+    residual ``rtol``: (x, info: iterations, relative residual, levels). Raises
+    :class:`SingularSystemError` where it does not converge in ``maxiter``."""
     iterations = [0]
 
     def count(_):
@@ -206,3 +206,42 @@ def solve_pmg(model, K, I: np.ndarray, b: np.ndarray, rtol: float = 1e-9,
             f"p-multigrid CG did not converge (relative residual {relative:.1e} after "
             f"{iterations[0]} iterations); try solver='direct'")
     return x, info
+
+
+def solve_pmg(model, K, I: np.ndarray, b: np.ndarray, rtol: float = 1e-9,
+              maxiter: int = 1000) -> tuple[np.ndarray, dict]:
+    """Solve K_II x = b (``K`` as :class:`PMultigrid` reads it; ``b`` in N) by CG
+    preconditioned with :class:`PMultigrid` to the relative residual ``rtol``: (x (m), info)
+    of :func:`preconditioned_cg`."""
+    return preconditioned_cg(PMultigrid(model, K, I), b, rtol, maxiter)
+
+
+class PMultigridFactor(LinearFactor):
+    """p-multigrid CG as a factor of the protocol (fem/factor.py's backend 'pmg-cg'):
+    ``A`` the SPD stiffness on the free DOFs ``free`` (sorted) of ``model`` (whole or its upper
+    triangle), set up once, one CG solve per column to the relative residual ``tol``. It needs
+    the model (the mesh carries the P1 level): ``needs_model``."""
+
+    backend = "pmg-cg"
+    needs_model = True
+
+    def __init__(self, A, kind: str = "spd", model=None, free=None, tol: float = 1e-9,
+                 maxiter: int = 1000):
+        if kind != "spd":
+            raise ValueError(f"p-multigrid CG solves SPD systems, not kind = {kind!r}")
+        if model is None or free is None:
+            raise ValueError("backend 'pmg-cg' needs model= (the Model) and free= (the DOFs "
+                             "of A's unknowns, sorted)")
+        self.n, self.tol, self.maxiter = A.shape[0], tol, maxiter
+        self.preconditioner = PMultigrid(model, sp.triu(A, format="csr"), np.asarray(free))
+        self.info = {}
+
+    def solve(self, b) -> np.ndarray:
+        b = checked_rhs(b, self.n)
+        if b.ndim == 2:
+            return np.column_stack([self.solve(c) for c in b.T]).reshape(b.shape)
+        x, self.info = preconditioned_cg(self.preconditioner, b, self.tol, self.maxiter)
+        return x
+
+    def free(self) -> None:
+        self.preconditioner = None

@@ -12,6 +12,7 @@ from flexfem.fem import Fixed, Force, Material, Model, linsolve, solve_static, s
 from flexfem.fem.boundary import constrained_dofs, load_vector
 from flexfem.fem.budget import MEMORY_VARIABLE
 from flexfem.fem.model import PlaneStress, Solid3D, rigid_body_modes
+from flexfem.fem.factor import factor
 from flexfem.fem.pmultigrid import (PMultigrid, lagrange_interpolation, solve_pmg,
                                     vector_prolongation)
 from flexfem.fem.static_result import rigid_body_dof_modes
@@ -118,11 +119,26 @@ def test_newton_steps_on_p2_use_it(monkeypatch):
     state; measured 1.4e-15 of the tip deflection)."""
     from flexfem.fem import nonlinear, solve_nonlinear
     calls = []
-    monkeypatch.setattr(nonlinear, "solve_pmg",
-                        lambda *args, **kw: calls.append(1) or solve_pmg(*args, **kw))
+    monkeypatch.setattr(nonlinear, "factor", lambda *args, **kw: calls.append(args[2]) or
+                        factor(*args, **kw))
     model = Model(beam_2d(0.1, 0.005, 0.002), STEEL, PlaneStress(0.01), order=2)
     loads = [Force("tip", (0.0, -200.0))]
     direct = solve_nonlinear(model, [Fixed("fixed")], loads, steps=2)
     iterative = solve_nonlinear(model, [Fixed("fixed")], loads, steps=2, solver="amg")
     scale = np.abs(direct.u[-1]).max()
-    assert calls and np.abs(iterative.u[-1] - direct.u[-1]).max() <= 1e-8 * scale
+    assert "pmg-cg" in calls and np.abs(iterative.u[-1] - direct.u[-1]).max() <= 1e-8 * scale
+
+
+def test_it_is_a_backend_of_the_factorisation_protocol(leaf_3d):
+    """factor(K_II, 'spd', 'pmg-cg', model=, free=) solves one and several right-hand sides
+    as solve_pmg does; without the model it is refused in one line."""
+    K, I, b = _free_system(leaf_3d, [Force("tip", (0.0, -10.0, 0.0))])
+    K_II = K[I][:, I].tocsr()  # the upper triangle of K_II, as factor(kind='spd') reads it
+    x, _ = solve_pmg(leaf_3d, K, I, b)
+    with factor(K_II, "spd", "pmg-cg", model=leaf_3d, free=I) as F:
+        assert F.backend == "pmg-cg"
+        X = F.solve(np.column_stack([b, 2.0 * b]))
+    assert np.allclose(X[:, 0], x, rtol=0, atol=1e-7 * np.abs(x).max())
+    assert np.allclose(X[:, 1], 2.0 * x, rtol=0, atol=2e-7 * np.abs(x).max())
+    with pytest.raises(ValueError, match="needs model="):
+        factor(K_II, "spd", "pmg-cg")
