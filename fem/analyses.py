@@ -7,9 +7,10 @@ spatial Beam3DModel alike.
 Each function is a :func:`functools.singledispatch` on the model's type (``DISPATCH[name]``):
 a continuum :class:`.model.Model` goes to the continuum's function (:mod:`.static`,
 :mod:`.modal`, ...), a planar :class:`.beam.BeamModel` to :mod:`.beam.face` and a spatial
-:class:`.beam3d.Beam3DModel` to :mod:`.beam3d.face` (linear buckling: :mod:`.beam.buckling`,
-:mod:`.beam3d.buckling`); any other type is a TypeError. The public function takes ``model``
-by position or keyword and hands it to the dispatcher. The results carry the same names
+:class:`.beam.spatial.Beam3DModel` to :mod:`.beam.spatial.face` (linear buckling:
+:mod:`.beam.buckling`, :mod:`.beam.spatial.buckling`); any other type is a TypeError. The public
+function takes ``model`` by position or keyword and hands it to the dispatcher. The results
+carry the same names
 (:data:`.result_face.SHARED`); what a beam model cannot give raises
 :class:`.result_face.NotOnModel`. Options that only the continuum has (a rigid face in 3-D, a
 prestress, arc-length control) raise a TypeError or ValueError naming them on a beam model.
@@ -20,9 +21,9 @@ from . import buckling, compliance, harmonic, modal, nonlinear, static
 from .beam import buckling as beam_buckling
 from .beam import face as beam_face
 from .beam.model import BeamModel
-from .beam3d import buckling as beam3d_buckling
-from .beam3d import face as beam3d_face
-from .beam3d.model import Beam3DModel
+from .beam.spatial import buckling as beam3d_buckling
+from .beam.spatial import face as beam3d_face
+from .beam.spatial.model import Beam3DModel
 from .model import Model
 
 BEAM_MODELS = (BeamModel, Beam3DModel)
@@ -60,36 +61,164 @@ DISPATCH = {
 
 
 def solve_static(model, supports, loads=(), **options):
-    """Linear static solve (:func:`.static.solve_static`; on a beam model
-    :func:`.beam.face.solve_static`, :func:`.beam3d.face.solve_static`)."""
+    """Linear static solve: K u = f for the displacement ``supports`` and ``loads``.
+
+    Parameters
+    ----------
+    model : Model, BeamModel or Beam3DModel
+        The continuum (mesh in m, material in Pa) or a planar or spatial beam model, with
+        named groups.
+    supports : sequence of Fixed or Prescribed
+        The held groups; a Prescribed displacement is in m (a rotation in rad).
+    loads : sequence of Force, Traction, Pressure, PointForce, BodyForce or Gravity
+        The loads on groups: Force in N (a group's total), Traction and Pressure in Pa, a
+        BodyForce in N/m^3, Gravity in m/s^2.
+    **options
+        The continuum's (:func:`.static.solve_static`): ``solver`` ('auto', 'direct',
+        'amg'), ``rigid_faces`` (RigidFace, forces in N, moments in N m); a beam model's
+        (:func:`.beam.face.solve_static`, :func:`.beam.spatial.face.solve_static`).
+
+    Returns
+    -------
+    StaticResult
+        Displacements (m), stresses (Pa), ``reactions`` {group: N},
+        ``mean_displacement(group)`` (m), ``max_von_mises`` (Pa) and where (m).
+    """
     return DISPATCH["solve_static"](model, supports, loads, **options)
 
 
 def solve_modes(model, n: int = 6, supports=(), **options):
-    """The ``n`` lowest natural frequencies and shapes (:func:`.modal.solve_modes`; on a beam
-    model :func:`.beam.face.solve_modes`, :func:`.beam3d.face.solve_modes`)."""
+    """The ``n`` lowest natural frequencies and mass-normalised mode shapes.
+
+    Parameters
+    ----------
+    model : Model, BeamModel or Beam3DModel
+        The continuum (mesh in m, material in Pa) or a planar or spatial beam model, with
+        named groups.
+    n : int
+        How many modes (-).
+    supports : sequence of Fixed or Prescribed
+        The held groups, held at zero (free vibrations about the supported state).
+    **options
+        The continuum's (:func:`.modal.solve_modes`): ``shift_hz`` (the shift-invert centre,
+        Hz), ``prestress`` (a loaded state: its geometric stiffness); a beam model's
+        (:func:`.beam.face.solve_modes`, :func:`.beam.spatial.face.solve_modes`).
+
+    Returns
+    -------
+    Modes
+        ``frequencies_hz`` (Hz) and the shapes (mass-normalised, m/sqrt(kg)).
+    """
     return DISPATCH["solve_modes"](model, n, supports, **options)
 
 
 def solve_nonlinear(model, supports, loads, **options):
-    """Geometrically nonlinear static solve (:func:`.nonlinear.solve_nonlinear`; on a beam
-    model :func:`.beam.face.solve_nonlinear`, :func:`.beam3d.face.solve_nonlinear`)."""
+    """Geometrically nonlinear static solve: the loads stepped from 0 to 1 by Newton's method.
+
+    Parameters
+    ----------
+    model : Model, BeamModel or Beam3DModel
+        The continuum (mesh in m, material in Pa) or a planar or spatial beam model, with
+        named groups.
+    supports : sequence of Fixed or Prescribed
+        The held groups; a Prescribed displacement is in m (a rotation in rad).
+    loads : sequence of Force, Traction, Pressure, PointForce, BodyForce or Gravity
+        The loads on groups: Force in N (a group's total), Traction and Pressure in Pa, a
+        BodyForce in N/m^3, Gravity in m/s^2.
+    **options
+        ``steps`` (load increments, -), ``max_iterations``, ``tol`` (relative residual, -),
+        ``min_step`` (the smallest load-factor increment, -), ``rigid_faces``; the
+        continuum's further options (:func:`.nonlinear.solve_nonlinear`: ``control``,
+        ``check_stability``, ``strain_limit``, ``preloads`` ...), a beam model's
+        (:func:`.beam.face.solve_nonlinear`, :func:`.beam.spatial.face.solve_nonlinear`).
+
+    Returns
+    -------
+    NonlinearResult
+        The path: ``load_factors`` (-), displacements (m) and ``mean_displacement(group,
+        step)`` (m), ``reactions`` per step (N), ``max_von_mises`` (Pa), ``stable``.
+    """
     return DISPATCH["solve_nonlinear"](model, supports, loads, **options)
 
 
 def compliance_matrix(model, supports, face, **options):
-    """Compliance of a face (:func:`.compliance.compliance_matrix`; on a beam model
-    :func:`.beam.face.compliance_matrix`, :func:`.beam3d.face.compliance_matrix`)."""
+    """The compliance of a rigid face: its displacements and rotations per unit force and moment.
+
+    Parameters
+    ----------
+    model : Model, BeamModel or Beam3DModel
+        The continuum (mesh in m, material in Pa) or a planar or spatial beam model, with
+        named groups.
+    supports : sequence of Fixed or Prescribed
+        The held groups; a Prescribed displacement is in m (a rotation in rad).
+    face : str or RigidFace
+        The group whose compliance is asked for (all its coordinates freed).
+    **options
+        ``point`` (the reference point, m; default the face's centroid), ``angle`` (2-D frame
+        rotation, rad) or ``frame`` (orthonormal axes), and the continuum's ``state`` (a
+        loaded state: the tangent compliance there; :func:`.compliance.compliance_matrix`).
+
+    Returns
+    -------
+    Compliance
+        ``matrix`` (3 x 3 in 2-D, 6 x 6 in 3-D: m/N, 1/N, rad/(N m)), its ``stiffness``, the
+        ``point`` (m) and ``centre_of_compliance`` (m).
+    """
     return DISPATCH["compliance_matrix"](model, supports, face, **options)
 
 
 def solve_harmonic(model, supports, loads, frequencies_hz, **options):
-    """Steady-state harmonic response (:func:`.harmonic.solve_harmonic`; on a beam model
-    :func:`.beam.face.solve_harmonic`, :func:`.beam3d.face.solve_harmonic`)."""
+    """The steady-state harmonic response to the loads' amplitudes at each frequency.
+
+    Parameters
+    ----------
+    model : Model, BeamModel or Beam3DModel
+        The continuum (mesh in m, material in Pa) or a planar or spatial beam model, with
+        named groups.
+    supports : sequence of Fixed or Prescribed
+        The held groups, held at zero.
+    loads : sequence of Force, Traction, Pressure, PointForce, BodyForce or Gravity
+        The load amplitudes on groups: Force in N (a group's total), Traction and Pressure in Pa, a
+        BodyForce in N/m^3, Gravity in m/s^2.
+    frequencies_hz : array_like
+        The excitation frequencies (Hz).
+    **options
+        ``damping`` (a modal damping ratio, -, or Rayleigh(alpha in 1/s, beta in s)),
+        ``n_modes`` (-); the continuum's ``method`` ('modal' or 'direct',
+        :func:`.harmonic.solve_harmonic`).
+
+    Returns
+    -------
+    HarmonicResult
+        The complex response (m per the load's amplitude); ``frf(group, component)``: its
+        amplitude (m), phase (rad) and resonance peaks (Hz).
+    """
     return DISPATCH["solve_harmonic"](model, supports, loads, frequencies_hz, **options)
 
 
 def solve_buckling(model, supports, loads, n: int = 3, **options):
-    """Linear buckling load factors and shapes (:func:`.buckling.solve_buckling`; on a beam
-    model :func:`.beam.buckling.solve_buckling`, :func:`.beam3d.buckling.solve_buckling`)."""
+    """The ``n`` lowest positive critical load factors of ``loads`` and their buckling shapes.
+
+    Parameters
+    ----------
+    model : Model, BeamModel or Beam3DModel
+        The continuum (mesh in m, material in Pa) or a planar or spatial beam model, with
+        named groups.
+    supports : sequence of Fixed or Prescribed
+        The held groups; a Prescribed displacement is in m (a rotation in rad).
+    loads : sequence of Force, Traction, Pressure, PointForce, BodyForce or Gravity
+        The loads on groups: Force in N (a group's total), Traction and Pressure in Pa, a
+        BodyForce in N/m^3, Gravity in m/s^2.
+    n : int
+        How many load factors (-).
+    **options
+        A model's own options (:func:`.buckling.solve_buckling`,
+        :func:`.beam.buckling.solve_buckling`, :func:`.beam.spatial.buckling.solve_buckling`).
+
+    Returns
+    -------
+    Buckling
+        ``load_factors`` (-, ascending: multiples of ``loads`` at which the structure
+        buckles) and the shapes.
+    """
     return DISPATCH["solve_buckling"](model, supports, loads, n, **options)

@@ -1,10 +1,10 @@
 """The spatial beam model's static and nonlinear results, read by group under the
-continuum's names (:data:`.result_face.SHARED`); made by :mod:`.beam3d.face`."""
+continuum's names (:data:`.result_face.SHARED`); made by :mod:`.beam.spatial.face`."""
 from dataclasses import dataclass
 
 import numpy as np
 
-from .beam3d.stress import peak_stress, section_stresses
+from .beam.spatial.stress import peak_stress, section_stresses
 from .result_face import STATIC_UNSUPPORTED, BeamPathFace, BeamStateFace, group_nodes
 
 

@@ -8,13 +8,37 @@ from .checks import is_real
 
 @dataclass(frozen=True)
 class Material:
-    """An isotropic linear-elastic material.
+    """An isotropic linear-elastic material (the library's: :func:`material`).
 
-    name : label; E : Young's modulus (Pa); nu : Poisson's ratio (-); rho : density (kg/m^3);
-    yield_strength : stress at which the design fails (Pa; fracture strength for brittle
-    materials); source : where the values come from; ultimate_strength (Pa, math.inf when
-    unknown); fatigue_strength : the fully reversed stress amplitude survived for
-    fatigue_cycles cycles (Pa; None: no fatigue data); fatigue_source : where those come from.
+    Parameters
+    ----------
+    name : str
+        A label, for messages and reports.
+    E : float
+        Young's modulus (Pa), > 0.
+    nu : float
+        Poisson's ratio (-), in (-1, 0.5).
+    rho : float
+        Density (kg/m^3), > 0.
+    yield_strength : float
+        The stress at which the design fails (Pa; the fracture strength of a brittle
+        material); math.inf where unknown.
+    source : str
+        Where the values come from.
+    ultimate_strength : float
+        The ultimate tensile strength (Pa); math.inf where unknown.
+    fatigue_strength : float or None
+        The fully reversed stress amplitude survived for ``fatigue_cycles`` cycles (Pa);
+        None: no fatigue data.
+    fatigue_cycles : float or None
+        The cycles (-) of ``fatigue_strength``, >= 1; given with it or not at all.
+    fatigue_source : str
+        Where the fatigue data come from.
+
+    Raises
+    ------
+    ValueError
+        One line naming the material and the value out of range.
     """
 
     name: str

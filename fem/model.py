@@ -97,8 +97,25 @@ class LazyCellBasis(skfem.CellBasis):
 
 @dataclass(frozen=True, eq=False)
 class Model:
-    """mesh : FEMesh (m); material : Material; formulation : PlaneStress, PlaneStrain or
-    Solid3D; order : 1 (linear) or 2 (quadratic) elements."""
+    """The continuum finite-element model: a mesh, its material and formulation.
+
+    Parameters
+    ----------
+    mesh : FEMesh
+        The mesh with its named groups (coordinates in m).
+    material : Material
+        The isotropic linear-elastic material (Pa, kg/m^3).
+    formulation : PlaneStress, PlaneStrain or Solid3D
+        A 2-D mesh's plane stress (with its out-of-plane thickness, m) or plane strain; a 3-D
+        mesh's Solid3D.
+    order : int
+        1 (linear) or 2 (quadratic, the default) Lagrange elements.
+
+    Raises
+    ------
+    ValueError
+        A formulation that does not match the mesh's dimension, an order that is not 1 or 2.
+    """
 
     mesh: FEMesh
     material: Material

@@ -7,5 +7,5 @@ from small 2-D models (a notch's, :mod:`.hinge_patch`; a member's patch, :mod:`.
 :mod:`.dbma_member_patch`), the oblique roots and crossings of a model file's beams
 (:mod:`.roots`, :mod:`.crossings`), Vlasov's torsion (:mod:`.torsion`) and the hinge
 specimen that checks them against the continuum (:mod:`.specimen`). The solvers are
-flexfem.fem.beam and flexfem.fem.beam3d; geometry/ draws and never solves.
+flexfem.fem.beam and flexfem.fem.beam.spatial; geometry/ draws and never solves.
 """

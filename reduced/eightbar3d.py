@@ -16,7 +16,7 @@ thickness w) about its centroid.
 """
 import numpy as np
 
-from ..fem.beam3d import Beam3DModel, RigidLink, Section
+from ..fem.beam.spatial import Beam3DModel, RigidLink, Section
 from .layout import ROOT_EXTENSION, link_moments
 from .spatial import lifted_model, spatial_sections
 from .eightbar import EE_LINK, eightbar_beam_model

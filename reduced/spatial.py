@@ -9,7 +9,7 @@ from dataclasses import replace
 import numpy as np
 
 from ..fem.beam.groups import BeamGroup
-from ..fem.beam3d import Beam3DModel, RigidLink, Section, rect_torsion_constant
+from ..fem.beam.spatial import Beam3DModel, RigidLink, Section, rect_torsion_constant
 
 
 def spatial_sections(planar_model, out_of_plane: float) -> list:

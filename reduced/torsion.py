@@ -3,7 +3,7 @@ leaf clamped in blocks at both ends cannot warp there, and is stiffer in torsion
 Saint-Venant's G J (docs/beam.md, "The spatial beam")."""
 import numpy as np
 
-from ..fem.beam3d import Beam3DModel, rect_torsion_constant
+from ..fem.beam.spatial import Beam3DModel, rect_torsion_constant
 
 
 def vlasov_factor(length: float, depth: float, width: float, nu: float) -> float:

@@ -64,7 +64,7 @@ def solid(t, l, w, H, Lb) -> np.ndarray:
 def beam(t, l, w, H, Lb, j_factor: float) -> np.ndarray:
     """The lifted beam model of the specimen (``leaf_between_blocks``), the leaf's J times
     ``j_factor``."""
-    from flexfem.fem.beam3d import Fixed, compliance3d
+    from flexfem.fem.beam.spatial import Fixed, compliance3d
     from flexfem.reduced.spatial import lifted_model
     from flexfem.reduced.specimen import leaf_between_blocks
     from flexfem.reduced.torsion import TorsionScaled

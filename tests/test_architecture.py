@@ -137,7 +137,7 @@ def solver_imports(sources) -> list[str]:
                            target in DRAWING_MODULES
                            or target == "fem" and names <= DRAWING_NAMES | {
                                m.split(".")[1] for m in DRAWING_MODULES})
-                       or target == "fem" and modules & {"fem.beam", "fem.beam3d"})
+                       or target == "fem" and modules & {"fem.beam", "fem.beam.spatial"})
             if solving:
                 found.append(f"{path.relative_to(ROOT)}:{node.lineno} {target} {sorted(names)}")
     return found
@@ -239,8 +239,8 @@ def classes_defined_twice(sources) -> dict:
 # names still defined twice, each for a reason; the list only shrinks. The beam models' node
 # supports Fixed and Prescribed (fem/beam/supports.py, one for both dimensions) share their
 # names with fem/boundary.py's continuum group supports (the names docs/beam.md shows users);
-# the planar beam (fem/beam/) and the spatial one (fem/beam3d/) still mirror Section and their
-# internals; topopt's Evaluation is its own
+# the planar beam (fem/beam/) and the spatial one (fem/beam/spatial/) still mirror Section and
+# their internals; topopt's Evaluation is its own
 STILL_TWICE = {"Section", "Fixed", "Prescribed", "Space", "Assembler", "_Stepper", "Evaluation"}
 
 

@@ -16,7 +16,7 @@ import time
 import numpy as np
 
 from ...fem import solve_modes
-from ...fem.beam3d import Fixed, Prescribed, solve_beam3d_modes
+from ...fem.beam.spatial import Fixed, Prescribed, solve_beam3d_modes
 from ...reduced.layout import ROOT_EXTENSION
 from ...reduced.dbma import dbma_beam3d_model
 from ...geometry.dbma.drawing import DBMALayout

@@ -17,9 +17,9 @@ import skfem
 from skfem.models.elasticity import linear_elasticity
 
 from ...fem import Fixed, solve_modes
-from ...fem.beam3d import solve_beam3d_modes
-from ...fem.beam3d import Fixed as BeamFixed
-from ...fem.beam3d.energy import strain_energy_share
+from ...fem.beam.spatial import solve_beam3d_modes
+from ...fem.beam.spatial import Fixed as BeamFixed
+from ...fem.beam.spatial.energy import strain_energy_share
 from ...reduced.layout import ROOT_EXTENSION
 from ...reduced.eightbar3d import eightbar_beam3d_model
 from ...geometry.eightbar.flexure import EightBarFlexureParams

@@ -212,7 +212,26 @@ def read_study_file(path) -> dict:
 
 
 def load_study(path) -> Study:
-    """Read a study TOML file (FileNotFoundError if missing, ValueError if invalid)."""
+    """Read a study file (docs/studies.md).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The study TOML file: its evaluate target, base design and what it varies (values in
+        the units of the target's parameters, SI for flexfem's own).
+
+    Returns
+    -------
+    Study
+        The checked study, for :func:`run_study`.
+
+    Raises
+    ------
+    FileNotFoundError
+        The file does not exist.
+    ValueError
+        One line naming what is wrong in it.
+    """
     return study_from_dict(read_study_file(path))
 
 
@@ -317,18 +336,39 @@ class StudyResult:
 def run_study(study: Study, store_path, evaluate, workers: int | None = None,
               scheduler: str | None = None, retry_failed: bool = False,
               progress: bool | None = None, max_cases: int = MAX_CASES) -> StudyResult:
-    """Evaluate the study's cases missing from the store at ``store_path`` (and the failed
-    ones when ``retry_failed``) with ``evaluate(params, **options) -> metrics`` (a module-level
-    function, so that worker processes can import it), recording each as it completes.
+    """Evaluate the study's cases missing from the store, recording each as it completes.
 
-    ``workers``: local processes (None: one per CPU; 1: in this process). ``scheduler``:
-    a Dask address "tcp://HOST:PORT" (default: the FLEXFEM_SCHEDULER variable). ``progress``:
-    draw a progress line on stderr (None: when stderr is a terminal). On Ctrl-C the cases in
-    flight are stopped and KeyboardInterrupt propagates; what completed stays stored.
-    ``max_cases``: a study that expands to more designs is refused before expansion. The
-    options are normalised to the types ``evaluate`` declares (validate.normalise_options),
-    the names checked before any case runs, and a stored row reused only if it passes the
-    checks of a fresh result (checks.py).
+    Parameters
+    ----------
+    study : Study
+        The study (:func:`load_study`): its base design, the grid or samples varied (values in
+        the units of ``evaluate``'s parameters, SI for flexfem's own) and the options.
+    store_path : str or os.PathLike
+        The SQLite case store; a case stored earlier (and passing the checks of a fresh
+        result, checks.py) is reused, not recomputed.
+    evaluate : callable
+        ``evaluate(params, **options) -> {metric: value}``, a module-level function (worker
+        processes import it); its options are normalised to the types it declares
+        (validate.normalise_options) and the names checked before any case runs.
+    workers : int, optional
+        Local processes (None: one per CPU; 1: in this process).
+    scheduler : str, optional
+        A Dask address "tcp://HOST:PORT" (None: the FLEXFEM_SCHEDULER variable, else local).
+    retry_failed : bool
+        Run again the cases stored as failed.
+    progress : bool, optional
+        Draw a progress line on stderr (None: when stderr is a terminal).
+    max_cases : int
+        A study of more designs (-) is refused before it is expanded.
+
+    Returns
+    -------
+    StudyResult
+        The cases (stored earlier or now), how many were computed and reused, the executor
+        and the wall time (s).
+
+    On Ctrl-C the cases in flight are stopped and KeyboardInterrupt propagates; what
+    completed stays stored.
     """
     start = time.perf_counter()
     count = study.case_count()

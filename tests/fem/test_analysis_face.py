@@ -10,8 +10,8 @@ from flexfem.fem import (Fixed, Force, Model, compliance_matrix, material, solve
                          solve_modes, solve_nonlinear, solve_static)
 from flexfem.fem.analyses import DISPATCH
 from flexfem.fem.beam import BeamGroup, BeamModel, Section, beam_chain
-from flexfem.fem.beam3d import Beam3DModel
-from flexfem.fem.beam3d import Section as Section3D
+from flexfem.fem.beam.spatial import Beam3DModel
+from flexfem.fem.beam.spatial import Section as Section3D
 from flexfem.fem.compliance import Compliance
 from flexfem.fem.harmonic import HarmonicResult
 from flexfem.fem.modal import Modes

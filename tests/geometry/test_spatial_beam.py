@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 from flexfem.fem.beam import Fixed as PlanarFixed
 from flexfem.fem.beam.compliance import compliance
-from flexfem.fem.beam3d import Fixed, compliance3d
+from flexfem.fem.beam.spatial import Fixed, compliance3d
 from flexfem.fem.materials import Material
 from flexfem.reduced.spatial import lifted_model
 
@@ -96,7 +96,7 @@ def _specimen_beam(t, l, w, H, Lb, slices=True):
     the roots' strong-axis bending without the axial compliance."""
     from dataclasses import replace
 
-    from flexfem.fem.beam3d import Beam3DModel
+    from flexfem.fem.beam.spatial import Beam3DModel
     from flexfem.reduced.specimen import leaf_between_blocks
 
     planar, root, tip, _ = leaf_between_blocks(t, l, w, H, Lb)

@@ -1,4 +1,4 @@
-"""flexfem.fem.beam3d: a spatial (6 DOFs per node) co-rotational beam model.
+"""flexfem.fem.beam.spatial: a spatial (6 DOFs per node) co-rotational beam model.
 
     model = Beam3DModel(nodes, elements, Section.rect(10e-3, 2e-3), steel)
     lin = solve_beam3d_static(model, [Fixed(0)], [NodalLoad(tip, fz=-1.0)])
@@ -7,9 +7,9 @@
     C = compliance3d(model, [Fixed(0)], node=tip)      # 6x6 at the tip
     lin.max_stress                                     # Pa: normal + torsion, rectangles
 """
-from ..beam.assembly import SingularBeamError
+from ..assembly import SingularBeamError
 from .modal import Beam3DModes, solve_beam3d_modes
-from ..beam.supports import Fixed, NodalLoad, Prescribed
+from ..supports import Fixed, NodalLoad, Prescribed
 from .model import (Beam3DModel, RigidLink, Section, element_frames, rect_torsion_constant,
                     rect_torsion_shear)
 from .nonlinear import Beam3DNonlinearResult, NonConvergenceError, solve_beam3d_nonlinear

@@ -8,10 +8,10 @@ x_s = x_m + R_m (X_s - X_m), R_s = R_m.
 import numpy as np
 import scipy.sparse as sp
 
-from ..beam.space import held_values
+from ..space import held_values
 from .corotational import internal_forces, local_deformations
 from .element import basic_stiffness, local_matrices, to_global
-from ..beam.supports import load_vector
+from ..supports import load_vector
 from .model import Beam3DModel
 from .rotations import expm, skew
 

@@ -13,8 +13,8 @@ is not.
 """
 import numpy as np
 
-from ..beam.buckling import BeamBuckling, check_n, lowest_load_factors, scaled_shapes
-from ..beam.element import WXI, XI, gram, bending_shape_functions
+from ..buckling import BeamBuckling, check_n, lowest_load_factors, scaled_shapes
+from ..element import WXI, XI, gram, bending_shape_functions
 from .assembly import scatter
 from .element import AXIAL, TORSION, XY, XZ, XZ_SIGN, put_block, to_global
 from .face import Beam3DResult, node_loads, node_supports, supported_groups

@@ -12,7 +12,7 @@ rectangles tapered along local y (model.Section.rect), as the planar model's.
 """
 import numpy as np
 
-from ..beam.element import WXI, XI, bending_shape_functions, bending_stiffness
+from ..element import WXI, XI, bending_shape_functions, bending_stiffness
 
 XY = [1, 5, 7, 11]   # (v1, rz1, v2, rz2)
 XZ = [2, 4, 8, 10]   # (w1, ry1, w2, ry2)

@@ -21,17 +21,17 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..boundary import Fixed, Force, Prescribed
-from ..compliance import Compliance, moved_compliance, rotation_frame
-from ..beam.face import no_options, modal_superposition
-from ..harmonic import FRF, check_frequencies
+from ...boundary import Fixed, Force, Prescribed
+from ...compliance import Compliance, moved_compliance, rotation_frame
+from ..face import no_options, modal_superposition
+from ...harmonic import FRF, check_frequencies
 from .modal import Beam3DModes, solve_beam3d_modes
 from .model import Beam3DModel
-from ..beam.supports import Fixed as NodeFixed
-from ..beam.supports import NodalLoad
-from ..beam.supports import Prescribed as NodePrescribed
-from ..beam3d_result import Beam3DPath, Beam3DResult
-from ..result_face import BeamFace
+from ..supports import Fixed as NodeFixed
+from ..supports import NodalLoad
+from ..supports import Prescribed as NodePrescribed
+from ...beam3d_result import Beam3DPath, Beam3DResult
+from ...result_face import BeamFace
 from .nonlinear import solve_beam3d_nonlinear
 from .static import compliance3d, solve_beam3d_static
 

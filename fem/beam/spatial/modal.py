@@ -9,8 +9,8 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse.linalg as spla
 
-from ..beam.assembly import DENSE_EIGEN_LIMIT
-from ..beam.modal import dense_lowest_modes, negative_shift
+from ..assembly import DENSE_EIGEN_LIMIT
+from ..modal import dense_lowest_modes, negative_shift
 from .assembly import Assembler, mass_matrix, symmetric_tangent
 from .model import Beam3DModel
 

@@ -14,10 +14,10 @@ import math
 
 import numpy as np
 
-from ..beam.groups import BeamGroup
-from ..beam.model import RigidLink, link_masters
-from ..checks import positive
-from ..materials import Material
+from ..groups import BeamGroup
+from ..model import RigidLink, link_masters
+from ...checks import positive
+from ...materials import Material
 
 def rect_torsion_constant(a, b):
     """Saint-Venant torsion constant J (m^4) of a x b rectangles (arrays broadcast): the

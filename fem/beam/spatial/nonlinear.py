@@ -14,13 +14,13 @@ import math
 
 import numpy as np
 
-from ..beam.assembly import Factor, SingularBeamError
-from ..beam.nonlinear import negative_eigenvalues, step_failure
-from ..newton import NonConvergenceError, check_step_arguments  # noqa: F401 (public here)
-from ..stepping import StepFailed as _StepFailed
-from ..stepping import march
+from ..assembly import Factor, SingularBeamError
+from ..nonlinear import negative_eigenvalues, step_failure
+from ...newton import NonConvergenceError, check_step_arguments  # noqa: F401 (public here)
+from ...stepping import StepFailed as _StepFailed
+from ...stepping import march
 from .assembly import Assembler
-from ..beam.supports import dof_index
+from ..supports import dof_index
 from .model import Beam3DModel
 from .rotations import logm
 from .static import Beam3DState, make_state

@@ -7,7 +7,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..beam.assembly import Factor
+from ..assembly import Factor
 from .assembly import Assembler, symmetric_tangent
 from .corotational import kinematics
 from .model import Beam3DModel

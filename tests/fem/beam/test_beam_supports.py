@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from flexfem.fem.beam import Fixed, NodalLoad, Prescribed
-from flexfem.fem.beam3d import Fixed as SpatialFixed, NodalLoad as SpatialNodalLoad
+from flexfem.fem.beam.spatial import Fixed as SpatialFixed, NodalLoad as SpatialNodalLoad
 
 
 def test_the_planar_and_the_spatial_names_are_one_class():

@@ -10,11 +10,11 @@ import pytest
 from flexfem.fem.beam import BeamModel, Section
 from flexfem.fem.beam.assembly import element_mass
 from flexfem.fem.beam.element import basic_stiffness, corotational
-from flexfem.fem.beam3d import Beam3DModel, Section as SpatialSection
-from flexfem.fem.beam3d.corotational import internal_forces
-from flexfem.fem.beam3d.element import basic_stiffness as spatial_basic_stiffness
-from flexfem.fem.beam3d.element import local_matrices, to_global
-from flexfem.fem.beam3d.rotations import expm
+from flexfem.fem.beam.spatial import Beam3DModel, Section as SpatialSection
+from flexfem.fem.beam.spatial.corotational import internal_forces
+from flexfem.fem.beam.spatial.element import basic_stiffness as spatial_basic_stiffness
+from flexfem.fem.beam.spatial.element import local_matrices, to_global
+from flexfem.fem.beam.spatial.rotations import expm
 
 IN_PLANE = np.array([0, 1, 5, 6, 7, 11])  # (u_x, u_y, r_z) of both nodes among 12
 NODES = np.array([[0.0, 0.0], [0.02, 0.004], [0.035, 0.02], [0.03, 0.04], [0.01, 0.05]])

@@ -1,7 +1,7 @@
 """Spatial beam models the beam3d tests share."""
 import numpy as np
 
-from flexfem.fem.beam3d import Beam3DModel
+from flexfem.fem.beam.spatial import Beam3DModel
 
 
 def straight(material, section, length=0.1, n=20, direction=(1.0, 0.0, 0.0),

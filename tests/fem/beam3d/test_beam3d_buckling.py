@@ -1,4 +1,4 @@
-"""Linear buckling of the spatial beam model (fem/beam3d/buckling.py) through the analysis
+"""Linear buckling of the spatial beam model (fem/beam/spatial/buckling.py) through the analysis
 face: Euler's columns about both axes (one of them oblique), their convergence, Saint-Venant
 torsional buckling, a rigid arm, and the planar model's factors in the plane."""
 import math
@@ -10,8 +10,8 @@ from scipy.optimize import brentq
 from flexfem.fem import Fixed, Force, material, solve_buckling
 from flexfem.fem.beam import BeamModel, RigidLink as PlanarLink, Section as PlanarSection
 from flexfem.fem.beam import beam_chain
-from flexfem.fem.beam3d import Beam3DModel, RigidLink, Section
-from flexfem.fem.beam3d import Fixed as NodeFixed
+from flexfem.fem.beam.spatial import Beam3DModel, RigidLink, Section
+from flexfem.fem.beam.spatial import Fixed as NodeFixed
 from flexfem.reduced.spatial import lifted_model
 
 L, W, T = 0.05, 0.75e-3, 0.5e-3   # width (local z) 1.5 times the thickness (local y)

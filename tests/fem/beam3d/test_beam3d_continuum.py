@@ -8,7 +8,7 @@ import skfem
 
 from flexfem.fem import Fixed as ContinuumFixed
 from flexfem.fem import Material, Model, Solid3D
-from flexfem.fem.beam3d import Beam3DModel, Fixed, Section, compliance3d
+from flexfem.fem.beam.spatial import Beam3DModel, Fixed, Section, compliance3d
 from flexfem.fem.compliance import compliance_matrix
 from flexfem.fem.mesh import FEMesh, facets_where
 

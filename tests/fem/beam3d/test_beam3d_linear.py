@@ -5,7 +5,7 @@ import pytest
 
 from beam3d_models import closed_form_tip_compliance, straight
 from flexfem.fem import beam as planar
-from flexfem.fem.beam3d import (Beam3DModel, Fixed, NodalLoad, RigidLink, Section,
+from flexfem.fem.beam.spatial import (Beam3DModel, Fixed, NodalLoad, RigidLink, Section,
                                 SingularBeamError, compliance3d, rect_torsion_constant,
                                 solve_beam3d_nonlinear, solve_beam3d_static)
 

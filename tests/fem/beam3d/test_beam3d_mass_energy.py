@@ -5,9 +5,9 @@ import pytest
 from scipy.spatial.transform import Rotation
 
 from beam3d_models import straight
-from flexfem.fem.beam3d import Fixed, NodalLoad, Section, solve_beam3d_static
-from flexfem.fem.beam3d.energy import element_energies, strain_energy_share
-from flexfem.fem.beam3d.inertia import mass_properties
+from flexfem.fem.beam.spatial import Fixed, NodalLoad, Section, solve_beam3d_static
+from flexfem.fem.beam.spatial.energy import element_energies, strain_energy_share
+from flexfem.fem.beam.spatial.inertia import mass_properties
 
 
 def test_a_bar_s_mass_centroid_and_inertia_tensor(steel):

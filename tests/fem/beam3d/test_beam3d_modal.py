@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from beam3d_models import straight
-from flexfem.fem.beam3d import Beam3DModel, Fixed, RigidLink, Section, solve_beam3d_modes
+from flexfem.fem.beam.spatial import Beam3DModel, Fixed, RigidLink, Section, solve_beam3d_modes
 
 BETA_L = np.array([1.8751041, 4.6940911, 7.8547574])
 

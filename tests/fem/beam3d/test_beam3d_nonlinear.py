@@ -7,10 +7,10 @@ import pytest
 from beam3d_models import straight
 from flexfem.data import load_toml
 from flexfem.fem import Material
-from flexfem.fem.beam3d import (Beam3DModel, Fixed, NodalLoad, Prescribed, RigidLink,
+from flexfem.fem.beam.spatial import (Beam3DModel, Fixed, NodalLoad, Prescribed, RigidLink,
                                 Section, solve_beam3d_nonlinear)
-from flexfem.fem.beam3d.assembly import Assembler
-from flexfem.fem.beam3d.rotations import expm, logm
+from flexfem.fem.beam.spatial.assembly import Assembler
+from flexfem.fem.beam.spatial.rotations import expm, logm
 
 
 def test_tangent_is_the_derivative_of_the_internal_force(steel):

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from beam3d_models import straight
-from flexfem.fem.beam3d import (Fixed, NodalLoad, Section, compliance3d, solve_beam3d_modes,
+from flexfem.fem.beam.spatial import (Fixed, NodalLoad, Section, compliance3d, solve_beam3d_modes,
                                 solve_beam3d_nonlinear)
 
 

@@ -1,4 +1,4 @@
-"""Stresses of the spatial beam model (fem/beam3d/stress.py): Saint-Venant's torsion shear of
+"""Stresses of the spatial beam model (fem/beam/spatial/stress.py): Saint-Venant's torsion shear of
 a rectangle against Timoshenko & Goodier's table, a cantilever's section stresses against
 statics, and both against flexfem's 3-D continuum at mid-span."""
 import numpy as np
@@ -9,9 +9,9 @@ from beam3d_models import straight
 from flexfem.data import load_toml
 from flexfem.fem import Fixed as ContinuumFixed
 from flexfem.fem import Force, Model, Solid3D, Traction, solve_static
-from flexfem.fem.beam3d import Fixed, NodalLoad, Section, solve_beam3d_static
-from flexfem.fem.beam3d.model import rect_torsion_constant, rect_torsion_shear
-from flexfem.fem.beam3d.stress import section_stresses
+from flexfem.fem.beam.spatial import Fixed, NodalLoad, Section, solve_beam3d_static
+from flexfem.fem.beam.spatial.model import rect_torsion_constant, rect_torsion_shear
+from flexfem.fem.beam.spatial.stress import section_stresses
 from flexfem.fem.mesh import FEMesh, facets_where
 
 L, B, H = 0.2, 0.02, 0.01  # m: length, depth along local y, along local z

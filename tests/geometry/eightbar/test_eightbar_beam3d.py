@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 
 from flexfem.fem import beam as planar
-from flexfem.fem.beam3d import Fixed, compliance3d, solve_beam3d_modes
-from flexfem.fem.beam3d.inertia import mass_properties
+from flexfem.fem.beam.spatial import Fixed, compliance3d, solve_beam3d_modes
+from flexfem.fem.beam.spatial.inertia import mass_properties
 from flexfem.reduced.layout import link_inertia
 from flexfem.reduced.eightbar import eightbar_beam_model
 from flexfem.reduced.eightbar3d import eightbar_beam3d_model, link_plate_inertia

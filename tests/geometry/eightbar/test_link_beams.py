@@ -5,8 +5,8 @@ import numpy as np
 import pytest
 
 from flexfem.fem import material
-from flexfem.fem.beam3d import Beam3DModel, Section, solve_beam3d_modes
-from flexfem.fem.beam3d.inertia import mass_properties
+from flexfem.fem.beam.spatial import Beam3DModel, Section, solve_beam3d_modes
+from flexfem.fem.beam.spatial.inertia import mass_properties
 from flexfem.reduced.layout import link_moments
 from flexfem.geometry.eightbar.link_beams import link_skeleton, mesh_skeleton
 from flexfem.geometry.flexure_linkage import Part
