@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..fem.newton import newton
-from ..fem.stepping import StepFailed
+from ..fem.stepping import StepFailed, march
 from .element import element_stiffness
 from .large_strain import LargeStrainQ4, centre_stress, energy_gamma, interpolated
 from .responses import pnorm
@@ -118,28 +118,30 @@ class LargeDisplacement:
         return LargeState(u, dR, g, increments, iterations + it)
 
     def _stepped(self, E, gamma):
-        """Load increments from zero, halved on failure down to 1/64 of the first."""
-        first = 1.0 / self.settings.steps
-        u, factor, step, count, iterations = np.zeros(self.system.grid.n_dofs), 0.0, first, 0, 0
-        while True:
-            target = min(1.0, factor + step)
-            found = self._newton(u, E, gamma, target)
+        """Load increments from zero by fem/stepping.py's driver: a failed increment halved
+        down to 1/64 of the first, a cut one doubled back after two good ones."""
+        steps = self.settings.steps
+        done = {"u": np.zeros(self.system.grid.n_dofs), "found": None, "count": 0,
+                "iterations": 0}
+
+        def advance(t, dt, cuts_here):
+            target = 1.0 if t + dt >= 1.0 - 1e-12 else t + dt
+            found = self._newton(done["u"], E, gamma, target)
             if found is None:
-                step /= 2.0
-                if step < first / 64.0:
-                    raise EquilibriumFailed(
-                        f"nonlinear: no equilibrium beyond load factor {factor:.4g} (Newton "
-                        "failed down to 1/64 of a load step); the design may snap through or "
-                        "the load is too large for it; try more nonlinear.steps or a smaller "
-                        "load")
-                continue
-            u, it = found[:2]
-            iterations += it
-            count += 1
-            factor = target
-            if factor >= 1.0:
-                return (u, 0, *found[2:]), count, iterations
-            step = min(step * 2.0, first)
+                raise StepFailed("Newton failed", [])
+            done.update(u=found[0], found=found, count=done["count"] + 1,
+                        iterations=done["iterations"] + found[1])
+            return False
+
+        def failed(t, dt, cuts, failure):
+            return EquilibriumFailed(
+                f"nonlinear: no equilibrium beyond load factor {t:.4g} (Newton failed down to "
+                "1/64 of a load step); the design may snap through or the load is too large "
+                "for it; try more nonlinear.steps or a smaller load")
+
+        march(advance, steps, 1.0 / (64 * steps), failed)
+        u, _, g, dg = done["found"]
+        return (u, 0, g, dg), done["count"], done["iterations"]
 
     def gradient(self, state: LargeState, l: np.ndarray, by_modulus: bool = False):
         """d(l.u)/drho_e for a fixed vector l (n_dofs), by one adjoint solve with the
