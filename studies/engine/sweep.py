@@ -365,10 +365,8 @@ def run_study(study: Study, store_path, evaluate, workers: int | None = None,
     -------
     StudyResult
         The cases (stored earlier or now), how many were computed and reused, the executor
-        and the wall time (s).
-
-    On Ctrl-C the cases in flight are stopped and KeyboardInterrupt propagates; what
-    completed stays stored.
+        and the wall time (s). On Ctrl-C the cases in flight are stopped and
+        KeyboardInterrupt propagates; what completed stays stored.
     """
     start = time.perf_counter()
     count = study.case_count()
