@@ -34,7 +34,8 @@ def amplifier_problem(force: float, k_in_min: float, k_actuator: float, k_output
                       element: float = 1e-3, volume: float = 0.3, iterations: int = 300,
                       radius: float = 3.0, envelope: dict | None = None,
                       fn_min: float | None = None, stress_max: float | None = None,
-                      min_hinge: float | None = None, eta: float = 0.25) -> Problem:
+                      min_hinge: float | None = None, eta: float = 0.25,
+                      own_stiffness: bool = False) -> Problem:
     """Maximise the output's displacement. ``force`` (N): the actuator's push on one pad
     (the quarter carries half); ``k_in_min`` (N/m): the least input stiffness (force over
     elongation, the DBMA's k_in), a limit on u_in; ``k_actuator``, ``k_output`` (N/m): the
@@ -45,7 +46,8 @@ def amplifier_problem(force: float, k_in_min: float, k_actuator: float, k_output
     ``min_hinge`` (m): the blueprint's minimum solid and void size by the robust formulation
     (thresholds 1 - ``eta``, 0.5, ``eta``; the filter's radius from topopt.robust.radius_for,
     ``radius`` then unused), on square elements of ``element``, the grid the whole elements
-    that fit inside the envelope."""
+    that fit inside the envelope; ``own_stiffness``: bound the structure's own input stiffness
+    too (the pad's force over its displacement without the springs, as the DBMA's k_in)."""
     env = envelope or dbma_envelope()
     robust = None
     if min_hinge is None:
@@ -75,6 +77,8 @@ def amplifier_problem(force: float, k_in_min: float, k_actuator: float, k_output
                         k_output / 2)),
         constraints=(Constraint(Response("volume"), upper=volume),
                      Constraint(Response("displacement", "input"), upper=f / k_in_min))
+        + ((Constraint(Response("displacement", "input", springs=False),
+                       upper=f / k_in_min),) if own_stiffness else ())
         + ((Constraint(Response("frequency"), lower=fn_min),) if fn_min else ())
         + ((Constraint(Response("stress"), upper=stress_max),) if stress_max else ()),
         passive=(Passive(Region("box", ((0.0, 0.0), (px0, env["gap"]))), "void"),

@@ -71,6 +71,12 @@ class System:
         self.solver.factor(self._map @ E + self._spring)
         return self.resolve(rhs)
 
+    def solve_without_springs(self, E: np.ndarray, rhs: np.ndarray) -> np.ndarray:
+        """Solutions (n_dofs, k) of K(E) u = rhs[:, j] without the springs (the structure's
+        own stiffness); the factorisation is then that matrix's until the next ``solve``."""
+        self.solver.factor(self._map @ E)
+        return self.resolve(rhs)
+
     def resolve(self, rhs: np.ndarray) -> np.ndarray:
         """Solutions (n_dofs, k) with the last factorisation (of the last ``solve``)."""
         rhs = np.asarray(rhs, dtype=float).reshape(self.grid.n_dofs, -1)

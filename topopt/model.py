@@ -145,14 +145,25 @@ class Discrete:
 
     def _linear_state(self, rho, E, dE) -> State:
         """The displacements of every load case and the adjoints of the springs named by
-        a displacement response, one factorisation for all."""
+        a displacement response, one factorisation for all; where a displacement response
+        is without the springs, those of the structure alone first, by a factorisation of
+        its own (the one with springs stays the last, for the modes' and stress adjoints)."""
         p = self.problem
         responses = [p.objective] + [c.response for c in p.constraints]
-        names = sorted({r.spring for r in responses if r.kind == "displacement"})
+        cases = self.forces.shape[1]
+        free = sorted({r.spring for r in responses if r.kind == "displacement"
+                       and not r.springs})
+        free_U = free_adjoints = None
+        if free:
+            rhs = np.column_stack([self.forces] + [self.spring_vectors[n] for n in free])
+            sol = self.system.solve_without_springs(E, rhs)
+            free_U, free_adjoints = sol[:, :cases], dict(zip(free, sol[:, cases:].T))
+        names = sorted({r.spring for r in responses if r.kind == "displacement"
+                        and r.springs})
         rhs = np.column_stack([self.forces] + [self.spring_vectors[n] for n in names])
         sol = self.system.solve(E, rhs)
-        cases = self.forces.shape[1]
-        return State(rho, E, dE, sol[:, :cases], dict(zip(names, sol[:, cases:].T)))
+        return State(rho, E, dE, sol[:, :cases], dict(zip(names, sol[:, cases:].T)),
+                     free_U, free_adjoints)
 
     def _large_response(self, large, state: State, r):
         """A response of the large-displacement state: l.u with l a spring's vector

@@ -193,7 +193,7 @@ def _optimize(discrete, out_dir, progress, start=None) -> Result:
     discrete.beta = beta
     final = discrete.evaluate(z)
     names = [c.response.kind + (f"_{c.response.spring}" if c.response.spring else "")
-             for c in p.constraints]
+             + ("" if c.response.springs else "_without_springs") for c in p.constraints]
     converged = _done(proj, change, opt.tolerance, beta, at_beta)
     return Result(final.objective, it, float(final.physical.mean()), converged,
                   change, final.physical, final.displacements,

@@ -58,7 +58,8 @@ class Response:
     eigenfrequency, Hz; with ``modes`` > 1 that of an aggregate of the ``modes`` lowest
     eigenvalues, below the lowest and differentiable where it is repeated) or 'stress' (the p-norm, exponent ``pnorm``, of the elements'
     relaxed von Mises stresses rho^relaxation sigma_vm(solid) at their centres over all load
-    cases, Pa)."""
+    cases, Pa). A 'displacement' with ``springs`` False is that of the structure without its
+    springs (its own input stiffness: load over that displacement)."""
 
     kind: str
     spring: str = ""
@@ -67,6 +68,7 @@ class Response:
     pnorm: float = 8.0
     relaxation: float = 0.5
     modes: int = 1
+    springs: bool = True
 
 
 @dataclass(frozen=True)
@@ -254,6 +256,9 @@ def _check_nonlinear(p: Problem) -> None:
             raise ValueError(f"nonlinear: {r.kind!r} is not available with large "
                              "displacements (displacement, compliance, stress and volume "
                              "are)")
+        if not r.springs:
+            raise ValueError("nonlinear: a displacement without the springs is not "
+                             "available with large displacements")
 
 
 def _check_cases(p: Problem) -> None:
@@ -271,6 +276,8 @@ def _check_response(p: Problem, r: Response) -> None:
         raise ValueError(f"kind = {r.kind!r}: choose one of {list(RESPONSES)}")
     if r.kind == "displacement":
         p.spring(r.spring)
+    if not r.springs and r.kind != "displacement":
+        raise ValueError(f"{r.kind}: springs = false applies to kind 'displacement' only")
     if not (isinstance(r.case, int) and 1 <= r.case <= p.n_cases):
         raise ValueError(f"{r.kind}: case = {r.case!r}: must be a load case, 1 to {p.n_cases}")
     if r.weights:

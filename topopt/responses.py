@@ -14,13 +14,17 @@ from .interpolation import mass_factor, mass_factor_derivative
 @dataclass
 class State:
     """A design's physical densities ``rho``, moduli ``E`` and dE/drho (Pa), the
-    displacements ``U`` (n_dofs, n_cases; m) and the displacement adjoints by spring."""
+    displacements ``U`` (n_dofs, n_cases; m) and the displacement adjoints by spring;
+    ``free_U`` and ``free_adjoints`` those of the structure without its springs (where a
+    response asks for them)."""
 
     rho: np.ndarray
     E: np.ndarray
     dE: np.ndarray
     U: np.ndarray
     adjoints: dict
+    free_U: np.ndarray | None = None
+    free_adjoints: dict | None = None
 
 
 def volume(d, s: State, r):
@@ -40,8 +44,12 @@ def compliance(d, s: State, r):
 
 
 def displacement(d, s: State, r):
-    """The spring's mean displacement l.u (m) in load case r.case, and its gradient."""
-    u, lam = s.U[:, r.case - 1], s.adjoints[r.spring]
+    """The spring's mean displacement l.u (m) in load case r.case (of the structure without
+    its springs where r.springs is False), and its gradient."""
+    if r.springs:
+        u, lam = s.U[:, r.case - 1], s.adjoints[r.spring]
+    else:
+        u, lam = s.free_U[:, r.case - 1], s.free_adjoints[r.spring]
     return float(d.spring_vectors[r.spring] @ u), -s.dE * d.system.element_products(lam, u)
 
 
