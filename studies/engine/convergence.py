@@ -163,8 +163,7 @@ def _mesh_sizes(outputs: list, key: str | None, dim: int) -> tuple[str, list]:
 def converge(evaluate, metric: str, levels: list, mesh_size_key: str | None = None,
              params: dict | None = None, tol: float | None = None, dim: int = 2,
              progress=None, store=None, mechanism: str = "evaluate") -> ConvergenceResult:
-    """Evaluate ``metric`` at each mesh level and estimate its converged value (Richardson
-    extrapolation, the observed order, the grid convergence index).
+    """Evaluate ``metric`` at each mesh level; estimate its converged value (Richardson).
 
     Parameters
     ----------
@@ -175,29 +174,26 @@ def converge(evaluate, metric: str, levels: list, mesh_size_key: str | None = No
     levels : list of dict
         The ``evaluate`` options of each level, coarse to fine (>= 3; e.g. ``size_factor``).
     mesh_size_key : str, optional
-        "h" (the element size, m) or "dofs" (unknowns); None: "h" when returned.
+        "h" (element size, m) or "dofs" (unknowns, -); None: "h" when returned.
     params : dict, optional
         The design (``evaluate``'s parameters; None: its defaults).
     tol : float or str, optional
-        The relative tolerance (-, or a string such as "1 %"): the coarsest level within it
-        is reported.
+        The relative tolerance (-, or "1 %"): the coarsest level within it is reported.
     dim : int
         The dimension relating dofs to h (h ~ dofs^(-1/dim)).
     progress : file-like, optional
         A stream that gets a line per level as it completes (None: stderr when a terminal).
     store : str or os.PathLike, optional
-        An SQLite file (engine/store.py) where each level is recorded as it completes, keyed
-        by ``mechanism``, the design and the level: a rerun reuses the stored levels.
+        An SQLite file (engine/store.py) recording each level, keyed by ``mechanism``, the
+        design and the level: a rerun reuses the stored levels.
     mechanism : str
         The name the store keys the levels by.
 
     Returns
     -------
     ConvergenceResult
-        The values, sizes, observed order, extrapolated value, error estimate and GCI.
-
-    Before any level is meshed, every level's mesh estimate is checked against its budget
-    (:func:`check_levels`).
+        The values, sizes, observed order, extrapolated value, error estimate and GCI. Every
+        level's mesh estimate is checked against its budget first (:func:`check_levels`).
     """
     if len(levels) < 3:
         raise ValueError(f"levels has {len(levels)} entries; the observed order needs >= 3")
