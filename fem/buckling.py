@@ -23,10 +23,21 @@ from .static import StaticResult, solve_static, vertex_displacement
 
 @dataclass(frozen=True, eq=False)
 class Buckling:
-    """load_factors : (k,) critical multipliers (-) of the applied loads and prescribed
-    displacements, ascending; shapes : (k, n_dofs) buckling shapes scaled to a largest
-    displacement component of 1 (m per m, arbitrary sign); prebuckling : the linear static
-    state that was scaled."""
+    """Linear buckling of a model (:func:`flexfem.fem.solve_buckling`).
+
+    Attributes
+    ----------
+    model : Model
+        The model solved.
+    load_factors : ndarray
+        (k,) critical multipliers (-) of the applied loads and prescribed displacements,
+        ascending.
+    shapes : ndarray
+        (k, n_dofs) buckling shapes scaled to a largest displacement component of 1 (m per m,
+        arbitrary sign).
+    prebuckling : StaticResult
+        The linear static state that was scaled.
+    """
 
     model: Model
     load_factors: np.ndarray

@@ -24,10 +24,21 @@ from .stability import state_displacement, tangent_stiffness
 
 @dataclass(frozen=True, eq=False)
 class Compliance:
-    """matrix : compliance (m/N, 1/N, rad/(N m)) of the face's (translations, rotations)
-    under (forces, moments) at ``point`` (m, current coordinates): 3 x 3 in 2-D (x, y, theta_z),
-    6 x 6 in 3-D (x, y, z, theta_x, theta_y, theta_z), in the axes ``frame`` (columns: the
-    axes' global components); face : the group."""
+    """The compliance of a rigid face (:func:`flexfem.fem.compliance_matrix`).
+
+    Attributes
+    ----------
+    face : str
+        The group.
+    matrix : ndarray
+        The compliance (m/N, 1/N, rad/(N m)) of the face's (translations, rotations) under
+        (forces, moments) at ``point``: 3 x 3 in 2-D (x, y, theta_z), 6 x 6 in 3-D (x, y, z,
+        theta_x, theta_y, theta_z), in the axes ``frame``.
+    point : ndarray
+        The reference point (m, current coordinates).
+    frame : ndarray
+        (dim, dim) the axes of ``matrix``: columns are the axes' global components.
+    """
 
     face: str
     matrix: np.ndarray

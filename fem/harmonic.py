@@ -92,8 +92,23 @@ class FRF:
 
 @dataclass(frozen=True, eq=False)
 class HarmonicResult:
-    """frequencies_hz : (n,) ; u : (n, n_dofs) complex displacement amplitudes (m) ; method :
-    'modal' or 'direct' ; modes : the Modes used (modal method) ; info."""
+    """The steady-state harmonic response (:func:`flexfem.fem.solve_harmonic`).
+
+    Attributes
+    ----------
+    model : Model
+        The model solved.
+    frequencies_hz : ndarray
+        (n,) the excitation frequencies (Hz).
+    u : ndarray
+        (n, n_dofs) complex displacement amplitudes (m per the loads' amplitudes).
+    method : str
+        'modal' or 'direct'.
+    modes : Modes or None
+        The modes used (modal method).
+    info : dict
+        The solver's own figures.
+    """
 
     model: Model
     frequencies_hz: np.ndarray

@@ -22,16 +22,30 @@ SHIFT = 1e-10  # the default shift, relative to the mean stiffness/mass diagonal
 
 @dataclass(frozen=True, eq=False)
 class Modes:
-    """frequencies_hz : (n,) natural frequencies (Hz), ascending; shapes : (n, n_dofs)
-    mass-normalised mode shapes (phi.M.phi = 1, in m/sqrt(kg)); effective_mass : (n, dim)
-    effective modal mass (kg) per translation direction; total_mass : mass of the body (kg)."""
+    """The natural modes of a model (:func:`flexfem.fem.solve_modes`).
+
+    Attributes
+    ----------
+    model : Model
+        The model solved.
+    frequencies_hz : ndarray
+        (n,) natural frequencies (Hz), ascending.
+    shapes : ndarray
+        (n, n_dofs) mass-normalised mode shapes (phi.M.phi = 1, m/sqrt(kg)).
+    effective_mass : ndarray
+        (n, dim) effective modal mass (kg) per translation direction.
+    total_mass : float
+        The mass of the body (kg).
+    solver : str
+        The factorization's backend: 'mkl-pardiso', 'cholmod' or 'superlu'.
+    """
 
     model: Model
     frequencies_hz: np.ndarray
     shapes: np.ndarray
     effective_mass: np.ndarray
     total_mass: float
-    solver: str = ""  # the factorization's backend: 'mkl-pardiso', 'cholmod' or 'superlu'
+    solver: str = ""
 
     @property
     def effective_mass_fraction(self) -> np.ndarray:

@@ -11,24 +11,49 @@ from .static_result import mean_field
 
 @dataclass(frozen=True, eq=False)
 class NonlinearResult:
-    """Converged steps of a nonlinear solve; index 0 is the unloaded state.
+    """The converged steps of a nonlinear solve (:func:`flexfem.fem.solve_nonlinear`); step 0
+    is the unloaded state.
 
-    load_factors : (n,) ; u : list of DOF vectors (m) ; reactions : per step {group: force
-    (N)} of every supported group ; face_reactions : per step {group: (F_x, F_y, M)} (N, N,
-    N m about the current centroid) of every rigid face, equal to the applied load on a free
-    coordinate ; face_motion : per step {group:
-    (c_x, c_y, theta)} (m, m, rad) ; in 3-D (F, M) and (c, rotation vector), 6 each ; iterations : Newton iterations per step ;
-    von_mises_nodal / von_mises_element_max : final Cauchy von Mises stress (Pa), nodal from
-    the L2 projection of the stress components onto linear fields, and the maximum over each
-    element's quadrature points ; applied : full-load vector f_ext (N) ; negative_eigenvalues :
-    per step, the number of negative eigenvalues of the reduced tangent stiffness (None where
-    it is singular, a critical state; None everywhere if not checked) ; max_strain : per step
-    the largest absolute principal Green-Lagrange strain (-) ; strain_limit : the validity
-    limit of St. Venant-Kirchhoff (see :data:`.hyperelastic.STRAIN_LIMIT`) ; preload_factors :
-    per step, the factor of the preloads (:mod:`.preload`; 0 -> 1 in the preload stage, where
-    load_factors is 0, then 1; all 0 without preloads) ; preload_end : the step that ends the
-    preload stage (0 without preloads): ``load_factors[preload_end:]`` is the path of the
-    scaled loads from the preloaded state ; preloaded : the nodal preload vector (N)."""
+    Attributes
+    ----------
+    model : Model
+        The model solved.
+    load_factors : ndarray
+        (n,) the load factor of each step (-).
+    u : list of ndarray
+        The DOF vector of each step (m).
+    reactions : list of dict
+        Per step {group: force (N)} of every supported group.
+    face_reactions, face_motion : list of dict
+        Per step {group: (F_x, F_y, M)} (N, N, N m about the current centroid) and {group:
+        (c_x, c_y, theta)} (m, m, rad) of every rigid face (its reaction equal to the applied
+        load on a free coordinate); in 3-D (F, M) and (c, rotation vector), 6 each.
+    iterations : list of int
+        Newton iterations per step.
+    von_mises_nodal, von_mises_element_max : ndarray
+        The final Cauchy von Mises stress (Pa), nodal from the L2 projection of the stress
+        components onto linear fields, and the largest over each element's quadrature points.
+    applied : ndarray
+        The full-load vector f_ext (N).
+    info : dict
+        The solver's own figures.
+    negative_eigenvalues : list
+        Per step, the number of negative eigenvalues of the reduced tangent stiffness (None
+        where it is singular, a critical state; None everywhere if not checked).
+    max_strain : ndarray
+        Per step, the largest absolute principal Green-Lagrange strain (-).
+    strain_limit : float
+        The validity limit (-) of St. Venant-Kirchhoff (:data:`.hyperelastic.STRAIN_LIMIT`).
+    preload_factors : ndarray
+        Per step, the factor (-) of the preloads (:mod:`.preload`; 0 -> 1 in the preload
+        stage, where load_factors is 0, then 1; all 0 without preloads).
+    preload_end : int
+        The step that ends the preload stage (0 without preloads):
+        ``load_factors[preload_end:]`` is the path of the scaled loads from the preloaded
+        state.
+    preloaded : ndarray
+        The nodal preload vector (N).
+    """
 
     model: Model
     load_factors: np.ndarray

@@ -19,19 +19,38 @@ class UnderConstrainedError(SingularStiffness):
 
 @dataclass(frozen=True, eq=False)
 class StaticResult:
-    """Fields and metrics of a static solve. Displacements in m, stresses in Pa, forces in N,
-    energy in J.
+    """Fields and metrics of a static solve (:func:`flexfem.fem.solve_static`).
 
-    u : DOF vector; displacement : (n_vertices, dim) at the mesh vertices;
-    von_mises_nodal : (n_vertices,) from the stress components L2-projected onto
-    continuous linear fields; nodal_stress_full : (n_vertices, 3, 3) those projected Cauchy
-    stress components (2-D: with sigma_zz); von_mises_element_max :
-    (n_elements,) maximum over each element's quadrature points; reactions : {group: force
-    vector} on every supported group; strain_energy : 1/2 u.K.u; solver : the linear solver
-    used, 'mkl-pardiso', 'cholmod', 'superlu' (direct) or 'amg-cg' ('none': no load);
-    face_motion / face_reactions : {group: (c_x, c_y, theta)} (m, m, rad) and {group: (F_x,
-    F_y, M about the centroid)} (N, N, N m) of the rigid faces of a solve with them; in 3-D
-    (c_x, c_y, c_z, theta_x, theta_y, theta_z) and (F_x, F_y, F_z, M_x, M_y, M_z).
+    Attributes
+    ----------
+    model : Model
+        The model solved.
+    u : ndarray
+        The DOF vector (m).
+    displacement : ndarray
+        (n_vertices, dim) displacement at the mesh vertices (m).
+    von_mises_nodal : ndarray
+        (n_vertices,) von Mises stress (Pa) from the stress components L2-projected onto
+        continuous linear fields.
+    von_mises_element_max : ndarray
+        (n_elements,) the largest von Mises stress (Pa) over each element's quadrature points.
+    reactions : dict
+        {group: force vector (N)} on every supported group.
+    applied_force : ndarray
+        The assembled load vector (N).
+    strain_energy : float
+        1/2 u.K.u (J).
+    solver : str
+        The linear solver used: 'mkl-pardiso', 'cholmod', 'superlu' (direct), 'pmg-cg' or
+        'amg-cg' (iterative); 'none' for no load.
+    info : dict
+        The solver's own figures (iterations, residual).
+    nodal_stress_full : ndarray or None
+        (n_vertices, 3, 3) the projected Cauchy stress components (Pa; 2-D with sigma_zz).
+    face_motion, face_reactions : dict
+        {group: (c_x, c_y, theta)} (m, m, rad) and {group: (F_x, F_y, M about the centroid)}
+        (N, N, N m) of the rigid faces of a solve with them; in 3-D (c_x, c_y, c_z, theta_x,
+        theta_y, theta_z) and (F_x, F_y, F_z, M_x, M_y, M_z).
     """
 
     model: Model
