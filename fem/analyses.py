@@ -93,8 +93,7 @@ def solve_modes(model, n: int = 6, supports=(), **options):
     Parameters
     ----------
     model : Model, BeamModel or Beam3DModel
-        The continuum (mesh in m, material in Pa) or a planar or spatial beam model, with
-        named groups.
+        As in :func:`solve_static` (m, Pa).
     n : int
         How many modes (-).
     supports : sequence of Fixed or Prescribed
@@ -117,14 +116,9 @@ def solve_nonlinear(model, supports, loads, **options):
 
     Parameters
     ----------
-    model : Model, BeamModel or Beam3DModel
-        The continuum (mesh in m, material in Pa) or a planar or spatial beam model, with
-        named groups.
-    supports : sequence of Fixed or Prescribed
-        The held groups; a Prescribed displacement is in m (a rotation in rad).
-    loads : sequence of Force, Traction, Pressure, PointForce, BodyForce or Gravity
-        The loads on groups: Force in N (a group's total), Traction and Pressure in Pa, a
-        BodyForce in N/m^3, Gravity in m/s^2.
+    model, supports, loads
+        As in :func:`solve_static`: the model (m, Pa), the held groups (m, rad), the loads (N,
+        Pa, N/m^3, m/s^2).
     **options
         ``steps`` (load increments, -), ``max_iterations``, ``tol`` (relative residual, -),
         ``min_step`` (the smallest load-factor increment, -), ``rigid_faces``; the
@@ -146,11 +140,8 @@ def compliance_matrix(model, supports, face, **options):
 
     Parameters
     ----------
-    model : Model, BeamModel or Beam3DModel
-        The continuum (mesh in m, material in Pa) or a planar or spatial beam model, with
-        named groups.
-    supports : sequence of Fixed or Prescribed
-        The held groups; a Prescribed displacement is in m (a rotation in rad).
+    model, supports
+        As in :func:`solve_static`: the model (m, Pa) and the held groups (m, rad).
     face : str or RigidFace
         The group whose compliance is asked for (all its coordinates freed).
     **options
@@ -172,14 +163,9 @@ def solve_harmonic(model, supports, loads, frequencies_hz, **options):
 
     Parameters
     ----------
-    model : Model, BeamModel or Beam3DModel
-        The continuum (mesh in m, material in Pa) or a planar or spatial beam model, with
-        named groups.
-    supports : sequence of Fixed or Prescribed
-        The held groups, held at zero.
-    loads : sequence of Force, Traction, Pressure, PointForce, BodyForce or Gravity
-        The load amplitudes on groups: Force in N (a group's total), Traction and Pressure in Pa, a
-        BodyForce in N/m^3, Gravity in m/s^2.
+    model, supports, loads
+        As in :func:`solve_static` (m, Pa; supports held at zero): the loads' amplitudes (N,
+        Pa, N/m^3, m/s^2).
     frequencies_hz : array_like
         The excitation frequencies (Hz).
     **options
@@ -201,14 +187,9 @@ def solve_buckling(model, supports, loads, n: int = 3, **options):
 
     Parameters
     ----------
-    model : Model, BeamModel or Beam3DModel
-        The continuum (mesh in m, material in Pa) or a planar or spatial beam model, with
-        named groups.
-    supports : sequence of Fixed or Prescribed
-        The held groups; a Prescribed displacement is in m (a rotation in rad).
-    loads : sequence of Force, Traction, Pressure, PointForce, BodyForce or Gravity
-        The loads on groups: Force in N (a group's total), Traction and Pressure in Pa, a
-        BodyForce in N/m^3, Gravity in m/s^2.
+    model, supports, loads
+        As in :func:`solve_static`: the model (m, Pa), the held groups (m, rad), the loads (N,
+        Pa, N/m^3, m/s^2).
     n : int
         How many load factors (-).
     **options

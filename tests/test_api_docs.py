@@ -52,7 +52,8 @@ def test_every_parameter_of_an_entry_point_is_documented(entry):
     doc = inspect.getdoc(entry) or ""
     assert re.search(r"^Parameters\n-{10}$", doc, re.M), f"{entry.__qualname__}: no Parameters"
     section = doc.split("Parameters\n----------", 1)[1]
-    documented = set(re.findall(r"^(\*{0,2}\w+)(?: : |$)", section, re.M))
+    documented = {name for line in re.findall(r"^(\*{0,2}\w+(?:, \w+)*)(?: : |$)", section,
+                                              re.M) for name in line.split(", ")}
     target = entry.__init__ if inspect.isclass(entry) else entry
     names = [("**" if p.kind is p.VAR_KEYWORD else "") + p.name
              for p in inspect.signature(target).parameters.values() if p.name != "self"]
