@@ -28,6 +28,12 @@ TRIANGLE = math.sqrt(3) / 4
 TETRAHEDRA_PER_CUBE = 8.5  # regular tetrahedra of edge h: h^3 / (6 sqrt 2) each
 #: Nodes per element of large unstructured meshes, by (dim, order).
 NODES_PER_ELEMENT = {(2, 1): 0.5, (2, 2): 2.05, (3, 1): 0.18, (3, 2): 1.4}
+#: Nodes a boundary element side adds (an edge in 2-D, a triangle in 3-D): Euler's formula.
+#: 2-D: V = (T + B) / 2 + 1 and E = (3 T + B) / 2 for T triangles and B boundary edges, so
+#: P1 nodes T / 2 + B / 2 and P2 nodes (V + E) 2 T + B. 3-D: E = V + T + B / 2 - 1 with B
+#: boundary triangles; a boundary vertex (B / 2 of them) sits in half a bulk vertex's
+#: tetrahedra, so V = 0.18 T + B / 4 and P2 nodes (V + E) 1.36 T + B.
+BOUNDARY_NODES = {(2, 1): 0.5, (2, 2): 1.0, (3, 1): 0.25, (3, 2): 1.0}
 FALLBACK_MEMORY = 4 * 2**30  # when the available memory cannot be read
 #: Most eigenpairs a model file may ask for (modes, buckling factors, a harmonic's modal
 #: basis): a flexure is designed on its first few; the Lanczos solve keeps k vectors of the

@@ -9,7 +9,7 @@ import math
 import numpy as np
 
 from ...fem import FEMesh, gmsh_session, mesh_from_gmsh
-from ...fem.budget import NODES_PER_ELEMENT, TETRAHEDRA_PER_CUBE, TRIANGLE, check_budget
+from ...fem.budget import BOUNDARY_NODES, NODES_PER_ELEMENT, TETRAHEDRA_PER_CUBE, TRIANGLE, check_budget
 from ..polygon import inscribed_diameter
 from .description import REACH, Leaf, Mechanism, flexure_label, cross2
 
@@ -274,30 +274,74 @@ def _refine(gmsh, mechanism: Mechanism, shapes: dict, size_factor: float, coarse
     gmsh.option.setNumber("Mesh.MeshSizeMax", coarse * size_factor)
 
 
-def estimate_mesh(mechanism: Mechanism, dim: int = 2, size_factor: float = 1.0,
-                  coarse: float | None = None, order: int = 2) -> dict:
-    """{"elements", "nodes", "dofs"} expected of :func:`mesh_mechanism`: the bodies at their
-    size, each flexure's band (its outline and an element either side) at its own; in 3-D
-    their volumes through the depth in tetrahedra of those sizes. Measured on the examples:
-    1.0-2.0 x the mesh in 2-D, ~2 x in 3-D."""
-    sizes, coarse = element_sizes(mechanism, coarse)
+def _graded_cells(cells, width: float, h: float, coarse: float, near: float, reach: float,
+                  room: float) -> tuple:
+    """(cells, area (m^2)) of a flexure's root in its body: the half-stadium of points within
+    ``near + reach`` of the root's interface (``width`` long, m), where the size is ``h``
+    within ``near`` and grows linearly to ``coarse`` at ``near + reach`` (the threshold field
+    of :func:`_refine`), at most ``room`` (m^2, the body's area) of it. ``cells(area, size)``
+    counts the elements of an area at a size."""
+    d = np.linspace(0.0, near + reach, 201)
+    size = np.clip(h + (coarse - h) * (d - near) / reach, h, coarse)
+    strip = (width + math.pi * d)  # d(area)/d(distance) of the half-stadium
+    area = np.trapezoid(strip, d)
+    count = np.trapezoid(np.array([cells(a, s) for a, s in zip(strip, size)]), d)
+    scale = min(1.0, room / area) if area > 0 else 0.0
+    return count * scale, area * scale
 
-    def cells(area: float, h: float) -> float:
-        h = h * size_factor
-        if dim == 2:
-            return area / (TRIANGLE * h * h)
-        return area * mechanism.depth / (h ** 3 / TETRAHEDRA_PER_CUBE)
 
-    elements = cells(sum(b.area for b in mechanism.bodies), coarse)
+def _element_count(mechanism: Mechanism, cells, sizes: list, coarse: float) -> tuple:
+    """(elements, [(length (m), size (m))] of the outline) of the size field of :func:`_refine`
+    integrated over the mechanism: each flexure's own area at its size, at each of its two
+    roots the body's points within the field's reach at the graded size (:func:`_graded_cells`),
+    the rest of the bodies at theirs. ``cells(area, size)`` counts an area's elements."""
+    body_area = sum(b.area for b in mechanism.bodies)
+    elements, graded = 0.0, 0.0
+    outline = [(sum(b.shape.length for b in mechanism.bodies), coarse)]
     for i, (f, h) in enumerate(zip(mechanism.flexures, sizes)):
         if isinstance(f, Leaf):
-            band = mechanism.span(i).length * (f.width + 2 * h)
+            length = mechanism.span(i).length
+            own = length * f.width
             if f.fillet > 0:  # four fillets, each fine within about its radius
                 elements += cells(4 * (2 * f.fillet) ** 2, min(h, f.fillet / FILLET_DIVISIONS))
         else:  # fine within half the neck of the two cut-outs' half-ellipses
-            band = math.pi * sum(f.semi_axes) * f.thickness
-        elements += cells(band, h)
-    nodes = NODES_PER_ELEMENT[(dim, order)] * elements
+            own = math.pi * sum(f.semi_axes) * f.thickness
+            length = math.pi * sum(f.semi_axes) / 2
+        elements += cells(own, h)
+        outline.append((2 * length, h))
+        for _ in range(2):
+            count, area = _graded_cells(cells, f.width, h, coarse, f.thickness / 2,
+                                        2 * coarse, max(body_area - graded, 0.0))
+            elements, graded = elements + count, graded + area
+    return elements + cells(max(body_area - graded, 0.0), coarse), outline
+
+
+def estimate_mesh(mechanism: Mechanism, dim: int = 2, size_factor: float = 1.0,
+                  coarse: float | None = None, order: int = 2) -> dict:
+    """{"elements", "nodes", "dofs"} expected of :func:`mesh_mechanism`: the elements of the
+    size field integrated over the mechanism (:func:`_element_count`; in 3-D the areas through
+    the depth in tetrahedra), the nodes NODES_PER_ELEMENT a cell plus BOUNDARY_NODES an element
+    side on the boundary (2-D: its outline's edges; 3-D: the top and bottom faces' triangles
+    and the lateral faces'): a thin flexure's mesh is mostly boundary."""
+    sizes, coarse = element_sizes(mechanism, coarse)
+    depth = mechanism.depth
+
+    def triangles(area: float, h: float) -> float:
+        h = min(h, coarse) * size_factor
+        return area / (TRIANGLE * h * h)
+
+    def tetrahedra(area: float, h: float) -> float:
+        h = min(h, coarse) * size_factor
+        return area * depth / (h ** 3 / TETRAHEDRA_PER_CUBE)
+
+    planar, outline = _element_count(mechanism, triangles, sizes, coarse)
+    if dim == 2:
+        elements = planar
+        boundary = sum(length / (h * size_factor) for length, h in outline)
+    else:
+        elements, _ = _element_count(mechanism, tetrahedra, sizes, coarse)
+        boundary = 2 * planar + sum(triangles(length * depth, h) for length, h in outline)
+    nodes = NODES_PER_ELEMENT[(dim, order)] * elements + BOUNDARY_NODES[(dim, order)] * boundary
     return {"elements": int(min(elements, 1e18)), "nodes": int(min(nodes, 1e18)),
             "dofs": int(min(dim * nodes, 1e18))}
 
