@@ -18,7 +18,7 @@ import numpy as np
 
 from .factor import SingularStiffness, factor
 from .stepping import StepFailed
-from .newton import NonConvergenceError, newton_step
+from .newton import NonConvergenceError, newton, newton_step
 
 
 def _load_direction(problem, z, lam, rz) -> np.ndarray:
@@ -47,26 +47,31 @@ def arc_step(problem, z, lam, ds, previous, max_iterations, tol):
                       problem.matrix_kind)
     sign = 1.0 if float(dz_t @ previous) >= 0 else -1.0
     dlam = sign * ds / max(np.linalg.norm(dz_t), 1e-300)
-    Dz, Dlam, d = dlam * dz_t, dlam, None
-    history = []
-    for iteration in range(1, max_iterations + 1):
-        zc, lc = z + Dz, lam + Dlam
+    Dz, Dlam = dlam * dz_t, dlam
+
+    def residual(x):
+        zc, lc = z + x[0], lam + x[1]
         u, r, rz, K, reference, _, _ = problem.evaluate(zc, lc)
-        norm = float(np.linalg.norm(rz))
-        history.append(norm / reference if reference > 0 else norm)
-        if not math.isfinite(norm):
-            raise StepFailed("the residual diverged", history)
-        small = d is not None and np.linalg.norm(d) <= math.sqrt(tol) * max(np.linalg.norm(u), 1e-300)
-        if norm <= tol * reference and small:
-            return zc, lc, u, r, iteration
+        return rz, reference, (zc, lc, u, r, K)
+
+    def correction(x, rz, state):
+        zc, lc, _, _, K = state
         a, b = _solve2(K, -rz, _load_direction(problem, zc, lc, rz), problem.matrix_kind)
-        denominator = 2.0 * float(Dz @ b)
+        denominator = 2.0 * float(x[0] @ b)
         if denominator == 0:
-            raise StepFailed("the arc-length constraint is degenerate", history)
-        dl = (ds ** 2 - float(Dz @ Dz) - 2.0 * float(Dz @ a)) / denominator
-        d = a + dl * b
-        Dz, Dlam = Dz + d, Dlam + dl
-    raise StepFailed(f"no convergence in {max_iterations} iterations", history)
+            raise StepFailed("the arc-length constraint is degenerate", [])
+        dl = (ds ** 2 - float(x[0] @ x[0]) - 2.0 * float(x[0] @ a)) / denominator
+        return a + dl * b, dl
+
+    def converged(x, d, size, reference, state):
+        return d is not None and size <= tol * reference and \
+            np.linalg.norm(d[0]) <= math.sqrt(tol) * max(np.linalg.norm(state[2]), 1e-300)
+
+    # fem/newton.py's driver on (Dz, Dlam): max_iterations evaluations of the residual
+    found = newton((Dz, Dlam), residual, correction, tol=tol, max_iterations=max_iterations - 1,
+                   update=lambda x, d: (x[0] + d[0], x[1] + d[1]), converged=converged)
+    zc, lc, u, r, _ = found.state
+    return zc, lc, u, r, found.iterations + 1
 
 
 def limit_points(load_factors) -> list:
