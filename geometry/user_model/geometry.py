@@ -223,6 +223,11 @@ def mesh_geometry(spec, size_factor: float = 1.0, max_dofs: int | None = None) -
     (curves first, then surfaces, then volumes) pass the budget."""
     if not size_factor > 0:
         raise ValueError(f"size_factor = {size_factor!r} must be > 0")
+    if getattr(spec, "spatial", None) is not None:
+        from ..spatial.continuum import mesh_spatial
+
+        return mesh_spatial(spec.spatial, size_factor, spec.mesh.size, spec.mesh.order,
+                            max_dofs)
     if spec.mechanism is not None:
         mesh = mesh_mechanism(spec.mechanism, spec.dim, size_factor, spec.mesh.size,
                               order=spec.mesh.order, max_dofs=max_dofs)

@@ -7,6 +7,7 @@ import tomllib
 
 from ...fem.materials import Material
 from ..mechanism import Mechanism
+from ..spatial.detect import is_spatial
 from .beam_tables import BeamSpec, beam_options, parse_beams
 from .geo_guard import check_inside
 from .mechanism_tables import body_loads, body_supports, parse_mechanism
@@ -57,6 +58,7 @@ class ModelSpec:
     mechanism: Mechanism | None = None
     outputs: tuple = ()
     points: dict = field(default_factory=dict)
+    spatial: object = None  # a SpatialMechanism (geometry/spatial) of 3-D bodies
 
     @property
     def source(self) -> str:
@@ -273,6 +275,19 @@ def _mechanism_spec(path: Path, raw: dict, loc: Locator, overridden: set, dim: i
                      outputs=outputs, points=points, **parts)
 
 
+def _spatial_spec(path: Path, raw: dict, loc: Locator, overridden: set, dim: int | None,
+                  allow_code: bool) -> ModelSpec:
+    """A model file of 3-D bodies and flexures (geometry/spatial): its continuum, dim 3."""
+    from ..spatial.model_file import spatial_spec
+
+    parameters = _parameters(raw.get("parameters", {}), loc, overridden)
+    parts, groups = spatial_spec(raw, parameters, loc, dim)
+    _check_groups(parts, groups, path, 3, loc)
+    return ModelSpec(path=path, geometry=path, dim=3, parameters=parameters, groups=groups,
+                     constants=dict(parameters), allow_code=allow_code,
+                     description=str(raw.get("description", "")), **parts)
+
+
 def mechanism_spec(mechanism: Mechanism, material: Material, supports, loads,
                    analysis: Analysis = Analysis(), dim: int = 2, order: int = 2,
                    mesh_size: float | None = None) -> ModelSpec:
@@ -326,6 +341,8 @@ def load_spec(path, overrides: dict | None = None, allow_code: bool = False,
                         name if is_table else None, None if is_table else name)
     if "body" in raw or "flexure" in raw:
         _check_declared(overridden, declared, path)
+        if is_spatial(raw):
+            return _spatial_spec(path, raw, loc, overridden, dim, allow_code)
         return _mechanism_spec(path, raw, loc, overridden, dim, allow_code)
     if bodies_only:
         raise ValueError(f"{path}: {bodies_only} needs a model of bodies and flexures "

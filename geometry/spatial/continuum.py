@@ -1,0 +1,199 @@
+"""The continuum of a :class:`~.description.SpatialMechanism`: its bodies (boxes, cylinders,
+prisms) and flexures (wires as cylinders, leaves as plates) drawn with gmsh's OpenCASCADE
+kernel from the description's numbers alone (no user text reaches gmsh), fragmented into
+one conforming solid with a boundary group per body (its faces where no flexure meets it)
+and "solid"; meshed in tetrahedra refined in every flexure (at least two elements through a
+wire's diameter or a leaf's thickness). The model raises the order (P2 by default).
+Lengths in m."""
+import math
+
+import numpy as np
+
+from ...fem import FEMesh, gmsh_session, mesh_from_gmsh
+from ...fem.budget import NODES_PER_ELEMENT, TETRAHEDRA_PER_CUBE, check_budget
+from .description import AXES, Plate, SpatialMechanism, Wire, flexure_label
+
+#: Elements through a wire's diameter or a leaf's thickness, by default.
+THROUGH = 2
+
+
+def flexure_size(flexure) -> float:
+    """The element size (m) in a flexure: its diameter or thickness over :data:`THROUGH`."""
+    return (flexure.diameter if isinstance(flexure, Wire) else flexure.thickness) / THROUGH
+
+
+def body_size(mechanism: SpatialMechanism, coarse: float | None = None) -> float:
+    """The element size (m) in the bodies: ``coarse`` or a twentieth of the mechanism, at
+    most half the shortest box side, never finer than the coarsest flexure's size."""
+    if coarse is None:
+        sides = [abs(hi[k] - lo[k]) for b in mechanism.bodies for lo, hi in b.boxes
+                 for k in range(3)]
+        sides += [c.diameter for b in mechanism.bodies for c in b.cylinders]
+        coarse = min([mechanism.size / 20] + [s / 2 for s in sides])
+    return max(coarse, max(flexure_size(f) for f in mechanism.flexures))
+
+
+def _volume(body) -> float:
+    """The body's volume (m^3), its parts summed (an upper bound where they overlap)."""
+    v = sum(abs(np.prod(np.subtract(hi, lo))) for lo, hi in body.boxes)
+    v += sum(math.pi * c.diameter ** 2 / 4 * math.dist(c.start, c.end) for c in body.cylinders)
+    for p in body.prisms:
+        u, w = np.array(p.polygon).T
+        area = 0.5 * abs(np.dot(u, np.roll(w, 1)) - np.dot(w, np.roll(u, 1)))
+        v += area * abs(p.span[1] - p.span[0])
+    return float(v)
+
+
+def estimate_mesh(mechanism: SpatialMechanism, size_factor: float = 1.0,
+                  coarse: float | None = None, order: int = 2) -> dict:
+    """{"elements", "nodes", "dofs"} expected of :func:`mesh_spatial`: the bodies at their
+    size, each flexure's volume with a band of one element round it at its own size (the
+    planar path's rule, fem/budget.py's tetrahedra per cube)."""
+    h_body = body_size(mechanism, coarse) * size_factor
+    elements = sum(_volume(b) for b in mechanism.bodies) / (h_body ** 3 / TETRAHEDRA_PER_CUBE)
+    for i, f in enumerate(mechanism.flexures):
+        h = flexure_size(f) * size_factor
+        length = mechanism.span(i).length
+        if isinstance(f, Wire):
+            band = math.pi * (f.diameter / 2 + h) ** 2 * length
+        else:
+            band = (f.width + 2 * h) * (f.thickness + 2 * h) * length
+        elements += band / (h ** 3 / TETRAHEDRA_PER_CUBE)
+    nodes = NODES_PER_ELEMENT[(3, order)] * elements
+    return {"elements": int(min(elements, 1e18)), "nodes": int(min(nodes, 1e18)),
+            "dofs": int(min(3 * nodes, 1e18))}
+
+
+def _prism(occ, prism) -> list:
+    k = AXES[prism.axis]
+    points = []
+    for u, v in prism.polygon:
+        q = [0.0, 0.0, 0.0]
+        q[(k + 1) % 3], q[(k + 2) % 3], q[k] = u, v, prism.span[0]
+        points.append(occ.addPoint(*q))
+    lines = [occ.addLine(points[i], points[(i + 1) % len(points)]) for i in range(len(points))]
+    face = occ.addPlaneSurface([occ.addCurveLoop(lines)])
+    shift = [0.0, 0.0, 0.0]
+    shift[k] = prism.span[1] - prism.span[0]
+    return [(d, t) for d, t in occ.extrude([(2, face)], *shift) if d == 3]
+
+
+def _body_shapes(occ, body) -> list:
+    shapes = [(3, occ.addBox(*lo, *np.subtract(hi, lo))) for lo, hi in body.boxes]
+    shapes += [(3, occ.addCylinder(*c.start, *np.subtract(c.end, c.start), c.diameter / 2))
+               for c in body.cylinders]
+    for p in body.prisms:
+        shapes += _prism(occ, p)
+    if len(shapes) > 1:
+        shapes, _ = occ.fuse(shapes[:1], shapes[1:])
+    return shapes
+
+
+def _flexure_shape(occ, f) -> list:
+    """The flexure's solid over its whole axis (from -> to, inside the bodies at its ends:
+    the fragment keeps the part outside them as the flexure)."""
+    start, axis = np.asarray(f.start, float), np.subtract(f.end, f.start)
+    if isinstance(f, Wire):
+        return [(3, occ.addCylinder(*start, *axis, f.diameter / 2))]
+    w = np.asarray(f.width_along, float)
+    w, n = w / np.linalg.norm(w) * f.width / 2, f.normal * f.thickness / 2
+    corners = [start - w - n, start + w - n, start + w + n, start - w + n]
+    points = [occ.addPoint(*c) for c in corners]
+    lines = [occ.addLine(points[i], points[(i + 1) % 4]) for i in range(4)]
+    face = occ.addPlaneSurface([occ.addCurveLoop(lines)])
+    return [(d, t) for d, t in occ.extrude([(2, face)], *axis) if d == 3]
+
+
+def draw(gmsh, mechanism: SpatialMechanism) -> dict:
+    """Draw ``mechanism`` into the open gmsh session as one conforming solid, a boundary
+    group per body and "solid"; {"bodies": {name: [volume tags]}, "flexures": [[volume
+    tags] per flexure]}. A part that lies inside a body counts as that body."""
+    occ = gmsh.model.occ
+    body_tags = [_body_shapes(occ, b) for b in mechanism.bodies]
+    flexure_tags = [_flexure_shape(occ, f) for f in mechanism.flexures]
+    inputs = body_tags + flexure_tags
+    flat = [dt for tags in inputs for dt in tags]
+    _, children = occ.fragment(flat, [])
+    occ.synchronize()
+    n_bodies = len(mechanism.bodies)
+    owner = {}
+    for group, kids in zip([g for g, tags in enumerate(inputs) for _ in tags], children):
+        for _, tag in kids:
+            owner.setdefault(tag, group)  # a body first: what lies in a body is the body
+            owner[tag] = min(owner[tag], group)
+    parts = [sorted(t for t, g in owner.items() if g == k) for k in range(len(inputs))]
+    count = {}
+    for _, tag in gmsh.model.getEntities(3):
+        for _, face in gmsh.model.getBoundary([(3, tag)], combined=False, oriented=False):
+            count[abs(face)] = count.get(abs(face), 0) + 1
+    for body, tags in zip(mechanism.bodies, parts[:n_bodies]):
+        faces = {abs(f) for _, f in gmsh.model.getBoundary([(3, t) for t in tags],
+                                                          combined=False, oriented=False)}
+        gmsh.model.addPhysicalGroup(2, sorted(f for f in faces if count[f] == 1),
+                                    name=body.name)
+    gmsh.model.addPhysicalGroup(3, sorted(owner), name="solid")
+    return {"bodies": {b.name: parts[k] for k, b in enumerate(mechanism.bodies)},
+            "flexures": parts[n_bodies:]}
+
+
+def _refine(gmsh, mechanism, shapes, size_factor, coarse) -> None:
+    field = gmsh.model.mesh.field
+    thresholds = []
+    for f, tags in zip(mechanism.flexures, shapes["flexures"]):
+        h = flexure_size(f) * size_factor
+        faces = sorted({abs(s) for _, s in gmsh.model.getBoundary(
+            [(3, t) for t in tags], combined=False, oriented=False)})
+        distance = field.add("Distance")
+        field.setNumbers(distance, "SurfacesList", faces)
+        field.setNumber(distance, "Sampling", 100)
+        threshold = field.add("Threshold")
+        field.setNumber(threshold, "InField", distance)
+        field.setNumber(threshold, "SizeMin", h)
+        field.setNumber(threshold, "SizeMax", coarse * size_factor)
+        field.setNumber(threshold, "DistMin", 2 * flexure_size(f))
+        field.setNumber(threshold, "DistMax", 2 * flexure_size(f) + 2 * coarse)
+        thresholds.append(threshold)
+    minimum = field.add("Min")
+    field.setNumbers(minimum, "FieldsList", thresholds)
+    field.setAsBackgroundMesh(minimum)
+    for option in ("MeshSizeExtendFromBoundary", "MeshSizeFromPoints", "MeshSizeFromCurvature"):
+        gmsh.option.setNumber(f"Mesh.{option}", 0)
+    gmsh.option.setNumber("Mesh.MeshSizeMax", coarse * size_factor)
+
+
+def mesh_spatial(mechanism: SpatialMechanism, size_factor: float = 1.0,
+                 coarse: float | None = None, order: int = 2,
+                 max_dofs: int | None = None) -> FEMesh:
+    """The meshed continuum (linear tetrahedra; the Model raises the order) with a boundary
+    group per body and "solid". ``size_factor`` scales every element size, ``coarse`` the
+    bodies' size (m); a mesh whose estimate is above ``max_dofs`` (None: half the available
+    memory) is refused first (BudgetError, fem/budget.py), and so is one whose nodes pass it
+    once meshed."""
+    if not (math.isfinite(size_factor) and size_factor > 0):
+        raise ValueError(f"size_factor = {size_factor!r} must be a finite number > 0")
+    what = f"the spatial mechanism's mesh at size_factor {size_factor:g}"
+    check_budget(estimate_mesh(mechanism, size_factor, coarse, order), 3, max_dofs, what=what)
+    coarse = body_size(mechanism, coarse)
+    with gmsh_session("spatial mechanism") as gmsh:
+        try:
+            shapes = draw(gmsh, mechanism)
+        except Exception as error:  # gmsh raises plain Exception with OCC's message
+            raise ValueError(f"{mechanism.source}: gmsh cannot fuse the bodies and flexures "
+                             f"({error}); look for a degenerate shape") from None
+        for k, tags in enumerate(shapes["flexures"]):
+            if not tags:
+                raise ValueError(f"{mechanism.source}: "
+                                 f"{flexure_label(mechanism.flexures[k], k)} lies inside a "
+                                 "body: it has no free span")
+        _refine(gmsh, mechanism, shapes, size_factor, coarse)
+        gmsh.option.setNumber("Mesh.ElementOrder", 1)
+        try:
+            gmsh.model.mesh.generate(3)
+        except Exception as error:
+            raise ValueError(f"{mechanism.source}: gmsh could not mesh the mechanism: "
+                             f"{error}") from None
+        nodes = len(gmsh.model.mesh.getNodes()[0])
+        ratio = NODES_PER_ELEMENT[(3, order)] / NODES_PER_ELEMENT[(3, 1)]
+        check_budget({"elements": 0, "nodes": int(nodes * ratio),
+                      "dofs": int(3 * nodes * ratio)}, 3, max_dofs, what=what)
+        return mesh_from_gmsh(gmsh)

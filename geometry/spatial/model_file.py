@@ -1,0 +1,43 @@
+"""A spatial model file (bodies with 3-D boxes, cylinders or prisms, and wire and leaf
+flexures) -> the fields of its :class:`~flexfem.geometry.user_model.spec.ModelSpec` (dim 3,
+the bodies' names as boundary groups, "solid" the whole), with the planar format's
+[material], [mesh], [[supports]], [[loads]] and [analysis] tables."""
+from ..user_model.tables import (SectionSpec, parse_analysis, parse_loads, parse_material,
+                                 parse_mesh, parse_supports)
+from .tables import parse_spatial
+
+#: Tables a spatial file may hold.
+SPATIAL_KEYS = ("description", "parameters", "material", "mesh", "supports", "loads",
+                "analysis", "body", "flexure")
+
+
+def spatial_spec(raw: dict, parameters: dict, loc, dim: int | None = None) -> tuple:
+    """(fields {material, section, mesh, supports, loads, analysis, spatial}, groups {name:
+    dimension}) of a spatial model file (``raw``: its tables in SI units, ``parameters``
+    evaluated; ``loc`` its Locator); ``dim``: --dim, None or 3."""
+    for key in raw:
+        if key not in SPATIAL_KEYS:
+            raise loc.error(f"{key!r} in a spatial mechanism (3-D bodies): its tables are "
+                            f"{', '.join(SPATIAL_KEYS)}", key if isinstance(
+                                raw[key], (dict, list)) else None, None)
+    if dim not in (None, 3):
+        raise loc.error(f"--dim {dim}: a mechanism of 3-D bodies is spatial (dim 3)", "body")
+    if "material" not in raw:
+        raise loc.error("[material] is required", None)
+    parts = {
+        "material": parse_material(raw["material"], loc),
+        "section": SectionSpec("solid"),
+        "mesh": parse_mesh(raw.get("mesh", {}), loc),
+        "supports": parse_supports(raw.get("supports", []), 3, loc),
+        "loads": parse_loads(raw.get("loads", []), 3, loc),
+        "analysis": parse_analysis(raw.get("analysis", {}), loc),
+    }
+    if parts["mesh"].refine:
+        raise loc.error("[mesh] refine: every flexure is refined already (its diameter or "
+                        "thickness sets its element size)", "mesh", "refine")
+    if not parts["supports"]:
+        raise loc.error("the mechanism has no support: hold a body with [[supports]] group = "
+                        "'NAME'", None)
+    mechanism = parse_spatial(raw, parameters, loc, {s.group for s in parts["supports"]})
+    groups = {b.name: 2 for b in mechanism.bodies} | {"solid": 3}
+    return {**parts, "spatial": mechanism}, groups

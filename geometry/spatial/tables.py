@@ -1,0 +1,216 @@
+"""The ``[[body]]`` and ``[[flexure]]`` tables of a spatial model file (docs/spatial.md) ->
+:class:`~.description.SpatialMechanism`. A file is spatial when a body's box has 3-D corners
+(or a body is a cylinder or prism). Coordinates and sizes are numbers (m), quantities with
+units or expressions of the ``[parameters]`` (the planar format's expressions and units);
+errors name the model file, the line and the body or flexure."""
+from pathlib import Path
+import math
+import tomllib
+
+from ..user_model.expressions import evaluate_expression
+from ..user_model.quantities import with_si_units
+from ..user_model.tables import Locator, check_keys
+from .detect import is_spatial  # noqa: F401 - the spatial tables' own test, re-exported
+from .description import AXES, Cylinder, Plate, Prism, SolidBody, SpatialMechanism, Wire
+
+BODY_KEYS = ("name", "box", "cylinder", "prism")
+CYLINDER_KEYS = ("from", "to", "diameter")
+PRISM_KEYS = ("polygon", "axis", "span")
+FLEXURE_KEYS = {"wire": ("kind", "name", "between", "from", "to", "diameter", "fillet",
+                         "crosses"),
+                "leaf": ("kind", "name", "between", "from", "to", "thickness", "width",
+                         "width_along", "fillet", "crosses")}
+
+
+def _values(raw, n: int, names, where) -> tuple:
+    if not (isinstance(raw, list) and len(raw) == n
+            and not any(isinstance(v, (list, dict)) for v in raw)):
+        raise ValueError(f"{where} = {raw!r} must be {n} numbers (m)")
+    out = tuple(evaluate_expression(v, names, where) for v in raw)
+    if not all(math.isfinite(v) for v in out):
+        raise ValueError(f"{where} = {raw!r} must be finite numbers")
+    return out
+
+
+def _positive(raw, names, where) -> float:
+    value = evaluate_expression(raw, names, where)
+    if not (math.isfinite(value) and value > 0):
+        raise ValueError(f"{where} = {raw!r} must be a length > 0 (m)")
+    return value
+
+
+def _boxes(raw, names, where) -> tuple:
+    if isinstance(raw, list) and len(raw) == 2 and all(
+            isinstance(p, list) and p and not isinstance(p[0], list) for p in raw):
+        raw = [raw]
+    if not (isinstance(raw, list) and raw and all(isinstance(b, list) and len(b) == 2
+                                                  for b in raw)):
+        raise ValueError(f"{where} = {raw!r} must be [[x0, y0, z0], [x1, y1, z1]] (two "
+                         "opposite corners, m) or a list of such boxes")
+    boxes = []
+    for box in raw:
+        lo, hi = (_values(p, 3, names, where) for p in box)
+        if min(abs(a - b) for a, b in zip(lo, hi)) < 1e-6:
+            raise ValueError(f"{where}: box {[list(lo), list(hi)]} has a side under 1 um")
+        boxes.append((lo, hi))
+    return tuple(boxes)
+
+
+def _table(raw, keys, where) -> dict:
+    if not isinstance(raw, dict):
+        raise ValueError(f"{where} = {raw!r} must be an inline table {{{', '.join(keys)}}}")
+    unknown = sorted(set(raw) - set(keys))
+    missing = [k for k in keys if k not in raw]
+    if unknown or missing:
+        raise ValueError(f"{where} needs exactly the keys {', '.join(keys)}"
+                         + (f"; unknown {', '.join(unknown)}" if unknown else "")
+                         + (f"; missing {', '.join(missing)}" if missing else ""))
+    return raw
+
+
+def _cylinders(raw, names, where) -> tuple:
+    entries = raw if isinstance(raw, list) else [raw]
+    out = []
+    for entry in entries:
+        entry = _table(entry, CYLINDER_KEYS, where)
+        out.append(Cylinder(_values(entry["from"], 3, names, f"{where} from"),
+                            _values(entry["to"], 3, names, f"{where} to"),
+                            _positive(entry["diameter"], names, f"{where} diameter")))
+    return tuple(out)
+
+
+def _prisms(raw, names, where) -> tuple:
+    entries = raw if isinstance(raw, list) else [raw]
+    out = []
+    for entry in entries:
+        entry = _table(entry, PRISM_KEYS, where)
+        if entry["axis"] not in AXES:
+            raise ValueError(f"{where} axis = {entry['axis']!r} must be 'x', 'y' or 'z'")
+        polygon = entry["polygon"]
+        if not (isinstance(polygon, list) and len(polygon) >= 3):
+            raise ValueError(f"{where} polygon must be at least 3 vertices [[u, v], ...] (m)")
+        vertices = tuple(_values(p, 2, names, f"{where} polygon") for p in polygon)
+        out.append(Prism(vertices, entry["axis"], _values(entry["span"], 2, names,
+                                                          f"{where} span")))
+    return tuple(out)
+
+
+def _body(entry, i, names, loc: Locator) -> SolidBody:
+    check_keys(entry, BODY_KEYS, loc, "body", i, "[[body]]")
+    name = entry.get("name")
+    if not isinstance(name, str) or not name.strip() or name == "solid":
+        raise loc.error(f"[[body]] name = {name!r} must be a non-empty string (not 'solid'): "
+                        "the body's group in every model", "body", "name", i)
+    if not any(k in entry for k in ("box", "cylinder", "prism")):
+        raise loc.error(f"[[body]] {name!r} needs box = [[x0, y0, z0], [x1, y1, z1]], "
+                        "cylinder = {from, to, diameter} or prism = {polygon, axis, span} (m)",
+                        "body", None, i)
+    parts = {}
+    for key, parse in (("box", _boxes), ("cylinder", _cylinders), ("prism", _prisms)):
+        if key in entry:
+            try:
+                parts[key] = parse(entry[key], names, f"[[body]] {name!r} {key}")
+            except ValueError as error:
+                raise loc.error(str(error), "body", key, i) from None
+    return SolidBody(name, parts.get("box", ()), parts.get("cylinder", ()),
+                     parts.get("prism", ()), loc.at("body", "name", i))
+
+
+def _flexure(entry, i, names, loc: Locator):
+    if not isinstance(entry, dict):
+        raise loc.error(f"[[flexure]] must be a table, not {entry!r}", "flexure", None, i)
+    kind = entry.get("kind", "leaf")
+    if kind not in FLEXURE_KEYS:
+        raise loc.error(f"[[flexure]] kind = {kind!r}; a spatial mechanism's flexures: "
+                        f"{', '.join(FLEXURE_KEYS)}", "flexure", "kind", i)
+    keys = FLEXURE_KEYS[kind]
+    check_keys(entry, keys, loc, "flexure", i, f"[[flexure]] ({kind})")
+    missing = [k for k in keys if k not in ("kind", "name", "fillet", "crosses")
+               and k not in entry]
+    if missing:
+        raise loc.error(f"[[flexure]] ({kind}) needs {', '.join(missing)}", "flexure", None, i)
+    between = entry["between"]
+    if not (isinstance(between, list) and len(between) == 2
+            and all(isinstance(b, str) for b in between)):
+        raise loc.error(f"[[flexure]] between = {between!r} must name two bodies "
+                        "[\"A\", \"B\"]", "flexure", "between", i)
+    name, crosses = entry.get("name", ""), entry.get("crosses", [])
+    if not isinstance(name, str):
+        raise loc.error(f"[[flexure]] name = {name!r} must be a string", "flexure", "name", i)
+    if not (isinstance(crosses, list) and all(isinstance(c, str) for c in crosses)):
+        raise loc.error(f"[[flexure]] crosses = {crosses!r} must name flexures [\"A\", ...]",
+                        "flexure", "crosses", i)
+    values = {}
+    for key in keys[3:]:
+        if key not in entry or key == "crosses":
+            continue
+        where = f"[[flexure]] {key}"
+        try:
+            if key in ("from", "to", "width_along"):
+                values[key] = _values(entry[key], 3, names, where)
+            elif key == "fillet":
+                values[key] = evaluate_expression(entry[key], names, where)
+                if not values[key] >= 0:
+                    raise ValueError(f"{where} = {entry[key]!r} must be >= 0 (m)")
+            else:
+                values[key] = _positive(entry[key], names, where)
+        except ValueError as error:
+            raise loc.error(str(error), "flexure", key, i) from None
+    common = dict(between=tuple(between), start=values["from"], end=values["to"],
+                  fillet=values.get("fillet", 0.0), name=name, crosses=tuple(crosses),
+                  source=loc.at("flexure", None, i))
+    if kind == "wire":
+        return Wire(diameter=values["diameter"], **common)
+    if not any(values["width_along"]):
+        raise loc.error("[[flexure]] width_along = [0, 0, 0] must be a direction", "flexure",
+                        "width_along", i)
+    return Plate(thickness=values["thickness"], width=values["width"],
+                 width_along=values["width_along"], **common)
+
+
+def parse_spatial(raw: dict, names: dict, loc: Locator, supported=None) -> SpatialMechanism:
+    """The SpatialMechanism of a model file's tables (``raw`` in SI units), checked
+    (:meth:`SpatialMechanism.check`; ``supported``: the held groups, None: unchecked);
+    ``names``: the [parameters] {name: value}."""
+    for table in ("body", "flexure"):
+        value = raw.get(table)
+        if not (isinstance(value, list) and value and all(isinstance(e, dict) for e in value)):
+            raise loc.error(f"{table} must be an array of tables: [[{table}]] ... (at least one)",
+                            None, table)
+    bodies = tuple(_body(e, i, names, loc) for i, e in enumerate(raw["body"]))
+    flexures = tuple(_flexure(e, i, names, loc) for i, e in enumerate(raw["flexure"]))
+    mechanism = SpatialMechanism(bodies, flexures, str(loc.path))
+    mechanism.check(supported)
+    return mechanism
+
+
+def load_spatial(path, overrides: dict | None = None) -> tuple:
+    """(SpatialMechanism, raw tables in SI, parameters) of the spatial model file ``path``;
+    ``overrides`` {NAME: value} replace [parameters] entries. The supports' groups must
+    hold a body."""
+    path = Path(path)
+    if not path.is_file():
+        raise ValueError(f"{path}: the model file does not exist")
+    text = path.read_text()
+    try:
+        raw = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as error:
+        raise ValueError(f"{path}: not valid TOML: {error}") from None
+    loc = Locator(path, text)
+    table = dict(raw.get("parameters", {}))
+    for name, value in (overrides or {}).items():
+        if name not in table:
+            raise ValueError(f"{path}: override {name!r} is not a [parameters] name of "
+                             f"{path.name}; its names: {', '.join(sorted(table)) or 'none'}")
+        table[name] = value
+    raw = with_si_units({**raw, "parameters": table}, path)
+    if not is_spatial(raw):
+        raise loc.error("not a spatial mechanism: no body has a 3-D box, a cylinder or a "
+                        "prism (a planar file: docs/model_files.md)", "body")
+    parameters = {}
+    for name, value in raw["parameters"].items():
+        parameters[name] = evaluate_expression(value, parameters, f"[parameters] {name}")
+    supports = raw.get("supports", [])
+    held = {s.get("group") for s in supports if isinstance(s, dict)} if isinstance(
+        supports, list) else set()
+    return parse_spatial(raw, parameters, loc, held), raw, parameters
