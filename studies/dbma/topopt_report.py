@@ -1,8 +1,11 @@
 """Report section "DBMA: a topology-optimised amplifier in its envelope": the amplifier
 problem of flexfem.topopt.amplifier (the DBMA's quarter; its input stiffness, its quarter's
-working mode and its peak stress as constraints) optimised, then verified on its body-fitted
-shape, beside the DBMA read the same way: R, k_in, working mode and peak von Mises stress at
-800 N (docs/topopt.md, "An amplifier in the DBMA's envelope"). SI units."""
+working mode and its peak stress as constraints, computed by flexfem's DBMA model in the
+same run) optimised without and with a minimum hinge width (the DBMA's b, by the robust
+formulation: studies/dbma/topopt_robust.py), then verified on its body-fitted shape, beside
+the DBMA read the same way: R, k_in, working mode and peak von Mises stress at 800 N
+(docs/topopt_amplifier.md). The quick report reads the stored robust design
+(examples/topopt/dbma_amplifier.py writes it). SI units."""
 import math
 from pathlib import Path
 import time
@@ -17,24 +20,22 @@ from ...topopt.amplifier import (amplifier_problem, dbma_quarter, shape_readings
 from ..engine.tables import write_rows
 from ..report.figures import pyplot, save
 from .analysis import analyze_dbma, published
+from .topopt_robust import (FORCE, K_ACTUATOR, K_OUTPUT, SIZE, dbma_limits, read_stored,
+                            run_robust, verdict)
 
-FORCE = 800.0                    # N, the actuator's force (the top of the paper's Fig. 14)
-K_IN_MIN = 4.36e6                # N/m, the DBMA's k_in (2-D FEM)
-K_ACTUATOR, K_OUTPUT = 4e7, 1e5  # N/m, the actuator and the output's load (full part)
-FN_MIN = 754.0                   # Hz, the DBMA quarter's working mode (this section's row)
-STRESS_MAX = 655e6               # Pa, the DBMA's peak at 800 N (2-D FEM)
-ELEMENT, SIZE = 0.5e-3, 0.25e-3  # m, the grid's elements and the body-fitted triangles
+ELEMENT = 0.5e-3                 # m, the plain design's grid
 THRESHOLD = 0.3                  # the outline's density level
 COLUMNS = ("design", "R", "k_in", "fn_lowest", "fn_working", "working_mode",
            "peak_stress", "peak_stress_fine", "corner_angle", "reading")
 
 
-def amplifier() -> tuple:
-    """(problem, result, verification, seconds) of the amplifier in the DBMA's envelope."""
+def amplifier(limits: dict) -> tuple:
+    """(problem, result, verification, seconds) of the amplifier in the DBMA's envelope
+    without length control, at the DBMA's ``limits`` (topopt_robust.dbma_limits)."""
     start = time.perf_counter()
-    problem = amplifier_problem(FORCE, K_IN_MIN, K_ACTUATOR, K_OUTPUT, element=ELEMENT,
-                                iterations=400, radius=3.0, fn_min=FN_MIN,
-                                stress_max=STRESS_MAX)
+    problem = amplifier_problem(FORCE, limits["k_in_min"], K_ACTUATOR, K_OUTPUT,
+                                element=ELEMENT, iterations=400, radius=3.0,
+                                fn_min=limits["fn_min"], stress_max=limits["stress_max"])
     result = optimize(problem)
     verified = verify_amplifier(result, threshold=THRESHOLD, size=SIZE)
     return problem, result, verified, time.perf_counter() - start
@@ -117,7 +118,7 @@ def key_rows(full: dict, rows: list, quarter=None, verified=None, result=None) -
             "-", f"{rows[1]['fn_working']:.0f} Hz FEM (mode {rows[1]['working_mode']}); "
                  f"{rows[1]['_fn_measured']:.0f} Hz measured", "not printed"]]
     if quarter is None:
-        return out + [["DBMA quarter; optimised (density, body-fitted)",
+        return out + [["DBMA quarter; optimised without length control (density, body-fitted)",
                        "in the default report (not run with --quick)", "-", "-", "-"]]
     c = result.constraints
     return out + [
@@ -169,44 +170,120 @@ def plot_design(result, verified, quarter, path) -> dict:
     return save(fig, path, CAPTION.format(t=THRESHOLD))
 
 
-def _paragraph(quick: bool, full: dict, quarter=None, verified=None, result=None) -> str:
+def robust_rows(record: dict) -> list:
+    """The CSV rows of the design with the minimum hinge width: its density model (the
+    intermediate design, with the worst-of-three constraint values) and its shape."""
+    v, c, p = record["verified"], record["result"]["constraints"], record["problem"]
+    hinge = f"min_hinge {p['min_hinge'] * 1e3:g} mm"
+    return [{"design": f"optimised, {hinge}, density model", "R": v["R_density"],
+             "k_in": v["k_in_density"], "fn_lowest": c["frequency"], "fn_working": math.nan,
+             "working_mode": math.nan, "peak_stress": math.nan, "corner_angle": math.nan,
+             "reading": f"worst of three designs: stress p-norm {c['stress']:.4g} Pa (P = 8)"},
+            shape_row(f"optimised, {hinge}, body-fitted", v,
+                      f"outline at {p['threshold']}, necks >= {hinge}")]
+
+
+def _necks(record: dict) -> str:
+    widths = sorted(n["width"] for n in record["necks"])
+    if not widths:
+        return "no neck under twice min_hinge"
+    return "necks " + ", ".join(f"{w * 1e3:.2f}" for w in widths[:4]) + " mm"
+
+
+def robust_key_rows(record: dict) -> list:
+    """The printed rows of the design with the minimum hinge width."""
+    v, c, p = record["verified"], record["result"]["constraints"], record["problem"]
+    hinge = f"min_hinge {p['min_hinge'] * 1e3:g} mm"
+    return [[f"optimised, {hinge}, density model", f"{v['R_density']:.2f} "
+             f"({v['R_density_springs']:.2f} with the springs)",
+             f"{v['k_in_density'] / 1e6:.2f} MN/m",
+             f"{c['frequency']:.0f} Hz (lowest, with its springs)",
+             f"p-norm {_mpa(c['stress'])} (worst of three designs; not a peak)"],
+            [f"optimised, {hinge}, body-fitted ({_necks(record)})", f"{v['R_fitted']:.2f}",
+             f"{v['k_in'] / 1e6:.2f} MN/m", _modes(v), _body_fitted_stress(v)]]
+
+
+def verdict_text(record: dict, r_dbma: float) -> str:
+    """One sentence: beats the bow, or by how much it falls short and what binds."""
+    w = verdict(record, r_dbma)
+    lim = record["limits"]
+    bind = (", ".join(w["binding"]) or "none") + " binding" + (
+        ", " + ", ".join(w["violated"]) + " violated" if w["violated"] else "") + (
+        " in the density model")
+    failed = ("every constraint met on the shape" if not w["failed"] else
+              "not met on the shape: " + ", ".join(w["failed"]))
+    if "min_hinge" in w["failed"]:
+        failed += (f" (its narrowest neck {w['narrowest_neck'] * 1e3:.2f} mm against "
+                   f"{record['problem']['min_hinge'] * 1e3:g} mm)")
+    if w["beats"]:
+        head = f"it beats the bow: R = {w['R_fitted']:.2f} against the DBMA's {r_dbma:.2f}"
+    elif w["R_fitted"] > r_dbma:
+        head = (f"its shape amplifies more than the bow, R = {w['R_fitted']:.2f} against the "
+                f"DBMA's {r_dbma:.2f}, but not at the DBMA's hinge width")
+    else:
+        head = (f"it falls short of the bow by {100 * w['shortfall']:.0f} %: R = "
+                f"{w['R_fitted']:.2f} against the DBMA's {r_dbma:.2f}")
+    return (f"With min_hinge = {record['problem']['min_hinge'] * 1e3:g} mm {head} ({bind}; "
+            f"{failed}; limits k_in >= {lim['k_in_min'] / 1e6:.2f} MN/m, working mode >= "
+            f"{lim['fn_min']:.0f} Hz, peak <= {lim['stress_max'] / 1e6:.0f} MPa; its "
+            f"body-fitted R is {w['fitted_over_density']:.2f} of its density model's).")
+
+
+def _paragraph(quick: bool, full: dict, record: dict, quarter=None, verified=None,
+               result=None) -> str:
     """What was done, the constraints' values and what the rows mean."""
+    p = record["problem"]
+    robust = (
+        f"With a minimum hinge width (the DBMA's b = {p['min_hinge'] * 1e3:g} mm, by the "
+        f"robust formulation: eroded, intermediate and dilated designs at thresholds "
+        f"{' / '.join(f'{t:g}' for t in p['thresholds'])}, filter radius "
+        f"{p['filter_radius']:g} elements of {p['element'] * 1e3:g} mm on a "
+        f"{p['nelx']} x {p['nely']} grid) the design ran "
+        f"{record['result']['iterations']} MMA iterations"
+        f" ({'converged' if record['result']['converged'] else 'not converged'}). "
+        + verdict_text(record, full["R_fem"]))
     if quick:
-        return ("An amplifier optimised by flexfem.topopt in the DBMA's quarter and verified "
-                "on its body-fitted shape (docs/topopt.md) runs in the default report (about "
-                "100 s); this quick run gives the DBMA's rows.")
+        return ("An amplifier optimised by flexfem.topopt in the DBMA's quarter, its "
+                "constraints the DBMA's own (k_in and peak stress of the whole part's 2-D "
+                "FEM, its quarter's working mode), verified on its body-fitted shape "
+                "(docs/topopt_amplifier.md). This quick run computes the DBMA's rows and "
+                "reads the stored design with the minimum hinge width (written by "
+                "examples/topopt/dbma_amplifier.py; the default report reruns it, and the "
+                "design without length control). " + robust)
     c = result.constraints
+    lim = record["limits"]
     state = "converged" if result.converged else "not converged"
-    active = [name for name, value, bound in (("frequency", c["frequency"], FN_MIN),
-                                              ("stress", c["stress"], STRESS_MAX))
+    active = [name for name, value, bound in (("frequency", c["frequency"], lim["fn_min"]),
+                                              ("stress", c["stress"], lim["stress_max"]))
               if abs(value / bound - 1) < 0.02]
     return (
         "Can topology optimisation beat the bow type in the DBMA's envelope? flexfem.topopt "
-        "poses the DBMA's task on its quarter (docs/topopt.md): maximise the output's motion "
-        f"with the actuator ({K_ACTUATOR / 1e6:g} MN/m) and a load ({K_OUTPUT / 1e3:g} kN/m) "
-        f"as springs, at most 0.3 of the quarter solid, u_in <= (F / 2) / {K_IN_MIN / 1e6:g} "
-        f"MN/m (with the springs), the lowest eigenfrequency >= {FN_MIN:g} Hz (the DBMA "
-        f"quarter's working mode) and the stress p-norm <= {STRESS_MAX / 1e6:g} MPa (the "
-        "DBMA's peak); then it verifies the design as a shape on flexfem's body-fitted FEM "
-        "and reads the DBMA's own quarter by the same code. The quarter's symmetry makes its "
-        "modes the part's doubly symmetric ones (the outputs moving apart; pads held along "
-        "x); held on its mounting face (the paper's reading) the DBMA's working mode is "
-        "lower, as its input members then move too. "
-        f"After {result.iterations} MMA iterations ({state}) the frequency and stress "
-        f"constraints are {'active: ' + ', '.join(active) if active else 'inactive'} "
+        "poses the DBMA's task on its quarter (docs/topopt_amplifier.md): maximise the "
+        f"output's motion with the actuator ({K_ACTUATOR / 1e6:g} MN/m) and a load "
+        f"({K_OUTPUT / 1e3:g} kN/m) as springs, at most 0.3 of the quarter solid, u_in <= "
+        f"(F / 2) / {lim['k_in_min'] / 1e6:.3g} MN/m (with the springs), the lowest "
+        f"eigenfrequency >= {lim['fn_min']:.0f} Hz (the DBMA quarter's working mode) and "
+        f"the stress p-norm <= {lim['stress_max'] / 1e6:.0f} MPa (the DBMA's peak), each "
+        "limit computed by flexfem's DBMA model in this run; then it verifies the design as "
+        "a shape on flexfem's body-fitted FEM and reads the DBMA's own quarter by the same "
+        "code. The quarter's symmetry makes its modes the part's doubly symmetric ones (the "
+        "outputs moving apart; pads held along x); held on its mounting face (the paper's "
+        "reading) the DBMA's working mode is lower, as its input members then move too. "
+        f"Without length control, after {result.iterations} MMA iterations ({state}) the "
+        "frequency and stress constraints are "
+        f"{'active: ' + ', '.join(active) if active else 'inactive'} "
         f"({c['frequency']:.0f} Hz, {c['stress'] / 1e6:.0f} MPa). The density model's R of "
         f"{verified['R_density']:.1f} rests on grey hinges of no width; drawn as a shape "
         f"the same topology gives R = {verified['R_fitted']:.2f} against the DBMA quarter's "
         f"{quarter['R']:.2f} (the whole part's {full['R_fem']:.2f}), at "
-        f"{verified['k_in'] / quarter['k_in']:.0f} times its input stiffness: its working "
-        "mode is higher and its stress lower because it is that much stiffer, not a better "
-        "amplifier. Both peaks sit at re-entrant corners (the DBMA's square hinge roots, the "
-        "optimised outline's facets where its necks were closed) and grow as the mesh is "
-        "refined: they rank the designs, they are no strength values.")
+        f"{verified['k_in'] / quarter['k_in']:.0f} times its input stiffness. " + robust
+        + " Both peaks sit at re-entrant corners and grow as the mesh is refined: they rank "
+        "the designs, they are no strength values.")
 
 
 def reproduce(out_dir, quick: bool = False) -> dict:
-    """The table (quick: the DBMA's rows only) and the figure (not in quick)."""
+    """The table and the paragraph; quick: the DBMA's rows and the stored design with the
+    minimum hinge width; default: both designs run, and the figure."""
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     start = time.perf_counter()
@@ -215,27 +292,38 @@ def reproduce(out_dir, quick: bool = False) -> dict:
     timing = {"dbma_fem": time.perf_counter() - start}
     summary = {"figures": []}
     if quick:
-        table = key_rows(full, rows)
-        summary["paragraph"] = _paragraph(True, full)
+        record = read_stored()
+        rows += robust_rows(record)
+        table = key_rows(full, rows) + robust_key_rows(record)
+        summary["paragraph"] = _paragraph(True, full, record)
     else:
-        problem, result, verified, timing["optimised"] = amplifier()
         start = time.perf_counter()
-        quarter = shape_readings(problem, dbma_quarter(), SIZE)
+        limits = dbma_limits(full)
+        quarter = limits["quarter"]
         timing["dbma_quarter"] = time.perf_counter() - start
+        problem, result, verified, timing["optimised"] = amplifier(limits)
+        run = run_robust(limits)
+        record = run["record"]
+        timing["optimised_min_hinge"] = record["seconds"]
         rows += [shape_row("DBMA quarter, read as the optimised", quarter,
                            "body-fitted quarter, pads held along x"),
                  density_row(verified, result),
                  shape_row("optimised, body-fitted", verified,
-                           f"outline at {THRESHOLD}, 0.6 mm necks")]
-        table = key_rows(full, rows, quarter, verified, result)
+                           f"outline at {THRESHOLD}, 0.6 mm necks")] + robust_rows(record)
+        table = key_rows(full, rows, quarter, verified, result) + robust_key_rows(record)
         summary["figures"] = [plot_design(result, verified, quarter,
                                           out_dir / "dbma_topopt.png")]
-        summary["paragraph"] = _paragraph(False, full, quarter, verified, result)
+        summary["paragraph"] = _paragraph(False, full, record, quarter, verified, result)
         summary["optimised"] = {k: v for k, v in verified.items() if k != "outline"}
         summary["constraints"] = result.constraints
+    summary["min_hinge"] = {"verdict": verdict(record, full["R_fem"]),
+                            "verified": record["verified"], "necks": record["necks"],
+                            "constraints": record["result"]["constraints"],
+                            "limits": record["limits"], "iterations":
+                            record["result"]["iterations"]}
     write_rows(out_dir / "dbma_topopt.csv", rows, COLUMNS)
     return {**summary, "tables": ["dbma_topopt.csv"], "timing_s": timing,
-            "key_tables": [{"title": f"The DBMA beside an amplifier optimised in its envelope "
+            "key_tables": [{"title": f"The DBMA beside amplifiers optimised in its envelope "
                                      f"(2-D plane stress, {FORCE:g} N)",
                             "columns": ["design", "R = u_out / elongation", "k_in",
                                         "working mode", "peak von Mises"],

@@ -134,15 +134,22 @@ def test_the_report_section_keeps_its_contract_in_quick(tmp_path, section_contra
     rows = summary["key_tables"][0]["rows"]
     assert [r[0] for r in rows][:2] == ["DBMA, flexfem 2-D FEM (whole part)", "DBMA, paper"]
     assert "default report" in rows[2][1]
+    assert [r[0] for r in rows][3:] == ["optimised, min_hinge 0.6 mm, density model",
+                                        rows[4][0]] and "body-fitted" in rows[4][0]
+    w = summary["min_hinge"]["verdict"]
+    assert w["R_dbma"] == pytest.approx(8.6, abs=0.01)       # computed in this run
+    necks = summary["min_hinge"]["necks"]
+    assert w["narrowest_neck"] == min(n["width"] for n in necks)
 
 
 @pytest.mark.slow
 def test_the_report_section_verifies_the_optimised_design(tmp_path, section_contract):
-    """The default section (about 100 s): the figure, the five rows, and what the page says:
-    the body-fitted optimised design amplifies less than the DBMA read the same way."""
+    """The default section (both designs: about 15 min): the figure, the seven rows, and what
+    the page says: the body-fitted optimised design without length control amplifies less
+    than the DBMA read the same way."""
     from flexfem.studies.dbma.topopt_report import reproduce
 
     summary = reproduce(tmp_path)
     section_contract(tmp_path, summary)
-    assert len(summary["figures"]) == 1 and len(summary["key_tables"][0]["rows"]) == 5
+    assert len(summary["figures"]) == 1 and len(summary["key_tables"][0]["rows"]) == 7
     assert summary["optimised"]["R_fitted"] < 8.0 < summary["optimised"]["R_density"]
