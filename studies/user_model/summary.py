@@ -117,11 +117,16 @@ def _stroke_lines(result: dict) -> list[str]:
 
 
 def _departed(result: dict) -> str:
-    """How far the large-deflection path departs from linear at the linear yield stroke."""
+    """How far the large-deflection path departs from linear at the linear yield stroke, and
+    which of force, the groups' displacement ('output'), peak stress and [outputs] departed."""
     check = result.get("stroke_check")
     if not check:
         return ""
     d = check["departure"]
+    named = "".join(f", {name} {100 * v:+.1f} %"
+                    for name, v in check.get("output_departure", {}).items())
+    departed = ", ".join(check.get("departed", [])) or "none"
     return (f" (at {check['at_stroke'] * 1e3:.4g} mm the {check['model']} model's force, "
             f"outputs and peak stress depart from linear by {100 * d['force']:+.1f} %, "
-            f"{100 * d['output']:.1f} %, {100 * d['stress']:+.1f} %)")
+            f"{100 * d['output']:.1f} %, {100 * d['stress']:+.1f} %{named}; beyond 5 %: "
+            f"{departed})")
