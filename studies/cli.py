@@ -28,6 +28,7 @@ from .engine.serialize import jsonable
 from .mechanisms import command_modules, optimizers
 from .options import Parser
 from .report import cli as report_cli
+from .spatial import cli as spatial_cli
 
 
 def register_optimize(subparsers) -> None:
@@ -49,6 +50,7 @@ def build_parser() -> argparse.ArgumentParser:
     register_optimize(subparsers)
     run_cli.register(subparsers)
     topopt_cli.register(subparsers)
+    spatial_cli.register(subparsers)
     return parser
 
 

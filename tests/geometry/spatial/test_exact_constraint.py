@@ -54,3 +54,11 @@ def test_cross_spring_pivot_turns_about_its_crossing():
     centre = np.cross(w, v) / (w @ w)
     assert centre[:2] == pytest.approx([0.0, h / 2], abs=1e-9)
     assert "rotation about" in summary
+
+
+def test_the_command_says_over_constrained_by_one(capsys):
+    from flexfem.studies.cli import main
+
+    assert main(["constraints", str(EXAMPLES / "wire_guide.toml")]) == 0
+    out = capsys.readouterr().out
+    assert "over-constrained by 1" in out and "singular values:" in out
