@@ -7,8 +7,9 @@ a mirror's centre or a probe's tip, observed as groups are (``tip.ux``, ``tip.rz
 A point moves with its body as a rigid body does: its displacement is the body's, carried by
 the body's rotation from the body's centroid to the point (studies/user_model/observe.py), in
 the continuum and the beam model alike; it need not lie in the body's material (the centre of
-a hole). ``at`` is [x, y] (m; in 3-D a third coordinate z, default the mid-depth), numbers or
-expressions of the [parameters].
+a hole). ``at`` is [x, y] (m; in 3-D a third coordinate z, default the mid-depth), numbers,
+lengths with a unit (``"40 mm"``, read by quantities.py) or expressions of the [parameters]
+(``"L + 8 mm"``).
 """
 from .expressions import evaluate_expression
 

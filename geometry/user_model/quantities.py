@@ -125,4 +125,10 @@ def with_si_units(raw: dict, path) -> dict:
                               if k in keys else v for k, v in entry.items()})
         if value is not None:
             out[table] = converted if isinstance(value, list) else converted[0]
+    points = raw.get("points")  # [points] NAME = { body = ..., at = [x, y] }: at is a length
+    if isinstance(points, dict):
+        out["points"] = {name: {**p, "at": _convert(p["at"], "length",
+                                                     f"{path}: [points] {name} at", reserved)}
+                         if isinstance(p, dict) and "at" in p else p
+                         for name, p in points.items()}
     return out

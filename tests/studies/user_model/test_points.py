@@ -74,3 +74,20 @@ def test_a_geometry_file_has_no_points(tmp_path):
     model.write_text(model.read_text() + '\n[points]\np = { body = "stage", at = [0, 0] }\n')
     with pytest.raises(ValueError, match=r"\[points\] are points of bodies"):
         load_spec(model)
+
+
+def test_points_take_units_like_every_other_value(tmp_path):
+    """``at = ["100 mm", "L + 4 mm"]`` reads as its SI twin; a unit that is not a length is
+    refused naming the point."""
+    si = load_spec(_guide(tmp_path)).points
+    units = POINTS.replace('at = [0.1, "L + 0.004"]', 'at = ["100 mm", "L + 4 mm"]')
+    assert units != POINTS
+    (tmp_path / "u").mkdir()
+    with_units = load_spec(_guide(tmp_path / "u", units)).points
+    assert with_units["far"][0] == si["far"][0]
+    assert with_units["far"][1] == pytest.approx(si["far"][1], rel=1e-12)
+    (tmp_path / "bad").mkdir()
+    bad = _guide(tmp_path / "bad", POINTS.replace('at = [0.1,', 'at = ["0.1 kg",'))
+    with pytest.raises(ValueError, match=r"\[points\] far at: '0.1 kg' is .*this value is a "
+                                         "length"):
+        load_spec(bad)
