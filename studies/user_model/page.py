@@ -147,9 +147,30 @@ def write_outputs(path, spec, result: dict, kept: dict, summary: str) -> list[st
     names += [v["file"] for v in vtus] + [f["file"] for f in figs] + ["index.html"]
     files = [str(out / n) for n in names]
     kind = "beam model" if isinstance(model, BeamModel) else "continuum"
-    _text(out, "index.html", render_page(result, summary, figs, vtus, kind))
+    _text(out, "index.html", render_page(result, summary, figs, vtus, kind,
+                                         not_drawn(result, model, kept)))
     _text(out, "summary.json", json.dumps(jsonable({**result, "files": files}), indent=1))
     return files
+
+
+def not_drawn(result: dict, model, kept: dict) -> list[str]:
+    """One line for each solve of the analysis that has no picture or field file: a load
+    case this module cannot draw (the spatial beam model's) and the stroke check's
+    large-deflection path (its numbers are in summary.json)."""
+    notes = []
+    if kept.get("static") is not None and fields.static_mesh(model, kept["static"]) is None:
+        notes.append("The load case of this model is not drawn (no field file or picture: "
+                     "its numbers are in summary.json).")
+    modes = kept.get("modes")
+    if result.get("frequencies_hz") and (modes is None or fields.modes_mesh(model, modes) is None):
+        notes.append("The mode shapes of this model are not drawn (the spatial beam model "
+                     "keeps only its frequencies, in summary.json).")
+    check = result.get("stroke_check")
+    if check and check.get("strokes"):
+        notes.append(f"The stroke check's large-deflection path (the {check['model']} model, "
+                     f"to {check['strokes'][-1] * 1e3:.4g} mm) is not drawn: its strokes, "
+                     "forces and peak stresses per step are in summary.json, stroke_check.")
+    return notes
 
 
 def _rows(summary: str) -> tuple[str, list[tuple[str, str]]]:
@@ -168,9 +189,10 @@ def _rows(summary: str) -> tuple[str, list[tuple[str, str]]]:
 
 
 def render_page(result: dict, summary: str, figs: list[dict], vtus: list[dict],
-                kind: str = "continuum") -> str:
+                kind: str = "continuum", notes=()) -> str:
     """index.html: the human summary's numbers as a table, the pictures with their captions,
-    links to the field files and to summary.json (relative links: the folder can be moved)."""
+    links to the field files and to summary.json (relative links: the folder can be moved),
+    and ``notes``: what the analysis solved but the page does not draw."""
     run, rows = _rows(summary)
     title = f"flexfem analyze {Path(result['model']).name}: {kind}, {result.get('dim', 2)}-D"
     body = "".join(f"<tr><td>{html.escape(q)}</td><td>{html.escape(v)}</td></tr>"
@@ -195,6 +217,7 @@ def render_page(result: dict, summary: str, figs: list[dict], vtus: list[dict],
         parts += [f"<li><a href='{html.escape(v['file'])}'>{html.escape(v['file'])}</a>: "
                   f"{html.escape(v['caption'])}</li>" for v in vtus]
         parts.append("</ul>")
+    parts += [f"<p class='not-drawn'>{html.escape(n)}</p>" for n in notes]
     parts.append("</body></html>")
     return "\n".join(parts)
 

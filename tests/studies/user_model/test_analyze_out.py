@@ -238,3 +238,16 @@ def test_the_solid_is_written_and_drawn_as_a_projection(tmp_path):
     for name in ("mechanism.png", "deformed.png", "mode_1.png"):
         assert mpimg.imread(tmp_path / name)[..., :3].std() > 0.05
     assert "projected onto the x-y plane" in (tmp_path / "index.html").read_text()
+
+
+def test_the_page_says_what_it_does_not_draw():
+    """The stroke check's large-deflection path and the spatial beam model's modes have no
+    picture: the page says so in one line each, and says nothing where all is drawn."""
+    from flexfem.studies.user_model.page import not_drawn
+
+    path = {"stroke_check": {"model": "beam", "strokes": [0.0, 5e-5, 1e-4]}}
+    (line,) = not_drawn(path, None, {})
+    assert "large-deflection path (the beam model, to 0.1 mm) is not drawn" in line
+    (line,) = not_drawn({"frequencies_hz": [265.2]}, None, {"modes": None})
+    assert "mode shapes of this model are not drawn" in line
+    assert not_drawn({}, None, {}) == []
