@@ -111,6 +111,9 @@ def analyze_model(spec: ModelSpec, size_factor: float = 1.0, model: str = "conti
     if model not in MODELS:
         raise ValueError(f"{spec.source}: model = {model!r} must be one of {MODELS}")
     solid = None
+    if model == "beam" and getattr(spec, "spatial", None) is not None:
+        raise ValueError(f"{spec.source}: --model beam: a spatial mechanism's beam model is "
+                         "not available yet (docs/spatial.md); use --model continuum")
     if model == "beam":
         check_beam_analyses(spec)
     check_loaded_supports(spec)

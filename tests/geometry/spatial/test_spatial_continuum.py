@@ -46,3 +46,42 @@ def test_axial_stiffness_against_4_E_A_over_L(spec):
     closed = 4 * E * math.pi * d ** 2 / 4 / L
     ratio = _stiffness(spec, "z", (0.0, 0.0, 1.0), 1.0) / closed
     assert 0.7 < ratio < 1.0
+
+
+def test_the_beam_model_of_a_spatial_file_is_refused_in_one_line(spec):
+    with pytest.raises(ValueError, match="spatial mechanism's beam model is not available"):
+        analyze_model(spec, model="beam")
+
+
+CYLINDER_AND_PRISM = """
+[material]
+name = "structural_steel"
+[[body]]
+name = "post"
+cylinder = { from = [0.0, 0.0, -0.005], to = [0.0, 0.0, 0.0], diameter = "12 mm" }
+[[body]]
+name = "cap"
+prism = { polygon = [[-0.006, -0.006], [0.006, -0.006], [0.0, 0.006]], axis = "z", span = [0.008, 0.011] }
+[[flexure]]
+kind = "wire"
+between = ["post", "cap"]
+from = [0.0, -0.002, 0.0]
+to = [0.0, -0.002, 0.008]
+diameter = "1.5 mm"
+[[supports]]
+group = "post"
+[[loads]]
+group = "cap"
+force = [0.0, 0.0, 1.0]
+"""
+
+
+def test_cylinder_and_prism_bodies_mesh_with_their_groups(tmp_path):
+    path = tmp_path / "post.toml"
+    path.write_text(CYLINDER_AND_PRISM)
+    spec = load_spec(path)
+    cap = spec.spatial.body("cap")
+    assert cap.contains((0.0, 0.0, 0.01), 1e-9) and not cap.contains((0.0, 0.0, 0.012), 1e-9)
+    assert spec.spatial.span(0).length == pytest.approx(0.008, rel=1e-8)
+    mesh = mesh_geometry(spec, size_factor=1.5)
+    assert set(mesh.boundaries) == {"post", "cap"}
