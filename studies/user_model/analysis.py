@@ -163,7 +163,7 @@ def analyze_model(spec: ModelSpec, size_factor: float = 1.0, model: str = "conti
     if solid is not None:
         out.update(lifted_outputs(out))
         spec = solid
-    limits = _stroke(spec, out, fe, model)
+    limits = _stroke(spec, out, fe, model, fields)
     out.update({**limits, "not_available": {**out.get("not_available", {}),
                                             **limits.get("not_available", {})}})
     if not out["not_available"]:
@@ -171,7 +171,7 @@ def analyze_model(spec: ModelSpec, size_factor: float = 1.0, model: str = "conti
     return check_finite(out, spec.source)
 
 
-def _stroke(spec: ModelSpec, out: dict, fe, model: str) -> dict:
+def _stroke(spec: ModelSpec, out: dict, fe, model: str, fields: dict | None = None) -> dict:
     """The stroke limits (stroke.py) of the analysis ``out`` of ``fe``: for the continuum,
     the sharp re-entrant corner of its mesh at its peak (corners.py), and the beam model's
     nominal stress to stand in for a singular peak."""
@@ -192,7 +192,7 @@ def _stroke(spec: ModelSpec, out: dict, fe, model: str) -> dict:
     if model == "continuum" and limits["stroke_stress_basis"].startswith("nominal beam"):
         fe = build(spec, "beam")[0]  # the path of the model whose stress sized the limits
     checked = stroke_check(spec, {**limits, "groups": list(out["mean_displacement"])}, fe,
-                           supports_and_loads(spec)[0])
+                           supports_and_loads(spec)[0], kept=fields)
     return {**limits, **checked}
 
 

@@ -3,6 +3,7 @@ was solved, with the model file's groups as cell data.
 
     static.vtu  the load case: displacement (m), von_mises (Pa), stress (Pa, 9 components)
     modes.vtu   with [analysis] modes: one point field per mode, "mode_1 (124.2 Hz)", ...
+    stroke_path.vtu  with stroke_check: the large-deflection path's end state
 
 The continuum's fields are :func:`flexfem.fem.export.result_fields` (the vertices of the
 first-order mesh), written on the elements and on the boundary groups' facets
@@ -23,6 +24,7 @@ from ...fem.beam.model import BeamModel
 from ...fem.export import meshio_mesh, mode_field_name, result_fields
 from ...fem.modal import Modes
 from ...fem.model import Model
+from ...fem.nonlinear_result import NonlinearResult
 from ...fem.static_result import StaticResult
 
 #: cell data ``kind`` of a beam model's line cells
@@ -81,6 +83,18 @@ def static_mesh(model, static) -> meshio.Mesh | None:
         q = static.state.q
         return beam_mesh(model, {"displacement": _pad3(q[:, :2]), "rotation": q[:, 2]},
                          static.state.stress)
+    return None
+
+
+def path_end_mesh(model, path) -> meshio.Mesh | None:
+    """The final step of a large-deflection solve of ``model`` (the continuum's
+    NonlinearResult: displacement, von Mises and the Cauchy and second Piola-Kirchhoff
+    stresses on the reference mesh; the beam model's path: as its static result), or None."""
+    if isinstance(path, NonlinearResult):
+        point, cell, _ = result_fields(path)
+        return continuum_mesh(model, point, {k: v[0] for k, v in cell.items()})
+    if hasattr(path, "step"):
+        return static_mesh(model, path.step(-1))
     return None
 
 

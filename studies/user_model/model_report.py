@@ -88,6 +88,8 @@ class Report:
     modes: object = field(default=None, repr=False)
     """The solved mode shapes (:func:`flexfem.fem.solve_modes`'s result), where [analysis]
     modes asked for them and the model kept them (None for the spatial beam model)."""
+    stroke_path: object = field(default=None, repr=False)
+    """(model, result) of the stroke check's large-deflection path, where it ran."""
     _data: dict = field(default_factory=dict, repr=False)
 
     @classmethod
@@ -111,7 +113,8 @@ class Report:
             stroke_limits={k: data[k] for k in STROKE_KEYS if k in data},
             not_available=data.get("not_available", {}),
             solved_model=solved.get("model"), static=solved.get("static"),
-            modes=solved.get("modes"), _data=copy.deepcopy(data))
+            modes=solved.get("modes"), stroke_path=solved.get("stroke_path"),
+            _data=copy.deepcopy(data))
 
     def to_dict(self) -> dict:
         """The analysis as one JSON-able dict (SI; a copy): what ``flexfem analyze --json``
@@ -162,4 +165,6 @@ class Report:
         solved = {"model": self.solved_model, "static": self.static}
         if self.modes is not None:
             solved["modes"] = self.modes
+        if self.stroke_path is not None:
+            solved["stroke_path"] = self.stroke_path
         return write_outputs(out_dir, self.model, data, solved, summarize(data))

@@ -105,6 +105,15 @@ def _field_files(out: Path, model, kept: dict) -> list[dict]:
         _atomic(out, "modes.vtu", lambda p: fields.write_vtu(modes, p))
         written.append({"file": "modes.vtu", "caption": "The mode shapes, one point field "
                         "each named by its frequency (mass-normalised, m/sqrt(kg))."})
+    model_s, path = kept.get("stroke_path", (None, None))
+    end = fields.path_end_mesh(model_s, path) if path is not None else None
+    if end is not None:
+        _atomic(out, "stroke_path.vtu", lambda p: fields.write_vtu(end, p))
+        kind = "beam model" if isinstance(model_s, BeamModel) else "continuum"
+        written.append({"file": "stroke_path.vtu", "caption": "The stroke check's "
+                        f"large-deflection path at its end (the {kind}): the same fields "
+                        "as static.vtu (the continuum: the Cauchy and second Piola-Kirchhoff "
+                        "stresses on the reference mesh)."})
     return written
 
 
@@ -166,7 +175,7 @@ def not_drawn(result: dict, model, kept: dict) -> list[str]:
         notes.append("The mode shapes of this model are not drawn (the spatial beam model "
                      "keeps only its frequencies, in summary.json).")
     check = result.get("stroke_check")
-    if check and check.get("strokes"):
+    if check and check.get("strokes") and "stroke_path" not in kept:
         notes.append(f"The stroke check's large-deflection path (the {check['model']} model, "
                      f"to {check['strokes'][-1] * 1e3:.4g} mm) is not drawn: its strokes, "
                      "forces and peak stresses per step are in summary.json, stroke_check.")

@@ -53,7 +53,7 @@ def stroke_path(fe, supports, group, direction, force, others, steps=STEPS,
     if spec is not None and spec.outputs:
         along = observed_path(spec, path, [group, *others])["outputs_path"]
         outputs = {"outputs": {k: [None, *v] for k, v in along.items()}}
-    return {**outputs, "strokes": [_along(path.mean_displacement(group, k), direction) for k in range(n)],
+    return {**outputs, "result": path, "strokes": [_along(path.mean_displacement(group, k), direction) for k in range(n)],
             "forces": [float(f) * force for f in path.load_factors],
             "peak_stress": [_peak(path, k) for k in range(n)],
             "others": {g: [path.mean_displacement(g, k).tolist() for k in range(n)]
@@ -120,10 +120,11 @@ def checked_path(fe, supports, group, direction, top, others, spec=None) -> tupl
     return path, linear
 
 
-def stroke_check(spec, limits: dict, fe, supports) -> dict:
+def stroke_check(spec, limits: dict, fe, supports, kept: dict | None = None) -> dict:
     """The keys stroke_limit_basis and stroke_check (and, from the path, stroke_limit_yield
     and stroke_limit_fatigue) for ``limits`` (stroke.py's) of the model ``fe`` that sized
-    them; {} where there is no linear limit to check."""
+    them; {} where there is no linear limit to check. ``kept``: a dict that receives
+    "stroke_path" = (fe, the path's solve result) for the field files."""
     load = single_force(spec)
     a, m = spec.analysis, spec.material
     strokes = [v for v in (limits.get("stroke_limit_yield"),
@@ -139,11 +140,13 @@ def stroke_check(spec, limits: dict, fe, supports) -> dict:
                                     REACH * max(strokes), others, spec)
     except ValueError as error:  # NonConvergenceError among them
         return {"stroke_limit_basis": f"linear (the large-deflection check failed: {error})"}
+    if kept is not None:
+        kept["stroke_path"] = (fe, path["result"])
     at = limits.get("stroke_limit_yield") or max(strokes)
     departed = _departures(path, linear, at)
     outputs = _output_departures(spec, path, linear, at)
     check = {"model": "beam" if type(fe).__name__.startswith("Beam") else "continuum",
-             **{k: v for k, v in path.items() if k != "others"}, "at_stroke": at,
+             **{k: v for k, v in path.items() if k not in ("others", "result")}, "at_stroke": at,
              "departure": departed, "output_departure": outputs,
              "departed": [k for k, v in {**departed, **{f"outputs.{n}": v for n, v in
                                                          outputs.items()}}.items()

@@ -10,6 +10,7 @@ import pytest
 from flexfem.fem import Prescribed, solve_nonlinear
 from flexfem.geometry.user_model import load_spec
 from flexfem.studies.user_model.analysis import analyze_model, build, supports_and_loads
+from flexfem.studies.user_model.fields import path_end_mesh
 from flexfem.studies.user_model.stroke_check import DEPARTURE, LINEAR, UNCHECKED
 
 BODIES = Path(__file__).parents[3] / "examples" / "bodies"
@@ -29,8 +30,15 @@ def _prescribed_force(spec, group: str, stroke: float) -> float:
 @pytest.mark.parametrize("model", ["continuum", "beam"])
 def test_the_bridges_limits_come_from_the_nonlinear_path(model):
     spec = load_spec(BODIES / "bridge.toml", CHECKED)
-    out = analyze_model(spec, model=model)
+    kept = {}
+    out = analyze_model(spec, model=model, fields=kept)
     check = out["stroke_check"]
+    # --out's stroke_path.vtu: the path's end state, the input where the path ended
+    end = path_end_mesh(*kept["stroke_path"])
+    beam_model, _ = kept["stroke_path"]
+    node = beam_model.groups["input.left"].nodes[0]
+    assert end.point_data["displacement"][node, 0] == pytest.approx(check["strokes"][-1],
+                                                                    rel=1e-9)
     assert out["stroke_limit_basis"] == "nonlinear path"
     assert abs(check["departure"]["force"]) > DEPARTURE  # -14 %: the leaves' axial stiffening
     assert "force" in check["departed"] and set(check["output_departure"]) >= {"R"}
