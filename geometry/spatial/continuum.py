@@ -11,7 +11,7 @@ import numpy as np
 
 from ...fem import FEMesh, gmsh_session, mesh_from_gmsh
 from ...fem.budget import NODES_PER_ELEMENT, TETRAHEDRA_PER_CUBE, check_budget
-from .description import AXES, Plate, SpatialMechanism, Wire, flexure_label
+from .description import AXES, SpatialMechanism, Wire, flexure_label
 
 #: Elements through a wire's diameter or a leaf's thickness, by default.
 THROUGH = 2

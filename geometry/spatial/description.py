@@ -8,7 +8,7 @@ along x, y or z); :class:`Wire` a rod of circular section (``diameter``) on its 
 joins (``between``); its free span is the part of its axis outside both.
 :meth:`SpatialMechanism.check` refuses what cannot be built, naming the body or flexure.
 """
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 import math
 
 import numpy as np
@@ -199,7 +199,6 @@ class SpatialMechanism:
     bodies: tuple
     flexures: tuple
     source: str = ""
-    spans: tuple = field(default=(), compare=False)
 
     @property
     def size(self) -> float:
