@@ -144,7 +144,8 @@ def test_the_report_section_keeps_its_contract_in_quick(tmp_path, section_contra
 
 @pytest.mark.slow
 def test_the_report_section_verifies_the_optimised_design(tmp_path, section_contract):
-    """The default section (both designs: about 15 min): the figure, the seven rows, and what
+    """The default section (the design without length control run, the stored one with the
+    minimum hinge width verified again): the figure, the seven rows, and what
     the page says: the body-fitted optimised design without length control amplifies less
     than the DBMA read the same way."""
     from flexfem.studies.dbma.topopt_report import reproduce
