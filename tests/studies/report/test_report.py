@@ -299,8 +299,11 @@ def test_quick_report_answers_in_one_screen_per_source(quick_report):
                 assert not re.fullmatch(r"[+-][\d.]+ %", cells[3]), (key, cells)
         assert "Stroke limits" in screen and "before yield" in screen, key
     assert "None" not in re.sub(r"<[^>]+>", " ", page)
-    for value in re.findall(r"(-?\d+(?:\.\d+)?) deg\b", re.sub(r"<[^>]+>", " ", page)):
+    text = re.sub(r"<[^>]+>", " ", page)
+    for value in re.findall(r"(-?\d+(?:\.\d+)?) deg\b(?! corner)", text):
         assert -180 < float(value) <= 180, value
+    for value in re.findall(r"(-?\d+(?:\.\d+)?) deg corner", text):  # an interior angle
+        assert 0 < float(value) < 360, value
     by_name = {s["section"]: s for s in report["sections"]}
     for name in ("dbma_fem", "eightbar_fem", "balancing"):
         limits = by_name[name]["stroke_limits"]
