@@ -67,10 +67,11 @@ def build_model(spec: ModelSpec, size_factor: float = 1.0, max_dofs: int | None 
 
 
 def _solver(spec: ModelSpec) -> str:
-    """A model file's solver: "auto" is the direct one. AMG-CG, which "auto" picks for the
-    largest built-in meshes, has not been shown to converge on any thin leaf a user may draw
-    (docs/performance.md records it failing on a 1 M-DOF 2-D case); it runs only when the file
-    asks for it ([analysis] solver = "amg"), and then under its residual check."""
+    """A model file's solver: "auto" is the direct one, whose memory the file's budget check
+    already bounds. The iterative path (p-multigrid CG on quadratic elements, AMG-CG on
+    linear ones) saves memory but on thin leaves no time against a factor that fits
+    (docs/performance.md); it runs only when the file asks for it ([analysis] solver =
+    "amg"), and then under its residual check."""
     return "direct" if spec.analysis.solver == "auto" else spec.analysis.solver
 
 
