@@ -75,10 +75,9 @@ class Notch:
 
 
 @dataclass(frozen=True)
-class Span:
-    """Where a flexure is free: its root points ``a`` (leaving the first body) and ``b``
-    (entering the second), m; ``d`` the unit direction a -> b, ``n`` its left normal;
-    ``length`` |b - a| (m)."""
+class Segment:
+    """A straight piece from ``a`` to ``b`` (m): its ``length`` |b - a| (m) and unit
+    direction ``d`` a -> b; in 2-D or 3-D."""
 
     a: np.ndarray
     b: np.ndarray
@@ -90,6 +89,13 @@ class Span:
     @property
     def d(self) -> np.ndarray:
         return (self.b - self.a) / self.length
+
+
+@dataclass(frozen=True)
+class Span(Segment):
+    """Where a flexure is free: its root points ``a`` (leaving the first body) and ``b``
+    (entering the second), m; ``d`` the unit direction a -> b, ``n`` its left normal;
+    ``length`` |b - a| (m)."""
 
     @property
     def n(self) -> np.ndarray:

@@ -15,6 +15,8 @@ import numpy as np
 
 from shapely.geometry import Point, Polygon
 
+from ..mechanism.description import Segment
+
 TOL = 1e-9  # relative to the mechanism's size: points closer than this coincide
 AXES = {"x": 0, "y": 1, "z": 2}
 
@@ -171,20 +173,9 @@ def _segment_distance(p0, p1, q0, q1) -> float:
 
 
 @dataclass(frozen=True)
-class FreeSpan:
+class FreeSpan(Segment):
     """Where a flexure is free: its axis from ``a`` (leaving the first body) to ``b``
     (entering the second), m."""
-
-    a: np.ndarray
-    b: np.ndarray
-
-    @property
-    def length(self) -> float:
-        return float(np.linalg.norm(self.b - self.a))
-
-    @property
-    def d(self) -> np.ndarray:
-        return (self.b - self.a) / self.length
 
     @property
     def centre(self) -> np.ndarray:

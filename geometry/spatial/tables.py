@@ -8,6 +8,7 @@ import math
 import tomllib
 
 from ..user_model.expressions import evaluate_expression
+from ..user_model.mechanism_tables import body_name
 from ..user_model.quantities import with_si_units
 from ..user_model.tables import Locator, check_keys
 from .detect import is_spatial  # noqa: F401 - the spatial tables' own test, re-exported
@@ -97,10 +98,7 @@ def _prisms(raw, names, where) -> tuple:
 
 def _body(entry, i, names, loc: Locator) -> SolidBody:
     check_keys(entry, BODY_KEYS, loc, "body", i, "[[body]]")
-    name = entry.get("name")
-    if not isinstance(name, str) or not name.strip() or name == "solid":
-        raise loc.error(f"[[body]] name = {name!r} must be a non-empty string (not 'solid'): "
-                        "the body's group in every model", "body", "name", i)
+    name = body_name(entry, i, loc)
     if not any(k in entry for k in ("box", "cylinder", "prism")):
         raise loc.error(f"[[body]] {name!r} needs box = [[x0, y0, z0], [x1, y1, z1]], "
                         "cylinder = {from, to, diameter} or prism = {polygon, axis, span} (m)",

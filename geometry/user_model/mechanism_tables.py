@@ -68,12 +68,19 @@ def _polygons(raw, names, where) -> tuple:
     return tuple(out)
 
 
-def _body(entry, i, names, loc: Locator) -> Body:
-    check_keys(entry, BODY_KEYS, loc, "body", i, "[[body]]")
+def body_name(entry: dict, i: int, loc: Locator) -> str:
+    """The name of [[body]] ``i``: a non-empty string other than 'solid' (the group of the
+    whole part), or a one-line error naming the body."""
     name = entry.get("name")
     if not isinstance(name, str) or not name.strip() or name == "solid":
         raise loc.error(f"[[body]] name = {name!r} must be a non-empty string (not 'solid'): "
                         "the body's group in every model", "body", "name", i)
+    return name
+
+
+def _body(entry, i, names, loc: Locator) -> Body:
+    check_keys(entry, BODY_KEYS, loc, "body", i, "[[body]]")
+    name = body_name(entry, i, loc)
     if "box" not in entry and "polygon" not in entry:
         raise loc.error(f"[[body]] {name!r} needs box = [[x0, y0], [x1, y1]] or polygon = "
                         "[[x, y], [x, y], [x, y], ...] (m)", "body", None, i)
