@@ -5,7 +5,7 @@ import numpy as np
 
 
 @dataclass
-class Evaluation:
+class DesignResponses:
     """Responses of one design: values and gradients with respect to the design variables."""
 
     objective: float

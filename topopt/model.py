@@ -11,7 +11,7 @@ from .large_displacement import LargeDisplacement
 from .filters import Filter
 from .problem import Problem
 from .projection import project, project_derivative
-from .evaluation import Evaluation
+from .evaluation import DesignResponses
 from .responses import RESPONSES, State
 from .robust_model import robust_evaluate
 
@@ -201,7 +201,7 @@ class Discrete:
         pairs = [value_grad(c.response) for c in p.constraints]
         return (state, disp, f0, g0, [v for v, _ in pairs], [g for _, g in pairs])
 
-    def evaluate(self, z: np.ndarray) -> Evaluation:
+    def evaluate(self, z: np.ndarray) -> DesignResponses:
         """All responses at z, one factorisation for the states of every load case and
         every adjoint (three, one a design, with the robust formulation)."""
         if self.problem.robust is not None:
@@ -214,5 +214,5 @@ class Discrete:
         grads = np.array([self.back(x, g, filtered=filtered) for g in grads])
         grads = grads.reshape(len(values), self.n_variables)
         compliances = np.einsum("ik,ik->k", self.forces, state.U)
-        return Evaluation(f0, g0, np.array(values), grads, rho, state.U[:, 0], disp,
-                          compliances)
+        return DesignResponses(f0, g0, np.array(values), grads, rho, state.U[:, 0], disp,
+                               compliances)

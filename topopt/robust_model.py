@@ -5,7 +5,7 @@ scaled so that the intermediate design meets the problem's, every other constrai
 worst of the three in the direction of its bound."""
 import numpy as np
 
-from .evaluation import Evaluation
+from .evaluation import DesignResponses
 from .robust import DESIGNS, worst
 
 
@@ -40,10 +40,10 @@ def _solve_designs(d, z: np.ndarray) -> list:
     return out
 
 
-def robust_evaluate(d, z: np.ndarray) -> Evaluation:
-    """The robust formulation's :class:`~.model.Evaluation` at z: ``physical``, ``u``,
-    ``displacements`` and ``compliances`` those of the intermediate design (the blueprint),
-    ``designs`` each design's objective and volume."""
+def robust_evaluate(d, z: np.ndarray) -> DesignResponses:
+    """The robust formulation's :class:`~.evaluation.DesignResponses` at z: ``physical``,
+    ``u``, ``displacements`` and ``compliances`` those of the intermediate design (the
+    blueprint), ``designs`` each design's objective and volume."""
     p = d.problem
     sign = 1.0 if p.sense == "min" else -1.0
     designs = _solve_designs(d, z)
@@ -65,5 +65,5 @@ def robust_evaluate(d, z: np.ndarray) -> Evaluation:
     compliances = np.einsum("ik,ik->k", d.forces, state.U)
     summary = {name: {"objective": float(D[3]), "volume": float(D[0].mean())}
                for name, D in zip(DESIGNS, designs)}
-    return Evaluation(f, sign * g, np.array(values), grads, rho, state.U[:, 0], disp,
-                      compliances, summary)
+    return DesignResponses(f, sign * g, np.array(values), grads, rho, state.U[:, 0], disp,
+                           compliances, summary)
