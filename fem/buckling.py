@@ -1,4 +1,6 @@
-"""Linear (eigenvalue) buckling: ``solve_buckling(model, supports, loads, n) -> Buckling``.
+"""Linear (eigenvalue) buckling: ``solve_buckling(model, supports, loads, n) -> Buckling``,
+and the incremental buckling about a converged state, ``solve_incremental_buckling(model,
+state, supports, loads, n) -> StateBuckling`` (see that function).
 
 About the linear static state u0 of the loads (and prescribed displacements), the critical
 load factors lambda and shapes phi solve (K + lambda K_sigma(u0)) phi = 0, K_sigma the
@@ -14,10 +16,13 @@ from pathlib import Path
 import numpy as np
 import scipy.sparse.linalg as spla
 
+from . import assembly
 from .factor import factor
-from .boundary import constrained_dofs
+from .boundary import constrained_dofs, load_vector
 from .hyperelastic import geometric_stiffness
-from .model import Model
+from .model import Model, scalar_element
+from .stability import (StateBuckling, count_negative_eigenvalues, state_displacement,
+                        tangent_stiffness)
 from .static import StaticResult, solve_static, vertex_displacement
 
 
@@ -87,21 +92,115 @@ def solve_buckling(model: Model, supports, loads, n: int = 3) -> Buckling:
     G = geometric_stiffness(model, state.u)[I][:, I].tocsr()
     if not np.any(G.data):
         raise ValueError("the loads leave the body unstressed: no buckling")
-    k = min(len(I) - 1, n + 4)  # a few more than asked: tension modes may take some slots
+    factors, vectors = lowest_factors(K, G, n)
+    shapes = np.zeros((len(factors), model.n_dofs))
+    shapes[:, I] = vectors.T
+    shapes /= np.abs(shapes).max(axis=1, keepdims=True)
+    return Buckling(model, factors, shapes, state)
+
+
+def lowest_factors(K, G, n: int) -> tuple:
+    """(lambda (k,) ascending, vectors (N, k)): the k <= n lowest positive lambda of
+    (K + lambda G) phi = 0 (K symmetric positive definite, N/m), solved as -G phi = mu K phi
+    for the largest mu = 1 / lambda by Lanczos on one Cholesky factor of K. ValueError
+    where none is positive (G compresses nothing)."""
     with factor(K, "spd") as F:
-        op = spla.LinearOperator(K.shape, matvec=F.solve, matmat=F.solve, dtype=float)
-        try:
-            mu, vectors = spla.eigsh(-G, k=k, M=K, Minv=op, which="LA", tol=1e-10,
-                                     maxiter=100 * k)
-        except spla.ArpackNoConvergence as partial:
-            # a pure-tension pattern has no isolated positive mu: take what converged
-            mu, vectors = partial.eigenvalues, partial.eigenvectors
+        return factored_lowest(F, K, G, n)
+
+
+def factored_lowest(F, K, G, n: int) -> tuple:
+    """:func:`lowest_factors` on ``F``, a factor of K already made."""
+    k = min(K.shape[0] - 1, n + 4)  # a few more than asked: tension modes may take some slots
+    op = spla.LinearOperator(K.shape, matvec=F.solve, matmat=F.solve, dtype=float)
+    try:
+        mu, vectors = spla.eigsh(-G, k=k, M=K, Minv=op, which="LA", tol=1e-10,
+                                 maxiter=100 * k)
+    except spla.ArpackNoConvergence as partial:
+        # a pure-tension pattern has no isolated positive mu: take what converged
+        mu, vectors = partial.eigenvalues, partial.eigenvectors
     keep = np.flatnonzero(mu > 1e-12 * np.abs(mu).max())
     if len(keep) == 0:
         raise ValueError("the loads put no part of the body in compression: no positive "
                          "buckling load factor")
     keep = keep[np.argsort(-mu[keep])][:n]
-    shapes = np.zeros((len(keep), model.n_dofs))
-    shapes[:, I] = vectors[:, keep].T
+    return 1.0 / mu[keep], vectors[:, keep]
+
+
+def incremental_stress(model: Model, u, du, linear: bool = False) -> np.ndarray:
+    """(dim, dim, n_elements, n_points) the change dS (Pa) of the second Piola-Kirchhoff
+    stress at the model's quadrature points when the state ``u`` (m) moves by ``du`` (m):
+    C : sym(F^T grad du), F = I + grad u (St. Venant-Kirchhoff; plane stress's lambda*);
+    ``linear``: F = I (the linear stress of du, the linearised prestress's increment)."""
+    mesh = model.mesh.mesh
+    element = scalar_element(mesh, model.order)
+
+    def gradient(v):
+        return assembly.displacement_gradient(mesh, element, model.quadrature,
+                                              model.basis.element_dofs, model.dim, v)
+
+    dH = gradient(du)
+    F = dH * 0.0 if linear else gradient(u)
+    F += np.eye(model.dim)[:, :, None, None]
+    FtdH = np.einsum("kieq,kjeq->ijeq", F, dH)
+    dE = 0.5 * (FtdH + FtdH.transpose(1, 0, 2, 3))
+    lam, mu = model.lame
+    trace = np.einsum("iieq->eq", dE)
+    return lam * trace * np.eye(model.dim)[:, :, None, None] + 2.0 * mu * dE
+
+
+def _state_step(state):
+    """The step index a state names (None: a DOF vector or a linear state)."""
+    if isinstance(state, tuple):
+        return int(state[1]) % len(state[0].u)
+    return len(state.u) - 1 if hasattr(state, "load_factors") else None
+
+
+def solve_incremental_buckling(model: Model, state, supports, loads,
+                               n: int = 3) -> StateBuckling:
+    """Incremental linearised buckling about a converged ``state``: the ``n`` lowest
+    positive lambda at which K_T(state) + lambda K_G(state, P) is singular (the buckling
+    load of the loads P added to the state, as Abaqus' *BUCKLE after a nonlinear step).
+
+    K_T is the tangent about the state (:func:`.stability.tangent_stiffness`: a
+    NonlinearResult's step, ``(result, step)``, a DOF vector, or a StaticResult's linearised
+    prestress K + K_sigma); du = K_T^-1 P the state's linear response to P (``loads``, N; dead
+    loads) with ``supports`` held at zero (their values ignored: the state already holds
+    them); K_G the initial-stress stiffness of the stress increment of du
+    (:func:`incremental_stress`, in the state's configuration). Not the limit point of the
+    path itself (the path's own loads are not scaled; the change of the material tangent
+    with du is left out): a first-order estimate that is exact for a linear column, where
+    it gives P_cr - P_pre, and close to the path's own critical point where the state is
+    near it. ValueError if the tangent is not positive definite (the state is not stable
+    under these supports) or P compresses nothing."""
+    if not (isinstance(n, (int, np.integer)) and n >= 1):
+        raise ValueError(f"number of buckling modes n = {n!r} must be a positive integer")
+    u, kind = state_displacement(model, state)
+    K_T = tangent_stiffness(model, state)
+    if kind == "nonlinear":
+        K_T = K_T + model.extra_stiffness
+    D, _, _ = constrained_dofs(model, supports)
+    I = np.setdiff1d(np.arange(model.n_dofs), D)
+    if n >= len(I):
+        raise ValueError(f"n = {n} buckling modes asked for but only {len(I)} free DOFs exist")
+    K = K_T[I][:, I]
+    K = (0.5 * (K + K.T)).tocsr()
+    f = load_vector(model, loads)[I]
+    if not np.any(f):
+        raise ValueError("loads: the added loads are zero on the free DOFs: nothing to buckle")
+    negative = count_negative_eigenvalues(K)
+    if negative:
+        raise ValueError(f"state: the tangent has {negative} negative eigenvalue(s) under "
+                         "these supports: the state is not stable, no buckling about it")
+    du = np.zeros(model.n_dofs)
+    with factor(K, "spd") as F:
+        du[I] = F.solve(f)
+        dS = incremental_stress(model, u, du, linear=kind == "linear")
+        mesh = model.mesh.mesh
+        G = assembly.geometric_stiffness(mesh, scalar_element(mesh, model.order),
+                                         model.quadrature, model.node_pattern, model.dim, dS,
+                                         model.thickness)[I][:, I].tocsr()
+        factors, vectors = factored_lowest(F, K, G, n)
+    shapes = np.zeros((len(factors), model.n_dofs))
+    shapes[:, I] = vectors.T
     shapes /= np.abs(shapes).max(axis=1, keepdims=True)
-    return Buckling(model, 1.0 / mu[keep], shapes, state)
+    return StateBuckling(model, factors, shapes, du, _state_step(state))
