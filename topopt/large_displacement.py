@@ -4,8 +4,9 @@ f.u). Geometric nonlinearity only: St. Venant-Kirchhoff, exact for large rotatio
 strains, as in flexure mechanisms.
 
 Residual R(u, rho) = sum_e E(rho_e) g_e(u, gamma(rho_e)) + K_springs u - f = 0, solved by Newton
-with the consistent tangent, from the previous design's state (a design changes little per
-iteration) or, where that fails, in load increments from zero. For a response c = l.u the
+with the consistent tangent, from the state of the nearest of the last designs (a design
+changes little per iteration; the robust formulation's three designs each find their own)
+or, where that fails, in load increments from zero. For a response c = l.u the
 adjoint K_T lambda = l, with the converged state's factorised tangent, gives
 dc/drho_e = -lambda_e . dR_e/drho_e (Buhl, Pedersen & Sigmund 2000, Struct Multidisc Optim
 19:93-104).
@@ -19,6 +20,9 @@ from ..fem.stepping import StepFailed, march
 from .element import element_stiffness
 from .large_strain import LargeStrainQ4, centre_stress, energy_gamma, interpolated
 from .responses import pnorm
+
+# converged states kept as Newton's starts: one for each of the robust formulation's designs
+WARM_STARTS = 3
 
 
 class EquilibriumFailed(ValueError):
@@ -75,7 +79,24 @@ class LargeDisplacement:
         self.element = LargeStrainQ4(g.dx, g.dy, p.nu, p.thickness)
         self.KL = element_stiffness(g.dx, g.dy, 1.0, p.nu, p.thickness)
         self.force = discrete.forces[:, 0]
-        self.last = None
+        self.recent = []      # [(rho, u)] of the last WARM_STARTS designs solved
+
+    def _warm_start(self, rho: np.ndarray):
+        """The converged u of the recent design nearest to ``rho`` (largest density
+        difference), None before the first."""
+        if not self.recent:
+            return None
+        return min(self.recent, key=lambda s: float(np.max(np.abs(s[0] - rho))))[1]
+
+    def _remember(self, rho: np.ndarray, u: np.ndarray) -> None:
+        """Keep (rho, u) as the warm start of the designs near rho, replacing the nearest
+        recent one where it is as near as the designs of one iteration are (a move)."""
+        if self.recent:
+            gaps = [float(np.max(np.abs(s[0] - rho))) for s in self.recent]
+            j = int(np.argmin(gaps))
+            if len(self.recent) >= WARM_STARTS or gaps[j] == 0.0:
+                self.recent.pop(j)
+        self.recent.append((rho.copy(), u))
 
     def _residual(self, u, E, gamma, factor):
         """(R (n_dofs; N, zero at fixed DOFs), the tangent's element matrices, the elements'
@@ -108,12 +129,13 @@ class LargeDisplacement:
     def equilibrium(self, E: np.ndarray, rho: np.ndarray, dE: np.ndarray) -> LargeState:
         """The state of the design of moduli ``E`` (Pa), densities ``rho``, dE/drho ``dE``."""
         gamma, d_gamma = energy_gamma(rho)
-        found = self._newton(self.last, E, gamma, 1.0) if self.last is not None else None
+        start = self._warm_start(rho)
+        found = self._newton(start, E, gamma, 1.0) if start is not None else None
         increments, iterations = 0, 0
         if found is None:
             found, increments, iterations = self._stepped(E, gamma)
         u, it, g, dg = found
-        self.last = u
+        self._remember(rho, u)
         dR = dE[:, None] * g + (E * d_gamma)[:, None] * dg
         return LargeState(u, dR, g, increments, iterations + it)
 

@@ -6,6 +6,7 @@ import hashlib
 
 import numpy as np
 
+from ..fem import checks
 from ..fem.budget import check_grid
 from .filters import KINDS as FILTERS
 from .grid import Grid
@@ -169,18 +170,12 @@ class Problem:
         return hashlib.sha256(text.encode()).hexdigest()[:16]
 
 
-def _positive(value, key: str) -> None:
-    if not (isinstance(value, (int, float)) and np.isfinite(value) and value > 0):
-        raise ValueError(f"{key} = {value!r}: must be a number > 0")
-
-
 def check_problem(p: Problem) -> None:
     """ValueError naming the first inconsistent key of ``p`` (a BudgetError for a grid
     that does not fit the machine: fem/budget.py)."""
     check_grid(p.grid.nelx, p.grid.nely, "domain.nelx x domain.nely")
-    if not (isinstance(p.nu, (int, float)) and -1.0 < p.nu < 0.5):
-        raise ValueError(f"material.nu = {p.nu!r}: must be in (-1, 0.5)")
-    _positive(p.thickness, "domain.thickness")
+    checks.in_range("material.nu", p.nu, (-1.0, 0.5), closed=False)
+    checks.positive("domain.thickness", p.thickness)
     if p.sense not in ("min", "max"):
         raise ValueError(f"objective.sense = {p.sense!r}: choose 'min' or 'max'")
     names = [s.name for s in p.springs]
@@ -189,7 +184,7 @@ def check_problem(p: Problem) -> None:
     for s in p.springs:
         if s.dof not in DOFS:
             raise ValueError(f"spring {s.name!r}: dof = {s.dof!r}: choose 'x' or 'y'")
-        _positive(s.stiffness, f"spring {s.name!r}: stiffness")
+        checks.positive("stiffness", s.stiffness, owner=f"spring {s.name!r}")
     if not p.supports or not p.loads:
         raise ValueError("support, load: give at least one [[support]] and one [[load]]")
     _check_cases(p)
@@ -213,7 +208,7 @@ def check_problem(p: Problem) -> None:
     for kind, sense in (("frequency", "max"), ("stress", "min")):
         if p.objective.kind == kind and p.sense != sense:
             raise ValueError(f"objective.kind = {kind!r}: its sense is {sense!r}")
-    _positive(p.mass_density, "material.rho")
+    checks.positive("material.rho", p.mass_density)
     for c in p.constraints:
         if c.upper is None and c.lower is None:
             raise ValueError(f"constraint {c.response.kind!r}: give max or min")
@@ -229,7 +224,8 @@ def check_problem(p: Problem) -> None:
 def _check_robust(p: Problem) -> None:
     """The combinations the robust formulation takes: the hat (density) filter, whose
     radius the minimum size relation is for, a projection at 0.5 (its beta schedule), MMA,
-    small displacements, square elements, one bound per constraint."""
+    square elements, one bound per constraint (large displacements too: each design on its
+    own equilibrium path)."""
     if p.filter_kind != "density":
         raise ValueError(f"robust: needs filter.kind 'density' (the hat filter its minimum "
                          f"size relation is for), not {p.filter_kind!r}")
@@ -238,9 +234,6 @@ def _check_robust(p: Problem) -> None:
                          "(the intermediate design's threshold)")
     if p.optimizer.kind != "mma":
         raise ValueError("robust: needs optimizer.kind 'mma'")
-    if p.nonlinear is not None:
-        raise ValueError("robust: not with [nonlinear] (large displacements: one "
-                         "equilibrium path a design, not three)")
     for c in p.constraints:
         if c.response.kind != "volume" and c.upper is not None and c.lower is not None:
             raise ValueError(f"robust: constraint {c.response.kind!r}: give max or min, not "
@@ -304,7 +297,7 @@ def _check_optimizer(p: Problem) -> None:
     if not isinstance(o.max_iterations, int) or o.max_iterations < 0:
         raise ValueError(f"optimizer.max_iterations = {o.max_iterations!r}: must be an "
                          "integer >= 0")
-    _positive(o.tolerance, "optimizer.tolerance")
+    checks.positive("optimizer.tolerance", o.tolerance)
     if o.kind == "oc":
         only_volume = [c.response.kind for c in p.constraints] == ["volume"]
         if p.objective.kind != "compliance" or p.sense != "min" or not only_volume:

@@ -18,9 +18,11 @@ eroded threshold eta_e has, at the 0.5 level, the width
 and the void by symmetry with 1 - eta_d (tests/topopt/test_robust.py derives both branches
 by quadrature). In 2-D top88's filter is a cone; across a straight member it acts as the
 cone's projection onto a line, more peaked than the hat, and gives 0.943 r instead of r at
-eta_e = 0.75 (the same test): the relation is that of the papers, the 2-D sizes up to 6 %
-below it."""
+eta_e = 0.75. :func:`member_ratio` applies the papers' construction (the 0.5-level width of
+the bar whose filtered peak is eta_e) to that profile, by quadrature, and :func:`radius_for`
+uses it: the radius a minimum size asks for is that of the filter the grid applies."""
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 
@@ -40,6 +42,42 @@ def size_ratio(eta_e: float) -> float:
     if eta_e <= 0.75:
         return float(2.0 * np.sqrt(eta_e - 0.5))
     return float(2.0 * (1.0 - np.sqrt(1.0 - eta_e)))
+
+
+def cone_across(s: float) -> float:
+    """top88's cone 1 - |d| (radius 1) integrated along a straight member: its profile at
+    the distance ``s`` (radii) across it."""
+    s = abs(s)
+    if s >= 1.0:
+        return 0.0
+    h = np.sqrt(1.0 - s * s)
+    log = s * s * np.log((h + 1.0) / s) if s > 0 else 0.0
+    return float(h - log)
+
+
+def bar_width(eta_e: float, kernel=cone_across) -> float:
+    """b / r: the 0.5-level width of the filtered 0/1 bar whose filtered peak is ``eta_e``
+    (the papers' construction), for a filter of radius 1 whose profile across a member is
+    ``kernel``, by quadrature and root finding."""
+    from scipy.integrate import quad
+    from scipy.optimize import brentq
+
+    norm = quad(kernel, -1.0, 1.0, points=[0.0])[0]
+
+    def filtered(t, a):    # the kernel centred at t over the bar [-a, a]
+        return quad(lambda s: kernel(s - t), -a, a, points=[t], limit=200)[0] / norm
+
+    a = brentq(lambda a: filtered(0.0, a) - eta_e, 1e-9, 1.0)
+    return 2.0 * brentq(lambda t: filtered(t, a) - 0.5, 0.0, a + 1.0)
+
+
+@lru_cache(maxsize=16)
+def member_ratio(eta_e: float) -> float:
+    """b / r of a straight member under the 2-D density filter (top88's cone): the
+    minimum solid size over the radius for the eroded threshold ``eta_e`` in (0.5, 1)."""
+    if not 0.5 < eta_e < 1.0:
+        raise ValueError(f"eroded threshold {eta_e!r}: must be in (0.5, 1)")
+    return bar_width(float(eta_e))
 
 
 @dataclass(frozen=True)
@@ -64,16 +102,18 @@ class Robust:
         return (1.0 - self.eta, 0.5, self.eta)
 
     def minimum_sizes(self, radius: float, element: float) -> dict:
-        """The blueprint's minimum solid and void sizes (m) for a hat filter of ``radius``
-        elements of ``element`` m (equal here: the thresholds are symmetric about 0.5)."""
-        b = size_ratio(1.0 - self.eta) * radius * element
+        """The blueprint's minimum solid and void sizes (m) across straight members for the
+        2-D density filter of ``radius`` elements of ``element`` m (:func:`member_ratio`;
+        equal here: the thresholds are symmetric about 0.5)."""
+        b = member_ratio(1.0 - self.eta) * radius * element
         return {"solid": b, "void": b}
 
 
 def radius_for(min_size: float, element: float, eta: float) -> float:
-    """The hat filter's radius (elements) that gives the blueprint the minimum size
-    ``min_size`` (m) with thresholds 1 - eta, 0.5, eta on elements of ``element`` m."""
-    return min_size / (size_ratio(1.0 - eta) * element)
+    """The 2-D density filter's radius (elements) that gives the blueprint's straight
+    members the minimum size ``min_size`` (m) with thresholds 1 - eta, 0.5, eta on elements
+    of ``element`` m (:func:`member_ratio`)."""
+    return min_size / (member_ratio(1.0 - eta) * element)
 
 
 def aggregate(values, scale: float):

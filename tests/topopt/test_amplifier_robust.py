@@ -8,17 +8,17 @@ from flexfem.studies.dbma.topopt_robust import (density_binding, density_violate
                                                 read_stored, robust_problem, verdict)
 from flexfem.topopt.amplifier import amplifier_problem, dbma_envelope, spring_free
 from flexfem.topopt.model import Discrete
-from flexfem.topopt.robust import size_ratio
+from flexfem.topopt.robust import member_ratio
 
 
-def test_min_hinge_gives_square_elements_inside_the_envelope_and_the_published_radius():
+def test_min_hinge_gives_square_elements_inside_the_envelope_and_the_filters_radius():
     env = dbma_envelope()
     p = amplifier_problem(800.0, 4.36e6, 4e7, 1e5, element=0.3e-3, min_hinge=0.6e-3)
     g = p.grid
     assert g.dx == pytest.approx(g.dy, rel=1e-12) == pytest.approx(0.3e-3, rel=1e-12)
     assert g.lx <= env["width"] < g.lx + g.dx and g.ly <= env["height"] < g.ly + g.dy
     assert p.robust.thresholds == (0.75, 0.5, 0.25)
-    assert p.radius * g.dx * size_ratio(0.75) == pytest.approx(0.6e-3, rel=1e-12)
+    assert p.radius * g.dx * member_ratio(0.75) == pytest.approx(0.6e-3, rel=1e-12)
     d = Discrete(p)
     top = d.solid.reshape(g.nelx, g.nely)[:, -1]          # the output strip at the top
     assert top[0] and d.void.sum() > 0

@@ -10,7 +10,7 @@ from test_gradients import CONSTRAINTS, fd_check
 from flexfem.topopt import (Constraint, Optimizer, Projection, Response, optimize,
                             problem_from_dict)
 from flexfem.topopt.problem_file import read_problem_file
-from flexfem.topopt.robust import Robust, aggregate, radius_for, size_ratio
+from flexfem.topopt.robust import Robust, aggregate, member_ratio, radius_for, size_ratio
 
 ROBUST = dict(projection=Projection(beta=1.0, eta=0.5, beta_max=16.0, every=5),
               robust=Robust(0.3))
@@ -56,11 +56,19 @@ def test_top88s_cone_across_a_member_gives_up_to_6_percent_less():
     assert _bar_width(0.6, _cone_across) == pytest.approx(0.957 * size_ratio(0.6), abs=1e-3)
 
 
+@pytest.mark.parametrize("eta_e", [0.6, 0.75, 0.9])
+def test_the_radius_is_that_of_the_2d_filters_member(eta_e):
+    """member_ratio (what radius_for uses) is the cone's bar width, derived here with
+    the radius 2 so that a radius-1 shortcut would show."""
+    assert member_ratio(eta_e) == pytest.approx(_bar_width(eta_e, lambda s: _cone_across(
+        s, 2.0), r=2.0) / 2.0, abs=1e-8)
+
+
 def test_minimum_size_relation_values_and_inverse():
     assert size_ratio(0.75) == pytest.approx(1.0)     # both branches meet: b = r
     assert size_ratio(0.5) == 0.0 and size_ratio(1.0) == pytest.approx(2.0)
     r = radius_for(0.6e-3, 0.2e-3, 0.25)
-    assert r == pytest.approx(3.0)
+    assert r == pytest.approx(3.0 / _bar_width(0.75, _cone_across), rel=1e-6)   # 3.18
     assert Robust(0.25).minimum_sizes(r, 0.2e-3)["solid"] == pytest.approx(0.6e-3)
     assert Robust(0.3).thresholds == (0.7, 0.5, 0.3)   # eroded: the higher threshold
 
@@ -104,7 +112,6 @@ def test_min_hinge_sets_the_filter_radius():
 @pytest.mark.parametrize("change, message", [
     ({"filter": {"kind": "helmholtz"}}, "density"),
     ({"optimizer": {"kind": "oc"}}, "oc"),
-    ({"nonlinear": {}}, "large displacements"),
     ({"robust": {"min_hinge": 1e-4}}, "refine the grid"),
     ({"robust": {"eta": 0.6}}, "eta"),
     ({"projection": {"eta": 0.4}}, "eta = 0.5")])
@@ -123,7 +130,7 @@ def test_short_robust_run_reports_its_designs_and_sizes():
     designs = robust["designs"]
     assert designs["eroded"]["volume"] < designs["intermediate"]["volume"] \
         < designs["dilated"]["volume"]
-    assert robust["min_solid"] == pytest.approx(size_ratio(0.7) * 1.5)
+    assert robust["min_solid"] == pytest.approx(_bar_width(0.7, _cone_across) * 1.5, rel=1e-6)
     assert result.objective >= max(d["objective"] for d in designs.values()) - 1e-12
 
 
