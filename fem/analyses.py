@@ -20,6 +20,7 @@ from functools import singledispatch
 from . import buckling, compliance, harmonic, modal, nonlinear, static
 from .beam import buckling as beam_buckling
 from .beam import face as beam_face
+from .beam import stroke_buckling
 from .beam.model import BeamModel
 from .beam.spatial import buckling as beam3d_buckling
 from .beam.spatial import face as beam3d_face
@@ -57,6 +58,9 @@ DISPATCH = {
                                  beam_face.solve_harmonic, beam3d_face.solve_harmonic),
     "solve_buckling": dispatcher("solve_buckling", buckling.solve_buckling,
                                  beam_buckling.solve_buckling, beam3d_buckling.solve_buckling),
+    "solve_incremental_buckling": dispatcher(
+        "solve_incremental_buckling", buckling.solve_incremental_buckling,
+        stroke_buckling.planar, stroke_buckling.spatial),
 }
 
 
@@ -203,3 +207,29 @@ def solve_buckling(model, supports, loads, n: int = 3, **options):
         buckles) and the shapes.
     """
     return DISPATCH["solve_buckling"](model, supports, loads, n, **options)
+
+
+def solve_incremental_buckling(model, state, supports, loads, n: int = 3, **options):
+    """Buckling about a converged state: the ``n`` lowest lambda at which K_T(state) + lambda
+    K_G(state, P) is singular, P the added ``loads`` (the incremental linearised buckling,
+    :func:`.buckling.solve_incremental_buckling`; not the path's own limit point).
+
+    Parameters
+    ----------
+    model : Model, BeamModel or Beam3DModel
+        As in :func:`solve_static` (m, Pa).
+    state
+        A converged state: the path of :func:`solve_nonlinear` (its last step) or (path,
+        step); on the continuum also a DOF vector (m) or a StaticResult (linearised prestress).
+    supports, loads
+        The held groups (their values ignored: held at the state) and the added loads P (N).
+    n : int
+        How many load factors (-).
+
+    Returns
+    -------
+    StateBuckling
+        ``load_factors`` (-, ascending: multiples of P), ``shapes``, ``increment`` (the
+        linear response to P about the state, m).
+    """
+    return DISPATCH["solve_incremental_buckling"](model, state, supports, loads, n, **options)
