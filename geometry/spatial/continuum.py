@@ -12,6 +12,7 @@ import numpy as np
 from ...fem import FEMesh, gmsh_session, mesh_from_gmsh
 from ...fem.budget import NODES_PER_ELEMENT, TETRAHEDRA_PER_CUBE, check_budget
 from .description import AXES, SpatialMechanism, Wire, flexure_label
+from .mass import mass_properties
 
 #: Elements through a wire's diameter or a leaf's thickness, by default.
 THROUGH = 2
@@ -33,24 +34,13 @@ def body_size(mechanism: SpatialMechanism, coarse: float | None = None) -> float
     return max(coarse, max(flexure_size(f) for f in mechanism.flexures))
 
 
-def _volume(body) -> float:
-    """The body's volume (m^3), its parts summed (an upper bound where they overlap)."""
-    v = sum(abs(np.prod(np.subtract(hi, lo))) for lo, hi in body.boxes)
-    v += sum(math.pi * c.diameter ** 2 / 4 * math.dist(c.start, c.end) for c in body.cylinders)
-    for p in body.prisms:
-        u, w = np.array(p.polygon).T
-        area = 0.5 * abs(np.dot(u, np.roll(w, 1)) - np.dot(w, np.roll(u, 1)))
-        v += area * abs(p.span[1] - p.span[0])
-    return float(v)
-
-
 def estimate_mesh(mechanism: SpatialMechanism, size_factor: float = 1.0,
                   coarse: float | None = None, order: int = 2) -> dict:
     """{"elements", "nodes", "dofs"} expected of :func:`mesh_spatial`: the bodies at their
     size, each flexure's volume with a band of one element round it at its own size (the
     planar path's rule, fem/budget.py's tetrahedra per cube)."""
     h_body = body_size(mechanism, coarse) * size_factor
-    elements = sum(_volume(b) for b in mechanism.bodies) / (h_body ** 3 / TETRAHEDRA_PER_CUBE)
+    elements = sum(mass_properties(b).volume for b in mechanism.bodies) / (h_body ** 3 / TETRAHEDRA_PER_CUBE)
     for i, f in enumerate(mechanism.flexures):
         h = flexure_size(f) * size_factor
         length = mechanism.span(i).length
