@@ -16,6 +16,7 @@ from ...geometry.user_model.outputs_table import BUILT_IN, output_names
 from ...geometry.user_model.spec import model_parameter_names
 from ..engine.validate import declare
 from ...reduced.model_file import beam_model
+from ..spatial.analysis import analyze_spatial_beam
 from .beam_analysis import (check_beam_analyses, lifted_outputs, out_of_plane, planar_twin,
                             spatial_modes, spatial_static)
 from .observe import observation_metrics, observed, observed_path
@@ -113,8 +114,7 @@ def analyze_model(spec: ModelSpec, size_factor: float = 1.0, model: str = "conti
         raise ValueError(f"{spec.source}: model = {model!r} must be one of {MODELS}")
     solid = None
     if model == "beam" and getattr(spec, "spatial", None) is not None:
-        raise ValueError(f"{spec.source}: --model beam: a spatial mechanism's beam model is "
-                         "not available yet (docs/spatial.md); use --model continuum")
+        return analyze_spatial_beam(spec, fields)  # 3-D bodies: studies/spatial/analysis.py
     if model == "beam":
         check_beam_analyses(spec)
     check_loaded_supports(spec)

@@ -48,11 +48,6 @@ def test_axial_stiffness_against_4_E_A_over_L(spec):
     assert 0.7 < ratio < 1.0
 
 
-def test_the_beam_model_of_a_spatial_file_is_refused_in_one_line(spec):
-    with pytest.raises(ValueError, match="spatial mechanism's beam model is not available"):
-        analyze_model(spec, model="beam")
-
-
 CYLINDER_AND_PRISM = """
 [material]
 name = "structural_steel"
