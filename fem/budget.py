@@ -174,3 +174,29 @@ def check_budget(estimate: dict, dim: int, max_dofs: int | None = None,
         f"(~{memory:.1f} GiB to solve), above the budget of {limit:,} DOFs ({source}); "
         "use a coarser mesh (a larger size_factor) or raise the budget with --max-dofs N "
         "(option max_dofs = N)")
+
+
+#: Share of the available memory a direct factorization may take: in core, its whole factor;
+#: out of core (PARDISO's factor on disk), its working set in memory.
+FACTOR_SHARE = 0.5
+
+
+def factor_plan(in_core: float, out_of_core: float | None,
+                available: float | None = None) -> tuple[str, str]:
+    """How a direct factorization fits the memory: ('in-core' | 'out-of-core' | 'iterative',
+    why). ``in_core``: the peak (bytes) of the factor held in memory; ``out_of_core``: the
+    peak with the factor on disk (None: no out-of-core mode); both from PARDISO's analysis.
+    ``available`` (bytes; None: :func:`available_memory_bytes`) of which FACTOR_SHARE may be
+    taken. In core wherever it fits, out of core next, the iterative path beyond."""
+    budget = FACTOR_SHARE * (available_memory_bytes() if available is None else available)
+    gib = 2**30
+    head = f"the direct factor's {in_core / gib:.2f} GiB (PARDISO's analysis)"
+    share = f"half the available memory, {budget / gib:.2f} GiB"
+    if in_core <= budget:
+        return "in-core", f"{head} fits {share}"
+    if out_of_core is not None and out_of_core <= budget:
+        return "out-of-core", (f"{head} is above {share}; out of core (the factor on disk) it "
+                               f"needs {out_of_core / gib:.2f} GiB in memory, which fits")
+    ooc = ("" if out_of_core is None else
+           f", and out of core its {out_of_core / gib:.2f} GiB in memory too")
+    return "iterative", f"{head} is above {share}{ooc}"

@@ -84,7 +84,9 @@ def factor(A, kind: str = "spd", backend: str = "auto", labels=None, check: bool
     every solution against ``A`` (the whole matrix, not a triangle: one step of iterative
     refinement, then fem/linsolve.py's ``check_solution``), so that a singular ``A`` that a
     backend factorises anyway (PARDISO's perturbed pivots) is refused too.
-    options : passed to the backend (``near_null_space``, ``tol`` for 'amg-cg').
+    options : passed to the backend (``near_null_space``, ``tol`` for 'amg-cg'; ``out_of_core``
+    (None: by memory, True, False) and ``scratch`` (the folder of its files) for PARDISO, whose
+    factor out of core reads ``backend`` 'mkl-pardiso-ooc': fem/linsolve.py).
     Raises SingularStiffness where A is singular, ValueError on a bad argument.
     """
     if kind not in KINDS:

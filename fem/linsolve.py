@@ -12,7 +12,9 @@ import ctypes
 import functools
 import glob
 import os
+import shutil
 import sys
+import tempfile
 import weakref
 
 import numpy as np
@@ -21,7 +23,9 @@ import scipy.sparse.linalg as spla
 
 from . import memory
 from .amg import AmgFactor
-from .factor_protocol import LinearFactor, SingularStiffness
+from .budget import FACTOR_SHARE, available_memory_bytes, factor_plan
+from .factor_protocol import (FLOOR_CAP, ROUNDOFF_FACTOR, LinearFactor,  # noqa: F401 (its
+                              SingularStiffness, check_solution, refine_and_check)  # interface)
 from .restriction import Restriction  # noqa: F401 (part of this module's interface)
 from .symmetric import symmetric_from_upper
 
@@ -109,14 +113,47 @@ def pardiso_call(pt, mtype, phase, n, data, indptr, indices, iparm, b, x) -> Non
                            f"{_PARDISO_ERRORS.get(error.value, 'unknown')}")
 
 
-def pardiso_release(pt, mtype, n, iparm) -> None:
+def pardiso_release(pt, mtype, n, iparm, folder: str | None = None) -> None:
     """Release the factor that the handle ``pt`` holds in MKL (phase -1), with the
-    ``iparm`` it was made with (the two-level factorization's release crashes on defaults);
-    idempotent."""
+    ``iparm`` it was made with (the two-level factorization's release crashes on defaults),
+    and remove the out-of-core ``folder`` (its factor files); idempotent."""
     if np.any(pt):
         empty_i, empty_d = np.zeros(1, dtype=np.int32), np.zeros(1)
         pardiso_call(pt, mtype, -1, n, empty_d, empty_i, empty_i, iparm, empty_d, empty_d.copy())
         pt[:] = 0
+    if folder is not None:
+        shutil.rmtree(folder, ignore_errors=True)
+
+
+def pardiso_memory(iparm) -> tuple[int, int]:
+    """(in core, out of core): the peak memory (bytes) of PARDISO's factorization with the
+    factor in memory, max(symbolic, permanent + numerical), and with it on disk, max(symbolic,
+    permanent + the least out-of-core working set), from its analysis (MKL's iparm[14..16]
+    and iparm[62], KiB)."""
+    symbolic, permanent, numerical = (int(v) for v in iparm[14:17])
+    return (max(symbolic, permanent + numerical) * 1024,
+            max(symbolic, permanent + int(iparm[62])) * 1024)
+
+
+def pardiso_iparm(kind: str) -> np.ndarray:
+    """PARDISO's parameters (iparm, 64 int32) of flexfem's factorizations of ``kind``."""
+    iparm = np.zeros(64, dtype=np.int32)
+    iparm[0] = 1     # these values, not the defaults
+    iparm[1] = 3     # nested-dissection ordering (parallel METIS)
+    iparm[7] = 0     # no automatic iterative refinement (see solve_and_check)
+    iparm[9] = 13 if kind == "general" else 8  # pivot perturbation 1e-13 / 1e-8
+    iparm[10] = 1 if kind == "general" else 0  # scaling (non-symmetric only)
+    iparm[12] = 1 if kind == "general" else 0  # weighted matching (non-symmetric only)
+    iparm[34] = 1    # zero-based indices
+    # symmetric kinds: PARDISO groups rows of like pattern (the dim DOFs of a node) into
+    # variable-size blocks (VBSR, 80 % alike): the ordering works on the much smaller
+    # block graph, -25 % to -40 % CPU on 3-D P2 (docs/performance.md)
+    iparm[36] = 0 if kind == "general" else -80
+    # two-level factorization: the same factor and time on 2 cores, ~15 MiB less peak
+    # memory on a 3-D P2 K of 36k DOFs (its working buffers; docs/performance.md); out of
+    # core too (MKL 2024: the one-level VBSR factorization out of core met a false zero pivot)
+    iparm[23] = 1
+    return iparm
 
 
 class Factorization(LinearFactor):
@@ -126,10 +163,18 @@ class Factorization(LinearFactor):
     triangle only. ``backend``: 'mkl-pardiso', 'cholmod' or 'superlu' (None: :func:`direct_backend`
     of ``kind``; a complex ``A``: 'superlu' only). Free its memory with ``free()`` or ``with``. ``analysis_only``: PARDISO's
     reordering alone, no factor (:func:`factor_bytes`). Through fem/factor.py's ``factor``.
+
+    PARDISO out of core (its factor in files, read back at each solve): ``out_of_core`` None
+    chooses by memory (fem/budget.py's ``factor_plan``: in core wherever the factor fits half
+    the available memory, out of core beyond), True or False forces it. The files go to a
+    new folder in ``scratch`` (None: the system temp, ``TMPDIR``), removed by ``free()``;
+    ``backend`` then reads 'mkl-pardiso-ooc' and ``memory`` holds the analysis' (in core, out
+    of core) peaks in bytes.
     """
 
     def __init__(self, A, kind: str = "general", analysis_only: bool = False,
-                 backend: str | None = None):
+                 backend: str | None = None, out_of_core: bool | None = None,
+                 scratch: str | None = None):
         if kind not in MATRIX_KINDS:
             raise ValueError(f"kind = {kind!r}; choose one of {sorted(MATRIX_KINDS)}")
         self.dtype = complex if np.iscomplexobj(A.data if sp.issparse(A) else A) else float
@@ -141,13 +186,17 @@ class Factorization(LinearFactor):
         self.kind, self.n = kind, A.shape[0]
         self._finalizer = None
         self.holds_matrix = False  # whether the solves still read A's arrays (PARDISO)
+        self.memory = None  # PARDISO's (in core, out of core) peaks, bytes
         self.backend = direct_backend(kind) if backend is None else backend
         if self.backend == "mkl-pardiso" and _mkl_pardiso() is None:
             raise ValueError("backend 'mkl-pardiso': MKL's runtime library is not installed")
         if self.backend == "cholmod" and (kind != "spd" or _cholmod() is None):
             raise ValueError("backend 'cholmod': SPD matrices only, with scikit-sparse installed")
+        if out_of_core and self.backend != "mkl-pardiso":
+            raise ValueError(f"out_of_core: PARDISO's mode only, not backend {self.backend!r}")
         if self.backend == "mkl-pardiso":
-            self._init_pardiso(A, keep_matrix=analysis_only, phase=11 if analysis_only else 12)
+            self._init_pardiso(A, keep_matrix=analysis_only, analysis_only=analysis_only,
+                               out_of_core=out_of_core, scratch=scratch)
         elif self.backend == "cholmod":
             try:
                 self._factor = _cholmod().cholesky(A.tocsc())
@@ -159,7 +208,8 @@ class Factorization(LinearFactor):
             except RuntimeError as error:  # "Factor is exactly singular"
                 raise SingularStiffness(f"SuperLU: {error}") from None
 
-    def _init_pardiso(self, A, keep_matrix: bool = False, phase: int = 12):
+    def _init_pardiso(self, A, keep_matrix: bool = False, analysis_only: bool = False,
+                      out_of_core: bool | None = False, scratch: str | None = None):
         self._mtype = MATRIX_KINDS[self.kind]
         if self.kind != "general" and not _is_upper(A):
             A = sp.triu(A, format="csr")
@@ -171,36 +221,22 @@ class Factorization(LinearFactor):
         self.holds_matrix = True
         self._indptr = A.indptr.astype(np.int32, copy=False)
         self._indices = A.indices.astype(np.int32, copy=False)
-        self._iparm = np.zeros(64, dtype=np.int32)
-        iparm = self._iparm
-        iparm[0] = 1     # these values, not the defaults
-        iparm[1] = 3     # nested-dissection ordering (parallel METIS)
-        iparm[7] = 0     # no automatic iterative refinement (see solve_and_check)
-        iparm[9] = 13 if self.kind == "general" else 8  # pivot perturbation 1e-13 / 1e-8
-        iparm[10] = 1 if self.kind == "general" else 0  # scaling (non-symmetric only)
-        iparm[12] = 1 if self.kind == "general" else 0  # weighted matching (non-symmetric only)
-        iparm[34] = 1    # zero-based indices
-        # symmetric kinds: PARDISO groups rows of like pattern (the dim DOFs of a node) into
-        # variable-size blocks (VBSR, 80 % alike): the ordering works on the much smaller
-        # block graph, -25 % to -40 % CPU on 3-D P2 (docs/performance.md)
-        iparm[36] = 0 if self.kind == "general" else -80
-        # two-level factorization: the same factor and time on 2 cores, ~15 MiB less peak
-        # memory on a 3-D P2 K of 36k DOFs (its working buffers; docs/performance.md)
-        iparm[23] = 1
+        self._iparm = pardiso_iparm(self.kind)
         self._pt = np.zeros(64, dtype=np.int64)
         memory.release_freed()  # before the factor, the largest allocation, is made
         # release the MKL factor when this object goes away, even without free()
         self._finalizer = weakref.finalize(self, pardiso_release, self._pt, self._mtype, self.n,
                                           self._iparm)
-        dummy = np.zeros(self.n)
-        try:
-            pardiso_call(self._pt, self._mtype, phase, self.n, self._data, self._indptr,
-                          self._indices, self._iparm, dummy, dummy.copy())
-        except BaseException:
-            self.free()
-            raise
-        if phase == 11:
-            return  # the analysis only: nothing to drop
+        self._call(11)  # the analysis: the ordering and the factor's size
+        self.memory = pardiso_memory(self._iparm)
+        if analysis_only:
+            return  # nothing to drop
+        if out_of_core is None:
+            out_of_core = factor_plan(*self.memory)[0] != "in-core"
+        if out_of_core:
+            self._factorize_out_of_core(scratch)
+            return  # its solves keep the matrix (not checked out of core)
+        self._call(22)
         # no perturbed pivot: PARDISO's Cholesky solves read the factor only (checked once
         # per process), so the matrix, as big as K's upper triangle, is dropped before the
         # solves; with perturbed pivots they refine iteratively on the matrix
@@ -209,12 +245,42 @@ class Factorization(LinearFactor):
             self._data, self._indices = np.zeros(1), np.zeros(1, dtype=np.int32)
             self.holds_matrix = False
 
+    def _call(self, phase: int) -> None:
+        """One PARDISO phase on this factorization; freed where it fails."""
+        dummy = np.zeros(self.n)
+        try:
+            pardiso_call(self._pt, self._mtype, phase, self.n, self._data, self._indptr,
+                         self._indices, self._iparm, dummy, dummy.copy())
+        except BaseException:
+            self.free()
+            raise
+
+    def _factorize_out_of_core(self, scratch: str | None) -> None:
+        """PARDISO's numerical factorization with the factor in files (iparm[59] = 2) in a
+        new folder of ``scratch``, at most half the available memory (and at least the
+        analysis' out-of-core working set, with a margin) of factor held in memory."""
+        folder = tempfile.mkdtemp(prefix="flexfem-pardiso-", dir=scratch)
+        self._finalizer.detach()
+        self._finalizer = weakref.finalize(self, pardiso_release, self._pt, self._mtype, self.n,
+                                          self._iparm, folder)
+        self._iparm[59] = 2
+        core = max(FACTOR_SHARE * available_memory_bytes(), 1.25 * self.memory[1] + 2**24)
+        with memory.ooc_environment(folder + os.sep, core):
+            try:
+                self._call(22)
+            except MemoryError:
+                # MKL crashes releasing a failed out-of-core factorization: its handle is
+                # dropped (what it holds leaks) and its files removed
+                self._pt[:] = 0
+                raise
+        self.backend = "mkl-pardiso-ooc"
+
     def solve(self, b) -> np.ndarray:
         """x of A x = b, b of shape (n,) or (n, k)."""
         b = np.asarray(b, dtype=self.dtype)
         if b.shape[0] != self.n:
             raise ValueError(f"right-hand side has {b.shape[0]} rows, the matrix {self.n}")
-        if self.backend == "mkl-pardiso":
+        if self.backend.startswith("mkl-pardiso"):
             if not np.any(self._pt):
                 raise RuntimeError("this factorization was freed")
             b = np.asfortranarray(b)
@@ -276,10 +342,6 @@ def block_to_factorize(A, I: np.ndarray, kind: str = "spd", upper: bool = False)
     return A[I][:, I].tocsr()
 
 
-def _norm_inf(A) -> float:
-    return A.norm_inf() if isinstance(A, Restriction) else float(abs(A).sum(axis=1).max())
-
-
 def _cholmod():
     try:
         from sksparse import cholmod
@@ -315,63 +377,24 @@ def solve_and_check(A, b, kind: str = "spd", what: str = "static solve",
         return refine_and_check(A, b, solve, what, rtol)
 
 
-def refine_and_check(A, b, solve, what: str = "static solve", rtol: float = 1e-6) -> np.ndarray:
-    """``x = solve(b)`` (a factorization of ``A``) with one step of iterative refinement
-    where the first residual is above ``rtol`` ||b||, then :func:`check_solution`."""
-    x = solve(b)
-    if np.all(np.isfinite(x)):
-        r = b - A @ x
-        if np.linalg.norm(r) > rtol * np.linalg.norm(b):
-            x = x + solve(r)
-    check_solution(A, x, b, what, rtol)
-    return x
-
-
 def solve_amg(A, b, near_null_space: np.ndarray, tol: float = 1e-10) -> np.ndarray:
     """Solve the SPD system with CG preconditioned by smoothed-aggregation AMG (fem/factor.py's
     'amg-cg' backend: ``near_null_space`` (n, k) the rigid-body modes on the unknowns)."""
     return AmgFactor(A, "spd", near_null_space, tol).solve(b)
 
 
-def factor_bytes(A, kind: str = "spd") -> int | None:
-    """Peak memory (bytes) of PARDISO's factorization of ``A`` (upper triangle if symmetric)
-    from its analysis phase alone: max(symbolic peak, permanent + numerical), MKL's
-    iparm[14..16] (KiB). None where PARDISO is not the backend."""
+def factor_memory(A, kind: str = "spd") -> tuple[int, int] | None:
+    """(in core, out of core): the peak memory (bytes) of PARDISO's factorization of ``A``
+    (upper triangle if symmetric) from its analysis phase alone (:func:`pardiso_memory`);
+    None where PARDISO is not the backend."""
     if direct_backend(kind) != "mkl-pardiso":
         return None
     with Factorization(A, kind, analysis_only=True) as probe:
-        symbolic, permanent, numerical = (int(v) for v in probe._iparm[14:17])
-    return max(symbolic, permanent + numerical) * 1024
+        return probe.memory
 
 
-# check_solution: a direct solve's residual is at most ROUNDOFF_FACTOR eps ||A|| ||x|| (measured
-# 0.2-0.4 eps ||A||_inf ||x||_2 on slender P2 cantilevers, L/H = 10 to 5000), and never more than
-# FLOOR_CAP ||b|| (a singular system leaves the part of b outside A's range, ~ ||b||)
-ROUNDOFF_FACTOR = 100.0
-FLOOR_CAP = 1e-2
-
-
-def check_solution(A, x, b, what: str = "static solve", rtol: float = 1e-6) -> None:
-    """Raise :class:`SingularStiffness` if ``x`` does not solve ``A x = b``.
-
-    Accepted: a residual ||A x - b|| of at most ``rtol`` ||b||, or one at the round-off floor
-    of evaluating A x (at most ROUNDOFF_FACTOR eps ||A||_inf ||x||) that is still below
-    FLOOR_CAP ||b||. The floor is what a correct direct solve of a slender flexure reaches
-    (||r|| / ||b|| ~ eps cond(A): 1e-6 at L/H = 200, 3e-4 at L/H = 1000, P2 plane stress);
-    a singular system (a free rigid-body motion or mechanism) leaves a residual of the order of
-    ||b|| itself, or one far above the floor, and is refused.
-    """
-    if not np.all(np.isfinite(x)):
-        raise SingularStiffness(f"{what}: the solution is not finite; the model is singular "
-                                  "(under-constrained, or parts not connected to a support)")
-    r = np.linalg.norm(A @ x - b)
-    nb = max(np.linalg.norm(b), 1e-300)
-    if r <= rtol * nb:
-        return
-    floor = ROUNDOFF_FACTOR * np.finfo(float).eps * _norm_inf(A) * np.linalg.norm(x)
-    if r <= floor and r <= FLOOR_CAP * nb:
-        return
-    raise SingularStiffness(f"{what}: residual {r / nb:.1e} relative to the load (bound "
-                              f"{rtol:.0e}, or the round-off floor {min(floor, FLOOR_CAP * nb) / nb:.1e}"
-                              "); the stiffness matrix is singular or nearly so (under-constrained "
-                              "model, disconnected parts, or a mechanism)")
+def factor_bytes(A, kind: str = "spd") -> int | None:
+    """The in-core peak (bytes) of :func:`factor_memory`; None where PARDISO is not the
+    backend."""
+    both = factor_memory(A, kind)
+    return None if both is None else both[0]

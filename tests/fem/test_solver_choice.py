@@ -1,5 +1,6 @@
 """solver='auto' above the size threshold: the direct solver wherever PARDISO's analysis says
-its factor fits half the available memory, AMG-CG only beyond; the result says which and why.
+its factor fits half the available memory, out of core where only its working set does, the
+iterative path beyond; the result says which and why.
 The threshold is lowered so that a small solid exercises the rule."""
 import sys
 from pathlib import Path
@@ -7,6 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 from flexfem.fem import Fixed, Force, Material, Model, linsolve, solve_static, solver_choice
+from flexfem.fem.boundary import constrained_dofs
 from flexfem.fem.budget import MEMORY_VARIABLE
 from flexfem.fem.model import Solid3D
 
@@ -47,3 +49,27 @@ def test_auto_keeps_the_direct_solver_where_its_factor_fits(solid, monkeypatch):
     assert chosen == "amg" and "is above half the available memory" in why
     assert solver_choice.solver_choice(solid.n_dofs, 3, "direct", lambda: K) == ("direct",
                                                                             "asked for")
+
+
+def test_auto_goes_out_of_core_where_only_the_working_set_fits(solid, monkeypatch):
+    """A fake budget between PARDISO's out-of-core and in-core peaks: 'auto' keeps the
+    direct solver, out of core, and says why; the static result names the backend."""
+    monkeypatch.setitem(solver_choice.AMG_THRESHOLD, 3, 100)
+    held = constrained_dofs(solid, [Fixed("fixed")])[0]
+    I = np.setdiff1d(np.arange(solid.n_dofs), held)  # the static solve's free DOFs
+    K = linsolve.block_to_factorize(solid.stiffness_upper, I, "spd", upper=True)
+    in_core, out_of_core = linsolve.factor_memory(K)
+    available = in_core + out_of_core  # half of it lies between the two
+    chosen, why = solver_choice.solver_choice(len(I), 3, "auto", lambda: K, available=available)
+    assert chosen == "direct" and "out of core (the factor on disk)" in why
+    chosen, why = solver_choice.solver_choice(len(I), 3, "auto", lambda: K,
+                                              available=1.5 * out_of_core)
+    assert chosen == "amg" and "out of core its" in why
+    monkeypatch.setenv(MEMORY_VARIABLE, str(available / 2**30))
+    ooc_result = _solve(solid)
+    monkeypatch.setenv(MEMORY_VARIABLE, "20")
+    assert ooc_result.solver == "mkl-pardiso-ooc", ooc_result.info["solver_choice"]
+    assert "out of core" in ooc_result.info["solver_choice"]
+    direct = _solve(solid)
+    assert direct.solver == "mkl-pardiso"
+    assert np.abs(ooc_result.u - direct.u).max() <= 1e-10 * np.abs(direct.u).max()
