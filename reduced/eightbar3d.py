@@ -122,7 +122,7 @@ def flexible_links(planar, info: dict, params: EightBarFlexureParams,
         raise ValueError("the planar model's flexure nodes are not its first nodes")
     nodes, elements = [planar.nodes[:n_flex]], [planar.elements]
     sections = spatial_sections(planar, w)
-    plate = Section.rect(w, layout.link_width, shear=shear)
+    plate = Section.rect(w, layout.link_width)
     pairs, spans, n, ground, face = [], {}, n_flex, [], None
     for link in layout.links + [layout.ground]:
         points, ends = _stations(layout, link)
@@ -140,7 +140,8 @@ def flexible_links(planar, info: dict, params: EightBarFlexureParams,
         n += len(xy)
     xyz = np.vstack(nodes)
     model = Beam3DModel(np.column_stack([xyz, np.zeros(len(xyz))]), np.vstack(elements),
-                        sections, planar.material, rigid_links=_groups(pairs, {face, *ground}))
+                        sections, planar.material, rigid_links=_groups(pairs, {face, *ground}),
+                        shear=shear)
     return model, {"end_effector": face, "ground": ground, "flexures": info["flexures"],
                    "links": {k: v for k, v in spans.items() if k != layout.ground},
                    "anchors": spans[layout.ground]}

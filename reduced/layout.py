@@ -24,12 +24,12 @@ model here applies the same rule to every root, so the beam models of all mechan
 calibration; ``root_extension=0`` turns both off.
 All lengths in m.
 """
-from dataclasses import replace
 import math
 
 import numpy as np
 
 from ..fem.beam import BeamMesh, BeamModel, RigidLink, Section, beam_from_profile
+from ..fem.beam.section import KAPPA
 
 ROOT_EXTENSION = 0.38  # x root thickness, per root (docs/beam.md: l/b 5-20 within 0.15 %)
 # axial compliance of a root, per root, in units of 1 / (E w): the load in a neck of thickness
@@ -52,14 +52,15 @@ def root_section(out_of_plane: float, thickness: float, length: float,
     """Section of a root-extension element of ``length`` (m): the root's area and bending
     stiffness; its axial stiffness factor such that the element's axial compliance is the
     root's (axial_root_compliance) when ``block_height`` (m) is given (else the root's own);
-    no stress reported there (c = None: the root stress is the flexure's own end); no mass:
+    no stress reported there (no depth: the root stress is the flexure's own end); no mass:
     it lies inside the body it enters, whose own model carries that material."""
     I = out_of_plane * thickness ** 3 / 12
     area = out_of_plane * thickness
     factor = 1.0
     if block_height is not None:  # length / (E A factor) = alpha / (E w)
         factor = length / (thickness * axial_root_compliance(block_height, thickness))
-    return Section(A=area, I=I, c=None, axial_factor=factor, mass_factor=0.0)
+    return Section(A=area, Iz=I, Ay=KAPPA * area, factors=(1.0, 1.0, factor, 1.0),
+                   mass_factor=0.0)
 
 
 def check_root_extension(value) -> float:
@@ -86,9 +87,7 @@ def filleted_thickness(length: float, width: float, radius: float):
 def corrected_sections(sections, factors) -> list:
     """``sections`` with E I, kappa G A and E A multiplied by ``factors.bending``,
     ``.shear`` and ``.axial`` (a notch's 2-D correction: :mod:`.hinge_patch`)."""
-    return [replace(s, bending_factor=s.bending_factor * factors.bending,
-                    shear_factor=s.shear_factor * factors.shear,
-                    axial_factor=s.axial_factor * factors.axial) for s in sections]
+    return [s.with_factors(factors.bending, factors.shear, factors.axial) for s in sections]
 
 
 def profile_beam(a, b, thickness_fn, out_of_plane: float, breaks=(), n_total: int = 24,

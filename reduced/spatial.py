@@ -13,31 +13,32 @@ from ..fem.beam.spatial import Beam3DModel, RigidLink, Section, rect_torsion_con
 
 
 def spatial_sections(planar_model, out_of_plane: float) -> list:
-    """One spatial Section per planar element: a rectangular one keeps its taper (depth t
-    along local y, ``out_of_plane`` along z); a general one (a root extension: A, I) keeps
-    A and I_z = I, with t = (12 I / w)^(1/3) for I_y = t w^3 / 12 and the Saint-Venant J.
-    Shear areas kappa A (the planar model's, mid-length) in y and kappa w t in z if the
-    planar model has shear. The planar stiffness factors (a notch's 2-D correction, a root's
-    axial compliance) act on the in-plane bending, shear and axial stiffness, and the axial
-    one on the bending about the local y axis too: there each slice of the width is pulled
-    or pushed along the axis, and a slice enters its block as the planar section does
-    (docs/beam_validation_3d.md, "The strong axis's roots"); the mass factors (0 on a root extension) on
-    the mass."""
-    shear, w = planar_model.shear, out_of_plane
+    """One spatial Section per planar element: a rectangle of depth ``out_of_plane`` keeps
+    its taper (another depth: the rectangle rebuilt at that depth); a general one (a root
+    extension: A, Iz) keeps A and Iz, with t = (12 Iz / w)^(1/3) for Iy = t w^3 / 12, the
+    Saint-Venant J and Az = (Ay / A) t w. The planar stiffness factors (a notch's 2-D
+    correction, a root's axial compliance) act on the in-plane bending, shear and axial
+    stiffness, and the axial one on the bending about the local y axis too: there each
+    slice of the width is pulled or pushed along the axis, and a slice enters its block as
+    the planar section does (docs/beam_validation_3d.md, "The strong axis's roots"); the
+    mass factors (0 on a root extension) on the mass."""
+    w = out_of_plane
     out = []
-    for (rect, _, t0, t1, A, I, _, kappa, tm, bending, axial,
-         mass) in planar_model.section_table:
-        if rect:  # Section.rect's shear area is 5/6 of the rectangle's
-            sec = Section.rect(w, t0, shear=shear, thickness_end=t1,
-                               thickness_mid=None if np.isnan(tm) else tm)
-            out.append(replace(sec, factors=(bending, kappa / (5.0 / 6.0), axial, axial),
-                               mass_factor=mass))
+    for sec in planar_model.sections:
+        f = sec.factors
+        factors = (f[0], f[1], f[2], f[2])
+        if sec.depth_z is not None and sec.Iy is not None and sec.J is not None:
+            rect = sec
+            if sec.depth_z != w:
+                t0, t1, tm, _ = sec.taper or (sec.depth_y, sec.depth_y, np.nan, w)
+                rect = Section.rect(w, t0, t1 if sec.taper else None,
+                                    None if np.isnan(tm) else tm)
+            out.append(replace(rect, factors=factors, mass_factor=sec.mass_factor))
             continue
-        t = (12.0 * I / w) ** (1.0 / 3.0)
-        out.append(Section(A=A, Iy=t * w**3 / 12.0, Iz=I, J=rect_torsion_constant(t, w),
-                           Ay=kappa * A if shear else None,
-                           Az=kappa * t * w if shear else None,
-                           factors=(bending, 1.0, axial, axial), mass_factor=mass))
+        t = (12.0 * sec.Iz / w) ** (1.0 / 3.0)
+        Az = None if sec.Ay is None else sec.Ay / sec.A * t * w
+        out.append(replace(sec, Iy=t * w**3 / 12.0, J=rect_torsion_constant(t, w), Az=Az,
+                           depth_y=None, depth_z=None, factors=factors))
     return out
 
 
@@ -55,4 +56,4 @@ def lifted_model(planar, out_of_plane: float, point_masses=None) -> Beam3DModel:
               for name, g in planar.groups.items()}
     return Beam3DModel(nodes, planar.elements, spatial_sections(planar, out_of_plane),
                        planar.material, rigid_links=rigid, point_masses=point_masses or {},
-                       groups=groups)
+                       groups=groups, shear=planar.shear)

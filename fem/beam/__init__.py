@@ -11,7 +11,8 @@ from .assembly import SingularBeamError
 from .compliance import compliance
 from .modal import BeamModes, solve_beam_modes
 from .mesh import BeamMesh, beam_chain, beam_from_profile, profile_chain
-from .model import BeamGroup, BeamModel, RigidLink, Section
+from .model import BeamGroup, BeamModel, RigidLink
+from .section import Section
 from .nonlinear import BeamNonlinearResult, NonConvergenceError, solve_beam_nonlinear
 from .static import BeamState, BeamStaticResult, solve_beam_displacements, solve_beam_static
 from .superelement import Superelement

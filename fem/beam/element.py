@@ -17,7 +17,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from .model import AXIAL_FACTOR, BENDING_FACTOR, MASS_FACTOR
+from .section import AXIAL_FACTOR, BENDING_FACTOR, MASS_FACTOR
 
 GAUSS_X, GAUSS_W = np.polynomial.legendre.leggauss(6)
 XI = 0.5 * (GAUSS_X + 1.0)

@@ -13,7 +13,7 @@ import math
 import numpy as np
 
 from ..checks import positive
-from .model import Section
+from .section import Section, rect_sections
 
 
 @dataclass
@@ -80,22 +80,6 @@ def beam_chain(points, sections, n_per_segment) -> BeamMesh:
     n = len(nodes)
     elements = np.column_stack([np.arange(n - 1), np.arange(1, n)])
     return BeamMesh(np.array(nodes), elements, sec_list, point_nodes)
-
-
-def rect_sections(width: float, t0, t1, tm) -> list:
-    """[Section.rect(width, t0[i], t1[i], tm[i])] for thickness arrays (m) already checked
-    finite and > 0: ``width`` checked once instead of every field of every section."""
-    width, nan = positive("width", width), math.nan
-    common = dict(width=width, A=None, I=None, c=None, shear_factor=5.0 / 6.0,
-                  bending_factor=1.0, axial_factor=1.0, mass_factor=1.0)
-    out = []
-    for a, b, c in zip(np.asarray(t0).tolist(), np.asarray(t1).tolist(), np.asarray(tm).tolist()):
-        # a frozen dataclass: its fields set as __init__ would, and row()'s value with them
-        sec = object.__new__(Section)
-        sec.__dict__.update(common, thickness=a, thickness_end=b, thickness_mid=c,
-                            _row=(1.0, width, a, b, nan, nan, nan, 5.0 / 6.0, c, 1.0, 1.0, 1.0))
-        out.append(sec)
-    return out
 
 
 def beam_from_profile(x0, x1, thickness_fn, width: float, n: int,

@@ -1,4 +1,4 @@
-"""Planar beam models: sections, rigid links, supports and loads, and the model (its mesh:
+"""Planar beam models: rigid links, supports and loads, and the model (its mesh:
 :mod:`.mesh`).
 
     mesh = beam_chain([(0, 0), (0.05, 0)], Section.rect(0.01, 0.5e-3), n_per_segment=20)
@@ -7,90 +7,13 @@
 DOFs per node: (u, v, theta) = x and y displacement (m) and rotation (rad, counter-clockwise).
 """
 from dataclasses import dataclass
-from functools import cached_property
-import math
 
 import numpy as np
 
-from ..checks import positive
 from ..materials import Material
 from .groups import BeamGroup
+from .section import PLANAR_COLUMNS, Section
 from .superelement import Superelement
-
-SECTION_COLUMNS = 12  # Section.row()'s length: the model's section_table columns
-BENDING_FACTOR, AXIAL_FACTOR, MASS_FACTOR = 9, 10, 11  # their columns in section_table
-
-
-@dataclass(frozen=True)
-class Section:
-    """Cross-section of one element. Rectangular: ``width`` (out of plane, m) and in-plane
-    ``thickness`` (m) at the element's first node, ``thickness_end`` at its second (linear
-    taper; default constant), ``thickness_mid`` at its middle (quadratic taper; default
-    none); A = w t, I = w t^3 / 12, c = t / 2. General: area ``A`` (m^2), second moment
-    ``I`` (m^4) and outer-fibre distance ``c`` (m, None: no stress). ``shear_factor`` kappa
-    (shear area kappa A); ``bending_factor`` and ``axial_factor`` multiply E I and E A in
-    the stiffness only (1: beam theory; reduced/hinge_patch.py sets them on a notch from
-    its 2-D model), not in the mass or the stress; ``mass_factor`` multiplies the mass (0: a
-    root extension, inside a body whose own model carries that material)."""
-
-    width: float | None = None
-    thickness: float | None = None
-    thickness_end: float | None = None
-    thickness_mid: float | None = None
-    A: float | None = None
-    I: float | None = None
-    c: float | None = None
-    shear_factor: float = 5.0 / 6.0
-    bending_factor: float = 1.0
-    axial_factor: float = 1.0
-    mass_factor: float = 1.0
-
-    def __post_init__(self):
-        rect = self.width is not None or self.thickness is not None
-        if rect:
-            if self.A is not None or self.I is not None:
-                raise ValueError("Section: give either width/thickness or A/I, not both")
-            positive("width", self.width)
-            positive("thickness", self.thickness)
-            positive("thickness_end", self.thickness_end, allow_none=True)
-            positive("thickness_mid", self.thickness_mid, allow_none=True)
-        else:
-            positive("A", self.A)
-            positive("I", self.I)
-            positive("c", self.c, allow_none=True)
-        for name in ("shear_factor", "bending_factor", "axial_factor"):
-            positive(name, getattr(self, name))
-        if not (isinstance(self.mass_factor, (int, float)) and 0 <= self.mass_factor < math.inf):
-            raise ValueError(f"mass_factor = {self.mass_factor!r} must be a finite number >= 0")
-
-    @classmethod
-    def rect(cls, width: float, thickness: float, thickness_end: float | None = None,
-             thickness_mid: float | None = None):
-        """Rectangular section, width (out of plane) x thickness (in plane), m; tapered
-        linearly to thickness_end, or quadratically through thickness_mid too."""
-        return cls(width=width, thickness=thickness, thickness_end=thickness_end,
-                   thickness_mid=thickness_mid)
-
-    @property
-    def is_rect(self) -> bool:
-        return self.width is not None
-
-    def row(self) -> tuple:
-        """(is_rect, w, t0, t1, A, I, c, kappa, t_mid, bending_factor, axial_factor,
-        mass_factor) with NaN for what does not apply (SECTION_COLUMNS)."""
-        return self._row
-
-    @cached_property
-    def _row(self) -> tuple:  # a model's section_table reads it once per element
-        nan = math.nan
-        if self.width is not None:  # rectangular
-            t1 = self.thickness if self.thickness_end is None else self.thickness_end
-            tm = nan if self.thickness_mid is None else self.thickness_mid
-            return (1.0, self.width, self.thickness, t1, nan, nan, nan, self.shear_factor, tm,
-                    self.bending_factor, self.axial_factor, self.mass_factor)
-        c = nan if self.c is None else self.c
-        return (0.0, nan, nan, nan, self.A, self.I, c, self.shear_factor, nan,
-                self.bending_factor, self.axial_factor, self.mass_factor)
 
 
 @dataclass(frozen=True)
@@ -152,8 +75,8 @@ class BeamModel:
         if len(secs) != len(self.elements) or not all(isinstance(s, Section) for s in secs):
             raise ValueError(f"sections: need one Section or {len(self.elements)} Sections")
         self.sections = secs
-        self.section_table = np.array([s.row() for s in secs],
-                                      dtype=float).reshape(-1, SECTION_COLUMNS)
+        self.section_table = np.array([s.planar_row for s in secs],
+                                      dtype=float).reshape(-1, PLANAR_COLUMNS)
         d = self.nodes[self.elements[:, 1]] - self.nodes[self.elements[:, 0]]
         self.lengths = np.hypot(d[:, 0], d[:, 1])
         if np.any(self.lengths <= 0):
@@ -224,7 +147,7 @@ class BeamModel:
         return len(self.elements)
 
     def section_at(self, xi):
-        """(A m^2, I m^4, c m) of every element at fractions ``xi`` (k,) along it: (n_e, k)."""
+        """(A m^2, Iz m^4, c m) of every element at fractions ``xi`` (k,) along it: (n_e, k)."""
         xi = np.atleast_1d(np.asarray(xi, dtype=float))
         rect, w, t0, t1, A, I, c, _, tm = self.section_table.T[:9]
         t = t0[:, None] + (t1 - t0)[:, None] * xi[None, :]

@@ -63,13 +63,19 @@ def filleted_peak_stress(model, state, thickness: float, kt_tension: float,
                          kt_bending: float) -> tuple:
     """(peak stress (Pa), element) over the elements of in-plane thickness ``thickness`` (m:
     the hinges' straight parts), from the beam state's axial force and end moments."""
-    straight = [e for e, s in enumerate(model.sections)
-                if s.thickness is not None and math.isclose(s.thickness, thickness, rel_tol=1e-9)
-                and (s.thickness_end is None
-                     or math.isclose(s.thickness_end, thickness, rel_tol=1e-9))]
+    straight = [e for e, (t0, t1) in enumerate(_end_thicknesses(model.sections))
+                if math.isclose(t0, thickness, rel_tol=1e-9)
+                and math.isclose(t1, thickness, rel_tol=1e-9)]
     if not straight:
         raise ValueError(f"no element of thickness {thickness!r} m: not a filleted hinge model")
     return end_peak_stress(model, state, straight, kt_tension, kt_bending)
+
+
+def _end_thicknesses(sections) -> list:
+    """[(t at node 1, t at node 2)] (m; NaN: no depth) of each section."""
+    nan = math.nan
+    return [s.taper[:2] if s.taper else (nan if s.depth_y is None else s.depth_y,) * 2
+            for s in sections]
 
 
 def end_peak_stress(model, state, elements, kt_tension: float, kt_bending: float) -> tuple:
@@ -77,8 +83,9 @@ def end_peak_stress(model, state, elements, kt_tension: float, kt_bending: float
     at both ends of each of ``elements`` (rectangular beam elements), the largest. For notch
     hinges: at a neck, where t is least and the K_t belongs."""
     elements = np.asarray(elements)
-    table = model.section_table[elements]
-    w, t = table[:, 1:2], table[:, 2:4]  # the width; the thickness at both ends
+    sections = [model.sections[e] for e in elements]
+    w = np.array([[math.nan if s.depth_z is None else s.depth_z] for s in sections])
+    t = np.array(_end_thicknesses(sections))  # the thickness at both ends
     N = np.abs(state.axial_force[elements])[:, None]
     M = np.abs(state.end_moments[elements])
     sigma = kt_tension * N / (w * t) + kt_bending * 6 * M / (w * t ** 2)

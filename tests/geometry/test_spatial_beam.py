@@ -104,7 +104,7 @@ def _specimen_beam(t, l, w, H, Lb, slices=True):
     if not slices:
         model = Beam3DModel(model.nodes, model.elements,
                             [replace(s, factors=(*s.factors[:3], 1.0)) for s in model.sections],
-                            model.material, rigid_links=model.rigid_links)
+                            model.material, rigid_links=model.rigid_links, shear=model.shear)
     return compliance3d(model, [Fixed(root)], tip)
 
 

@@ -10,8 +10,8 @@
 from ..assembly import SingularBeamError
 from .modal import Beam3DModes, solve_beam3d_modes
 from ..supports import Fixed, NodalLoad, Prescribed
-from .model import (Beam3DModel, RigidLink, Section, element_frames, rect_torsion_constant,
-                    rect_torsion_shear)
+from ..section import Section, rect_torsion_constant, rect_torsion_shear
+from .model import Beam3DModel, RigidLink, element_frames
 from .nonlinear import Beam3DNonlinearResult, NonConvergenceError, solve_beam3d_nonlinear
 from .static import Beam3DState, compliance3d, solve_beam3d_static
 

@@ -7,14 +7,14 @@ the end moments M1, M2 acting on it (the planar model's convention, fem/beam/ele
 """
 import numpy as np
 
-from .model import rect_torsion_shear
+from ..section import rect_torsion_shear
 
 
 def section_stresses(model, local_forces: np.ndarray, n_points: int = 5) -> dict:
     """Stresses (Pa) at ``n_points`` fractions ``xi`` along every element, each (n_e, k):
     'normal' |N| / A + |M_y| d_z / (2 I_y) + |M_z| d_y / (2 I_z), the largest normal stress of
     the rectangle (at a corner); 'torsion' the largest Saint-Venant shear stress |T| tau_1
-    (:func:`.model.rect_torsion_shear`); 'von_mises' sqrt(normal^2 + 3 torsion^2), an upper
+    (:func:`..section.rect_torsion_shear`); 'von_mises' sqrt(normal^2 + 3 torsion^2), an upper
     bound of the section's largest von Mises stress (the two peaks lie at different points;
     the shear of the transverse forces is left out, as in the planar model). NaN for general
     sections (no depths). local_forces: (n_e, 7) as Beam3DState.local_forces."""

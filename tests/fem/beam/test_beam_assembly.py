@@ -95,8 +95,8 @@ def test_chained_flexure_mesh_equals_joined(steel):
     ref = joined(a, b, fn, 5e-3, (r, L - r), 24, 0.38, 1e-9 * L)
     assert np.array_equal(chained.nodes, ref.nodes)
     assert np.array_equal(chained.elements, ref.elements)
-    assert [s.thickness for s in chained.sections[1:-1]] == \
-        [s.thickness for s in ref.sections[1:-1]]
+    assert [s.taper for s in chained.sections[1:-1]] == \
+        [s.taper for s in ref.sections[1:-1]]
     assert chained.point_nodes == [0, len(ref.nodes) - 1]
 
 

@@ -44,8 +44,8 @@ def test_mechanism_raises(steel):
 
 @pytest.mark.parametrize("make, name", [
     (lambda m: Section.rect(0.01, -1e-3), "thickness"),
-    (lambda m: Section(A=1e-6, I=0.0), "I"),
-    (lambda m: Section(width=0.01, thickness=1e-3, A=1e-6), "Section"),
+    (lambda m: Section(A=1e-6, Iz=0.0), "Iz"),
+    (lambda m: Section(A=1e-6, Iz=1e-12, factors=(1.0, 1.0)), "factors"),
     (lambda m: beam_chain([(0, 0)], Section.rect(0.01, 1e-3), 4), "points"),
     (lambda m: beam_chain([(0, 0), (1, 0)], Section.rect(0.01, 1e-3), 0), "n_per_segment"),
     (lambda m: beam_from_profile((0, 0), (1, 0), lambda s: -1.0, 0.01, 4), "thickness_fn"),

@@ -27,11 +27,11 @@ THICKNESS = [(0.6e-3, None, None), (0.6e-3, 0.9e-3, None), (0.6e-3, 0.5e-3, 0.8e
 def _models(steel, shear: bool):
     planar = [Section.rect(WIDTH, t0, thickness_end=t1, thickness_mid=tm)
               for t0, t1, tm in THICKNESS]
-    spatial = [SpatialSection.rect(WIDTH, t0, shear=shear, thickness_end=t1, thickness_mid=tm)
+    spatial = [SpatialSection.rect(WIDTH, t0, thickness_end=t1, thickness_mid=tm)
                for t0, t1, tm in THICKNESS]
     nodes3 = np.column_stack([NODES, np.zeros(len(NODES))])
     return (BeamModel(NODES, ELEMENTS, planar, steel, shear=shear),
-            Beam3DModel(nodes3, ELEMENTS, spatial, steel))
+            Beam3DModel(nodes3, ELEMENTS, spatial, steel, shear=shear))
 
 
 def _in_plane(a):

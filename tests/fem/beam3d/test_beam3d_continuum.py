@@ -32,8 +32,8 @@ def test_leaf_compliance_beside_the_3d_continuum():
     cont = compliance_matrix(Model(mesh, ALU, Solid3D(), order=2), [ContinuumFixed("fixed")],
                              "tip").matrix
     nodes = np.linspace(0.0, L, 21)[:, None] * [1.0, 0.0, 0.0]
-    section = Section.rect(W, T, shear=True)
-    beam = Beam3DModel(nodes, [(i, i + 1) for i in range(20)], section, ALU)
+    section = Section.rect(W, T)
+    beam = Beam3DModel(nodes, [(i, i + 1) for i in range(20)], section, ALU, shear=True)
     ratio = np.diag(compliance3d(beam, [Fixed(0)], 20)) / np.diag(cont) - 1
     assert np.abs(ratio[[0, 2, 4]]).max() <= 0.015
     assert 0 < ratio[1] < 1 / (1 - ALU.nu**2) - 1

@@ -13,8 +13,8 @@ from flexfem.fem.beam.spatial import (Beam3DModel, Fixed, NodalLoad, RigidLink, 
 @pytest.mark.parametrize("shear", [False, True])
 def test_cantilever_tip_compliance_is_beam_theory(steel, shear):
     """Cubic (IIE) elements are exact for end loads: every entry to round-off."""
-    section = Section.rect(5e-3, 2e-3, shear=shear)
-    model, tip = straight(steel, section, length=0.1, n=4)
+    section = Section.rect(5e-3, 2e-3)
+    model, tip = straight(steel, section, length=0.1, n=4, shear=shear)
     C = compliance3d(model, [Fixed(0)], node=tip)
     ref = closed_form_tip_compliance(steel, section, 0.1, shear=shear)
     assert np.allclose(C, ref, rtol=1e-10, atol=1e-10 * np.abs(ref).max())

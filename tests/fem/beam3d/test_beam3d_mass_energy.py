@@ -41,8 +41,8 @@ def test_element_energies_add_up_to_the_work_of_the_tip_load(steel):
     the elements' strain energies sum to half the loads' work, F . u_tip / 2 (to round-off),
     and the root half stores 7/8 of the bending energy, (L^3 - (L/2)^3) / L^3 of M^2 / 2EI
     with M linear, plus half the torsion and shear energy."""
-    section = Section.rect(5e-3, 2e-3, shear=True)
-    model, tip = straight(steel, section, length=0.1, n=20)
+    section = Section.rect(5e-3, 2e-3)
+    model, tip = straight(steel, section, length=0.1, n=20, shear=True)
     load = NodalLoad(tip, fy=0.3, fz=-0.2, mx=0.01)
     state = solve_beam3d_static(model, [Fixed(0)], [load])
     rot = Rotation.from_matrix(state.R).as_rotvec()

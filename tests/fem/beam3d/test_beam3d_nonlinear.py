@@ -21,8 +21,8 @@ def test_tangent_is_the_derivative_of_the_internal_force(steel):
     nodes = np.array([[0, 0, 0], [0.02, 0, 0], [0.04, 0.01, 0], [0.05, 0.02, 0.01],
                       [0.06, 0.03, 0.01]], dtype=float)
     elements = [[0, 1], [1, 2], [2, 3]]
-    model = Beam3DModel(nodes, elements, Section.rect(2e-3, 1e-3, shear=True), steel,
-                        rigid_links=[RigidLink(3, 4)])
+    model = Beam3DModel(nodes, elements, Section.rect(2e-3, 1e-3), steel,
+                        rigid_links=[RigidLink(3, 4)], shear=True)
     asm = Assembler(model, [Fixed(0)], [NodalLoad(4, fz=2.0, mx=0.1)])
     u = rng.normal(scale=2e-3, size=(5, 3))
     R = expm(rng.normal(scale=0.7, size=(5, 3)))

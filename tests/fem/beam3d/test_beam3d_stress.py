@@ -10,7 +10,7 @@ from flexfem.data import load_toml
 from flexfem.fem import Fixed as ContinuumFixed
 from flexfem.fem import Force, Model, Solid3D, Traction, solve_static
 from flexfem.fem.beam.spatial import Fixed, NodalLoad, Section, solve_beam3d_static
-from flexfem.fem.beam.spatial.model import rect_torsion_constant, rect_torsion_shear
+from flexfem.fem.beam.section import rect_torsion_constant, rect_torsion_shear
 from flexfem.fem.beam.spatial.stress import section_stresses
 from flexfem.fem.mesh import FEMesh, facets_where
 
@@ -76,7 +76,7 @@ def test_mid_span_stresses_beside_the_3d_continuum(steel):
     long_side = twisted.stress_at([[L / 2, 0.0, H / 2]])[0]  # the middle of a long side
     tau = np.hypot(long_side[0, 1], long_side[0, 2])
 
-    beam, tip = straight(steel, Section.rect(H, B, shear=True), length=L, n=2)
+    beam, tip = straight(steel, Section.rect(H, B), length=L, n=2, shear=True)
     state = solve_beam3d_static(beam, [Fixed(0)], [NodalLoad(tip, fx=N, fy=FY, fz=FZ)])
     normal = state.stresses(n_points=2)["normal"][1, 0]  # mid-span: the second element's start
     torsion = solve_beam3d_static(beam, [Fixed(0)], [NodalLoad(tip, mx=TORQUE)]).stresses(

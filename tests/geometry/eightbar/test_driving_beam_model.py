@@ -26,7 +26,7 @@ def test_generated_from_the_flexure_layout():
         assert model.lengths[first:last].sum() == pytest.approx(
             fj.length + 2 * 0.38 * fj.width, rel=1e-8)
         inner = [model.sections[e] for e in range(first + 1, last - 1)]  # no root elements
-        assert {(s.thickness, s.thickness_end or s.thickness) for s in inner} == {
+        assert {(s.taper or (s.depth_y, s.depth_y))[:2] for s in inner} == {
             (fj.width, fj.width)}
 
 
@@ -42,7 +42,7 @@ def test_roots_as_the_continuum_draws_them():
     filleted, _ = driving_beam_model(params, flexure, n_per_flexure=8,
                                      fillet_radius=flexure.root_fillet_radius)
     def thickest(model):
-        return max(s.thickness for s in model.sections if s.is_rect)
+        return max(s.depth_y for s in model.sections if s.depth_y is not None)
     assert thickest(sharp) == max(flexure.flexure_width, flexure.base_flexure_width)
     assert thickest(filleted) > thickest(sharp)
 

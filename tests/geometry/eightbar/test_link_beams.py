@@ -18,8 +18,8 @@ BETA_L_FREE = np.array([4.7300408, 7.8532046])  # free-free beam, first two bend
 def _model(parts, link, size, stations=(), shear=False):
     xy, elements, pairs, at = mesh_skeleton(link_skeleton(parts, link), stations, size)
     nodes = np.column_stack([xy, np.zeros(len(xy))])
-    return Beam3DModel(nodes, elements, Section.rect(T, W, shear=shear),
-                       material("aluminium_6061_t6")), pairs, at
+    return Beam3DModel(nodes, elements, Section.rect(T, W), material("aluminium_6061_t6"),
+                       shear=shear), pairs, at
 
 
 def test_a_tee_is_cut_where_its_arms_enter_the_stem():

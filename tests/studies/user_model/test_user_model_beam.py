@@ -272,16 +272,15 @@ def test_a_notch_beam_is_corrected_by_its_2d_model():
 
     spec = load_spec(NOTCH)
     model, _ = beam_model(spec)
-    notch = [s for s in model.sections if s.thickness_mid is not None
-             and s.thickness != s.thickness_end]
+    notch = [s for s in model.sections if s.taper is not None and s.taper[0] != s.taper[1]]
     uniform = [s for s in model.sections if s not in notch]
     line = spec.beams.beams[1]
     f = profile_factors(line.thickness, line.thickness.length, spec.material.nu)
     assert len(notch) == 40 and 0.92 < f.bending < 0.95
-    assert all(s.bending_factor == f.bending and s.axial_factor == f.axial for s in notch)
-    assert all(s.bending_factor == 1.0 and s.axial_factor == 1.0 for s in uniform)
+    assert all(s.factors[0] == f.bending and s.factors[2] == f.axial for s in notch)
+    assert all(s.factors[0] == 1.0 and s.factors[2] == 1.0 for s in uniform)
     bare, _ = beam_model(load_spec(NOTCH, {"beam_model.notch_correction": "false"}))
-    assert all(s.bending_factor == 1.0 for s in bare.sections)
+    assert all(s.factors[0] == 1.0 for s in bare.sections)
     with pytest.raises(ValueError, match="notch_correction = 'maybe' must be true or false"):
         load_spec(NOTCH, {"beam_model.notch_correction": "maybe"})
 
