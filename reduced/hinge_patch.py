@@ -25,11 +25,17 @@ notch's junction with a body much taller than the notch's ends: docs/beam.md).
 The factors depend on the shape alone (t/R, r_f / b, nu: plane stress has no scale and the
 out-of-plane width divides out). A circular notch's are tabulated over t/R and nu in
 data/notch_factors.toml (written by scripts/notch_factor_table.py with this module's
-:func:`patch_factors`) and interpolated there, so a design sweep pays nothing; elsewhere they
-are computed, once per shape in a process (0.1-1 s). Lengths in m.
+:func:`patch_factors`), and a description's circular or elliptical notch (its profile as
+geometry/mechanism/beams.py writes it) over t/R, across / along and nu in
+data/notch_description_factors.toml (scripts/notch_description_table.py, with
+:func:`profile_factors`; within 2e-4 of the direct solve: docs/beam_speed.md); both are
+interpolated (monotone cubic), so a first analysis and a design sweep pay nothing. Any other
+profile, or one outside a table's range, is computed, once per shape in a process (1-7 s),
+and says so in the log (logger ``flexfem.reduced.hinge_patch``, level INFO). Lengths in m.
 """
 from dataclasses import dataclass
 import functools
+import logging
 import math
 
 import numpy as np
@@ -52,6 +58,8 @@ BEAM_ELEMENTS = 80  # the reference beam of the profile (its own error < 1e-5)
 # is left at 1; from 8 % up it is the patch's; between, blended, so it is continuous in t/R
 SHEAR_SHARE = (0.02, 0.08)
 TABLE = "notch_factors.toml"
+DESCRIPTION_TABLE = "notch_description_factors.toml"
+LOG = logging.getLogger(__name__)
 PROFILE_SAMPLES = 257  # a general profile's outline: a spline through this many samples
 NOTCH_DEPTH = 1.5  # a notch's (fillets') ends are at least this many times its least thickness
 # each end of the patch: a stub of the end's height, STUB times as long (the body the notch
@@ -101,28 +109,69 @@ def tabulated(t_over_r: float, nu: float) -> NotchFactors | None:
     """A circular notch's NotchFactors at ``t_over_r`` = b / R and Poisson's ratio ``nu``,
     interpolated in data/notch_factors.toml (monotone cubic in ln(t/R), linear in nu); None
     outside its range."""
-    table = _table()
-    x, nus = table["log_t_over_r"], table["nu"]
+    x, nus, values = _table(TABLE, "circular_notch", ("t_over_r", "nu"))
     lx = math.log(t_over_r)
     if not (x[0] <= lx <= x[-1] and nus[0] <= nu <= nus[-1]):
         return None
     k = min(int(np.searchsorted(nus, nu, side="right")) - 1, len(nus) - 2)
     u = (nu - nus[k]) / (nus[k + 1] - nus[k])
-    values = [(1 - u) * table[name][k](lx) + u * table[name][k + 1](lx)
-              for name in NotchFactors.__dataclass_fields__]
-    return NotchFactors(*(float(v) for v in values))
+    rows = pchip(x, values, lx)  # (fields, nu)
+    return NotchFactors(*(float((1 - u) * r[k] + u * r[k + 1]) for r in rows))
 
 
-@functools.lru_cache(maxsize=1)
-def _table() -> dict:
-    from scipy.interpolate import PchipInterpolator
+def description_tabulated(t_over_r: float, aspect: float, nu: float) -> NotchFactors | None:
+    """NotchFactors of a description's notch (geometry/mechanism/beams.py's profile: neck b,
+    semi-axes R along the centre line and ``aspect`` R across it) at ``t_over_r`` = b / R,
+    interpolated in data/notch_description_factors.toml (monotone cubic in ln(t/R),
+    ln(aspect) and nu); None outside its range, or where the table was made from another
+    profile (beams.STATIONS)."""
+    from ..geometry.mechanism.beams import STATIONS
 
-    raw = shared_toml(TABLE)["circular_notch"]
-    x = np.log(np.asarray(raw["t_over_r"], float))
-    out = {"log_t_over_r": x, "nu": np.asarray(raw["nu"], float)}
-    for name in NotchFactors.__dataclass_fields__:
-        out[name] = [PchipInterpolator(x, np.asarray(row, float)) for row in raw[name]]
-    return out
+    try:
+        x, y, nus, values = _table(DESCRIPTION_TABLE, "description_notch",
+                                   ("t_over_r", "aspect", "nu"))
+    except FileNotFoundError:
+        LOG.warning("notch correction: data/%s is missing (solved directly)", DESCRIPTION_TABLE)
+        return None
+    point = (math.log(t_over_r), math.log(aspect), nu)
+    if (shared_toml(DESCRIPTION_TABLE)["description_notch"]["stations"] != STATIONS
+            or not all(a[0] <= p <= a[-1] for a, p in zip((x, y, nus), point))):
+        return None
+    v = pchip(nus, pchip(y, pchip(x, values, point[0]), point[1]), point[2])  # (fields,)
+    return NotchFactors(*(float(f) for f in v))
+
+
+@functools.lru_cache(maxsize=4)
+def _table(name: str, table: str, axes: tuple) -> tuple:
+    """(axis nodes (ln for t_over_r and aspect)..., values (fields, *reversed axes)) of
+    ``table`` in data/``name``: each field's nested rows, the first axis innermost."""
+    raw = shared_toml(name)[table]
+    nodes = [np.asarray(raw[a], float) for a in axes]
+    nodes = [np.log(n) if a in ("t_over_r", "aspect") else n for a, n in zip(axes, nodes)]
+    return (*nodes, np.array([raw[f] for f in NotchFactors.__dataclass_fields__], float))
+
+
+def pchip(x, y, at: float) -> np.ndarray:
+    """Monotone piecewise cubic through the nodes ``x`` (increasing) and values ``y`` (nodes
+    along the last axis), at the point ``at`` in [x[0], x[-1]]: scipy's PchipInterpolator
+    (Fritsch and Carlson's derivatives), in numpy (scipy.interpolate costs 0.6 s to import)."""
+    h, y = np.diff(x), np.asarray(y, float)
+    m = np.diff(y, axis=-1) / h
+    d = np.zeros_like(y)
+    w1, w2 = 2 * h[1:] + h[:-1], h[1:] + 2 * h[:-1]
+    flat = (np.sign(m[..., 1:]) != np.sign(m[..., :-1])) | (m[..., 1:] == 0) | (m[..., :-1] == 0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        d[..., 1:-1] = np.where(flat, 0.0, (w1 + w2) / (w1 / m[..., :-1] + w2 / m[..., 1:]))
+    for end, (h0, h1, m0, m1) in ((0, (h[0], h[1], m[..., 0], m[..., 1])),
+                                  (-1, (h[-1], h[-2], m[..., -1], m[..., -2]))):
+        e = ((2 * h0 + h1) * m0 - h0 * m1) / (h0 + h1)
+        e = np.where(np.sign(e) != np.sign(m0), 0.0, e)
+        d[..., end] = np.where((np.sign(m0) != np.sign(m1)) & (np.abs(e) > 3 * np.abs(m0)),
+                               3 * m0, e)
+    k = min(max(int(np.searchsorted(x, at, side="right")) - 1, 0), len(x) - 2)
+    s, slope = at - x[k], m[..., k]
+    t = (d[..., k] + d[..., k + 1] - 2 * slope) / h[k]
+    return y[..., k] + d[..., k] * s + ((slope - d[..., k]) / h[k] - t) * s ** 2 + t / h[k] * s ** 3
 
 
 def _check(profile, l, b, fillet_radius, nu) -> None:
@@ -157,12 +206,14 @@ def _patch_factors(profile: str, l_over_b: float, r_over_b: float, nu: float,
 
 
 def profile_factors(thickness, length: float, nu: float,
-                    neck_elements: int = NECK_ELEMENTS) -> NotchFactors:
+                    neck_elements: int = NECK_ELEMENTS, table: bool = True) -> NotchFactors:
     """NotchFactors of a straight flexure of ``length`` (m) whose in-plane thickness is
     ``thickness(s)`` (m, s from its first end), symmetric about its centre line: its outline
     a spline through 257 samples of the profile (a model file's notch, any shape); K_t at its
     thinnest section where that is a point (a notch; NaN for a filleted leaf's flat neck).
-    Computed once per shape in a process (the key: the samples)."""
+    A description's notch in its table's range is interpolated there (``table``, and the
+    default ``neck_elements``, the table's); any other profile is computed once per shape in
+    a process (the key: the samples) and logged."""
     if not (isinstance(length, (int, float)) and math.isfinite(length) and length > 0):
         raise ValueError(f"profile_factors: length = {length!r} must be a finite number > 0 (m)")
     s = np.linspace(0.0, length, PROFILE_SAMPLES)
@@ -171,9 +222,29 @@ def profile_factors(thickness, length: float, nu: float,
         raise ValueError("profile_factors: the thickness must be finite and > 0 along the "
                          "flexure")
     _check_nu(nu, "profile_factors")
+    found = _described(s, t, nu) if table and neck_elements == NECK_ELEMENTS else None
+    if found is not None:
+        return found
     b = t.min()
     return _sampled_factors(round(length / b, 9), tuple(np.round(t / b, 9)), float(nu),
                             int(neck_elements))
+
+
+def _described(s, t, nu: float) -> NotchFactors | None:
+    """The table's NotchFactors where the samples ``t`` (m) at ``s`` (m) are a description's
+    notch (beams.py's profile of neck t.min(), semi-axes s[-1] / 2 along and
+    (t[0] - t.min()) / 2 across, to 1e-9 of the neck) in the table's range; None elsewhere."""
+    from ..geometry.mechanism.beams import profile
+    from ..geometry.mechanism.description import Notch
+
+    b, along = float(t.min()), float(s[-1]) / 2
+    across = (float(t[0]) - b) / 2
+    if not across > 0:
+        return None
+    own = profile(Notch(("", ""), (0.0, 0.0), (2 * along, 0.0), b, along, across), 2 * along)
+    if np.abs(own.at(s) - t).max() > 1e-9 * b:
+        return None
+    return description_tabulated(b / along, across / along, nu)
 
 
 def has_notch(thickness, length: float) -> bool:
@@ -188,6 +259,8 @@ def has_notch(thickness, length: float) -> bool:
 @functools.lru_cache(maxsize=512)
 def _sampled_factors(l_over_b: float, t_over_b: tuple, nu: float,
                      neck_elements: int) -> NotchFactors:
+    LOG.info("notch correction: no table holds this profile (l / b = %.6g, nu = %.6g): its "
+             "2-D patch is solved directly (1-7 s, once in a process)", l_over_b, nu)
     b = 1e-3
     l = l_over_b * b
     s = np.linspace(0.0, l, len(t_over_b))
