@@ -226,10 +226,10 @@ def check_body_size(mechanism: Mechanism, coarse: float, sizes=None) -> None:
                          "by the same factor)")
 
 
-def _threshold(gmsh, entities, dim: int, size: float, far: float, near: float,
-               reach: float) -> int:
-    """A field of ``size`` within ``near`` of the entities (of dimension dim - 1), growing
-    to ``far`` at ``near + reach``."""
+def threshold_field(gmsh, entities, dim: int, size: float, far: float, near: float,
+                    reach: float) -> int:
+    """A gmsh Threshold field of ``size`` (m) within ``near`` (m) of the entities (of
+    dimension dim - 1), growing to ``far`` (m) at ``near + reach``; its tag."""
     field = gmsh.model.mesh.field
     distance = field.add("Distance")
     field.setNumbers(distance, "CurvesList" if dim == 2 else "SurfacesList", entities)
@@ -255,23 +255,29 @@ def _fillet_faces(gmsh, dim: int, tags) -> list:
 
 def _refine(gmsh, mechanism: Mechanism, shapes: dict, size_factor: float, coarse, dim: int):
     sizes, coarse = element_sizes(mechanism, coarse)
-    field = gmsh.model.mesh.field
     thresholds = []
     for f, tags, h in zip(mechanism.flexures, shapes["flexures"], sizes):
         curves = sorted(set(_boundary(gmsh, dim, tags)))
-        thresholds.append(_threshold(gmsh, curves, dim, h * size_factor, coarse * size_factor,
-                                     f.thickness / 2, 2 * coarse))
+        thresholds.append(threshold_field(gmsh, curves, dim, h * size_factor,
+                                          coarse * size_factor, f.thickness / 2, 2 * coarse))
         arcs = _fillet_faces(gmsh, dim, tags) if isinstance(f, Leaf) and f.fillet > 0 else []
         if arcs:
             fine = min(h, f.fillet / FILLET_DIVISIONS)
-            thresholds.append(_threshold(gmsh, arcs, dim, fine * size_factor, h * size_factor,
-                                         f.fillet / 2, f.fillet))
+            thresholds.append(threshold_field(gmsh, arcs, dim, fine * size_factor,
+                                              h * size_factor, f.fillet / 2, f.fillet))
+    size_by_fields(gmsh, thresholds, coarse * size_factor)
+
+
+def size_by_fields(gmsh, fields, largest: float) -> None:
+    """The mesh sizes: the least of the gmsh ``fields`` (tags) everywhere, at most
+    ``largest`` (m), from nothing else (not the boundary, points or curvature)."""
+    field = gmsh.model.mesh.field
     minimum = field.add("Min")
-    field.setNumbers(minimum, "FieldsList", thresholds)
+    field.setNumbers(minimum, "FieldsList", fields)
     field.setAsBackgroundMesh(minimum)
     for option in ("MeshSizeExtendFromBoundary", "MeshSizeFromPoints", "MeshSizeFromCurvature"):
         gmsh.option.setNumber(f"Mesh.{option}", 0)
-    gmsh.option.setNumber("Mesh.MeshSizeMax", coarse * size_factor)
+    gmsh.option.setNumber("Mesh.MeshSizeMax", largest)
 
 
 def _graded_cells(cells, width: float, h: float, coarse: float, near: float, reach: float,
