@@ -11,6 +11,7 @@ import numpy as np
 
 from ...fem import FEMesh, gmsh_session, mesh_from_gmsh
 from ...fem.budget import NODES_PER_ELEMENT, TETRAHEDRA_PER_CUBE, check_budget
+from ..mechanism.draw import size_by_fields, threshold_field
 from .description import AXES, SpatialMechanism, Wire, flexure_label
 from .mass import mass_properties
 
@@ -127,28 +128,14 @@ def draw(gmsh, mechanism: SpatialMechanism) -> dict:
 
 
 def _refine(gmsh, mechanism, shapes, size_factor, coarse) -> None:
-    field = gmsh.model.mesh.field
     thresholds = []
     for f, tags in zip(mechanism.flexures, shapes["flexures"]):
-        h = flexure_size(f) * size_factor
         faces = sorted({abs(s) for _, s in gmsh.model.getBoundary(
             [(3, t) for t in tags], combined=False, oriented=False)})
-        distance = field.add("Distance")
-        field.setNumbers(distance, "SurfacesList", faces)
-        field.setNumber(distance, "Sampling", 100)
-        threshold = field.add("Threshold")
-        field.setNumber(threshold, "InField", distance)
-        field.setNumber(threshold, "SizeMin", h)
-        field.setNumber(threshold, "SizeMax", coarse * size_factor)
-        field.setNumber(threshold, "DistMin", 2 * flexure_size(f))
-        field.setNumber(threshold, "DistMax", 2 * flexure_size(f) + 2 * coarse)
-        thresholds.append(threshold)
-    minimum = field.add("Min")
-    field.setNumbers(minimum, "FieldsList", thresholds)
-    field.setAsBackgroundMesh(minimum)
-    for option in ("MeshSizeExtendFromBoundary", "MeshSizeFromPoints", "MeshSizeFromCurvature"):
-        gmsh.option.setNumber(f"Mesh.{option}", 0)
-    gmsh.option.setNumber("Mesh.MeshSizeMax", coarse * size_factor)
+        near = 2 * flexure_size(f)
+        thresholds.append(threshold_field(gmsh, faces, 3, flexure_size(f) * size_factor,
+                                          coarse * size_factor, near, 2 * coarse))
+    size_by_fields(gmsh, thresholds, coarse * size_factor)
 
 
 def mesh_spatial(mechanism: SpatialMechanism, size_factor: float = 1.0,
