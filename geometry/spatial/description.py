@@ -8,7 +8,7 @@ along x, y or z); :class:`Wire` a rod of circular section (``diameter``) on its 
 joins (``between``); its free span is the part of its axis outside both.
 :meth:`SpatialMechanism.check` refuses what cannot be built, naming the body or flexure.
 """
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 import math
 
 import numpy as np
@@ -96,19 +96,26 @@ class SolidBody:
 
 
 @dataclass(frozen=True)
-class Wire:
-    """A wire flexure: a rod of ``diameter`` (m) from ``start`` to ``end`` (m) on its axis,
-    joining the bodies ``between``; ``fillet``: root fillet radius (m, 0: square roots);
-    ``crosses``: names of flexures it may pass through (declared crossings)."""
+class SpatialFlexure:
+    """What every spatial flexure has: the bodies ``between`` it joins, its axis from
+    ``start`` to ``end`` (m), and by keyword its root ``fillet`` radius (m, 0: square
+    roots), ``name``, ``crosses`` (names of flexures it may pass through: declared
+    crossings) and ``source`` (file and line, for messages)."""
 
     between: tuple
     start: tuple
     end: tuple
+    fillet: float = field(default=0.0, kw_only=True)
+    name: str = field(default="", kw_only=True)
+    crosses: tuple = field(default=(), kw_only=True)
+    source: str = field(default="", kw_only=True)
+
+
+@dataclass(frozen=True)
+class Wire(SpatialFlexure):
+    """A wire flexure: a rod of ``diameter`` (m) on its axis."""
+
     diameter: float
-    fillet: float = 0.0
-    name: str = ""
-    crosses: tuple = ()
-    source: str = ""
     kind = "wire"
 
     @property
@@ -118,21 +125,13 @@ class Wire:
 
 
 @dataclass(frozen=True)
-class Plate:
-    """A leaf spring in 3-D: ``thickness`` (m) along its normal, ``width`` (m) along the
-    unit direction ``width_along`` (perpendicular to the axis), from ``start`` to ``end``
-    (m) on its centre line, joining ``between``; ``fillet``: root fillet radius (m)."""
+class Plate(SpatialFlexure):
+    """A leaf spring in 3-D on its centre line: ``thickness`` (m) along its normal,
+    ``width`` (m) along the unit direction ``width_along`` (perpendicular to the axis)."""
 
-    between: tuple
-    start: tuple
-    end: tuple
     thickness: float
     width: float
     width_along: tuple
-    fillet: float = 0.0
-    name: str = ""
-    crosses: tuple = ()
-    source: str = ""
     kind = "leaf"
 
     @property
