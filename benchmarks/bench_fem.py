@@ -5,6 +5,15 @@ first 6 modes of a cantilever, with peak memory. Not a test: prints a table (and
     .venv/bin/python benchmarks/bench_fem.py --sizes small   # smallest 2-D and 3-D rows
     .venv/bin/python benchmarks/bench_fem.py --case 3d-300k --program calculix  # one JSON line
     python3 benchmarks/bench_fem.py --install default        # what a plain `pip install .` gives
+    .venv/bin/python benchmarks/bench_fem.py --suite solids --sizes small  # large solids, small
+    .venv/bin/python benchmarks/bench_fem.py --suite solids --timeout 3600 --mem-gb 22
+
+``--suite solids``: the large 3-D P2 solids (a 1 x 0.042 x 1 m plate of 1M and of 2M DOFs, a
+1 m cube of 1M DOFs; ``--sizes small``: a 36k-DOF plate and a 47k-DOF cube), static only, each
+by the direct solver (in core or out of core, as fem/budget.py's plan of PARDISO's analysis
+says: the JSON line records the plan, the factor's size and the backend), the iterative path
+(p-multigrid CG) and CalculiX where its memory, estimated from its measured peak on the 3-D
+cantilever, fits ``--mem-gb``; each in a process of its own: time, peak memory, the ratios.
 
 ``--install default`` measures flexfem as a plain ``pip install .`` (no extras) installs it: it
 builds a fresh virtual environment (``--venv``, default /tmp/flexfem-default-venv) from this
@@ -26,6 +35,7 @@ import importlib.util
 import json
 import os
 from pathlib import Path
+import re
 import resource
 import signal
 import subprocess
@@ -43,6 +53,12 @@ ROWS = {"2d-50k": (2, 50_000), "2d-200k": (2, 200_000), "2d-1M": (2, 1_000_000),
 SMALL = ["2d-50k", "3d-100k"]
 DEFAULT_INSTALL_ROWS = ["3d-30k", "3d-100k"]
 REPO = Path(__file__).resolve().parents[1]
+#: --suite solids: benchmarks/bench_iterative.py's meshes
+SOLID_ROWS = ["plate-1M", "plate-2M", "block-1M"]
+SMALL_SOLIDS = ["plate-36k", "block-47k"]
+#: CalculiX's measured peak (GB) on the 3-D P2 cantilever of 399k DOFs (docs/performance.md),
+#: grown as DOFs^(4/3) to estimate whether it fits a solid row (low for a compact block)
+CCX_PEAK_GB, CCX_PEAK_DOFS = 7.2, 399_000
 
 
 def cantilever_mesh(dim: int, target_dofs: int):
@@ -186,6 +202,94 @@ def run_calculix(row: str, threads: int) -> dict:
     return out
 
 
+def solid_dofs(row: str) -> int:
+    """The DOFs of a solid row's structured P2 mesh (3 a node)."""
+    from bench_iterative import PLATES
+    nx, ny, nz, _ = PLATES[row]
+    return 3 * (2 * nx + 1) * (2 * ny + 1) * (2 * nz + 1)
+
+
+def ccx_estimate_gb(n_dofs: int) -> float:
+    """CalculiX's peak memory (GB) expected of a static solve of ``n_dofs`` 3-D DOFs."""
+    return CCX_PEAK_GB * (n_dofs / CCX_PEAK_DOFS) ** (4 / 3)
+
+
+def run_solid(row: str, program: str, threads: int) -> dict:
+    """One static solve of a solid row in this process: 'direct' or 'pmg' (flexfem, through
+    bench_iterative.run_case) or 'calculix' (ccx on flexfem's deck of the same mesh)."""
+    from bench_iterative import plate_problem, run_case
+    if program != "calculix":
+        return {"row": row, "program": program, **run_case(row, program)}
+    from flexfem.fem.calculix import deck_lines, parse_displacements, run_ccx
+    model, supports, loads = plate_problem(row)
+    out = {"row": row, "program": program, "n_dofs": int(model.n_dofs)}
+    run = run_ccx(deck_lines(model, supports, loads), threads=threads)
+    out.update(solve_s=run.wall_s, peak_rss_mb=run.peak_rss_bytes / 2**20,
+               u_max_m=float(np.abs(parse_displacements(run.dat)[1]).max()))
+    return out
+
+
+def _solid_s(r: dict) -> float | None:
+    """A solid run's time (s): flexfem's mesh + assembly + solve, ccx's wall time (its deck
+    read and assembly included); None where it did not solve."""
+    if r.get("solve_s") is None:
+        return None
+    return r["solve_s"] + r.get("mesh_s", 0.0) + r.get("assemble_s", 0.0)
+
+
+def _solid_gb(r: dict) -> float | None:
+    return r["peak_rss_mb"] / 1024 if r.get("solve_s") is not None else None
+
+
+def _ratio(a, b) -> str:
+    return _fmt(a / b if a is not None and b else None, ".2f")
+
+
+def solid_table(results: list[dict]) -> str:
+    """Markdown table of the solid rows: direct, p-multigrid CG and CalculiX side by side
+    (time s: mesh + assembly + solve; peak GB), with the ratios to the direct solver, and
+    PARDISO out of core forced where it ran."""
+    head = ("| row | DOFs | direct backend | direct s | direct GB | pmg-cg s | pmg-cg GB | CG its "
+            "| ccx s | ccx GB | pmg/direct time | pmg/direct memory | ccx/direct time | "
+            "ccx/direct memory | forced out of core s | GB | direct's plan |")
+    lines = [head, "|" + "---|" * (head.count("|") - 1)]
+    for row in dict.fromkeys(r["row"] for r in results):
+        by = {r["program"]: r for r in results if r["row"] == row}
+        d, p, c, o = (by.get(k, {}) for k in ("direct", "pmg", "calculix", "direct-ooc"))
+
+        its = re.search(r"(\d+) CG iterations", p.get("why", ""))
+        dt, pt, ct = _solid_s(d), _solid_s(p), _solid_s(c)
+        gb, ratio = _solid_gb, _ratio
+        lines.append(
+            f"| {row} | {d.get('n_dofs', p.get('n_dofs', '-'))} | {d.get('solver', '-')} | "
+            f"{_cell(dt, d.get('error'))} | {_fmt(gb(d), '.2f')} | {_cell(pt, p.get('error'))} | "
+            f"{_fmt(gb(p), '.2f')} | {its.group(1) if its else '-'} | "
+            f"{_cell(ct, c.get('error'))} | {_fmt(gb(c), '.2f')} | {ratio(pt, dt)} | "
+            f"{ratio(gb(p), gb(d))} | {ratio(ct, dt)} | {ratio(gb(c), gb(d))} | "
+            f"{_cell(_solid_s(o), o.get('error'))} | {_fmt(gb(o), '.2f')} | "
+            f"{d.get('plan', '-')}: {d.get('error') or c.get('error') or ''} |")
+    return "\n".join(lines)
+
+
+def run_solids(rows: list[str], args, python: str) -> list[dict]:
+    """Every program on every solid row, each in a process of its own; prints JSON lines."""
+    results = []
+    for row in rows:
+        for program in args.programs:
+            need = ccx_estimate_gb(solid_dofs(row))
+            if program == "calculix" and need > args.mem_gb:
+                out = {"row": row, "program": program,
+                       "error": f"not run: ~{need:.0f} GB estimated, above --mem-gb"}
+            elif program == "calculix" and row in args.skip_ccx:
+                out = {"row": row, "program": program, "error": "not run"}
+            else:
+                out = _in_subprocess(row, program, args.threads, args.timeout, args.mem_gb,
+                                     python)
+            print(json.dumps(out), flush=True)
+            results.append(out)
+    return results
+
+
 def default_install(venv: Path) -> str:
     """Python of a virtual environment with flexfem installed from this checkout by a plain
     ``pip install .`` (no extras), made once at ``venv`` and reused."""
@@ -264,7 +368,8 @@ def main(argv=None) -> int:
     parser.add_argument("--rows", nargs="*", choices=list(ROWS), help="run only these rows")
     parser.add_argument("--threads", type=int, default=2, help="ccx OpenMP/solver threads")
     parser.add_argument("--timeout", type=float, default=600.0, help="per program and row, s")
-    parser.add_argument("--skip-ccx", nargs="*", default=[], choices=list(ROWS),
+    parser.add_argument("--skip-ccx", nargs="*", default=[],
+                        choices=list(ROWS) + SOLID_ROWS + SMALL_SOLIDS,
                         help="rows where CalculiX is not run")
     parser.add_argument("--mem-gb", type=float, default=16.0,
                         help="address-space limit of each measured process (and its ccx), GiB: "
@@ -274,6 +379,12 @@ def main(argv=None) -> int:
                              "in a fresh virtual environment (--venv)")
     parser.add_argument("--venv", type=Path, default=Path("/tmp/flexfem-default-venv"),
                         help="where --install default builds its environment")
+    parser.add_argument("--suite", choices=["cantilever", "solids"], default="cantilever",
+                        help="'solids': the large 3-D P2 plates and block, static only")
+    parser.add_argument("--programs", nargs="+", default=["direct", "pmg", "calculix"],
+                        choices=["direct", "direct-ooc", "pmg", "calculix"],
+                        help="--suite solids: what runs on each row ('direct-ooc': PARDISO "
+                             "out of core forced)")
     parser.add_argument("--case", help=argparse.SUPPRESS)
     parser.add_argument("--program", help=argparse.SUPPRESS)
     parser.add_argument("--part", default="static", help=argparse.SUPPRESS)
@@ -286,16 +397,27 @@ def main(argv=None) -> int:
             write_cantilever_mesh(args.case, args.mesh)
             print(json.dumps({"row": args.case, "mesh": str(args.mesh)}))
             return 0
-        fn = ((lambda r: run_flexfem(r, args.part, args.mesh)) if args.program == "flexfem"
-              else lambda r: run_calculix(r, args.threads))
+        if args.case in SOLID_ROWS + SMALL_SOLIDS:
+            def fn(r):
+                return run_solid(r, args.program, args.threads)
+        elif args.program == "flexfem":
+            def fn(r):
+                return run_flexfem(r, args.part, args.mesh)
+        else:
+            def fn(r):
+                return run_calculix(r, args.threads)
         before = os.getloadavg()[0]
         out = fn(args.case)
         # 1-minute load average before and after: above the core count, times are inflated
         out["load_avg"] = [round(before, 2), round(os.getloadavg()[0], 2)]
         print(json.dumps(out))
         return 0
-    rows = args.rows or (SMALL if args.sizes == "small" else list(ROWS))
     python = sys.executable
+    if args.suite == "solids":
+        rows = SMALL_SOLIDS if args.sizes == "small" else SOLID_ROWS
+        print(solid_table(run_solids(rows, args, python)))
+        return 0
+    rows = args.rows or (SMALL if args.sizes == "small" else list(ROWS))
     if args.install == "default":
         rows = args.rows or DEFAULT_INSTALL_ROWS
         python = default_install(args.venv)

@@ -6,7 +6,9 @@ process of its own. Not a test: prints one JSON line per run and a table.
     .venv/bin/python benchmarks/bench_iterative.py --cases plate-1M    # ~9 GB for the direct run
     .venv/bin/python benchmarks/bench_iterative.py --cases plate-141k --methods amg-p2
 
-Methods: 'direct' (``solve_static(solver="direct")``), 'pmg' (``solver="amg"``: p-multigrid
+Methods: 'direct' (``solve_static(solver="direct")``: in core, or out of core where PARDISO's
+analysis says only that fits, fem/budget.py's plan), 'direct-ooc' (the same, planned for a
+memory that only out of core fits: PARDISO out of core forced), 'pmg' (``solver="amg"``: p-multigrid
 CG on P2) and 'amg-p2' (smoothed-aggregation AMG-CG on the P2 matrix itself,
 ``linsolve.solve_amg``, the iterative path before p-multigrid). Plates: 1 x T x 1 m, clamped
 on x = 0, a 100 N force through the thickness (-y) on x = 1 (a cantilever plate in bending);
@@ -16,6 +18,7 @@ mesh, K and the solve; PARDISO's factor included, it lives in the process).
 """
 import argparse
 import json
+import os
 import resource
 import subprocess
 import sys
@@ -25,12 +28,15 @@ from pathlib import Path
 import numpy as np
 
 REPO = Path(__file__).resolve().parents[1]
-# plates: (cells along x, through the thickness, along z, thickness m)
-PLATES = {"plate-141k": (48, 2, 48, 0.042), "plate-449k": (64, 4, 64, 0.0625),
-          "plate-1M": (96, 4, 96, 0.042)}
+# solids: (cells along x, through the thickness, along z, thickness m); plates 1 x T x 1 m,
+# blocks 1 m cubes (compact: the largest factor a DOF)
+PLATES = {"plate-36k": (24, 2, 24, 0.042), "plate-141k": (48, 2, 48, 0.042),
+          "plate-449k": (64, 4, 64, 0.0625), "plate-1M": (96, 4, 96, 0.042),
+          "plate-2M": (136, 4, 136, 0.042),
+          "block-47k": (12, 12, 12, 1.0), "block-1M": (34, 34, 34, 1.0)}
 GUIDES = {"guide-3d": 1.0, "guide-3d-fine": 0.5}
 CASES = list(PLATES) + list(GUIDES)
-METHODS = ("direct", "pmg", "amg-p2")
+METHODS = ("direct", "direct-ooc", "pmg", "amg-p2")
 
 
 def plate_problem(case: str):
@@ -64,6 +70,7 @@ def run_case(case: str, method: str) -> dict:
     """One method on one case, in this process: times (s), peak memory (MB), the largest
     displacement (m) and, for the iterative methods, the CG iterations."""
     from flexfem.fem import linsolve, solve_static
+    from flexfem.fem.budget import MEMORY_VARIABLE
     from flexfem.fem.boundary import constrained_dofs, load_vector
     from flexfem.fem.static_result import rigid_body_dof_modes
 
@@ -84,8 +91,14 @@ def run_case(case: str, method: str) -> dict:
                                    rigid_body_dof_modes(model)[I])
             out["u_max_m"] = float(np.abs(x).max())
         else:
+            if method.startswith("direct"):
+                out.update(direct_plan(model, supports, K))
+            if method == "direct-ooc" and "factor_gib" in out:
+                # plan for a memory whose half lies between the two peaks: out of core
+                os.environ[MEMORY_VARIABLE] = str(out["factor_gib"] + out["ooc_gib"])
+            t = time.perf_counter()
             result = solve_static(model, supports, loads,
-                                  solver="direct" if method == "direct" else "amg")
+                                  solver="amg" if method == "pmg" else "direct")
             out["u_max_m"] = float(np.abs(result.u).max())
             out["solver"] = result.solver
             out["why"] = result.info["solver_choice"]
@@ -93,6 +106,23 @@ def run_case(case: str, method: str) -> dict:
     except Exception as error:  # AMG-CG's non-convergence, or out of memory
         out["error"] = f"after {time.perf_counter() - t:.1f} s: {type(error).__name__} {error}"
     out["peak_rss_mb"] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+    return out
+
+
+def direct_plan(model, supports, K) -> dict:
+    """PARDISO's analysis of the free block (its own, untimed): the in-core and out-of-core
+    peaks (GiB) and fem/budget.py's plan, which the direct solve follows."""
+    from flexfem.fem import linsolve
+    from flexfem.fem.boundary import constrained_dofs
+    from flexfem.fem.budget import factor_plan
+
+    I = np.setdiff1d(np.arange(model.n_dofs), constrained_dofs(model, supports)[0])
+    t = time.perf_counter()
+    need = linsolve.factor_memory(linsolve.block_to_factorize(K, I, "spd", upper=True))
+    out = {"analysis_s": time.perf_counter() - t}
+    if need is not None:
+        out.update(factor_gib=need[0] / 2**30, ooc_gib=need[1] / 2**30)
+        out["plan"], out["plan_why"] = factor_plan(*need)
     return out
 
 
