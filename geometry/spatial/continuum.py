@@ -148,6 +148,11 @@ def mesh_spatial(mechanism: SpatialMechanism, size_factor: float = 1.0,
     once meshed."""
     if not (math.isfinite(size_factor) and size_factor > 0):
         raise ValueError(f"size_factor = {size_factor!r} must be a finite number > 0")
+    for body, vector, source in mechanism.moments:
+        if any(vector):
+            raise ValueError(f"{source}: [[loads]] moment on {body!r}: the continuum takes "
+                             "forces on faces; a moment on a body is the beam model's "
+                             "(--model beam)")
     what = f"the spatial mechanism's mesh at size_factor {size_factor:g}"
     check_budget(estimate_mesh(mechanism, size_factor, coarse, order), 3, max_dofs, what=what)
     coarse = body_size(mechanism, coarse)

@@ -184,11 +184,13 @@ class FreeSpan(Segment):
 @dataclass(frozen=True)
 class SpatialMechanism:
     """Rigid ``bodies`` (SolidBody) joined by ``flexures`` (Wire, Plate); ``source``: the
-    model file, for messages."""
+    model file, for messages; ``moments``: the file's [[loads]] moments on bodies ((body,
+    (M_x, M_y, M_z) N m, source), ...: the beam model's; the continuum refuses them)."""
 
     bodies: tuple
     flexures: tuple
     source: str = ""
+    moments: tuple = ()
 
     @property
     def size(self) -> float:

@@ -2,9 +2,11 @@
 flexures) -> the fields of its :class:`~flexfem.geometry.user_model.spec.ModelSpec` (dim 3,
 the bodies' names as boundary groups, "solid" the whole), with the planar format's
 [material], [mesh], [[supports]], [[loads]] and [analysis] tables."""
+from dataclasses import replace
+
 from ..user_model.tables import (SectionSpec, parse_analysis, parse_loads, parse_material,
                                  parse_mesh, parse_supports)
-from .tables import parse_spatial
+from .tables import parse_spatial, split_moments
 
 #: Tables a spatial file may hold.
 SPATIAL_KEYS = ("description", "parameters", "material", "mesh", "supports", "loads",
@@ -24,12 +26,13 @@ def spatial_spec(raw: dict, parameters: dict, loc, dim: int | None = None) -> tu
         raise loc.error(f"--dim {dim}: a mechanism of 3-D bodies is spatial (dim 3)", "body")
     if "material" not in raw:
         raise loc.error("[material] is required", None)
+    loads, moments = split_moments(raw.get("loads", []), parameters, loc)
     parts = {
         "material": parse_material(raw["material"], loc),
         "section": SectionSpec("solid"),
         "mesh": parse_mesh(raw.get("mesh", {}), loc),
         "supports": parse_supports(raw.get("supports", []), 3, loc),
-        "loads": parse_loads(raw.get("loads", []), 3, loc),
+        "loads": parse_loads(loads, 3, loc),
         "analysis": parse_analysis(raw.get("analysis", {}), loc),
     }
     if parts["mesh"].refine:
@@ -39,5 +42,11 @@ def spatial_spec(raw: dict, parameters: dict, loc, dim: int | None = None) -> tu
         raise loc.error("the mechanism has no support: hold a body with [[supports]] group = "
                         "'NAME'", None)
     mechanism = parse_spatial(raw, parameters, loc, {s.group for s in parts["supports"]})
+    names = {b.name for b in mechanism.bodies}
+    for body, _, source in moments:
+        if body not in names:
+            raise ValueError(f"{source}: [[loads]] moment on {body!r}: a moment acts on a "
+                             f"body; bodies: {', '.join(sorted(names))}")
+    mechanism = replace(mechanism, moments=moments)
     groups = {b.name: 2 for b in mechanism.bodies} | {"solid": 3}
     return {**parts, "spatial": mechanism}, groups

@@ -166,6 +166,28 @@ def _flexure(entry, i, names, loc: Locator):
                  width_along=values["width_along"], **common)
 
 
+def split_moments(raw_loads, names: dict, loc: Locator) -> tuple:
+    """([[loads]] entries without their ``moment``, ((body, (M_x, M_y, M_z) N m, source),
+    ...)): a spatial file's moments on bodies (about the global axes at the body's centroid),
+    read apart from the planar format's forces; an entry with a moment alone gets a zero
+    force."""
+    if not isinstance(raw_loads, list):
+        return raw_loads, ()
+    entries, moments = [], []
+    for i, entry in enumerate(raw_loads):
+        if isinstance(entry, dict) and "moment" in entry:
+            entry = dict(entry)
+            try:
+                vector = _values(entry.pop("moment"), 3, names, "[[loads]] moment")
+            except ValueError as error:
+                raise loc.error(f"{error} (N m)", "loads", "moment", i) from None
+            if not any(k in entry for k in ("force", "traction", "pressure")):
+                entry["force"] = [0.0, 0.0, 0.0]
+            moments.append((entry.get("group"), vector, loc.at("loads", "moment", i)))
+        entries.append(entry)
+    return entries, tuple(moments)
+
+
 def parse_spatial(raw: dict, names: dict, loc: Locator, supported=None) -> SpatialMechanism:
     """The SpatialMechanism of a model file's tables (``raw`` in SI units), checked
     (:meth:`SpatialMechanism.check`; ``supported``: the held groups, None: unchecked);

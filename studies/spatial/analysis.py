@@ -101,7 +101,7 @@ def _static(spec, beam, supports, loads) -> dict:
             "max_von_mises": vm, "max_von_mises_location": where.tolist(),
             "mean_displacement": mean,
             "reactions": {g: np.asarray(r).tolist() for g, r in result.reactions.items()},
-            "stiffness": stiffness(spec, mean),
+            "stiffness": {} if spec.spatial.moments else stiffness(spec, mean),
             "yield_strength": float(strength) if np.isfinite(strength) else None}
 
 
@@ -117,7 +117,7 @@ def analyze_spatial_beam(spec, fields: dict | None = None) -> dict:
             raise ValueError(f"{spec.source}: --model beam: {why}")
     try:
         beam = beam_model(spec.spatial, spec.material)
-        supports, loads = supports_and_loads(spec)
+        supports, loads = supports_and_loads(spec, beam)
         out = _static(spec, beam, supports, loads)
         load = single_force(spec)
         body = a.compliance or (load.group if load is not None else None)
@@ -140,7 +140,7 @@ def analyze_spatial_beam(spec, fields: dict | None = None) -> dict:
                          f"{spec.source}: {text}") from None
     if fields is not None:
         fields["model"] = beam.model
-    limits = stroke_limits(spec, out)
+    limits = {} if spec.spatial.moments else stroke_limits(spec, out)  # a force's alone
     out.update({k: v for k, v in limits.items() if k != "not_available"})
     missing = {**({"yield_strength": "not given in [material]"}
                   if out["yield_strength"] is None else {}), **limits.get("not_available", {})}

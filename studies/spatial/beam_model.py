@@ -25,7 +25,7 @@ import math
 import numpy as np
 
 from ...fem import Fixed, Force, Prescribed
-from ...fem.beam.spatial import Beam3DModel, RigidLink, Section
+from ...fem.beam.spatial import Beam3DModel, NodalLoad, RigidLink, Section
 from ...geometry.spatial.description import Plate, SpatialMechanism
 from ...geometry.spatial.mass import mass_properties
 from .plate_action import plate_factor
@@ -122,9 +122,10 @@ def beam_model(mechanism: SpatialMechanism, material, elements: int = ELEMENTS,
     return SpatialBeam(model, masters, owned, mechanism)
 
 
-def supports_and_loads(spec) -> tuple:
-    """The analysis face's supports (Fixed, Prescribed) and forces (Force, the body's total,
-    N) of a spatial model file's spec; a traction is refused (a body is one node)."""
+def supports_and_loads(spec, beam: SpatialBeam | None = None) -> tuple:
+    """The analysis face's supports (Fixed, Prescribed) and loads of a spatial model file's
+    spec: its forces (Force, the body's total, N; a traction is refused: a body is one
+    node) and, given its ``beam``, its moments (NodalLoad on the body's node, N m)."""
     supports = [Fixed(s.group) if s.components is None else
                 Prescribed(s.group, **{AXES[i]: v for i, v in s.components.items()})
                 for s in spec.supports]
@@ -135,4 +136,6 @@ def supports_and_loads(spec) -> tuple:
                              f"{load.group!r}: the beam model's bodies are rigid nodes; give "
                              "the body's total force = [Fx, Fy, Fz] (N)")
         loads.append(Force(load.group, load.vector))
+    for body, (mx, my, mz), _ in (spec.spatial.moments if beam is not None else ()):
+        loads.append(NodalLoad(beam.node(body), mx=mx, my=my, mz=mz))
     return supports, loads

@@ -106,3 +106,21 @@ def test_a_traction_on_a_rigid_body_is_refused_in_one_line(tmp_path):
     path.write_text(text)
     with pytest.raises(ValueError, match="rigid nodes; give the body's total force"):
         analyze_model(load_spec(path), model="beam")
+
+
+def test_a_moment_on_a_body_moves_it_by_the_compliance(tmp_path):
+    text = (EXAMPLES / "cross_pivot.toml").read_text().replace(
+        "force = [1.0, 0.0, 0.0]", "moment = [0.0, 0.0, 0.01]")
+    path = tmp_path / "moment.toml"
+    path.write_text(text + '\n[analysis]\ncompliance = "rotor"\n')
+    spec = load_spec(path)
+    out = analyze_model(spec, model="beam")
+    C = np.array(out["compliance"]["matrix"])
+    assert out["mean_displacement"]["rotor"] == pytest.approx(C[:3, 5] * 0.01, rel=1e-6)
+    assert out["stiffness"] == {}
+    with pytest.raises(ValueError, match="moment on 'rotor': the continuum takes forces"):
+        analyze_model(spec)
+    bad = tmp_path / "bad.toml"
+    bad.write_text(text.replace("moment = [0.0, 0.0, 0.01]", "moment = [0.0, 0.01]"))
+    with pytest.raises(ValueError, match=r"line \d+: \[\[loads\]\] moment .* must be 3 numbers"):
+        load_spec(bad)
