@@ -134,6 +134,17 @@ class Assembler:
         K = space.condense(ke, w, space.constraint_diagonal(q, r)) if tangent else None
         return Evaluation(self.model, q, r, rz, K, w, ke)
 
+    def at(self, z, lam) -> Evaluation:
+        """evaluate(z, lam) with the tangent: the stepper's state (fem/beam/stepper.py)."""
+        return self.evaluate(z, lam)
+
+    def load_rate(self, ev: Evaluation) -> np.ndarray:
+        """d(rz)/d(lam) = T^T (K T_p p - f_ext) at the Evaluation ``ev``."""
+        space, f = self.space, self.f_ext
+        if len(space.p_hat):
+            f = f - ev.full_times(space.expand(np.zeros(space.n), space.p_hat, ev.w))
+        return -space.reduce(f, ev.w)[0]
+
 
 class Factor:
     """Sparse LU (SuperLU: single-threaded, fast for the banded systems of beam models) of

@@ -15,7 +15,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from .model import BeamModel
-from .supports import Fixed, Prescribed
+from .supports import Fixed, Prescribed, dof_index
 from .pattern import Condensed, block_dofs, global_matrix, shared
 
 
@@ -43,6 +43,8 @@ class Space:
     q(z, lam): full (n_nodes, 3) DOFs; prescribed DOFs = lam * value; slave nodes follow
     their master rigidly. weights(q): the link Jacobian's coefficients at q; reduce(v, w) =
     (T^T v, T_p^T v) and expand(z, p, w) = T z + T_p p with T = dq/dz, T_p = dq/dp."""
+
+    FLOOR = (1e-12, 1e-6)  # the stepper's round-off: correction / |z|, residual / reference
 
     def __init__(self, model: BeamModel, supports):
         self.model = model
@@ -72,6 +74,28 @@ class Space:
         self._base = (self.col >= 0).astype(float)
         self._base[:, 1] = 0.0
         self._stiffness, self._tangents = None, 0
+
+    def control_index(self, control) -> int:
+        """The free unknown of ``control`` = (node, dof, value); ValueError if held."""
+        node, dof, _ = control
+        where = np.flatnonzero(self.free == 3 * int(node) + dof_index(dof))
+        if not len(where):
+            raise ValueError(f"control = {control!r}: the DOF is held or on a rigid-link "
+                             "slave; control a free DOF")
+        return int(where[0])
+
+    @staticmethod
+    def advance(z, dz, dlam):
+        """The unknowns after the correction dz (the load factor's dlam moves q, not z)."""
+        return z + dz
+
+    @staticmethod
+    def size(z) -> float:
+        return np.linalg.norm(z)
+
+    @staticmethod
+    def value(z, k: int) -> float:
+        return z[k]
 
     def weights(self, q) -> np.ndarray:
         """(n_dofs, 2) coefficients of the DOFs in their unknowns at state q (n_nodes, 3)."""

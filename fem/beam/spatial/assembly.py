@@ -5,15 +5,17 @@ Increments are (du, dw) per node, dw a spatial spin (rad): R <- exp(dw) R. Rigid
 exact rigid-body constraints (master-slave elimination, as in the planar model):
 x_s = x_m + R_m (X_s - X_m), R_s = R_m.
 """
+from typing import NamedTuple
+
 import numpy as np
 import scipy.sparse as sp
 
 from ..space import held_values
 from .corotational import internal_forces, local_deformations
 from .element import basic_stiffness, local_matrices, to_global
-from ..supports import load_vector
+from ..supports import dof_index, load_vector
 from .model import Beam3DModel
-from .rotations import expm, skew
+from .rotations import expm, logm, skew
 
 
 def scatter(model: Beam3DModel, ke: np.ndarray) -> sp.csr_matrix:
@@ -61,6 +63,9 @@ class Space:
     Held DOFs move by the load factor's increment times their value (a prescribed
     rotation: a spin about that global axis); slave nodes follow their master rigidly."""
 
+    FLOOR = (1e-10, np.inf)  # the stepper's round-off: a correction of 1e-10 of the
+    # configuration (a load-free rigid motion has no force scale to compare with)
+
     def __init__(self, model: Beam3DModel, supports):
         self.model = model
         n = model.n_dofs
@@ -87,6 +92,30 @@ class Space:
         """The undeformed configuration (u, R)."""
         n = self.model.n_nodes
         return np.zeros((n, 3)), np.tile(np.eye(3), (n, 1, 1))
+
+    def control_index(self, control) -> int:
+        """The free unknown of ``control`` = (node, translation dof, value)."""
+        node, dof, _ = control
+        k = dof_index(dof, 6)
+        where = np.flatnonzero(self.free == 6 * int(node) + k)
+        if k > 2 or not len(where):
+            raise ValueError(f"control = {control!r}: control a free translation DOF (not "
+                             "held, not on a rigid-link slave, not a rotation)")
+        return int(where[0])
+
+    def advance(self, config, dz, dlam) -> tuple:
+        """update() of a configuration (u, R)."""
+        return self.update(*config, dz, dlam)
+
+    def size(self, config) -> float:
+        """|(u, log R)| over the free unknowns (m, rad)."""
+        u, R = config
+        return np.linalg.norm(np.hstack([u, logm(R)]).ravel()[self.free])
+
+    def value(self, config, k: int) -> float:
+        """Free translation unknown k's displacement (m)."""
+        full = self.free[k]
+        return config[0][full // 6, full % 6]
 
     def update(self, u, R, dz, dlam):
         """New (u, R) after free increments dz and a load-factor increment dlam."""
@@ -143,6 +172,20 @@ class Space:
         return sp.csr_matrix((blocks.ravel(), (rows.ravel(), cols.ravel())), shape=(n, n))
 
 
+class Evaluation3D(NamedTuple):
+    """A state: r (n_dofs,) = f_int - lam f_ext (N, N m), rz = T^T r, K the reduced
+    tangent (None without), T and Tp the link Jacobians, Kf the full tangent, fl the
+    elements' local forces."""
+
+    r: np.ndarray
+    rz: np.ndarray
+    K: object
+    T: object
+    Tp: object
+    Kf: object
+    fl: object
+
+
 class Assembler:
     """Internal force, residual and reduced tangent of a model at a configuration."""
 
@@ -160,10 +203,22 @@ class Assembler:
         T, Tp = self.space.jacobian(R)
         rz = T.T @ r
         if not tangent:
-            return r, rz, None, T, Tp, None, fl
+            return Evaluation3D(r, rz, None, T, Tp, None, fl)
         K = scatter(self.model, ke) + self.space.constraint_tangent(R, r)
         Kz = (T.T @ K @ T).tocsc()
-        return r, rz, Kz, T, Tp, K, fl
+        return Evaluation3D(r, rz, Kz, T, Tp, K, fl)
+
+    def at(self, config, lam) -> Evaluation3D:
+        """evaluate() of a configuration (u, R), with the tangent: the stepper's state."""
+        return self.evaluate(*config, lam)
+
+    def load_rate(self, ev: Evaluation3D) -> np.ndarray:
+        """d(rz)/d(lam) = T^T (K T_p p - f_ext)."""
+        p = self.space.p_hat
+        g = -(ev.T.T @ self.f_ext)
+        if len(p):
+            g = g + ev.T.T @ (ev.Kf @ (ev.Tp @ p))
+        return g
 
 
 def symmetric_tangent(asm: Assembler, about=None):
