@@ -6,8 +6,8 @@ spatial Beam3DModel alike.
 
 Each function is a :func:`functools.singledispatch` on the model's type (``DISPATCH[name]``):
 a continuum :class:`.model.Model` goes to the continuum's function (:mod:`.static`,
-:mod:`.modal`, ...), a planar :class:`.beam.BeamModel` to :mod:`.beam.face` and a spatial
-:class:`.beam.spatial.Beam3DModel` to :mod:`.beam.spatial.face` (linear buckling:
+:mod:`.modal`, ...), a planar :class:`.beam.BeamModel` and a spatial
+:class:`.beam.spatial.Beam3DModel` to the beam models' one face :mod:`.beam.face` (linear buckling:
 :mod:`.beam.buckling`, :mod:`.beam.spatial.buckling`); any other type is a TypeError. The public
 function takes ``model`` by position or keyword and hands it to the dispatcher. The results
 carry the same names
@@ -23,15 +23,15 @@ from .beam import face as beam_face
 from .beam import stroke_buckling
 from .beam.model import BeamModel
 from .beam.spatial import buckling as beam3d_buckling
-from .beam.spatial import face as beam3d_face
 from .beam.spatial.model import Beam3DModel
 from .model import Model
 
 BEAM_MODELS = (BeamModel, Beam3DModel)
 
 
-def dispatcher(name: str, continuum, planar, spatial):
-    """A singledispatch function ``name`` with the three models' implementations."""
+def dispatcher(name: str, continuum, planar, spatial=None):
+    """A singledispatch function ``name`` with the three models' implementations (``spatial``
+    None: the planar one's, the beam models' one face)."""
     def unknown(model, *args, **options):
         raise TypeError(f"{name}: model is a {type(model).__name__}; it takes a Model, a "
                         "BeamModel or a Beam3DModel")
@@ -40,22 +40,19 @@ def dispatcher(name: str, continuum, planar, spatial):
     function = singledispatch(unknown)
     function.register(Model, continuum)
     function.register(BeamModel, planar)
-    function.register(Beam3DModel, spatial)
+    function.register(Beam3DModel, planar if spatial is None else spatial)
     return function
 
 
 DISPATCH = {
-    "solve_static": dispatcher("solve_static", static.solve_static, beam_face.solve_static,
-                               beam3d_face.solve_static),
-    "solve_modes": dispatcher("solve_modes", modal.solve_modes, beam_face.solve_modes,
-                              beam3d_face.solve_modes),
+    "solve_static": dispatcher("solve_static", static.solve_static, beam_face.solve_static),
+    "solve_modes": dispatcher("solve_modes", modal.solve_modes, beam_face.solve_modes),
     "solve_nonlinear": dispatcher("solve_nonlinear", nonlinear.solve_nonlinear,
-                                  beam_face.solve_nonlinear, beam3d_face.solve_nonlinear),
+                                  beam_face.solve_nonlinear),
     "compliance_matrix": dispatcher("compliance_matrix", compliance.compliance_matrix,
-                                    beam_face.compliance_matrix,
-                                    beam3d_face.compliance_matrix),
+                                    beam_face.compliance_matrix),
     "solve_harmonic": dispatcher("solve_harmonic", harmonic.solve_harmonic,
-                                 beam_face.solve_harmonic, beam3d_face.solve_harmonic),
+                                 beam_face.solve_harmonic),
     "solve_buckling": dispatcher("solve_buckling", buckling.solve_buckling,
                                  beam_buckling.solve_buckling, beam3d_buckling.solve_buckling),
     "solve_incremental_buckling": dispatcher(
@@ -80,7 +77,7 @@ def solve_static(model, supports, loads=(), **options):
     **options
         The continuum's (:func:`.static.solve_static`): ``solver`` ('auto', 'direct',
         'amg'), ``rigid_faces`` (RigidFace, forces in N, moments in N m); a beam model's
-        (:func:`.beam.face.solve_static`, :func:`.beam.spatial.face.solve_static`).
+        (:func:`.beam.face.solve_static`).
 
     Returns
     -------
@@ -105,7 +102,7 @@ def solve_modes(model, n: int = 6, supports=(), **options):
     **options
         The continuum's (:func:`.modal.solve_modes`): ``shift_hz`` (the shift-invert centre,
         Hz), ``prestress`` (a loaded state: its geometric stiffness); a beam model's
-        (:func:`.beam.face.solve_modes`, :func:`.beam.spatial.face.solve_modes`).
+        (:func:`.beam.face.solve_modes`).
 
     Returns
     -------
@@ -128,7 +125,7 @@ def solve_nonlinear(model, supports, loads, **options):
         ``min_step`` (the smallest load-factor increment, -), ``rigid_faces``; the
         continuum's further options (:func:`.nonlinear.solve_nonlinear`: ``control``,
         ``check_stability``, ``strain_limit``, ``preloads`` ...), a beam model's
-        (:func:`.beam.face.solve_nonlinear`, :func:`.beam.spatial.face.solve_nonlinear`).
+        (:func:`.beam.face.solve_nonlinear`).
 
     Returns
     -------

@@ -17,7 +17,7 @@ from ..buckling import BeamBuckling, check_n, lowest_load_factors, scaled_shapes
 from ..element import WXI, XI, gram, bending_shape_functions
 from .assembly import scatter
 from .element import AXIAL, TORSION, XY, XZ, XZ_SIGN, put_block, to_global
-from .face import Beam3DResult, node_loads, node_supports, supported_groups
+from ..face import BeamResult, node_loads, node_supports, supported_groups
 from .model import Beam3DModel
 from .static import linear_solution
 
@@ -68,4 +68,4 @@ def solve_buckling(model: Beam3DModel, supports, loads, n: int = 3,
     factors, vectors = lowest_load_factors(K, G, n)
     full = np.asarray(T @ vectors).T
     return BeamBuckling(model, factors, scaled_shapes(full, 6),
-                        Beam3DResult(model, state, supported_groups(supports)))
+                        BeamResult(model, state, supported_groups(supports)))

@@ -51,6 +51,8 @@ class Beam3DModel:
     {name: BeamGroup or node indices}, the named places of the analysis face
     (:mod:`.face`; :meth:`add_group`)."""
 
+    dim = 3  # spatial: the continuum Model's name for its space dimension
+
     def __init__(self, nodes, elements, sections, material: Material, orientation=None,
                  rigid_links=(), point_masses=None, groups=None, shear: bool = False):
         self.nodes = np.asarray(nodes, dtype=float)

@@ -109,6 +109,6 @@ def test_bad_input_on_the_spatial_face_names_the_problem():
     with pytest.raises(ValueError, match="takes \\(F_x, F_y\\) or \\(F_x, F_y, F_z\\)"):
         solve_static(model, [Fixed("root")], [Force("tip", (0.0, 0.0, 1.0, 0.0))])
     with pytest.raises(TypeError, match="rigid_faces"):
-        solve_nonlinear(model, [Fixed("root")], [Force("tip", (0.0, 1.0))], rigid_faces=())
+        solve_nonlinear(model, [Fixed("root")], [Force("tip", (0.0, 1.0))], rigid_faces=["tip"])
     with pytest.raises(ValueError, match="no beam in compression"):
         solve_buckling(model, [Fixed("root")], [Force("tip", (1.0, 0.0))])
