@@ -108,8 +108,8 @@ def _static(spec, beam, supports, loads) -> dict:
 def analyze_spatial_beam(spec, fields: dict | None = None) -> dict:
     """The analysis dict of a spatial model file's beam model (the module; keys as
     analyze_model's, with "compliance" of the loaded body at its centroid, its
-    "support_to_drive" ratios and the modes' "effective_mass_kg"). ``fields`` receives the
-    solved "model"."""
+    "support_to_drive" ratios and the modes' "effective_mass_kg"). ``fields`` is left empty:
+    the field files and pictures of ``--out`` are the continuum's."""
     check_loaded_supports(spec)
     a = spec.analysis
     for key, why in NOT_MODELLED.items():
@@ -138,8 +138,6 @@ def analyze_spatial_beam(spec, fields: dict | None = None) -> dict:
         text = str(error)
         raise ValueError(text if text.startswith(spec.source) else
                          f"{spec.source}: {text}") from None
-    if fields is not None:
-        fields["model"] = beam.model
     limits = {} if spec.spatial.moments else stroke_limits(spec, out)  # a force's alone
     out.update({k: v for k, v in limits.items() if k != "not_available"})
     missing = {**({"yield_strength": "not given in [material]"}

@@ -124,3 +124,22 @@ def test_a_moment_on_a_body_moves_it_by_the_compliance(tmp_path):
     bad.write_text(text.replace("moment = [0.0, 0.0, 0.01]", "moment = [0.0, 0.01]"))
     with pytest.raises(ValueError, match=r"line \d+: \[\[loads\]\] moment .* must be 3 numbers"):
         load_spec(bad)
+
+
+def test_a_study_evaluates_the_beam_model_of_a_spatial_file():
+    from flexfem.studies.user_model.analysis import evaluate
+    metrics = evaluate({"d": 0.0012}, model="beam", file=str(EXAMPLES / "wire_guide.toml"))
+    assert metrics["stiffness_stage_x"] == pytest.approx(1 / metrics["compliance_00"])
+    assert metrics["f1_hz"] > 0 and metrics["dofs"] > 0
+
+
+def test_the_command_prints_the_beam_model_and_refuses_out_in_one_line(capsys, tmp_path):
+    from flexfem.studies.cli import main
+    assert main(["analyze", str(EXAMPLES / "leaf_guide.toml"), "--model", "beam",
+                 "--set", "t=1.2 mm"]) == 0
+    printed = capsys.readouterr().out
+    assert "solver beam" in printed and "stiffness of 'stage' along y" in printed
+    assert main(["analyze", str(EXAMPLES / "leaf_guide.toml"), "--model", "beam",
+                 "--out", str(tmp_path / "out")]) == 2
+    err = capsys.readouterr().err
+    assert len(err.strip().splitlines()) == 1 and "no solved model to write" in err
