@@ -104,8 +104,8 @@ def check(jobs: int) -> None:
         table = description_tabulated(*point)
         for name in FIELDS:
             a, b = getattr(f, name), getattr(table, name)
-            if a == a and b == b:
-                worst[name] = max(worst[name], (abs(b / a - 1), point))
+            if a == a and b == b and abs(b / a - 1) >= worst[name][0]:
+                worst[name] = (abs(b / a - 1), point)
             print(f"{point[0]:.4g} {point[1]:.4g} {point[2]:.3g} {name:<10} direct {a:.6f} "
                   f"table {b:.6f}", flush=True)
     for name, (err, point) in worst.items():
