@@ -10,8 +10,8 @@ move 0.2) by flexfem and by the port, each made to run exactly ``--iterations`` 
 the force inverter (volume 0.3, density filter of radius 3, MMA with move 0.2) by flexfem and
 by the educational-style port (tests/topopt/inverter_port.py: top88's loop, spsolve, mmapy's
 ``mmasub`` as the MMA codes call it); the inverter by the robust formulation
-(inverter-robust: three designs an iteration, docs/topopt.md), printed with its time over the
-plain inverter's of the same run. Each row runs in its own process, after its imports.
+(inverter-robust: three designs an iteration, docs/topopt_robust.md), printed with its time
+over the plain inverter's of the same run. Each row runs in its own process, after its imports.
 """
 import argparse
 import json
