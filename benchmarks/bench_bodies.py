@@ -99,7 +99,7 @@ def fresh_run(path: Path, model: str) -> tuple[float, float]:
     cli = Path(sys.executable).with_name("flexfem")
     start = time.perf_counter()
     subprocess.run([str(cli), "analyze", str(path), "--model", model], check=True,
-                   capture_output=True)
+                   capture_output=True, text=True)
     return first, time.perf_counter() - start
 
 
@@ -109,9 +109,13 @@ def fresh(args) -> list[dict]:
           f" {'flexfem analyze: continuum s':>29} {'beam s':>8} {'ratio':>6}")
     for path in model_files():
         runs = {m: [] for m in MODELS}
-        for _ in range(args.repeat):
-            for m in MODELS:  # in turn: a drift of the machine's speed moves both
-                runs[m].append(fresh_run(path, m))
+        try:
+            for _ in range(args.repeat):
+                for m in MODELS:  # in turn: a drift of the machine's speed moves both
+                    runs[m].append(fresh_run(path, m))
+        except subprocess.CalledProcessError as e:
+            print(f"{path.name:<22} failed: {(e.stderr or '').strip().splitlines()[-1:]}")
+            continue
         med = {m: [statistics.median(r[i] for r in runs[m]) for i in (0, 1)] for m in MODELS}
         (c_first, c_cli), (b_first, b_cli) = med["continuum"], med["beam"]
         row = {"model": path.name, "continuum_first_s": c_first, "beam_first_s": b_first,
