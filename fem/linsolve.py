@@ -149,9 +149,8 @@ def pardiso_iparm(kind: str) -> np.ndarray:
     # variable-size blocks (VBSR, 80 % alike): the ordering works on the much smaller
     # block graph, -25 % to -40 % CPU on 3-D P2 (docs/performance.md)
     iparm[36] = 0 if kind == "general" else -80
-    # two-level factorization: the same factor and time on 2 cores, ~15 MiB less peak
-    # memory on a 3-D P2 K of 36k DOFs (its working buffers; docs/performance.md); out of
-    # core too (MKL 2024: the one-level VBSR factorization out of core met a false zero pivot)
+    # two-level factorization: the same factor and time on 2 cores, ~15 MiB less peak on a
+    # 3-D P2 K of 36k DOFs; out of core too (one-level VBSR met a false zero pivot there)
     iparm[23] = 1
     return iparm
 
@@ -247,10 +246,9 @@ class Factorization(LinearFactor):
 
     def _call(self, phase: int) -> None:
         """One PARDISO phase on this factorization; freed where it fails."""
-        dummy = np.zeros(self.n)
         try:
             pardiso_call(self._pt, self._mtype, phase, self.n, self._data, self._indptr,
-                         self._indices, self._iparm, dummy, dummy.copy())
+                         self._indices, self._iparm, np.zeros(self.n), np.zeros(self.n))
         except BaseException:
             self.free()
             raise
@@ -267,11 +265,13 @@ class Factorization(LinearFactor):
         core = max(FACTOR_SHARE * available_memory_bytes(), 1.25 * self.memory[1] + 2**24)
         with memory.ooc_environment(folder + os.sep, core):
             try:
-                self._call(22)
-            except MemoryError:
-                # MKL crashes releasing a failed out-of-core factorization: its handle is
-                # dropped (what it holds leaks) and its files removed
+                pardiso_call(self._pt, self._mtype, 22, self.n, self._data, self._indptr,
+                             self._indices, self._iparm, np.zeros(self.n), np.zeros(self.n))
+            except BaseException:
+                # MKL crashed releasing a failed out-of-core factorization: its handle is
+                # dropped (what it holds leaks) and free() removes its files
                 self._pt[:] = 0
+                self.free()
                 raise
         self.backend = "mkl-pardiso-ooc"
 

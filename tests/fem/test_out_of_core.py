@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import scipy.sparse as sp
-from flexfem.fem import Material, Model, linsolve
+from flexfem.fem import Material, Model, SingularStiffness, linsolve
 from flexfem.fem.budget import MEMORY_VARIABLE, factor_plan
 from flexfem.fem.factor import factor
 from flexfem.fem.model import Solid3D
@@ -78,3 +78,11 @@ def test_out_of_core_is_refused_by_other_backends():
     A = sp.identity(4, format="csr")
     with pytest.raises(ValueError, match="out_of_core: PARDISO's mode only"):
         linsolve.Factorization(A, "spd", backend="superlu", out_of_core=True)
+
+
+@needs_pardiso
+def test_a_failed_out_of_core_factorization_raises_and_leaves_no_files(tmp_path):
+    negative = -sp.diags([-1.0, 2.0, -1.0], [-1, 0, 1], shape=(300, 300), format="csr")
+    with pytest.raises(SingularStiffness, match="not positive definite"):
+        linsolve.Factorization(negative, "spd", out_of_core=True, scratch=str(tmp_path))
+    assert list(tmp_path.iterdir()) == []
