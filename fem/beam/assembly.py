@@ -134,9 +134,9 @@ class Assembler:
         K = space.condense(ke, w, space.constraint_diagonal(q, r)) if tangent else None
         return Evaluation(self.model, q, r, rz, K, w, ke)
 
-    def at(self, z, lam) -> Evaluation:
-        """evaluate(z, lam) with the tangent: the stepper's state (fem/beam/stepper.py)."""
-        return self.evaluate(z, lam)
+    def at(self, z, lam, tangent=True) -> Evaluation:
+        """evaluate(z, lam): the stepper's state (fem/beam/stepper.py)."""
+        return self.evaluate(z, lam, tangent)
 
     def load_rate(self, ev: Evaluation) -> np.ndarray:
         """d(rz)/d(lam) = T^T (K T_p p - f_ext) at the Evaluation ``ev``."""

@@ -25,16 +25,21 @@ KRYLOV_FROM = 100
 
 @dataclass(frozen=True, eq=False)
 class BeamModes:
-    """frequencies_hz : (n,) ascending (Hz); shapes : (n, n_nodes, 3) mass-normalised mode
-    shapes (u, v, theta per node); effective_mass : (n, 2) effective modal mass (kg) in x
-    and y; total_mass : kg (these two on first use: most analyses read the frequencies)."""
+    """Modes of a planar or spatial beam model. frequencies_hz : (n,) ascending (Hz);
+    shapes : (n, n_nodes, DOFs a node) mass-normalised mode shapes (planar u, v, theta;
+    spatial u_x, u_y, u_z, r_x, r_y, r_z); effective_mass : (n, dim) effective modal mass
+    (kg) along the axes; total_mass : kg (planar: these two on first use, most analyses read
+    the frequencies; ``masses`` (effective_mass, total_mass) where computed with the modes)."""
 
-    model: BeamModel
+    model: object
     frequencies_hz: np.ndarray
     shapes: np.ndarray
+    masses: tuple | None = None
 
     @cached_property
     def _masses(self) -> tuple:
+        if self.masses is not None:
+            return self.masses
         MT = _mass_translations(self.model)
         gamma = self.shapes.reshape(len(self.shapes), -1) @ MT
         return gamma**2, float(MT[0::3, 0].sum())
@@ -49,18 +54,23 @@ class BeamModes:
 
     @property
     def effective_mass_fraction(self) -> np.ndarray:
-        """(n, 2) effective mass over the total mass."""
+        """(n, dim) effective mass over the total mass."""
         return self.effective_mass / self.total_mass
 
-    solver = "beam"
+    @property
+    def solver(self) -> str:
+        return "beam" if self.model.dim == 2 else "beam3d"
 
     def dominant_direction(self, k: int) -> int:
-        """Translation axis (0 = x, 1 = y) with the largest effective mass of mode k."""
+        """Translation axis (0 = x, 1 = y, 2 = z) with the largest effective mass of mode k."""
         return int(np.argmax(self.effective_mass[k]))
 
     def vertex_shape(self, k: int) -> np.ndarray:
-        """(n_nodes, 2) translations of mode k at the nodes."""
-        return self.shapes[k][:, :2].copy()
+        """(n_nodes, dim) translations of mode k at the nodes."""
+        return self.shapes[k][:, :self.model.dim].copy()
+
+
+Beam3DModes = BeamModes  # the spatial model's name: the same class
 
 
 def _state_z(asm, about):

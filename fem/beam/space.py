@@ -84,6 +84,10 @@ class Space:
                              "slave; control a free DOF")
         return int(where[0])
 
+    def start(self) -> np.ndarray:
+        """The undeformed unknowns z = 0, where a solve starts."""
+        return np.zeros(self.n)
+
     @staticmethod
     def advance(z, dz, dlam):
         """The unknowns after the correction dz (the load factor's dlam moves q, not z)."""

@@ -79,7 +79,7 @@ def static_mesh(model, static) -> meshio.Mesh | None:
     if isinstance(static, StaticResult):
         point, cell, _ = result_fields(static)
         return continuum_mesh(model, point, {k: v[0] for k, v in cell.items()})
-    if isinstance(static, BeamResult):
+    if isinstance(static, BeamResult) and static.dim == 2:  # the spatial one's: not here
         q = static.state.q
         return beam_mesh(model, {"displacement": _pad3(q[:, :2]), "rotation": q[:, 2]},
                          static.state.stress)
@@ -104,7 +104,7 @@ def modes_mesh(model, modes) -> meshio.Mesh | None:
     if isinstance(modes, Modes):
         point, _, _ = result_fields(modes)
         return continuum_mesh(model, point, {})
-    if isinstance(modes, BeamModes):
+    if isinstance(modes, BeamModes) and modes.model.dim == 2:
         point = {mode_field_name(k, f): _pad3(modes.shapes[k][:, :2])
                  for k, f in enumerate(modes.frequencies_hz)}
         return beam_mesh(model, point)

@@ -88,6 +88,10 @@ class Space:
         self._col_held = -np.ones(n, dtype=int)
         self._col_held[self.held] = np.arange(len(self.held))
 
+    def start(self) -> tuple:
+        """The undeformed configuration (u, R), where a solve starts."""
+        return self.reference()
+
     def reference(self):
         """The undeformed configuration (u, R)."""
         n = self.model.n_nodes
@@ -208,9 +212,9 @@ class Assembler:
         Kz = (T.T @ K @ T).tocsc()
         return Evaluation3D(r, rz, Kz, T, Tp, K, fl)
 
-    def at(self, config, lam) -> Evaluation3D:
-        """evaluate() of a configuration (u, R), with the tangent: the stepper's state."""
-        return self.evaluate(*config, lam)
+    def at(self, config, lam, tangent=True) -> Evaluation3D:
+        """evaluate() of a configuration (u, R): the stepper's state."""
+        return self.evaluate(*config, lam, tangent)
 
     def load_rate(self, ev: Evaluation3D) -> np.ndarray:
         """d(rz)/d(lam) = T^T (K T_p p - f_ext)."""

@@ -4,43 +4,13 @@ Consistent mass (translational, rotary and torsional inertia, element.py), suppo
 rigid links eliminated; about the undeformed state, or about a converged nonlinear state
 (``about=``: its tangent, stress stiffening included, and the masses turned with it).
 """
-from dataclasses import dataclass
-
 import numpy as np
 import scipy.sparse.linalg as spla
 
 from ..assembly import DENSE_EIGEN_LIMIT
-from ..modal import dense_lowest_modes, negative_shift
+from ..modal import Beam3DModes, dense_lowest_modes, negative_shift
 from .assembly import Assembler, mass_matrix, symmetric_tangent
 from .model import Beam3DModel
-
-
-@dataclass(frozen=True, eq=False)
-class Beam3DModes:
-    """frequencies_hz : (n,) ascending (Hz); shapes : (n, n_nodes, 6) mass-normalised mode
-    shapes (u_x, u_y, u_z, r_x, r_y, r_z per node); effective_mass : (n, 3) effective modal
-    mass (kg) in x, y and z; total_mass : kg."""
-
-    model: Beam3DModel
-    frequencies_hz: np.ndarray
-    shapes: np.ndarray
-    effective_mass: np.ndarray
-    total_mass: float
-
-    @property
-    def effective_mass_fraction(self) -> np.ndarray:
-        """(n, 3) effective mass over the total mass."""
-        return self.effective_mass / self.total_mass
-
-    solver = "beam3d"
-
-    def dominant_direction(self, k: int) -> int:
-        """Translation axis (0 = x, 1 = y, 2 = z) with the largest effective mass of mode k."""
-        return int(np.argmax(self.effective_mass[k]))
-
-    def vertex_shape(self, k: int) -> np.ndarray:
-        """(n_nodes, 3) translations of mode k at the nodes."""
-        return self.shapes[k][:, :3].copy()
 
 
 def solve_beam3d_modes(model: Beam3DModel, supports, n: int = 6, about=None,
@@ -71,4 +41,4 @@ def solve_beam3d_modes(model: Beam3DModel, supports, n: int = 6, about=None,
     total = float(trans[:, 0] @ (M_full @ trans[:, 0]))
     freq = np.sqrt(np.clip(w2, 0.0, None)) / (2.0 * np.pi)
     return Beam3DModes(model=model, frequencies_hz=freq, shapes=full.reshape(n, -1, 6),
-                       effective_mass=gamma**2, total_mass=total)
+                       masses=(gamma**2, total))
