@@ -229,6 +229,19 @@ def verdict_text(record: dict, r_dbma: float) -> str:
             f"body-fitted R is {w['fitted_over_density']:.2f} of its density model's).")
 
 
+def large_text(record: dict) -> str:
+    """One sentence on the density model read with large displacements at the same force."""
+    if "large" not in record:
+        return ""
+    small, large = record["large"]["small"], record["large"]["large"]
+    return (f" Read with large displacements at {record['problem']['force']:g} N (the "
+            f"density model with its springs, topopt's large-displacement solver) its R is "
+            f"{large['R']:.3f} against {small['R']:.3f} with small ones "
+            f"({100 * (large['R'] / small['R'] - 1):+.2f} %; u_out {large['u_out'] * 1e6:.1f} "
+            f"um): at the DBMA's force the geometry barely changes, and the design was "
+            "optimised with small displacements.")
+
+
 def _paragraph(quick: bool, full: dict, record: dict, quarter=None, verified=None,
                result=None) -> str:
     """What was done, the constraints' values and what the rows mean."""
@@ -241,7 +254,7 @@ def _paragraph(quick: bool, full: dict, record: dict, quarter=None, verified=Non
         f"{p['nelx']} x {p['nely']} grid) the design ran "
         f"{record['result']['iterations']} MMA iterations"
         f" ({'converged' if record['result']['converged'] else 'not converged'}). "
-        + verdict_text(record, full["R_fem"]))
+        + verdict_text(record, full["R_fem"]) + large_text(record))
     if quick:
         return ("An amplifier optimised by flexfem.topopt in the DBMA's quarter, its "
                 "constraints the DBMA's own (k_in and peak stress of the whole part's 2-D "

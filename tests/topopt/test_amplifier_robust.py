@@ -119,3 +119,23 @@ def test_the_displacement_without_springs_is_that_of_springs_made_negligible():
     z = np.full(d.n_variables, 0.4)
     assert d.evaluate(z).constraints[0] == pytest.approx(w.evaluate(z).displacements["input"],
                                                          rel=1e-9)
+
+
+def test_the_large_displacement_reading_is_that_of_the_nonlinear_solver():
+    """At the DBMA's force the large-displacement R of a coarse grey quarter is within 1 % of
+    the small one's, and not equal to it (the nonlinear solver ran); at 100 times the force
+    u_out departs from the small-displacement one over ten times more (the geometry changes)."""
+    from dataclasses import replace
+
+    from flexfem.studies.dbma.topopt_robust import FORCE, large_reading
+
+    p = amplifier_problem(FORCE, 4.36e6, 4e7, 1e5, element=2e-3)
+    rho = np.full(p.grid.n_elements, 0.6)
+    r = large_reading(p, rho)
+    assert r["large"]["R"] == pytest.approx(r["small"]["R"], rel=1e-2)
+    assert r["large"]["u_out"] != r["small"]["u_out"]
+    strong = replace(p, loads=tuple(replace(ld, force=(100 * ld.force[0], 0.0))
+                                    for ld in p.loads))
+    big = large_reading(strong, rho)
+    assert abs(big["large"]["u_out"] / big["small"]["u_out"] - 1) > 10 * abs(
+        r["large"]["u_out"] / r["small"]["u_out"] - 1)
