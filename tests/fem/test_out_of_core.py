@@ -86,3 +86,18 @@ def test_a_failed_out_of_core_factorization_raises_and_leaves_no_files(tmp_path)
     with pytest.raises(SingularStiffness, match="not positive definite"):
         linsolve.Factorization(negative, "spd", out_of_core=True, scratch=str(tmp_path))
     assert list(tmp_path.iterdir()) == []
+
+
+@needs_pardiso
+@pytest.mark.parametrize("kind", ["symmetric", "general"])
+def test_out_of_core_of_the_other_kinds(stiffness, kind, tmp_path):
+    """The symmetric indefinite (shifted modal solves) and general kinds out of core."""
+    A = stiffness - 1e-3 * abs(stiffness.diagonal()).mean() * sp.identity(stiffness.shape[0])
+    A = sp.csr_matrix(A if kind == "symmetric" else A + sp.triu(A, 1).T)
+    b = np.ones(A.shape[0])
+    with linsolve.Factorization(A, kind, out_of_core=False) as F:
+        x_in = F.solve(b)
+    with linsolve.Factorization(A, kind, out_of_core=True, scratch=str(tmp_path)) as F:
+        assert F.backend == "mkl-pardiso-ooc"
+        x_out = F.solve(b)
+    assert np.abs(x_out - x_in).max() <= 1e-10 * np.abs(x_in).max()
