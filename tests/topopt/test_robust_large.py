@@ -74,3 +74,16 @@ def test_robust_large_displacement_gradients_match_finite_differences(stress):
             fdc = (ep.constraints[k] - em.constraints[k]) / (2 * h)
             assert ev.constraint_grads[k, j] == pytest.approx(fdc, rel=1e-4, abs=1e-6 * np.abs(
                 ev.constraint_grads[k]).max()), k
+
+
+def test_a_short_robust_large_displacement_run_reports_both():
+    """optimize() runs the small-displacement robust twin first, then the large one: the
+    summary has the three designs and the large-displacement start."""
+    from flexfem.topopt import optimize
+
+    problem = replace(_robust_large(), optimizer=replace(_robust_large().optimizer,
+                                                         max_iterations=4))
+    summary = optimize(problem).summary()
+    assert set(summary["robust"]["designs"]) == set(DESIGNS)
+    assert summary["large_displacements"]["start_iterations"] == 4
+    assert summary["iterations"] == 4
