@@ -6,7 +6,7 @@ import numpy as np
 import skfem
 from skfem.helpers import dot
 
-from .checks import is_real
+from .checks import InputError, is_real
 
 _AXES = ("x", "y", "z")
 
@@ -28,7 +28,7 @@ def _finite_vector(value, name: str) -> tuple:
 
 def _check_group(owner: str, group) -> None:
     if not (isinstance(group, str) and group):
-        raise ValueError(f"{owner}: group = {group!r} must be a group's name (a string)")
+        raise InputError("group", group, "a group's name (a string)", owner)
 
 
 @dataclass(frozen=True)

@@ -3,7 +3,7 @@ import math
 from dataclasses import dataclass
 
 from ..data import shared_toml
-from .checks import is_real
+from . import checks
 
 
 @dataclass(frozen=True)
@@ -53,22 +53,27 @@ class Material:
     fatigue_source: str = ""
 
     def __post_init__(self):
-        _require(self, "E", lambda v: v > 0, "> 0 (Pa)")
-        _require(self, "nu", lambda v: -1.0 < v < 0.5, "in (-1, 0.5)")
-        _require(self, "rho", lambda v: v > 0, "> 0 (kg/m^3)")
-        if not (is_real(self.yield_strength) and self.yield_strength > 0):
-            raise ValueError(f"material {self.name!r}: yield_strength = {self.yield_strength!r} "
-                             "must be > 0 (Pa; math.inf for none)")
-        object.__setattr__(self, "yield_strength", float(self.yield_strength))
-        if not (is_real(self.ultimate_strength) and self.ultimate_strength > 0):
-            raise ValueError(f"material {self.name!r}: ultimate_strength = "
-                             f"{self.ultimate_strength!r} must be > 0 (Pa; math.inf for none)")
+        owner = f"material {self.name!r}"
+        checked = {"E": checks.positive("E", self.E, owner=owner, unit="Pa"),
+                   "nu": checks.in_range("nu", self.nu, (-1.0, 0.5), owner=owner, closed=False),
+                   "rho": checks.positive("rho", self.rho, owner=owner, unit="kg/m^3")}
+        for name in ("yield_strength", "ultimate_strength"):
+            value = getattr(self, name)
+            if not (checks.is_real(value) and value > 0):
+                raise checks.InputError(name, value, "> 0 (Pa; math.inf for none)", owner)
+            checked[name] = float(value)
         if (self.fatigue_strength is None) != (self.fatigue_cycles is None):
             raise ValueError(f"material {self.name!r}: give fatigue_strength and fatigue_cycles "
                              "together (or neither)")
         if self.fatigue_strength is not None:
-            _require(self, "fatigue_strength", lambda v: v > 0, "> 0 (Pa)")
-            _require(self, "fatigue_cycles", lambda v: v >= 1, ">= 1")
+            checked["fatigue_strength"] = checks.positive(
+                "fatigue_strength", self.fatigue_strength, owner=owner, unit="Pa")
+            if not (checks.is_finite(self.fatigue_cycles) and self.fatigue_cycles >= 1):
+                raise checks.InputError("fatigue_cycles", self.fatigue_cycles,
+                                        "a finite number >= 1", owner)
+            checked["fatigue_cycles"] = float(self.fatigue_cycles)
+        for name, value in checked.items():
+            object.__setattr__(self, name, value)
 
     @property
     def lame(self) -> tuple[float, float]:
@@ -83,15 +88,6 @@ class Material:
                 "ultimate_strength": self.ultimate_strength,
                 "fatigue_strength": self.fatigue_strength,
                 "fatigue_cycles": self.fatigue_cycles}
-
-
-def _require(material, name, ok, bound):
-    """Check the field ``name`` of ``material`` and store it as a float."""
-    value = getattr(material, name)
-    if not (is_real(value) and math.isfinite(value) and ok(value)):
-        raise ValueError(f"material {material.name!r}: {name} = {value!r} must be a finite "
-                         f"number {bound}")
-    object.__setattr__(material, name, float(value))
 
 
 def _library() -> dict:

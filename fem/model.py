@@ -5,8 +5,6 @@ upper triangles (an explicit, named cache: ``model.stiffness_upper``, ``model.ma
 which is what the static and modal solves read, so that they share them; the full matrices
 ``model.stiffness`` and ``model.mass`` are built from these on first use and kept too.
 """
-import math
-import numbers
 from dataclasses import dataclass, replace
 from functools import cached_property
 
@@ -15,15 +13,9 @@ import scipy.sparse as sp
 import skfem
 from skfem.helpers import eye, grad, trace
 
-from . import assembly, memory, symmetric
+from . import assembly, checks, memory, symmetric
 from .materials import Material
 from .mesh import FEMesh
-
-
-def _check_thickness(formulation: str, thickness) -> None:
-    ok = isinstance(thickness, numbers.Real) and not isinstance(thickness, bool)
-    if not (ok and math.isfinite(thickness) and thickness > 0):
-        raise ValueError(f"{formulation} thickness = {thickness!r} must be a finite number > 0 (m)")
 
 
 @dataclass(frozen=True)
@@ -33,7 +25,7 @@ class PlaneStress:
     thickness: float
 
     def __post_init__(self):
-        _check_thickness("PlaneStress", self.thickness)
+        checks.positive("thickness", self.thickness, owner="PlaneStress", unit="m")
 
 
 @dataclass(frozen=True)
@@ -43,7 +35,7 @@ class PlaneStrain:
     thickness: float = 1.0
 
     def __post_init__(self):
-        _check_thickness("PlaneStrain", self.thickness)
+        checks.positive("thickness", self.thickness, owner="PlaneStrain", unit="m")
 
 
 @dataclass(frozen=True)

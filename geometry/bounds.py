@@ -8,8 +8,7 @@ already has millions of elements), a Young's modulus between 1 kPa (gels) and 10
 density between 1 kg/m^3 (aerogels) and 10^5 kg/m^3. Types are checked first: a length is a
 real number (not a bool, a string, None, a list or a complex), as in DBMAParams.
 """
-import math
-import numbers
+from ..fem import checks
 
 LENGTH_MIN = 1e-8   # m
 LENGTH_MAX = 10.0   # m
@@ -18,22 +17,14 @@ MODULUS_RANGE = (1e3, 1e13)   # Pa
 DENSITY_RANGE = (1.0, 1e5)    # kg/m^3
 
 
-def real(owner: str, name: str, value) -> float:
-    """``value`` as a float if it is a finite real number (bools refused), else ValueError."""
-    if not (isinstance(value, numbers.Real) and not isinstance(value, bool)
-            and math.isfinite(value)):
-        raise ValueError(f"{owner}: {name} = {value!r} must be a finite number")
-    return float(value)
-
-
 def length(owner: str, name: str, value, zero_allowed: bool = False) -> float:
     """A length (m) in [LENGTH_MIN, LENGTH_MAX] (or exactly 0 when ``zero_allowed``)."""
-    value = real(owner, name, value)
+    value = checks.real(name, value, owner)
     if zero_allowed and value == 0:
         return value
     if not LENGTH_MIN <= value <= LENGTH_MAX:
-        raise ValueError(f"{owner}: {name} = {value!r} m must be in [{LENGTH_MIN:g}, "
-                         f"{LENGTH_MAX:g}] m (10 nm to 10 m)")
+        raise checks.InputError(name, value, f"a length in [{LENGTH_MIN:g}, {LENGTH_MAX:g}] m "
+                                "(10 nm to 10 m)", owner)
     return value
 
 
@@ -46,10 +37,14 @@ def span(owner: str, lengths: dict) -> None:
                          f"times {small} = {positive[small]!r} m: no mesh resolves both")
 
 
-def in_range(owner: str, name: str, value, bounds: tuple, unit: str) -> float:
-    """``value`` (a finite real) within ``bounds`` (inclusive), else ValueError."""
-    value = real(owner, name, value)
-    if not bounds[0] <= value <= bounds[1]:
-        raise ValueError(f"{owner}: {name} = {value!r} {unit} must be in [{bounds[0]:g}, "
-                         f"{bounds[1]:g}] {unit}")
-    return value
+def lengths(owner: str, params, names, zero_allowed=()) -> dict:
+    """Check the fields ``names`` of the frozen dataclass ``params`` as lengths (m): each a
+    finite number > 0 (>= 0 for those in ``zero_allowed``) within :func:`length`'s bounds,
+    stored as a float. Returns {name: length} (for :func:`span`)."""
+    for name in names:
+        value = checks.real(name, getattr(params, name), owner)
+        if not (value > 0 or (name in zero_allowed and value == 0)):
+            least = ">=" if name in zero_allowed else ">"
+            raise checks.InputError(name, value, f"a finite number {least} 0 (m)", owner)
+        object.__setattr__(params, name, length(owner, name, value, name in zero_allowed))
+    return {name: getattr(params, name) for name in names}

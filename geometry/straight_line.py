@@ -10,6 +10,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..fem import checks
+
 from .linkage import (
     CrankAngle,
     Joint,
@@ -66,12 +68,6 @@ class StraightLineMechanism:
     input_range: tuple
 
 
-def _positive(**values):
-    for key, value in values.items():
-        if not value > 0:
-            raise ValueError(f"{key} = {value}, must be > 0")
-
-
 def _four_bar(O, A, B, C, P, crank_range, name):
     """Four-bar O-A-B-C (ground O, C) with coupler point P, crank OA driven."""
     links = (Link("ground", {"O": O, "C": C}),
@@ -90,7 +86,8 @@ def watt_linkage(a=0.1, b=0.1, h=0.05, crank_range=(-0.2, 0.2)) -> StraightLineM
     divides AB in the inverse ratio of the cranks, |AP| / |PB| = b / a, which makes the path's
     curvature vanish in the middle; the thesis prints x / (h - x) = a / b, which is the same
     point when x is measured from B (identical for a = b; see docs/eightbar.md)."""
-    _positive(a=a, b=b, h=h)
+    for name, value in (("a", a), ("b", b), ("h", h)):
+        checks.positive(name, value, unit="m")
     x = h * b / (a + b)   # |AP|
     O, A, B, C = (-a, 0.0), (0.0, 0.0), (0.0, h), (b, h)
     return _four_bar(O, A, B, C, (0.0, x), crank_range, "watt")
@@ -100,7 +97,8 @@ def roberts_linkage(a=0.2, h=0.1, crank_range=(-0.2, 0.2)) -> StraightLineMechan
     """Roberts' linkage (Section 2.2): cranks |OA| = |BC| = a, coupler |AB| = h, ground g = 2h,
     tracing point P the apex of the isosceles coupler triangle, |AP| = |BP| = a, which in the
     middle position lies on the ground line midway between O and C."""
-    _positive(a=a, h=h)
+    for name, value in (("a", a), ("h", h)):
+        checks.positive(name, value, unit="m")
     if not a > h / 2:
         raise ValueError(f"a = {a} m, must be > h/2 = {h / 2} m for the coupler to reach")
     y = np.sqrt(a**2 - (h / 2) ** 2)
@@ -115,7 +113,7 @@ def chebyshev_linkage(h=0.1) -> StraightLineMechanism:
     (x = 2h); P is exactly at height 2h at both ends and in the middle. Both ends are toggle
     positions of a crank (O, B, A collinear at x = 0; A, B, C collinear at x = 2h), so the input
     is P's x coordinate (m), which stays regular over the stretch."""
-    _positive(h=h)
+    checks.positive("h", h, unit="m")
     O, A, B, C = (0.0, 0.0), (1.5 * h, 2 * h), (0.5 * h, 2 * h), (2 * h, 0.0)
     mech = _four_bar(O, A, B, C, (h, 2 * h), (0.0, 2 * h), "chebyshev")
     linkage = Linkage(mech.linkage.links, mech.linkage.joints, (PointCoordinate("coupler", "P", 0),))
@@ -163,7 +161,8 @@ def peaucellier_linkage(a=0.3, b=0.2, c=0.1, psi=np.pi / 2,
     """Peaucellier-Lipkin linkage (Section 2.4): arms |OA| = |OD| = a > rhombus side b, extra
     link |QC| = |OQ| = c. O, C, P stay collinear with OC * OP = a^2 - b^2 (Eq. 2.2 and the
     proof after Eq. 2.6), so P moves on the exact line x = (a^2 - b^2) / (2c)."""
-    _positive(a=a, b=b, c=c)
+    for name, value in (("a", a), ("b", b), ("c", c)):
+        checks.positive(name, value, unit="m")
     if not a > b:
         raise ValueError(f"a = {a} m, must be > b = {b} m (else use the modified linkage)")
     return _peaucellier(a, b, c, psi, crank_range, "peaucellier")
@@ -175,7 +174,8 @@ def modified_peaucellier_linkage(a=0.1, b=0.2, c=0.1, psi=np.pi / 2,
     side (a < b) so the pivot O lies inside the rhombus, C and P' on opposite sides of O with
     OC * OP' = b^2 - a^2 (Eqs. 2.3-2.4, 2.7-2.8); P' moves on the exact line
     x = -(b^2 - a^2) / (2c), on the other side of O from the circle of C."""
-    _positive(a=a, b=b, c=c)
+    for name, value in (("a", a), ("b", b), ("c", c)):
+        checks.positive(name, value, unit="m")
     if not a < b:
         raise ValueError(f"a = {a} m, must be < b = {b} m for the modified (inside) cell")
     return _peaucellier(a, b, c, psi, crank_range, "modified_peaucellier")

@@ -4,24 +4,37 @@ import argparse
 import json
 import math
 
+from ..fem import checks
 from .engine.convergence import parse_tolerance
 
 
-def _number(text: str, expected: str) -> float:
-    """``text`` as a float, else the refusal naming what is ``expected``."""
+def _checked(text: str, check, what: str | None = None, **options):
+    """The number ``text`` through ``check`` (fem/checks.py: positive, in_range, count; a
+    count's 1e6 read as 1000000), refused in the command line's words ("'0' must be a finite
+    number > 0"); ``what`` (e.g. "a size factor ...") replaces the check's own words."""
     try:
-        return float(text)
+        value = float(text)
     except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not a number; expected {expected}"
-                                         ) from None
+        value = None  # not a number: refused below
+    if check is checks.count and checks.is_finite(value) and value == int(value):
+        value = int(value)
+    try:
+        return check("", value, **options)
+    except checks.InputError as error:
+        expected = what or error.must
+        raise argparse.ArgumentTypeError(f"{_shown(text)} is not a number; expected {expected}"
+                                         if value is None else
+                                         f"{_shown(text)} must be {expected}") from None
+
+
+def _shown(text: str) -> str:
+    """The value as typed, shortened where it is long (10**300 written out)."""
+    return repr(text) if len(text) <= 24 else f"{text[:12]!r}... ({len(text)} characters)"
 
 
 def positive(text: str) -> float:
     """A finite number > 0."""
-    value = _number(text, "a number > 0")
-    if not (math.isfinite(value) and value > 0):
-        raise argparse.ArgumentTypeError(f"{text!r} must be a finite number > 0")
-    return value
+    return _checked(text, checks.positive)
 
 
 def length(text: str) -> str | float:
@@ -42,40 +55,21 @@ def length(text: str) -> str | float:
 
 def size_factor(text: str) -> float:
     """A size factor from 0.001 to 1000 (1: the default mesh)."""
-    value = _number(text, "a size factor from 0.001 to 1000 (1: the default mesh)")
-    if not (math.isfinite(value) and 1e-3 <= value <= 1e3):
-        raise argparse.ArgumentTypeError(f"{text!r} must be a size factor from 0.001 to 1000 "
-                                         "(1: the default mesh)")
-    return value
+    return _checked(text, checks.in_range, "a size factor from 0.001 to 1000 (1: the default "
+                    "mesh)", bounds=(1e-3, 1e3))
 
 
 def count(text: str) -> int:
     """A whole number >= 1 (1e6 is accepted as 1000000)."""
-    value = _number(text, "a whole number >= 1")
-    if not (math.isfinite(value) and value >= 1 and value == int(value)):
-        raise argparse.ArgumentTypeError(f"{text!r} must be a whole number >= 1")
-    return int(value)
-
-
-def _shown(text: str) -> str:
-    """The value as typed, shortened where it is long (10**300 written out)."""
-    return repr(text) if len(text) <= 24 else f"{text[:12]!r}... ({len(text)} characters)"
+    return _checked(text, checks.count)
 
 
 def whole_number(low: int, high: int):
     """The type of an option that takes a whole number from ``low`` to ``high`` (1e3 is
     accepted as 1000): a count whose upper end bounds the work or memory it asks for."""
-    expected = f"a whole number from {low:,} to {high:,}"
 
     def parse(text: str) -> int:
-        try:
-            value = float(text)
-        except ValueError:
-            raise argparse.ArgumentTypeError(f"{_shown(text)} is not a number; expected "
-                                             f"{expected}") from None
-        if not (math.isfinite(value) and value == int(value) and low <= value <= high):
-            raise argparse.ArgumentTypeError(f"{_shown(text)} must be {expected}")
-        return int(value)
+        return _checked(text, checks.count, least=low, most=high)
 
     parse.__name__ = "whole_number"
     return parse
@@ -83,14 +77,8 @@ def whole_number(low: int, high: int):
 
 def damping_ratio(text: str) -> float:
     """A damping ratio in (0, 1)."""
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not a number; expected a damping ratio "
-                                         "in (0, 1), e.g. 0.02") from None
-    if not 0 < value < 1:
-        raise argparse.ArgumentTypeError(f"{text!r} must be a damping ratio in (0, 1), e.g. 0.02")
-    return value
+    return _checked(text, checks.in_range, "a damping ratio in (0, 1), e.g. 0.02",
+                    bounds=(0, 1), closed=False)
 
 
 def tolerance(text: str) -> float:

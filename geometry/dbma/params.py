@@ -7,9 +7,11 @@ from data/dbma_paper.toml.
 from dataclasses import dataclass, fields
 
 from ...data import load_toml
+from ...fem import checks
 from .. import bounds
 
 MM = 1e-3  # metres per millimetre
+OWNER = "DBMAParams"
 
 
 @dataclass(frozen=True)
@@ -31,7 +33,8 @@ class DBMAParams:
 
     Bounds: every length a finite number in [10 nm, 10 m] (geometry/bounds.py) except h, which
     may also be 0 (h = 0 puts the two hinges on one line, a valid limit of the drawing; the
-    analyses need h > 0), at most 10^4 between the largest and smallest length; b < c and b < a (the hinge is thinner than the arms it joins);
+    analyses need h > 0), at most 10^4 between the largest and smallest length; b < c and
+    b < a (the hinge is thinner than the arms it joins);
     h <= c - b (both hinges, each of thickness b, lie within the width c of the arm that
     joins them, so their centre lines are at most c - b apart); E in [1 kPa, 10 TPa];
     -1 < nu < 0.5; rho in [1, 1e5] kg/m^3.
@@ -52,28 +55,19 @@ class DBMAParams:
 
     def __post_init__(self):
         for f in fields(self):
-            object.__setattr__(self, f.name, bounds.real("DBMAParams", f.name, getattr(self, f.name)))
-        lengths = ("c", "a", "d", "l", "e", "ls", "ll", "b")
-        for name in lengths:
-            _require(self, name, getattr(self, name) > 0, "> 0 (m)")
-            bounds.length("DBMAParams", name, getattr(self, name))
-        _require(self, "h", self.h >= 0, ">= 0 (m)")
-        bounds.length("DBMAParams", "h", self.h, zero_allowed=True)
-        bounds.span("DBMAParams", {name: getattr(self, name) for name in lengths})
-        _require(self, "b", self.b < self.c, f"< c = {self.c!r} m (hinge thinner than the arm)")
-        _require(self, "b", self.b < self.a, f"< a = {self.a!r} m (hinge thinner than the arm)")
-        _require(self, "h", self.h <= self.c - self.b,
-                 f"<= c - b = {self.c - self.b!r} m (both hinges inside the arm width)")
-        _require(self, "E", self.E > 0, "> 0 (Pa)")
-        bounds.in_range("DBMAParams", "E", self.E, bounds.MODULUS_RANGE, "Pa")
-        _require(self, "nu", -1.0 < self.nu < 0.5, "in (-1, 0.5)")
-        _require(self, "rho", self.rho > 0, "> 0 (kg/m^3)")
-        bounds.in_range("DBMAParams", "rho", self.rho, bounds.DENSITY_RANGE, "kg/m^3")
-
-
-def _require(params, name, ok, bound):
-    if not ok:
-        raise ValueError(f"DBMAParams: {name} = {getattr(params, name)!r} must be {bound}")
+            object.__setattr__(self, f.name, checks.real(f.name, getattr(self, f.name), OWNER))
+        bounds.span(OWNER, bounds.lengths(OWNER, self, ("c", "a", "d", "l", "e", "ls", "ll", "b")))
+        bounds.lengths(OWNER, self, ("h",), zero_allowed=("h",))
+        for arm in ("c", "a"):
+            if not self.b < getattr(self, arm):
+                raise checks.InputError("b", self.b, f"< {arm} = {getattr(self, arm)!r} m (hinge "
+                                        "thinner than the arm)", OWNER)
+        if not self.h <= self.c - self.b:
+            raise checks.InputError("h", self.h, f"<= c - b = {self.c - self.b!r} m (both "
+                                    "hinges inside the arm width)", OWNER)
+        checks.in_range("E", self.E, bounds.MODULUS_RANGE, "Pa", OWNER)
+        checks.in_range("nu", self.nu, (-1.0, 0.5), owner=OWNER, closed=False)
+        checks.in_range("rho", self.rho, bounds.DENSITY_RANGE, "kg/m^3", OWNER)
 
 
 def paper_design() -> DBMAParams:

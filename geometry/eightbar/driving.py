@@ -22,12 +22,12 @@ same one, tested). The suspensions default to the Chapter 5 eight-bar with a lon
 pre-bowed against its flexures' elastic bow (:func:`compensated_suspension`). All lengths in m.
 """
 import math
-import numbers
 from dataclasses import dataclass, field, fields
 
 import numpy as np
 
 from ...data import load_toml
+from ...fem import checks
 from ...fem.materials import material
 from ..flexure_drawing import mesh_layout
 from ..flexure_linkage import FlexureLayout, flexure_layout
@@ -47,8 +47,7 @@ def chebyshev_lambda_linkage(h: float = 0.1) -> StraightLineMechanism:
     rocker |CB| = 1.25h. P runs near y = 2h from x = 2h (crank at 90 deg) to x = 0 (270 deg),
     exactly at y = 2h at x = 0, h, 2h. Drawn at crank angle 180 deg (P = (h, 2h)); input: the
     crank rotation from there (rad), range +-pi/2 (the whole straight stretch)."""
-    if not (isinstance(h, numbers.Real) and math.isfinite(h) and h > 0):
-        raise ValueError(f"h = {h!r} m, must be a finite number > 0")
+    checks.positive("h", h, unit="m")
     O, C, A, P = (0.0, 0.0), (h, 0.0), (-h / 2, 0.0), (h, 2 * h)
     B = ((A[0] + P[0]) / 2, (A[1] + P[1]) / 2)
     links = (Link("ground", {"O": O, "C": C}), Link("crank", {"O": O, "A": A}),
@@ -103,10 +102,7 @@ class DrivingParams:
         for f in fields(self):
             if f.name == "suspension":
                 continue
-            value = getattr(self, f.name)
-            if not (isinstance(value, numbers.Real) and not isinstance(value, bool)
-                    and math.isfinite(value) and value > 0):
-                raise ValueError(f"{f.name} = {value!r} m, must be a finite number > 0")
+            checks.positive(f.name, getattr(self, f.name), owner="DrivingParams", unit="m")
         if not self.lever_length > self.lambda_crank:
             raise ValueError(f"lever_length = {self.lever_length} m, must be > lambda_crank = "
                              f"{self.lambda_crank} m (Q lies beyond A on the crank)")

@@ -16,12 +16,12 @@ keeps sigma = E w theta / (2 L) at or below yield / 2.4: base flexures 12 x 0.4,
 20 x 0.3, links 5 wide, 6 thick.
 """
 import math
-import numbers
 from dataclasses import dataclass, field, fields, replace
 
 import numpy as np
 
 from ...data import load_toml
+from ...fem import checks
 from ...fem.materials import material as material_named
 from .. import bounds
 from ..flexure_drawing import mesh_layout
@@ -78,13 +78,7 @@ class EightBarFlexureParams:
     def __post_init__(self):
         if not isinstance(self.rigid, EightBarParams):
             raise ValueError(f"rigid = {self.rigid!r} must be an EightBarParams")
-        for name in _LENGTHS:
-            value = getattr(self, name)
-            if not (isinstance(value, numbers.Real) and not isinstance(value, bool)
-                    and math.isfinite(value) and value > 0):
-                raise ValueError(f"{name} = {value!r} m, must be a finite number > 0")
-            object.__setattr__(self, name, bounds.length("EightBarFlexureParams", name, value))
-        bounds.span("EightBarFlexureParams", {name: getattr(self, name) for name in _LENGTHS}
+        bounds.span("EightBarFlexureParams", bounds.lengths("EightBarFlexureParams", self, _LENGTHS)
                     | {"rigid.ground_spacing": self.rigid.ground_spacing})
         material_named(self.material)  # raises ValueError naming the known materials
         for name in ("base_flexure_width", "flexure_width"):
@@ -116,8 +110,7 @@ class EightBarFlexureParams:
     def scaled(self, factor: float, material: str | None = None) -> "EightBarFlexureParams":
         """Every length times ``factor`` (e.g. 1e-3 for the micrometre version), and the
         material swapped if given."""
-        if not (isinstance(factor, numbers.Real) and math.isfinite(factor) and factor > 0):
-            raise ValueError(f"factor = {factor!r} must be a finite number > 0")
+        checks.positive("factor", factor)
         rigid = replace(self.rigid, **{f.name: getattr(self.rigid, f.name) * factor
                                        for f in fields(self.rigid)})
         return replace(self, rigid=rigid, material=material or self.material,
@@ -206,11 +199,8 @@ def _segment_gap(P, Q) -> float:
 
 
 def check_mesh_options(n_across, size_factor) -> None:
-    if not (isinstance(n_across, (int, np.integer)) and n_across >= 3):
-        raise ValueError(f"n_across = {n_across!r} must be an integer >= 3")
-    if not (isinstance(size_factor, numbers.Real) and math.isfinite(size_factor)
-            and 0.1 <= size_factor <= 10):
-        raise ValueError(f"size_factor = {size_factor!r} must be in [0.1, 10]")
+    checks.count("n_across", n_across, least=3)
+    checks.in_range("size_factor", size_factor, (0.1, 10))
 
 
 def mesh_eightbar_flexure(params: EightBarFlexureParams, n_across: int = 3,

@@ -46,12 +46,8 @@ class EightBarParams:
     travel: float = 35e-3
 
     def __post_init__(self):
-        for f in fields(self):
-            value = bounds.real("EightBarParams", f.name, getattr(self, f.name))
-            if not value > 0:
-                raise ValueError(f"{f.name} = {value} m, must be > 0")
-            object.__setattr__(self, f.name, bounds.length("EightBarParams", f.name, value))
-        bounds.span("EightBarParams", {f.name: getattr(self, f.name) for f in fields(self)})
+        bounds.span("EightBarParams",
+                    bounds.lengths("EightBarParams", self, [f.name for f in fields(self)]))
         reach = abs(self.ground_spacing - self.coupler_length) / 2
         if not self.crank_length > reach:
             raise ValueError(f"crank_length = {self.crank_length} m, must be > |g - h|/2 = "

@@ -11,6 +11,7 @@ import math
 
 import numpy as np
 
+from ...fem import checks
 from .expressions import evaluate_expression, names_in
 from .tables import Locator, check_keys, is_number
 
@@ -113,17 +114,10 @@ def _points(raw, names, where, least: int = 1) -> tuple:
     return tuple(_point(p, names, where) for p in raw)
 
 
-def _positive(value, names, where) -> float:
+def _length(value, names, where) -> float:
+    """A length > 0 (m): a number or an expression of the parameters."""
     v = evaluate_expression(value, names, where)
-    if not v > 0:
-        raise ValueError(f"{where} = {value!r} = {v} must be > 0 (m)")
-    return v
-
-
-def _count(value, where) -> int:
-    if not (isinstance(value, int) and not isinstance(value, bool) and value >= 1):
-        raise ValueError(f"{where} = {value!r} must be an integer >= 1")
-    return int(value)
+    return checks.positive(where if v == value else f"{where} = {value!r}", v, unit="m")
 
 
 def _beam(entry, i, names, depth, elements, loc: Locator) -> BeamLine:
@@ -134,8 +128,9 @@ def _beam(entry, i, names, depth, elements, loc: Locator) -> BeamLine:
     try:
         points = _points(entry["points"], names, "[[beam]] points", 2)
         ts = _profile(entry["thickness"], points, names)
-        d = _positive(entry["depth"], names, "[[beam]] depth") if "depth" in entry else depth
-        n = _count(entry["elements"], "[[beam]] elements") if "elements" in entry else elements
+        d = _length(entry["depth"], names, "[[beam]] depth") if "depth" in entry else depth
+        n = (checks.count("[[beam]] elements", entry["elements"]) if "elements" in entry
+             else elements)
     except ValueError as error:
         key = next((k for k in BEAM_KEYS if f"] {k}" in str(error)), None)
         raise loc.error(str(error), "beam", key, i) from None
@@ -173,7 +168,7 @@ def _profile(raw, points, names) -> Profile:
     if listed and len(raw) != len(points):
         raise ValueError(f"{where}: {len(raw)} values for {len(points)} points (give one, "
                          "one per point, or an expression of s, the arc length)")
-    values = tuple(_positive(t, names, where) for t in (raw if listed else [raw] * len(points)))
+    values = tuple(_length(t, names, where) for t in (raw if listed else [raw] * len(points)))
     return Profile(arc, values)
 
 
@@ -205,7 +200,7 @@ def beam_options(raw, loc: Locator) -> dict:
     out = {}
     if "elements" in raw:
         try:
-            out["elements"] = _count(raw["elements"], "[beam_model] elements")
+            out["elements"] = checks.count("[beam_model] elements", raw["elements"])
         except ValueError as error:
             raise loc.error(str(error), "beam_model", "elements") from None
     for key in ("shear", "notch_correction"):

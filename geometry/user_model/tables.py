@@ -4,6 +4,7 @@ dataclasses with SI values."""
 from dataclasses import dataclass
 from pathlib import Path
 
+from ...fem import checks
 from ...fem.budget import MAX_FREQUENCY_POINTS, MAX_MODES
 from ...fem.materials import Material, material, material_names
 from .expressions import is_number
@@ -147,12 +148,20 @@ def check_keys(raw, allowed, loc: Locator, table, index: int = 0, what=None) -> 
     return raw
 
 
+def located(check, raw: dict, key: str, loc: Locator, table, index: int = 0, what=None,
+            at=None, **options):
+    """``check`` (one of fem/checks.py's) of ``raw[key]``, its refusal naming the file and
+    the line of ``at`` (default ``key``): ``located(checks.count, raw, "modes", loc,
+    "analysis")``."""
+    try:
+        return check(f"{what or f'[{table}]'} {key}", raw[key], **options)
+    except checks.InputError as error:
+        raise loc.error(str(error), table, at or key, index) from None
+
+
 def positive(raw: dict, key: str, loc: Locator, table, index: int = 0, what=None):
-    value = raw[key]
-    if not (is_number(value) and value > 0):
-        raise loc.error(f"{what or f'[{table}]'} {key} = {value!r} must be a number > 0 (SI)",
-                        table, key, index)
-    return float(value)
+    """``raw[key]`` as a float > 0 (SI), else the model file's refusal."""
+    return located(checks.positive, raw, key, loc, table, index, what, unit="SI")
 
 
 def parse_material(raw, loc: Locator) -> Material:
@@ -165,9 +174,8 @@ def parse_material(raw, loc: Locator) -> Material:
     name = raw.pop("name", None)
     if name is not None and not isinstance(name, str):
         raise loc.error(f"[material] name = {name!r} must be a string", "material", "name")
-    for key, value in raw.items():
-        if not is_number(value):
-            raise loc.error(f"[material] {key} = {value!r} must be a number (SI)", "material", key)
+    for key in raw:
+        located(checks.real, raw, key, loc, "material")
     if name in material_names():
         base = material(name).as_dict()
         values = {**{k: base[k] for k in keys[1:]}, **raw}
@@ -328,14 +336,12 @@ def parse_harmonic(raw, loc: Locator) -> Harmonic:
     if raw["component"] not in ("x", "y", "z"):
         raise loc.error(f"{what} component = {raw['component']!r}; choose x, y or z",
                         "analysis", "harmonic")
-    checks = {"f_max": lambda v: is_number(v) and v > 0,
-              "points": lambda v: isinstance(v, int) and not isinstance(v, bool) and v >= 3,
-              "damping": lambda v: is_number(v) and 0 < v < 1,
-              "n_modes": lambda v: isinstance(v, int) and not isinstance(v, bool) and v >= 1}
-    for key, ok in checks.items():
-        if key in raw and not ok(raw[key]):
-            raise loc.error(f"{what} {key} = {raw[key]!r} is not valid (f_max > 0 Hz, points "
-                            ">= 3, 0 < damping < 1, n_modes >= 1)", "analysis", "harmonic")
+    rules = {"f_max": (checks.positive, {"unit": "Hz"}), "points": (checks.count, {"least": 3}),
+             "damping": (checks.in_range, {"bounds": (0, 1), "closed": False}),
+             "n_modes": (checks.count, {})}
+    for key, (check, options) in rules.items():
+        if key in raw:
+            located(check, raw, key, loc, "analysis", what=what, at="harmonic", **options)
     for key, cap in (("points", MAX_FREQUENCY_POINTS), ("n_modes", MAX_MODES)):
         if raw.get(key, 0) > cap:
             raise loc.error(f"{what} {key} = {raw[key]:,} is above the most flexfem solves, "
@@ -359,10 +365,8 @@ def parse_analysis(raw, loc: Locator) -> Analysis:
         raise loc.error(f"[analysis] stroke_check = {raw['stroke_check']!r} must be true or "
                         "false", "analysis", "stroke_check")
     values = {}
-    if "safety_factor" in raw and not (is_number(raw["safety_factor"])
-                                       and 1 <= raw["safety_factor"] <= 100):
-        raise loc.error(f"[analysis] safety_factor = {raw['safety_factor']!r} must be a number "
-                        "from 1 to 100", "analysis", "safety_factor")
+    if "safety_factor" in raw:
+        located(checks.in_range, raw, "safety_factor", loc, "analysis", bounds=(1, 100))
     if "mean_stroke" in raw and not (is_number(raw["mean_stroke"])
                                      and abs(raw["mean_stroke"]) <= LENGTHS[1]):
         raise loc.error(f"[analysis] mean_stroke = {raw['mean_stroke']!r} must be a length "
@@ -379,10 +383,7 @@ def parse_analysis(raw, loc: Locator) -> Analysis:
         values["harmonic"] = parse_harmonic(raw["harmonic"], loc)
     for key in ("modes", "steps", "buckling"):
         if key in raw:
-            v = raw[key]
-            if not (isinstance(v, int) and not isinstance(v, bool) and v >= 1):
-                raise loc.error(f"[analysis] {key} = {v!r} must be an integer >= 1",
-                                "analysis", key)
+            v = located(checks.count, raw, key, loc, "analysis")
             if key in ("modes", "buckling") and v > MAX_MODES:
                 raise loc.error(f"[analysis] {key} = {v:,} is above the most flexfem solves, "
                                 f"{MAX_MODES}: a flexure is designed on its first few; each "

@@ -20,7 +20,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ...fem import Material
+from ...fem import Material, checks
 
 
 @dataclass(frozen=True)
@@ -44,8 +44,7 @@ class FlexurePivot:
     def __post_init__(self):
         for attr in ("L", "t", "w", "transmission_ratio", "stiffness", "max_stress",
                      "safety_factor"):
-            if not getattr(self, attr) > 0.0:
-                raise ValueError(f"{attr} = {getattr(self, attr)} must be > 0")
+            checks.positive(attr, getattr(self, attr), owner="FlexurePivot")
         if self.theta_max < 0.0:
             raise ValueError(f"theta_max = {self.theta_max} must be >= 0")
         if int(self.n_leaves) != self.n_leaves or self.n_leaves < 1:

@@ -22,6 +22,7 @@ from pathlib import Path
 
 import tomllib
 
+from ...fem import checks
 from .checks import check_study, required_metrics, stale_rows, warn_stale
 from .executors import make_executor
 from .plots import plot_metric, pyplot  # noqa: F401  (engine.sweep.plot_metric, as before)
@@ -68,8 +69,7 @@ class Sample:
     def __post_init__(self):
         if self.method not in SAMPLE_METHODS:
             raise ValueError(f"sample.method = {self.method!r} must be one of {SAMPLE_METHODS}")
-        if not isinstance(self.n, int) or self.n < 1:
-            raise ValueError(f"sample.n = {self.n!r} must be an integer >= 1")
+        checks.count("sample.n", self.n)
         if not self.ranges:
             raise ValueError("sample.ranges is empty: give at least one parameter range")
         for name, bounds in self.ranges.items():

@@ -70,7 +70,7 @@ def test_material_parameters_out_of_range(field, value, words):
 @pytest.mark.parametrize("formulation", [PlaneStress, PlaneStrain])
 @pytest.mark.parametrize("thickness", [0.0, -0.01, math.nan, math.inf, "0.01"])
 def test_thickness_must_be_positive_and_finite(formulation, thickness):
-    with pytest.raises(ValueError, match=f"{formulation.__name__} thickness .* finite number > 0"):
+    with pytest.raises(ValueError, match=f"{formulation.__name__}: thickness .* finite number > 0"):
         formulation(thickness)
 
 

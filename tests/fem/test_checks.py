@@ -1,9 +1,11 @@
 """The package's one set of input checks (fem/checks.py)."""
 import math
+import pickle
 
 import numpy as np
 import pytest
-from flexfem.fem.checks import finite_or_none, is_finite, is_real, positive
+from flexfem.fem.checks import (InputError, count, finite_or_none, in_range, is_finite,
+                                is_real, positive, real)
 
 
 def test_what_a_number_is():
@@ -24,3 +26,36 @@ def test_positive_and_finite_or_none_keep_the_value():
     assert finite_or_none("x", None) is None and finite_or_none("x", -3) == -3.0
     with pytest.raises(ValueError, match=r"x = inf must be a finite number or None \(free\)"):
         finite_or_none("x", math.inf)
+
+
+@pytest.mark.parametrize("check, args, message", [
+    (real, ("x", math.nan), "x = nan must be a finite number"),
+    (positive, ("E", 0.0), "E = 0.0 must be a finite number > 0 (Pa)"),
+    (in_range, ("nu", 0.5, (-1.0, 0.5)), "nu = 0.5 must be a finite number in (-1, 0.5)"),
+    (in_range, ("s", 11, (0.1, 10)), "s = 11 must be a finite number in [0.1, 10]"),
+    (count, ("n", 2.0), "n = 2.0 must be a whole number >= 1"),
+    (count, ("n", 2, 3), "n = 2 must be a whole number >= 3"),
+    (count, ("n", 2000, 3, 1000), "n = 2000 must be a whole number from 3 to 1,000"),
+])
+def test_each_check_says_the_name_the_value_and_what_it_must_be(check, args, message):
+    options = {"unit": "Pa"} if check is positive else {}
+    options |= {"closed": False} if args[0] == "nu" else {}
+    with pytest.raises(InputError) as info:
+        check(*args, owner="Part", **options)
+    assert str(info.value) == f"Part: {message}"
+    assert (info.value.name, info.value.owner) == (args[0], "Part")
+
+
+def test_checks_keep_good_values_in_their_type():
+    assert real("x", np.float64(-2.5)) == -2.5 and isinstance(real("x", 3), float)
+    assert in_range("nu", 0.3, (-1.0, 0.5), closed=False) == 0.3
+    assert in_range("s", 10, (0.1, 10)) == 10.0       # closed: the ends are inside
+    assert count("n", np.int64(4), 3) == 4 and isinstance(count("n", np.int64(4)), int)
+    with pytest.raises(ValueError, match="must be a whole number"):
+        count("n", True)
+
+
+def test_a_refusal_crosses_a_process_boundary_whole():
+    error = pickle.loads(pickle.dumps(InputError("b", 0.0, "a finite number > 0", "DBMAParams")))
+    assert isinstance(error, InputError) and str(error) == \
+        "DBMAParams: b = 0.0 must be a finite number > 0"

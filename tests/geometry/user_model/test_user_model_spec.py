@@ -116,7 +116,7 @@ def test_mesh_size_and_refinement(tmp_path):
     (("L = 0.04", "L = 0.04 0.05"), ["not valid TOML", "line 5"]),
     (('[[supports]]', '[mesh]\norder = 3\n[[supports]]'), ["line 15:", "order = 3 must be 1 or 2"]),
     (('force = [1.0, 0.0]', 'force = [1.0, 0.0]\n[analysis]\nmodes = 0'),
-     ["line 21:", "modes = 0 must be an integer >= 1"]),
+     ["line 21:", "modes = 0 must be a whole number >= 1"]),
     (('[[supports]]\ngroup = "fixed"\n', ''), ["at least one [[supports]]"]),
     (('[material]\nname = "structural_steel"\n', ''), ["[material] is required"]),
 ])

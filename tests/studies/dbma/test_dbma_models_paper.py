@@ -25,14 +25,14 @@ def test_paper_design_is_table1_in_si(design):
 
 
 @pytest.mark.parametrize("field, value, words", [
-    ("b", 0.0, "b = 0.0 must be > 0"),
-    ("l", -1e-3, "l = -0.001 must be > 0"),
+    ("b", 0.0, "b = 0.0 must be a finite number > 0 (m)"),
+    ("l", -1e-3, "l = -0.001 must be a finite number > 0 (m)"),
     ("b", 0.011, "b = 0.011 must be < c"),
-    ("h", -1e-4, "h = -0.0001 must be >= 0"),
+    ("h", -1e-4, "h = -0.0001 must be a finite number >= 0 (m)"),
     ("h", 9.5e-3, "h = 0.0095 must be <= c - b"),
-    ("E", 0.0, "E = 0.0 must be > 0"),
-    ("nu", 0.5, "nu = 0.5 must be in (-1, 0.5)"),
-    ("rho", -1.0, "rho = -1.0 must be > 0"),
+    ("E", 0.0, "E = 0.0 must be a finite number in [1000, 1e+13] (Pa)"),
+    ("nu", 0.5, "nu = 0.5 must be a finite number in (-1, 0.5)"),
+    ("rho", -1.0, "rho = -1.0 must be a finite number in [1, 100000] (kg/m^3)"),
     ("e", math.inf, "e = inf must be a finite number"),
 ])
 def test_invalid_parameters_raise_naming_the_bound(design, field, value, words):
