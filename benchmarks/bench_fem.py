@@ -13,7 +13,8 @@ first 6 modes of a cantilever, with peak memory. Not a test: prints a table (and
 by the direct solver (in core or out of core, as fem/budget.py's plan of PARDISO's analysis
 says: the JSON line records the plan, the factor's size and the backend), the iterative path
 (p-multigrid CG) and CalculiX where its memory, estimated from its measured peak on the 3-D
-cantilever, fits ``--mem-gb``; each in a process of its own: time, peak memory, the ratios.
+cantilever against flexfem's, fits ``--mem-gb``; each in a process of its own: time, peak
+memory, the ratios.
 
 ``--install default`` measures flexfem as a plain ``pip install .`` (no extras) installs it: it
 builds a fresh virtual environment (``--venv``, default /tmp/flexfem-default-venv) from this
@@ -56,9 +57,10 @@ REPO = Path(__file__).resolve().parents[1]
 #: --suite solids: benchmarks/bench_iterative.py's meshes
 SOLID_ROWS = ["plate-1M", "plate-2M", "block-1M"]
 SMALL_SOLIDS = ["plate-36k", "block-47k"]
-#: CalculiX's measured peak (GB) on the 3-D P2 cantilever of 399k DOFs (docs/performance.md),
-#: grown as DOFs^(4/3) to estimate whether it fits a solid row (low for a compact block)
-CCX_PEAK_GB, CCX_PEAK_DOFS = 7.2, 399_000
+#: CalculiX's measured peak (GiB) on the 3-D cantilever of 350 727 DOFs (the 3d-300k row of
+#: docs/performance.md: 5983 MiB, 1.78 x flexfem's 3366): a solid row's CalculiX estimate is
+#: that multiple of PARDISO's planned factor + 1 GiB, else the peak grown as DOFs^(4/3)
+CCX_PEAK_GIB, CCX_PEAK_DOFS, CCX_PER_FLEXFEM = 5983 / 1024, 350_727, 5983 / 3366
 
 
 def cantilever_mesh(dim: int, target_dofs: int):
@@ -209,9 +211,12 @@ def solid_dofs(row: str) -> int:
     return 3 * (2 * nx + 1) * (2 * ny + 1) * (2 * nz + 1)
 
 
-def ccx_estimate_gb(n_dofs: int) -> float:
-    """CalculiX's peak memory (GB) expected of a static solve of ``n_dofs`` 3-D DOFs."""
-    return CCX_PEAK_GB * (n_dofs / CCX_PEAK_DOFS) ** (4 / 3)
+def ccx_estimate_gib(n_dofs: int, factor_gib: float | None = None) -> float:
+    """CalculiX's peak memory (GiB) expected of a static solve of ``n_dofs`` 3-D DOFs, from
+    PARDISO's planned in-core factor (GiB) of the same matrix where known."""
+    if factor_gib is not None:
+        return CCX_PER_FLEXFEM * factor_gib + 1.0
+    return CCX_PEAK_GIB * (n_dofs / CCX_PEAK_DOFS) ** (4 / 3)
 
 
 def run_solid(row: str, program: str, threads: int) -> dict:
@@ -276,10 +281,11 @@ def run_solids(rows: list[str], args, python: str) -> list[dict]:
     results = []
     for row in rows:
         for program in args.programs:
-            need = ccx_estimate_gb(solid_dofs(row))
+            planned = [r["factor_gib"] for r in results if r["row"] == row and "factor_gib" in r]
+            need = ccx_estimate_gib(solid_dofs(row), planned[0] if planned else None)
             if program == "calculix" and need > args.mem_gb:
                 out = {"row": row, "program": program,
-                       "error": f"not run: ~{need:.0f} GB estimated, above --mem-gb"}
+                       "error": f"not run: ~{need:.0f} GiB estimated, above --mem-gb"}
             elif program == "calculix" and row in args.skip_ccx:
                 out = {"row": row, "program": program, "error": "not run"}
             else:
