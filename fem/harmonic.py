@@ -21,6 +21,7 @@ from .factor import factor
 from .boundary import component_indices, constrained_dofs, group_dofs, load_vector
 from .modal import Modes, solve_modes
 from .model import Model
+from .solved import Solved
 from .static_result import check_supports, group_basis
 
 
@@ -91,13 +92,12 @@ class FRF:
 
 
 @dataclass(frozen=True, eq=False)
-class HarmonicResult:
-    """The steady-state harmonic response (:func:`flexfem.fem.solve_harmonic`).
+class HarmonicResult(Solved):
+    """The steady-state harmonic response (:func:`flexfem.fem.solve_harmonic`): ``model``
+    (:class:`~.solved.Solved`) and
 
     Attributes
     ----------
-    model : Model
-        The model solved.
     frequencies_hz : ndarray
         (n,) the excitation frequencies (Hz).
     u : ndarray
@@ -110,7 +110,6 @@ class HarmonicResult:
         The solver's own figures.
     """
 
-    model: Model
     frequencies_hz: np.ndarray
     u: np.ndarray
     method: str

@@ -14,6 +14,7 @@ from . import linsolve, memory, symmetric
 from .block_factor import BlockFactorization
 from .boundary import component_indices, constrained_dofs
 from .model import Model
+from .solved import Solved
 from .static import check_supports, vertex_displacement
 from .symmetric import symmetric_matvec
 
@@ -21,13 +22,12 @@ SHIFT = 1e-10  # the default shift, relative to the mean stiffness/mass diagonal
 
 
 @dataclass(frozen=True, eq=False)
-class Modes:
-    """The natural modes of a model (:func:`flexfem.fem.solve_modes`).
+class Modes(Solved):
+    """The natural modes of a model (:func:`flexfem.fem.solve_modes`): ``model``
+    (:class:`~.solved.Solved`) and
 
     Attributes
     ----------
-    model : Model
-        The model solved.
     frequencies_hz : ndarray
         (n,) natural frequencies (Hz), ascending.
     shapes : ndarray
@@ -40,7 +40,6 @@ class Modes:
         The factorization's backend: 'mkl-pardiso', 'cholmod' or 'superlu'.
     """
 
-    model: Model
     frequencies_hz: np.ndarray
     shapes: np.ndarray
     effective_mass: np.ndarray

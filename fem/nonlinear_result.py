@@ -5,19 +5,18 @@ import numpy as np
 
 from .boundary import group_dofs
 from .hyperelastic import STRAIN_LIMIT, final_stress
-from .model import Model
+from .solved import PeakStress, Solved
 from .static_result import mean_field
 
 
 @dataclass(frozen=True, eq=False)
-class NonlinearResult:
+class NonlinearResult(PeakStress, Solved):
     """The converged steps of a nonlinear solve (:func:`flexfem.fem.solve_nonlinear`); step 0
-    is the unloaded state.
+    is the unloaded state: ``model`` (:class:`~.solved.Solved`), the peaks of stress at the
+    final step (:class:`~.solved.PeakStress`) and
 
     Attributes
     ----------
-    model : Model
-        The model solved.
     load_factors : ndarray
         (n,) the load factor of each step (-).
     u : list of ndarray
@@ -55,7 +54,6 @@ class NonlinearResult:
         The nodal preload vector (N).
     """
 
-    model: Model
     load_factors: np.ndarray
     u: list
     reactions: list
@@ -127,17 +125,3 @@ class NonlinearResult:
             force = np.outer(self.load_factors, total) + np.outer(self.preload_factors, held)
         return self.path(group), force
 
-    @property
-    def max_von_mises(self) -> float:
-        """Largest nodal von Mises stress (Pa) at the final step."""
-        return float(self.von_mises_nodal.max())
-
-    @property
-    def max_von_mises_element(self) -> float:
-        """Largest von Mises stress (Pa) at any quadrature point at the final step."""
-        return float(self.von_mises_element_max.max())
-
-    @property
-    def max_von_mises_location(self) -> np.ndarray:
-        """Reference coordinates (m) of the vertex with the largest nodal von Mises stress."""
-        return self.model.mesh.mesh.p[:, int(np.argmax(self.von_mises_nodal))]

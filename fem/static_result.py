@@ -11,6 +11,7 @@ from .factor import SingularStiffness
 from .boundary import component_indices
 from .model import Model, rigid_body_modes
 from .projection import nodal_average  # noqa: F401 (public here too)
+from .solved import PeakStress, Solved
 
 
 class UnderConstrainedError(SingularStiffness):
@@ -18,13 +19,12 @@ class UnderConstrainedError(SingularStiffness):
 
 
 @dataclass(frozen=True, eq=False)
-class StaticResult:
-    """Fields and metrics of a static solve (:func:`flexfem.fem.solve_static`).
+class StaticResult(PeakStress, Solved):
+    """Fields and metrics of a static solve (:func:`flexfem.fem.solve_static`): ``model``
+    (:class:`~.solved.Solved`) and
 
     Attributes
     ----------
-    model : Model
-        The model solved.
     u : ndarray
         The DOF vector (m).
     displacement : ndarray
@@ -53,7 +53,6 @@ class StaticResult:
         theta_y, theta_z) and (F_x, F_y, F_z, M_x, M_y, M_z).
     """
 
-    model: Model
     u: np.ndarray
     displacement: np.ndarray
     von_mises_nodal: np.ndarray
@@ -79,21 +78,6 @@ class StaticResult:
         element containing each point (no smoothing); (n, 3, 3) with ``full``. A point outside
         the body raises ValueError."""
         return stress.stress_at(self, points, full)
-
-    @property
-    def max_von_mises(self) -> float:
-        """Largest nodal (recovered) von Mises stress, Pa."""
-        return float(self.von_mises_nodal.max())
-
-    @property
-    def max_von_mises_location(self) -> np.ndarray:
-        """Coordinates (m) of the vertex with the largest nodal von Mises stress."""
-        return self.model.mesh.mesh.p[:, int(np.argmax(self.von_mises_nodal))]
-
-    @property
-    def max_von_mises_element(self) -> float:
-        """Largest von Mises stress at any quadrature point, Pa (unsmoothed)."""
-        return float(self.von_mises_element_max.max())
 
     def mean_displacement(self, group: str) -> np.ndarray:
         """Area- (or volume-) averaged displacement (m) of a boundary group or subdomain."""
