@@ -111,8 +111,26 @@ def _summarize_eightbar_stage(r: dict) -> str:
             f"{s['f1_hz_max']:.4g} Hz, f2 {s['f2_hz_min']:.4g}-{s['f2_hz_max']:.4g} Hz, f3 "
             f"{s['f3_hz_min']:.4g}-{s['f3_hz_max']:.4g} Hz; buckling: drive force "
             f"{b['drive_critical_n']:.4g} N = {b['drive_factor']:.3g} x the end-of-stroke drive"
-            + (f", off-axis (y) {b['off_axis_critical_n']:.4g} N" if "off_axis_critical_n" in b
-               else ""))
+            f", off-axis (y) {b['off_axis_critical_n']:.4g} N\n" + _stage_buckling_table(r))
+
+
+def _stage_buckling_table(r: dict) -> str:
+    """The critical added loads along the stroke, continuum and beam model, and the ratio."""
+    lines = ["buckling along the stroke (critical added force, N; beam / continuum):",
+             f"{'x (mm)':>8} {'drive':>8} {'beam':>8} {'ratio':>6} {'+y':>8} {'beam':>8} "
+             f"{'ratio':>6} {'-y':>8} {'beam':>8} {'ratio':>6}"]
+    for row in r["stroke_buckling"]:
+        cells = [f"{row['x_m'] * 1e3:8.3f}"]
+        for key, ratio in (("drive_critical_n", "drive_ratio"),
+                           ("off_axis_plus_y_n", "off_axis_plus_y_ratio"),
+                           ("off_axis_minus_y_n", "off_axis_minus_y_ratio")):
+            cells += [f"{row[key]:8.4g}", f"{row['beam_' + key]:8.4g}", f"{row[ratio]:6.3f}"]
+        lines.append(" ".join(cells))
+    b = r["buckling"]
+    lines.append(f"beam model's worst ratio {b['beam_buckling_worst_ratio']:.3f} "
+                 f"({b['beam_buckling_worst_case']} at x = {b['beam_buckling_worst_x_m'] * 1e3:.3g}"
+                 f" mm): {'within' if b['beam_buckling_within'] else 'beyond'} 5 %")
+    return "\n".join(lines)
 
 
 def _run_eightbar_driving(args) -> dict:
@@ -178,7 +196,8 @@ def add_eightbar_commands(eb_sub) -> None:
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(run=_run_eightbar_driving, summarize=_summarize_eightbar_driving)
     p = eb_sub.add_parser("stage", help="the suspension as a stage: compliance, support "
-                          "stiffness, modes and buckling along the stroke")
+                          "stiffness, modes and buckling along the stroke (the beam "
+                          "model's beside the continuum's)")
     p.add_argument("--quick", action="store_true", help="coarse mesh, half stroke mirrored")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(run=_run_eightbar_stage, summarize=_summarize_eightbar_stage)
