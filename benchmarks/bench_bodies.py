@@ -15,7 +15,7 @@ whole ``flexfem analyze FILE --model ...`` (timed from outside: the interpreter'
 the CLI's imports included); continuum and beam run in turn, medians of ``--repeat``.
 
     .venv/bin/python benchmarks/bench_bodies.py              # every example, 5 runs each
-    .venv/bin/python benchmarks/bench_bodies.py --fresh --repeat 3
+    .venv/bin/python benchmarks/bench_bodies.py --fresh --repeat 3 notch.toml
     .venv/bin/python benchmarks/bench_bodies.py --solid guide.toml   # and its 3-D solid (once)
 """
 import argparse
@@ -56,18 +56,19 @@ def timed(fn, repeat: int) -> tuple[float, float, float, dict]:
     return min(times), statistics.median(times), times[0], out
 
 
-def model_files() -> list[Path]:
+def model_files(names=()) -> list[Path]:
     """The model files of examples/bodies/ (not the studies beside them, which name a
-    ``mechanism``)."""
+    ``mechanism``), those ``names`` only where given."""
     return [p for p in sorted(EXAMPLES.glob("*.toml"))
-            if "mechanism" not in tomllib.loads(p.read_text())]
+            if "mechanism" not in tomllib.loads(p.read_text())
+            and (not names or p.name in names)]
 
 
 def in_process(args) -> list[dict]:
     rows = []
     print(f"{'model file':<22} {'continuum s':>12} {'beam s':>9} {'ratio':>7} "
           f"{'beam first s':>13} {'ratio':>6} {'DOFs':>14} {'k beam/continuum':>17}")
-    cases = [(p, 2) for p in model_files()]
+    cases = [(p, 2) for p in model_files(args.names)]
     cases += [(EXAMPLES / name, 3) for name in args.solid]
     for path, dim in cases:
         spec, flat = load_spec(path, dim=dim), load_spec(path)
@@ -107,7 +108,7 @@ def fresh(args) -> list[dict]:
     rows = []
     print(f"{'model file':<22} {'first analysis: continuum s':>28} {'beam s':>8} {'ratio':>6}"
           f" {'flexfem analyze: continuum s':>29} {'beam s':>8} {'ratio':>6}")
-    for path in model_files():
+    for path in model_files(args.names):
         runs = {m: [] for m in MODELS}
         try:
             for _ in range(args.repeat):
@@ -129,6 +130,7 @@ def fresh(args) -> list[dict]:
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("names", nargs="*", help="model files of examples/bodies/ (default all)")
     parser.add_argument("--repeat", type=int, default=5)
     parser.add_argument("--out", default="bench_bodies.json")
     parser.add_argument("--fresh", action="store_true",
