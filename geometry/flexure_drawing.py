@@ -14,6 +14,7 @@ import numpy as np
 from ..fem.gmsh_session import gmsh_session
 from ..fem.mesh import mesh_from_gmsh
 from .flexure_linkage import FlexureLayout
+from .mesh_fields import threshold_field
 from .flexure_roots import (
     check_root_fillet_radius,
     draw_filleted_flexure,
@@ -172,7 +173,7 @@ def _set_size_fields(gmsh, W, coarse, h_min, end_curves, root_tags, root_size) -
     """Background mesh size (m): 2 h_min at the flexures' ends growing to ``coarse`` over
     2 W (W the link width, m); with fillets, ``root_size`` in and graded from the root zones."""
     field_ = gmsh.model.mesh.field
-    thr = _graded_from(field_, end_curves, 2.0 * h_min, coarse, 2.0 * W)
+    thr = threshold_field(gmsh, end_curves, 2, 2.0 * h_min, coarse, 0.0, 2.0 * W, sampling=20)
     if root_tags:
         # root zones: a constant size, also on their curves (the arcs, the link's face)
         zone_curves = sorted({abs(c) for t in root_tags
@@ -183,7 +184,8 @@ def _set_size_fields(gmsh, W, coarse, h_min, end_curves, root_tags, root_size) -
         field_.setNumbers(const, "SurfacesList", root_tags)
         field_.setNumbers(const, "CurvesList", zone_curves)
         # grade the links from the root size: distance to the zones' curves
-        thr_r = _graded_from(field_, zone_curves, root_size, coarse, 2.0 * W)
+        thr_r = threshold_field(gmsh, zone_curves, 2, root_size, coarse, 0.0, 2.0 * W,
+                                sampling=20)
         both = field_.add("Min")
         field_.setNumbers(both, "FieldsList", [thr, const, thr_r])
         thr = both
@@ -191,21 +193,6 @@ def _set_size_fields(gmsh, W, coarse, h_min, end_curves, root_tags, root_size) -
     for key in ("Mesh.MeshSizeExtendFromBoundary", "Mesh.MeshSizeFromPoints",
                 "Mesh.MeshSizeFromCurvature"):
         gmsh.option.setNumber(key, 0)
-
-
-def _graded_from(field_, curves, size_min, size_max, dist_max) -> int:
-    """A Threshold field: ``size_min`` (m) on ``curves`` growing to ``size_max`` (m) at
-    ``dist_max`` (m) from them. Returns its tag."""
-    dist = field_.add("Distance")
-    field_.setNumbers(dist, "CurvesList", curves)
-    field_.setNumber(dist, "Sampling", 20)
-    thr = field_.add("Threshold")
-    field_.setNumber(thr, "InField", dist)
-    field_.setNumber(thr, "SizeMin", size_min)
-    field_.setNumber(thr, "SizeMax", size_max)
-    field_.setNumber(thr, "DistMin", 0.0)
-    field_.setNumber(thr, "DistMax", dist_max)
-    return thr
 
 
 def _curve_ends(gmsh, tag) -> tuple:

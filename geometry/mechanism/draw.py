@@ -10,6 +10,7 @@ import numpy as np
 
 from ...fem import FEMesh, gmsh_session, mesh_from_gmsh
 from ...fem.budget import BOUNDARY_NODES, NODES_PER_ELEMENT, TETRAHEDRA_PER_CUBE, TRIANGLE, check_budget
+from ..mesh_fields import size_by_fields, threshold_field
 from ..polygon import inscribed_diameter
 from .description import REACH, Leaf, Mechanism, flexure_label, cross2
 
@@ -226,23 +227,6 @@ def check_body_size(mechanism: Mechanism, coarse: float, sizes=None) -> None:
                          "by the same factor)")
 
 
-def threshold_field(gmsh, entities, dim: int, size: float, far: float, near: float,
-                    reach: float) -> int:
-    """A gmsh Threshold field of ``size`` (m) within ``near`` (m) of the entities (of
-    dimension dim - 1), growing to ``far`` (m) at ``near + reach``; its tag."""
-    field = gmsh.model.mesh.field
-    distance = field.add("Distance")
-    field.setNumbers(distance, "CurvesList" if dim == 2 else "SurfacesList", entities)
-    field.setNumber(distance, "Sampling", 100)
-    threshold = field.add("Threshold")
-    field.setNumber(threshold, "InField", distance)
-    field.setNumber(threshold, "SizeMin", size)
-    field.setNumber(threshold, "SizeMax", far)
-    field.setNumber(threshold, "DistMin", near)
-    field.setNumber(threshold, "DistMax", near + reach)
-    return threshold
-
-
 def _fillet_faces(gmsh, dim: int, tags) -> list:
     """The curved boundary entities (fillet arcs, or their extruded faces) of a flexure."""
     curved = []
@@ -266,18 +250,6 @@ def _refine(gmsh, mechanism: Mechanism, shapes: dict, size_factor: float, coarse
             thresholds.append(threshold_field(gmsh, arcs, dim, fine * size_factor,
                                               h * size_factor, f.fillet / 2, f.fillet))
     size_by_fields(gmsh, thresholds, coarse * size_factor)
-
-
-def size_by_fields(gmsh, fields, largest: float) -> None:
-    """The mesh sizes: the least of the gmsh ``fields`` (tags) everywhere, at most
-    ``largest`` (m), from nothing else (not the boundary, points or curvature)."""
-    field = gmsh.model.mesh.field
-    minimum = field.add("Min")
-    field.setNumbers(minimum, "FieldsList", fields)
-    field.setAsBackgroundMesh(minimum)
-    for option in ("MeshSizeExtendFromBoundary", "MeshSizeFromPoints", "MeshSizeFromCurvature"):
-        gmsh.option.setNumber(f"Mesh.{option}", 0)
-    gmsh.option.setNumber("Mesh.MeshSizeMax", largest)
 
 
 def _graded_cells(cells, width: float, h: float, coarse: float, near: float, reach: float,
