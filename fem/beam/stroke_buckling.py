@@ -28,6 +28,7 @@ from .spatial import buckling as spatial_buckling
 from .spatial import face as spatial_face
 from .spatial.corotational import local_deformations
 from .spatial.element import to_global
+from .spatial.static import linear_solution
 from .supports import Prescribed
 from ..stability import StateBuckling
 
@@ -112,9 +113,9 @@ def spatial(model, state, supports, loads, n: int = 3, **options) -> StateBuckli
     check_n(n)
     no_options("solve_incremental_buckling", options, ())
     at, f_state, step = path_state(state)
-    asm = spatial_assembly.Assembler(model, held_at_zero(model, supports,
-                                                         spatial_face.node_supports),
-                                     spatial_face.node_loads(model, loads))
+    # the assembler of the increments' supports and loads, as the linear solve builds it
+    asm = linear_solution(model, held_at_zero(model, supports, spatial_face.node_supports),
+                          spatial_face.node_loads(model, loads))[-1]
     space, u, R = asm.space, at.u, at.R
     r, _, _, T, _, K_full, _ = asm.evaluate(u, R, 0.0)
     K_full = K_full + space.constraint_tangent(R, -f_state)  # r = f_int - the state's loads
