@@ -25,14 +25,11 @@ class ChildLimit(BudgetError):
 
 def _address_space() -> int:
     """This process's virtual size now (bytes), 0 if unknown."""
-    try:
-        with open("/proc/self/status") as f:
-            for line in f:
-                if line.startswith("VmSize:"):
-                    return int(line.split()[1]) * 1024
+    try:  # statm's first field: the virtual size in pages (VmSize)
+        with open("/proc/self/statm") as f:
+            return int(f.read().split()[0]) * os.sysconf("SC_PAGE_SIZE")
     except (OSError, ValueError, IndexError):
-        pass
-    return 0
+        return 0
 
 
 def _child(write_fd: int, log, function, args, memory_bytes: int, cpu_seconds: int) -> None:

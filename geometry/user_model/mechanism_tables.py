@@ -8,7 +8,8 @@ import math
 
 from ..mechanism import Body, Leaf, Mechanism, Notch
 from .expressions import evaluate_expression, is_number
-from .tables import Locator, check_keys, parse_loads, parse_supports
+from .tables import (Locator, check_keys, parse_analysis, parse_loads, parse_material, parse_mesh,
+                     parse_supports)
 
 BODY_KEYS = ("name", "box", "polygon")
 FLEXURE_KEYS = {"leaf": ("kind", "name", "between", "from", "to", "thickness", "fillet"),
@@ -192,3 +193,25 @@ def body_loads(raw, dim: int, loc: Locator) -> tuple:
     loads = parse_loads(entries, 2, loc)
     return tuple(replace(load, vector=tuple(load.vector) + (out_of_plane.get(i, 0.0),)
                          * (dim - 2)) for i, load in enumerate(loads))
+
+
+def mechanism_parts(raw: dict, loc: Locator, section, supports, loads, dim: int,
+                    refined: str) -> dict:
+    """The tables every file of bodies and flexures has, planar or spatial: [material], the
+    ``section`` (a SectionSpec), [mesh] (no ``refine``: ``refined`` says what sizes each
+    flexure's elements), [[supports]] (at least one) and [[loads]] read by ``supports`` and
+    ``loads`` (``parse(raw, dim, loc)``), [analysis]; {name: parsed table}."""
+    parts = {
+        "material": parse_material(raw["material"], loc),
+        "section": section,
+        "mesh": parse_mesh(raw.get("mesh", {}), loc),
+        "supports": supports(raw.get("supports", []), dim, loc),
+        "loads": loads(raw.get("loads", []), dim, loc),
+        "analysis": parse_analysis(raw.get("analysis", {}), loc),
+    }
+    if parts["mesh"].refine:
+        raise loc.error(f"[mesh] refine: {refined}", "mesh", "refine")
+    if not parts["supports"]:
+        raise loc.error("the mechanism has no support: hold a body with [[supports]] group = "
+                        "'NAME'", None)
+    return parts

@@ -10,7 +10,7 @@ from ..mechanism import Mechanism
 from ..spatial.detect import is_spatial
 from .beam_tables import BeamSpec, beam_options, parse_beams
 from .geo_guard import check_inside
-from .mechanism_tables import body_loads, body_supports, parse_mechanism
+from .mechanism_tables import body_loads, body_supports, mechanism_parts, parse_mechanism
 from .names import check_override_key, nearest, unknown_name
 from .outputs_table import parse_outputs
 from .points_table import parse_points
@@ -228,20 +228,9 @@ def _mechanism_spec(path: Path, raw: dict, loc: Locator, overridden: set, dim: i
     if section.kind != "plane_stress" or "thickness" not in section_raw:
         raise loc.error("[section] of bodies and flexures: thickness = the out-of-plane depth "
                         "(m; kind plane_stress, the default)", "section")
-    parts = {
-        "material": parse_material(raw["material"], loc),
-        "section": section if dim == 2 else SectionSpec("solid"),
-        "mesh": parse_mesh(raw.get("mesh", {}), loc),
-        "supports": body_supports(raw.get("supports", []), dim, loc),
-        "loads": body_loads(raw.get("loads", []), dim, loc),
-        "analysis": parse_analysis(raw.get("analysis", {}), loc),
-    }
-    if parts["mesh"].refine:
-        raise loc.error("[mesh] refine: every flexure of bodies and flexures is refined "
-                        "already (its thickness sets its element size)", "mesh", "refine")
-    if not parts["supports"]:
-        raise loc.error("the mechanism has no support: hold a body with [[supports]] group = "
-                        "'NAME'", None)
+    parts = mechanism_parts(raw, loc, section if dim == 2 else SectionSpec("solid"),
+                            body_supports, body_loads, dim, "every flexure of bodies and "
+                            "flexures is refined already (its thickness sets its element size)")
     parameters = _parameters(raw.get("parameters", {}), loc, overridden)
     held = {s.group for s in parts["supports"]}  # a held face holds its body
     mechanism = parse_mechanism(raw, parameters, section.thickness, loc,
