@@ -18,34 +18,28 @@ class Region:
 
     def nodes(self, grid: Grid) -> np.ndarray:
         """Indices of the grid's nodes in this region (never empty)."""
-        xy = grid.nodes
         tol = 1e-9 * max(grid.lx, grid.ly)
-        if self.kind == "edge":
-            axis, at = {"left": (0, 0.0), "right": (0, grid.lx), "bottom": (1, 0.0),
-                        "top": (1, grid.ly)}[self.value]
-            found = np.flatnonzero(np.abs(xy[:, axis] - at) <= tol)
-        elif self.kind == "box":
-            found = np.flatnonzero(_inside(xy, self.value, tol))
-        else:
-            found = np.array([np.argmin(np.sum((xy - np.asarray(self.value)) ** 2, axis=1))])
-        if found.size == 0:
-            raise ValueError(f"{self.kind} = {self.value!r} holds no node of the grid")
-        return found
+        return self._found(grid.nodes, grid, (tol, tol), tol, "node")
 
     def elements(self, grid: Grid) -> np.ndarray:
         """Indices of the elements whose centre lies in this region (a point: the element
         holding it; an edge: the row or column of elements along it)."""
-        c = grid.centres
+        half = (0.5 * grid.dx * (1 + 1e-9), 0.5 * grid.dy * (1 + 1e-9))
+        return self._found(grid.centres, grid, half, 1e-9 * max(grid.lx, grid.ly), "element")
+
+    def _found(self, xy, grid: Grid, edge_tol: tuple, box_tol: float, what: str):
+        """Indices of the points ``xy`` (m) in this region: within ``edge_tol`` (m, across x
+        and y) of an edge, ``box_tol`` (m) of a box, or the nearest one to a point."""
         if self.kind == "edge":
-            axis, at, h = {"left": (0, 0.0, grid.dx), "right": (0, grid.lx, grid.dx),
-                           "bottom": (1, 0.0, grid.dy), "top": (1, grid.ly, grid.dy)}[self.value]
-            found = np.flatnonzero(np.abs(c[:, axis] - at) <= 0.5 * h * (1 + 1e-9))
+            axis, at = {"left": (0, 0.0), "right": (0, grid.lx), "bottom": (1, 0.0),
+                        "top": (1, grid.ly)}[self.value]
+            found = np.flatnonzero(np.abs(xy[:, axis] - at) <= edge_tol[axis])
         elif self.kind == "box":
-            found = np.flatnonzero(_inside(c, self.value, 1e-9 * max(grid.lx, grid.ly)))
+            found = np.flatnonzero(_inside(xy, self.value, box_tol))
         else:
-            found = np.array([np.argmin(np.sum((c - np.asarray(self.value)) ** 2, axis=1))])
+            found = np.array([np.argmin(np.sum((xy - np.asarray(self.value)) ** 2, axis=1))])
         if found.size == 0:
-            raise ValueError(f"{self.kind} = {self.value!r} holds no element of the grid")
+            raise ValueError(f"{self.kind} = {self.value!r} holds no {what} of the grid")
         return found
 
     def touching(self, grid: Grid) -> np.ndarray:
