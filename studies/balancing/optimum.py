@@ -4,7 +4,7 @@ For a motor with gravity torques tau_i (N m) at angles q_i (rad) over the worksp
 each balancer adds a torque tau_k(q) and its parameters minimise f = sum (tau + tau_k)^2
 (Eq. 16). Angles in rad, torques in N m, stiffness in N m/rad.
 """
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 
 import numpy as np
 
@@ -59,18 +59,30 @@ def spring_constant_for_angle(q, tau, q_k):
     return -np.sum(tau * s) / np.sum(s * s)
 
 
+class Balancer:
+    """A balancer given by its dataclass fields: ``torque(q)`` (N m at the motor angles q,
+    rad) by its torque law ``law(q, *fields)``, ``params()`` {keys: fields}."""
+
+    law = None   # staticmethod(torque law (q, *fields) -> N m) in each balancer
+    keys = ()    # the params() names of its fields
+
+    def values(self) -> list:
+        return [getattr(self, f.name) for f in fields(self)]
+
+    def torque(self, q):
+        return self.law(q, *self.values())
+
+    def params(self) -> dict:
+        return dict(zip(self.keys, self.values()))
+
+
 @dataclass(frozen=True)
-class SpringBalance:
+class SpringBalance(Balancer):
     """Zero-free-length spring: C (N m) and fixed-arm angle q_k (rad), Eq. 15."""
 
     C: float
     q_k: float
-
-    def torque(self, q):
-        return spring_torque(q, self.C, self.q_k)
-
-    def params(self) -> dict:
-        return {"C_Nm": self.C, "q_k_rad": self.q_k}
+    law, keys = staticmethod(spring_torque), ("C_Nm", "q_k_rad")
 
 
 def optimal_spring(q, tau) -> SpringBalance:
@@ -97,17 +109,12 @@ def optimal_spring(q, tau) -> SpringBalance:
 # ---------------------------------------------------------------- torsion spring (Eqs. 21-24)
 
 @dataclass(frozen=True)
-class TorsionBalance:
+class TorsionBalance(Balancer):
     """Torsion spring: stiffness K (N m/rad) and free angle q_k (rad), Eq. 20."""
 
     K: float
     q_k: float
-
-    def torque(self, q):
-        return torsion_spring_torque(q, self.K, self.q_k)
-
-    def params(self) -> dict:
-        return {"K_Nm_per_rad": self.K, "q_k_rad": self.q_k}
+    law, keys = staticmethod(torsion_spring_torque), ("K_Nm_per_rad", "q_k_rad")
 
 
 def optimal_torsion_spring(q, tau) -> TorsionBalance:
@@ -122,17 +129,12 @@ def optimal_torsion_spring(q, tau) -> TorsionBalance:
 # ---------------------------------------------------------------- counterweight (Eqs. 25-26)
 
 @dataclass(frozen=True)
-class CounterweightBalance:
+class CounterweightBalance(Balancer):
     """Counterweight: C = M l_c g (N m) and angle q_c (rad), Eq. 26."""
 
     C: float
     q_c: float
-
-    def torque(self, q):
-        return counterweight_torque(q, self.C, self.q_c)
-
-    def params(self) -> dict:
-        return {"C_Nm": self.C, "q_c_rad": self.q_c}
+    law, keys = staticmethod(counterweight_torque), ("C_Nm", "q_c_rad")
 
 
 def optimal_counterweight(q, tau) -> CounterweightBalance:
