@@ -94,7 +94,7 @@ class Evaluation:
         return gather(self.model, np.einsum("eij,ej->ei", self.ke, v[dofs]))
 
 
-class Assembler:
+class BeamAssembler:
     """Internal force, residual and reduced tangent of a model at a state."""
 
     def __init__(self, model: BeamModel, supports, loads):
@@ -144,6 +144,9 @@ class Assembler:
         if len(space.p_hat):
             f = f - ev.full_times(space.expand(np.zeros(space.n), space.p_hat, ev.w))
         return -space.reduce(f, ev.w)[0]
+
+
+Assembler = BeamAssembler  # the name the planar modules import it by
 
 
 class Factor:

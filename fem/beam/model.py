@@ -48,22 +48,25 @@ def link_masters(rigid_links, n_nodes: int, link_type) -> np.ndarray:
     return master_of
 
 
-class BeamModel:
-    """Planar beam model. nodes (n, 2) m; elements (n_e, 2) node indices; sections: one
-    Section or one per element; material: Material (E, nu, rho); shear: Timoshenko shear
-    deformation (default off: Euler-Bernoulli); rigid_links: RigidLink sequence;
-    point_masses: {node: (mass kg, rotary inertia kg m^2)}; superelements: Superelement
-    sequence (linear parts condensed onto nodes; assembled as pairs of nodes, ``pairs``,
-    after the elements: ``connectivity``); groups: {name: BeamGroup or node indices}, the
-    places the analysis face's supports and loads name (:mod:`.face`)."""
+class BeamModelBase:
+    """What the planar and the spatial beam model share: nodes (n, dim) m, elements (n_e, 2)
+    node indices, sections (one Section or one per element), material, shear (Timoshenko
+    shear deformation where a section has a shear area), rigid links, point masses, groups
+    ({name: BeamGroup or node indices}: the places the analysis face's supports and loads
+    name, :mod:`.face`) and the derived-data cache. ``dim`` 2 or 3; ``PER_NODE`` DOFs a
+    node; ``POINT_MASS`` (entries of a point mass, their words)."""
 
-    dim = 2  # planar: the continuum Model's name for its space dimension
+    dim, PER_NODE, POINT_MASS = 0, 0, (0, "")
 
-    def __init__(self, nodes, elements, sections, material: Material, shear: bool = False,
-                 rigid_links=(), point_masses=None, superelements=(), groups=None):
+    def _setup(self, nodes, elements, sections, material: Material, shear: bool) -> np.ndarray:
+        """Check and set nodes, elements, material, shear and sections; returns the element
+        chords (n_e, dim) m."""
+        dim = self.dim
         self.nodes = np.asarray(nodes, dtype=float)
-        if self.nodes.ndim != 2 or self.nodes.shape[1] != 2 or not np.all(np.isfinite(self.nodes)):
-            raise ValueError(f"nodes must be a finite (n, 2) array, got shape {self.nodes.shape}")
+        shape = self.nodes.shape
+        if self.nodes.ndim != 2 or shape[1] != dim or not np.all(np.isfinite(self.nodes)):
+            raise ValueError(f"nodes must be a finite (n, {dim}) array, got shape "
+                             f"{self.nodes.shape}")
         self.elements = np.asarray(elements, dtype=int).reshape(-1, 2)
         n = len(self.nodes)
         if self.elements.size and (self.elements.min() < 0 or self.elements.max() >= n):
@@ -75,48 +78,36 @@ class BeamModel:
         if len(secs) != len(self.elements) or not all(isinstance(s, Section) for s in secs):
             raise ValueError(f"sections: need one Section or {len(self.elements)} Sections")
         self.sections = secs
-        self.section_table = np.array([s.planar_row for s in secs],
-                                      dtype=float).reshape(-1, PLANAR_COLUMNS)
-        d = self.nodes[self.elements[:, 1]] - self.nodes[self.elements[:, 0]]
-        self.lengths = np.hypot(d[:, 0], d[:, 1])
+        return self.nodes[self.elements[:, 1]] - self.nodes[self.elements[:, 0]]
+
+    def _check_lengths(self) -> None:
         if np.any(self.lengths <= 0):
-            raise ValueError(f"elements {np.flatnonzero(self.lengths <= 0).tolist()} have zero length")
-        self.angles = np.arctan2(d[:, 1], d[:, 0])
+            bad = np.flatnonzero(self.lengths <= 0).tolist()
+            raise ValueError(f"elements {bad} have zero length")
+
+    def _links(self, rigid_links, point_masses) -> None:
+        """Set and check the rigid links (master_of) and the point masses."""
+        n = len(self.nodes)
         self.rigid_links = tuple(rigid_links)
         self.point_masses = dict(point_masses or {})
-        self._check_links()
-        self.superelements = tuple(superelements)
-        self._pairs()
+        self.master_of = link_masters(self.rigid_links, n, RigidLink)
+        size, words = self.POINT_MASS
+        for node, value in self.point_masses.items():
+            if not 0 <= int(node) < n or len(value) != size or min(value) < 0:
+                raise ValueError(f"point_masses[{node!r}] = {value!r} must be {words} on an "
+                                 "existing node")
+
+    def _groups(self, groups) -> None:
         self.groups = {}
         for name, g in (groups or {}).items():
             self.add_group(name, g)
 
-    def add_group(self, name: str, nodes, span=(0.0, 0.0)) -> None:
-        """Name ``nodes`` (a BeamGroup, or node indices with the face's extent ``span``, m)
-        as group ``name`` (a support on it needs its nodes to be no rigid-link slaves)."""
+    def add_group(self, name: str, nodes, span=None) -> None:
+        """Name ``nodes`` (a BeamGroup, or node indices with the face's extent ``span``, m,
+        one per axis; default none) as group ``name`` (a support on it needs its nodes to
+        be no rigid-link slaves)."""
+        span = (0.0,) * self.dim if span is None else span
         self.groups[name] = BeamGroup.of(name, nodes, span, self.n_nodes)
-
-    def _pairs(self):
-        parts = []
-        for sup in self.superelements:
-            if not isinstance(sup, Superelement):
-                raise ValueError(f"superelements: {sup!r} is not a Superelement")
-            if max(sup.nodes) >= self.n_nodes or min(sup.nodes) < 0:
-                raise ValueError(f"superelements: nodes {sup.nodes} outside "
-                                 f"0..{self.n_nodes - 1}")
-            parts.append(sup.pairs())
-        empty = (np.zeros((0, 2), dtype=int), np.zeros((0, 6, 6)), np.zeros((0, 6, 6)))
-        self.pairs, self.pair_stiffness, self.pair_mass = (
-            np.concatenate([p[k] for p in parts]) if parts else empty[k] for k in range(3))
-        self.connectivity = np.vstack([self.elements, self.pairs]).astype(int)
-
-    def _check_links(self):
-        n = len(self.nodes)
-        self.master_of = link_masters(self.rigid_links, n, RigidLink)
-        for node, value in self.point_masses.items():
-            if not 0 <= int(node) < n or len(value) != 2 or min(value) < 0:
-                raise ValueError(f"point_masses[{node!r}] = {value!r} must be (m >= 0, J >= 0) "
-                                 "on an existing node")
 
     def cached(self, key, compute):
         """``compute()`` once per model and ``key``: data derived from the model (its patterns,
@@ -140,11 +131,47 @@ class BeamModel:
 
     @property
     def n_dofs(self) -> int:
-        return 3 * len(self.nodes)
+        return self.PER_NODE * len(self.nodes)
 
     @property
     def n_elements(self) -> int:
         return len(self.elements)
+
+
+class BeamModel(BeamModelBase):
+    """Planar beam model (:class:`BeamModelBase`): nodes (n, 2) m; shear default off
+    (Euler-Bernoulli); point_masses {node: (mass kg, rotary inertia kg m^2)}; superelements:
+    Superelement sequence (linear parts condensed onto nodes; assembled as pairs of nodes,
+    ``pairs``, after the elements: ``connectivity``)."""
+
+    dim, PER_NODE, POINT_MASS = 2, 3, (2, "(m >= 0, J >= 0)")
+
+    def __init__(self, nodes, elements, sections, material: Material, shear: bool = False,
+                 rigid_links=(), point_masses=None, superelements=(), groups=None):
+        d = self._setup(nodes, elements, sections, material, shear)
+        self.section_table = np.array([s.planar_row for s in self.sections],
+                                      dtype=float).reshape(-1, PLANAR_COLUMNS)
+        self.lengths = np.hypot(d[:, 0], d[:, 1])
+        self._check_lengths()
+        self.angles = np.arctan2(d[:, 1], d[:, 0])
+        self._links(rigid_links, point_masses)
+        self.superelements = tuple(superelements)
+        self._pairs()
+        self._groups(groups)
+
+    def _pairs(self):
+        parts = []
+        for sup in self.superelements:
+            if not isinstance(sup, Superelement):
+                raise ValueError(f"superelements: {sup!r} is not a Superelement")
+            if max(sup.nodes) >= self.n_nodes or min(sup.nodes) < 0:
+                raise ValueError(f"superelements: nodes {sup.nodes} outside "
+                                 f"0..{self.n_nodes - 1}")
+            parts.append(sup.pairs())
+        empty = (np.zeros((0, 2), dtype=int), np.zeros((0, 6, 6)), np.zeros((0, 6, 6)))
+        self.pairs, self.pair_stiffness, self.pair_mass = (
+            np.concatenate([p[k] for p in parts]) if parts else empty[k] for k in range(3))
+        self.connectivity = np.vstack([self.elements, self.pairs]).astype(int)
 
     def section_at(self, xi):
         """(A m^2, Iz m^4, c m) of every element at fractions ``xi`` (k,) along it: (n_e, k)."""

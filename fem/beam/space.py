@@ -37,6 +37,24 @@ def held_values(model, supports, kinds=(Fixed, Prescribed)) -> np.ndarray:
     return values
 
 
+def independent_dofs(model, supports) -> tuple:
+    """(slave nodes, their masters, the arms X_s - X_m (m), the held DOFs, their values (m,
+    rad), the free DOFs) of a planar or spatial ``model`` under ``supports``: the unknowns
+    are the DOFs of independent (non-slave) nodes that are not held. ValueError if none."""
+    per_node = model.n_dofs // model.n_nodes
+    values = held_values(model, supports)
+    slaves = np.flatnonzero(model.master_of >= 0)
+    masters = model.master_of[slaves]
+    held = np.flatnonzero(~np.isnan(values))
+    dependent = np.zeros(model.n_dofs, dtype=bool)
+    dependent[(per_node * slaves[:, None] + np.arange(per_node)).ravel()] = True
+    dependent[held] = True
+    free = np.flatnonzero(~dependent)
+    if len(free) == 0:
+        raise ValueError("supports: every DOF is held; nothing to solve")
+    return slaves, masters, model.nodes[slaves] - model.nodes[masters], held, values[held], free
+
+
 class Space:
     """Unknowns z: the DOFs of independent (non-slave) nodes that are not prescribed.
 
@@ -49,20 +67,10 @@ class Space:
     def __init__(self, model: BeamModel, supports):
         self.model = model
         n = model.n_dofs
-        values = held_values(model, supports)
-        self.slaves = np.flatnonzero(model.master_of >= 0)
-        self.masters = model.master_of[self.slaves]
-        self.arm = model.nodes[self.slaves] - model.nodes[self.masters]
+        (self.slaves, self.masters, self.arm, self.held, self.p_hat,
+         self.free) = independent_dofs(model, supports)
         slave_dofs = (3 * self.slaves[:, None] + np.arange(3)).ravel()
-        self.held = np.flatnonzero(~np.isnan(values))
-        self.p_hat = values[self.held]
-        dependent = np.zeros(n, dtype=bool)
-        dependent[slave_dofs] = True
-        dependent[self.held] = True
-        self.free = np.flatnonzero(~dependent)
         self.n = len(self.free)
-        if self.n == 0:
-            raise ValueError("supports: every DOF is held; nothing to solve")
         index = -np.ones(n, dtype=np.int64)
         index[self.free] = np.arange(self.n)
         index[self.held] = self.n + np.arange(len(self.held))

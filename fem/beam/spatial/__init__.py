@@ -11,7 +11,8 @@ from ..assembly import SingularBeamError
 from .modal import Beam3DModes, solve_beam3d_modes
 from ..supports import Fixed, NodalLoad, Prescribed
 from ..section import Section, rect_torsion_constant, rect_torsion_shear
-from .model import Beam3DModel, RigidLink, element_frames
+from ..model import RigidLink
+from .model import Beam3DModel, element_frames
 from .nonlinear import Beam3DNonlinearResult, NonConvergenceError, solve_beam3d_nonlinear
 from .static import Beam3DState, compliance3d, solve_beam3d_static
 

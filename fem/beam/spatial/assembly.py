@@ -10,7 +10,7 @@ from typing import NamedTuple
 import numpy as np
 import scipy.sparse as sp
 
-from ..space import held_values
+from ..space import independent_dofs
 from .corotational import internal_forces, local_deformations
 from .element import basic_stiffness, local_matrices, to_global
 from ..supports import dof_index, load_vector
@@ -58,7 +58,7 @@ def mass_matrix(model: Beam3DModel, u=None, R=None) -> sp.csr_matrix:
     return Mg.tocsr()
 
 
-class Space:
+class SpatialSpace:
     """Unknowns: the DOF increments of independent (non-slave) nodes that are not held.
     Held DOFs move by the load factor's increment times their value (a prescribed
     rotation: a spin about that global axis); slave nodes follow their master rigidly."""
@@ -69,19 +69,9 @@ class Space:
     def __init__(self, model: Beam3DModel, supports):
         self.model = model
         n = model.n_dofs
-        values = held_values(model, supports)
-        self.slaves = np.flatnonzero(model.master_of >= 0)
-        self.masters = model.master_of[self.slaves]
-        self.arm = model.nodes[self.slaves] - model.nodes[self.masters]
-        self.held = np.flatnonzero(~np.isnan(values))
-        self.p_hat = values[self.held]
-        dependent = np.zeros(n, dtype=bool)
-        dependent[(6 * self.slaves[:, None] + np.arange(6)).ravel()] = True
-        dependent[self.held] = True
-        self.free = np.flatnonzero(~dependent)
+        (self.slaves, self.masters, self.arm, self.held, self.p_hat,
+         self.free) = independent_dofs(model, supports)
         self.n = len(self.free)
-        if self.n == 0:
-            raise ValueError("supports: every DOF is held; nothing to solve")
         self.independent = np.concatenate([self.free, self.held])
         self._col_free = -np.ones(n, dtype=int)
         self._col_free[self.free] = np.arange(self.n)
@@ -190,12 +180,12 @@ class Evaluation3D(NamedTuple):
     fl: object
 
 
-class Assembler:
+class SpatialAssembler:
     """Internal force, residual and reduced tangent of a model at a configuration."""
 
     def __init__(self, model: Beam3DModel, supports, loads):
         self.model = model
-        self.space = Space(model, supports)
+        self.space = SpatialSpace(model, supports)
         self.f_ext = load_vector(model, loads)
         self.Kb = basic_stiffness(model)
 
@@ -225,7 +215,7 @@ class Assembler:
         return g
 
 
-def symmetric_tangent(asm: Assembler, about=None):
+def symmetric_tangent(asm: SpatialAssembler, about=None):
     """(K_z, T, u, R): the reduced tangent about a converged state ``about`` (a Beam3DState
     of the same model, supports and loads; default undeformed), symmetric. ValueError if
     it is not symmetric (to 1e-6, Jacobi-scaled): at equilibrium it is only under

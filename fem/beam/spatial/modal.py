@@ -9,7 +9,7 @@ import scipy.sparse.linalg as spla
 
 from ..assembly import DENSE_EIGEN_LIMIT
 from ..modal import Beam3DModes, dense_lowest_modes, negative_shift
-from .assembly import Assembler, mass_matrix, symmetric_tangent
+from .assembly import SpatialAssembler, mass_matrix, symmetric_tangent
 from .model import Beam3DModel
 
 
@@ -20,7 +20,7 @@ def solve_beam3d_modes(model: Beam3DModel, supports, n: int = 6, about=None,
     ``loads`` (default: undeformed; see assembly.symmetric_tangent)."""
     if not (isinstance(n, (int, np.integer)) and not isinstance(n, bool) and n >= 1):
         raise ValueError(f"n = {n!r} must be an integer >= 1")
-    asm = Assembler(model, supports, loads)
+    asm = SpatialAssembler(model, supports, loads)
     if n > asm.space.n:
         raise ValueError(f"n = {n} modes asked for but the model has {asm.space.n} free DOFs")
     K, T, u, R = symmetric_tangent(asm, about)

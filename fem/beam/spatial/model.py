@@ -13,9 +13,8 @@ import math
 
 import numpy as np
 
-from ..groups import BeamGroup
-from ..model import RigidLink, link_masters
-from ..section import Section, rect_depth, rect_torsion_constant
+from ..model import BeamModelBase
+from ..section import rect_depth, rect_torsion_constant
 from ...materials import Material
 
 
@@ -42,72 +41,23 @@ def element_frames(nodes, elements, orientation=None) -> np.ndarray:
     return np.stack([ex, ey, ez], axis=2)
 
 
-class Beam3DModel:
-    """Spatial beam model. nodes (n, 3) m; elements (n_e, 2) node indices; sections: one
-    Section or one per element; material: Material (E, nu, rho); orientation: local z
-    reference (see element_frames); rigid_links: RigidLink sequence; point_masses:
-    {node: (mass kg, Jx, Jy, Jz kg m^2 about global axes through the node)}; shear:
-    Timoshenko shear deformation where a section has shear areas (default off); groups:
-    {name: BeamGroup or node indices}, the named places of the analysis face
-    (:mod:`.face`; :meth:`add_group`)."""
+class Beam3DModel(BeamModelBase):
+    """Spatial beam model (:class:`..model.BeamModelBase`): nodes (n, 3) m; orientation:
+    local z reference (see element_frames); point_masses: {node: (mass kg, Jx, Jy, Jz kg
+    m^2 about global axes through the node)}; shear default off."""
 
-    dim = 3  # spatial: the continuum Model's name for its space dimension
+    dim, PER_NODE, POINT_MASS = 3, 6, (4, "(m, Jx, Jy, Jz) >= 0")
 
     def __init__(self, nodes, elements, sections, material: Material, orientation=None,
                  rigid_links=(), point_masses=None, groups=None, shear: bool = False):
-        self.nodes = np.asarray(nodes, dtype=float)
-        if self.nodes.ndim != 2 or self.nodes.shape[1] != 3 or not np.all(np.isfinite(self.nodes)):
-            raise ValueError(f"nodes must be a finite (n, 3) array, got shape {self.nodes.shape}")
-        self.elements = np.asarray(elements, dtype=int).reshape(-1, 2)
-        n = len(self.nodes)
-        if self.elements.size and (self.elements.min() < 0 or self.elements.max() >= n):
-            raise ValueError(f"elements refer to nodes outside 0..{n - 1}")
-        if not isinstance(material, Material):
-            raise ValueError(f"material = {material!r} must be a flexfem Material")
-        self.material, self.shear = material, bool(shear)
-        secs = [sections] * len(self.elements) if isinstance(sections, Section) else list(sections)
-        if len(secs) != len(self.elements) or not all(isinstance(s, Section) for s in secs):
-            raise ValueError(f"sections: need one Section or {len(self.elements)} Sections")
-        if any(s.Iy is None or s.J is None for s in secs):
+        d = self._setup(nodes, elements, sections, material, shear)
+        if any(s.Iy is None or s.J is None for s in self.sections):
             raise ValueError("sections: a spatial model needs Iy and J on every Section")
-        self.sections = secs
-        d = self.nodes[self.elements[:, 1]] - self.nodes[self.elements[:, 0]]
         self.lengths = np.linalg.norm(d, axis=1)
-        if np.any(self.lengths <= 0):
-            bad = np.flatnonzero(self.lengths <= 0).tolist()
-            raise ValueError(f"elements {bad} have zero length")
+        self._check_lengths()
         self.frames = element_frames(self.nodes, self.elements, orientation)
-        self.rigid_links = tuple(rigid_links)
-        self.point_masses = dict(point_masses or {})
-        self._check_links()
-        self.groups = {}
-        for name, g in (groups or {}).items():
-            self.add_group(name, g)
-
-    def add_group(self, name: str, nodes, span=(0.0, 0.0, 0.0)) -> None:
-        """Name ``nodes`` (masters of rigid bodies) a group standing for a face of extent
-        ``span`` (dx, dy, dz; m): where the analysis face's supports and loads act."""
-        self.groups[name] = BeamGroup.of(name, nodes, span, self.n_nodes)
-
-    def _check_links(self):
-        n = len(self.nodes)
-        self.master_of = link_masters(self.rigid_links, n, RigidLink)
-        for node, value in self.point_masses.items():
-            if not 0 <= int(node) < n or len(value) != 4 or min(value) < 0:
-                raise ValueError(f"point_masses[{node!r}] = {value!r} must be (m, Jx, Jy, Jz) "
-                                 ">= 0 on an existing node")
-
-    @property
-    def n_nodes(self) -> int:
-        return len(self.nodes)
-
-    @property
-    def n_dofs(self) -> int:
-        return 6 * len(self.nodes)
-
-    @property
-    def n_elements(self) -> int:
-        return len(self.elements)
+        self._links(rigid_links, point_masses)
+        self._groups(groups)
 
     def section_table(self) -> dict:
         """Shear areas Ay, Az (m^2, inf where shear is off: no area, or the model without

@@ -6,7 +6,7 @@
 """
 from ..nonlinear import (Beam3DNonlinearResult, NonConvergenceError,  # noqa: F401
                          check_step_arguments, solve_path)
-from .assembly import Assembler
+from .assembly import SpatialAssembler
 from .model import Beam3DModel
 from .static import make_state
 
@@ -25,5 +25,5 @@ def solve_beam3d_nonlinear(model: Beam3DModel, supports, loads=(), steps: int = 
     ``control=(node, dof, value)`` a translation DOF (m); otherwise as
     :func:`..nonlinear.solve_path`."""
     check_step_arguments(steps, max_iterations, tol, min_step)
-    return solve_path(Assembler(model, supports, loads), converged, steps, control,
+    return solve_path(SpatialAssembler(model, supports, loads), converged, steps, control,
                       max_iterations, tol, min_step)

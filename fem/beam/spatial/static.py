@@ -8,7 +8,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..assembly import Factor
-from .assembly import Assembler, symmetric_tangent
+from .assembly import SpatialAssembler, symmetric_tangent
 from .corotational import kinematics
 from .model import Beam3DModel
 from .rotations import expm, logm
@@ -57,7 +57,7 @@ class Beam3DState:
         return peak_stress(self.model, self.local_forces)[0]
 
 
-def make_state(asm: Assembler, u, R, r, lam, fl, T, Tp, info=None) -> Beam3DState:
+def make_state(asm: SpatialAssembler, u, R, r, lam, fl, T, Tp, info=None) -> Beam3DState:
     """Package a state: reactions from the residual r = f_int - lam f_ext."""
     space = asm.space
     rr = np.zeros(asm.model.n_dofs)
@@ -77,8 +77,8 @@ def solve_beam3d_static(model: Beam3DModel, supports, loads=()) -> Beam3DState:
 
 def linear_solution(model: Beam3DModel, supports, loads=()) -> tuple:
     """(Beam3DState, q (n_dofs,) the linear DOFs (m, rad), r (n_dofs,) = K q - f_ext (N,
-    N m), the reduced K (CSC), T, the Assembler) of :func:`solve_beam3d_static`."""
-    asm = Assembler(model, supports, loads)
+    N m), the reduced K (CSC), T, the SpatialAssembler) of :func:`solve_beam3d_static`."""
+    asm = SpatialAssembler(model, supports, loads)
     space = asm.space
     u0, R0 = space.reference()
     _, _, K, T, Tp, Kfull, _ = asm.evaluate(u0, R0, 0.0)
@@ -104,7 +104,7 @@ def compliance3d(model: Beam3DModel, supports, node: int, about=None, loads=()) 
     rigid-link slave; none of its DOFs may be held."""
     if not (isinstance(node, (int, np.integer)) and 0 <= node < model.n_nodes):
         raise ValueError(f"node = {node!r} must be a node index in 0..{model.n_nodes - 1}")
-    asm = Assembler(model, supports, loads)
+    asm = SpatialAssembler(model, supports, loads)
     K, T, _, _ = symmetric_tangent(asm, about)
     rows = T[6 * int(node):6 * int(node) + 6]
     if np.any(abs(rows).sum(axis=1) == 0):

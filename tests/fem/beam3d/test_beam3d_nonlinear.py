@@ -9,7 +9,7 @@ from flexfem.data import load_toml
 from flexfem.fem import Material
 from flexfem.fem.beam.spatial import (Beam3DModel, Fixed, NodalLoad, Prescribed, RigidLink,
                                 Section, solve_beam3d_nonlinear)
-from flexfem.fem.beam.spatial.assembly import Assembler
+from flexfem.fem.beam.spatial.assembly import SpatialAssembler
 from flexfem.fem.beam.spatial.rotations import expm, logm
 
 
@@ -23,7 +23,7 @@ def test_tangent_is_the_derivative_of_the_internal_force(steel):
     elements = [[0, 1], [1, 2], [2, 3]]
     model = Beam3DModel(nodes, elements, Section.rect(2e-3, 1e-3), steel,
                         rigid_links=[RigidLink(3, 4)], shear=True)
-    asm = Assembler(model, [Fixed(0)], [NodalLoad(4, fz=2.0, mx=0.1)])
+    asm = SpatialAssembler(model, [Fixed(0)], [NodalLoad(4, fz=2.0, mx=0.1)])
     u = rng.normal(scale=2e-3, size=(5, 3))
     R = expm(rng.normal(scale=0.7, size=(5, 3)))
     u[0], R[0] = 0.0, np.eye(3)
