@@ -24,8 +24,8 @@ import scipy.sparse.linalg as spla
 from . import memory
 from .amg import AmgFactor
 from .budget import FACTOR_SHARE, available_memory_bytes, factor_plan
-from .factor_protocol import (FLOOR_CAP, ROUNDOFF_FACTOR, LinearFactor,  # noqa: F401 (its
-                              SingularStiffness, check_solution, refine_and_check)  # interface)
+from .factor_protocol import (FLOOR_CAP, ROUNDOFF_FACTOR, LinearFactor,  # noqa: F401
+                              SingularStiffness, check_solution, refine_and_check)  # interface
 from .restriction import Restriction  # noqa: F401 (part of this module's interface)
 from .symmetric import symmetric_from_upper
 
