@@ -87,7 +87,7 @@ def plot_buckling(out: dict, path: Path) -> dict:
         "buckling), the drive force in the stroke's sense and a force across the stroke in "
         "each sense; continuum (solid) and the beam model about its own path (dashed). Right, "
         f"beam / continuum, at worst {b['beam_buckling_worst_ratio']:.3f} (dotted: "
-        f"+-{BEAM_TOLERANCE:.0%})."))
+        f"+-{100 * BEAM_TOLERANCE:.0f} %)."))
 
 
 def beam_rows(out: dict) -> list[Comparison]:
@@ -164,7 +164,7 @@ def paragraph(out: dict) -> str:
         f"drawn pose ({b['drive_factor_min']:.3g} times at worst along the stroke, about the "
         f"large-deflection state), and under {b['off_axis_critical_min_n']:.3g} N across the "
         f"stroke at worst. The beam model, about its own large-deflection path, gives these "
-        f"critical loads within {abs(b['beam_buckling_worst_ratio'] - 1):.1%} of the "
+        f"critical loads within {100 * abs(b['beam_buckling_worst_ratio'] - 1):.1f} % of the "
         f"continuum's at each of the {len(out['stroke_buckling'])} positions.")
 
 
