@@ -95,12 +95,6 @@ def solve_beam_static(model: BeamModel, supports, loads=()) -> BeamState:
     return make_state(asm, q, r, 1.0, {"n_unknowns": asm.space.n}, fb=fb, w=w)
 
 
-def solve_beam_displacements(model: BeamModel, supports, loads=()) -> np.ndarray:
-    """q (n_nodes, 3) of solve_beam_static, without its element forces, stresses and
-    reactions (a stiffness needs only a displacement)."""
-    return solve_linear(model, supports, load_vector(model, loads))[0].reshape(-1, 3)
-
-
 def _natural(model: BeamModel, q) -> np.ndarray:
     """Linearised natural deformations (extension, theta1 - chord, theta2 - chord), (n_e, 3)."""
     e = model.elements
