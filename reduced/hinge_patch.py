@@ -27,7 +27,7 @@ out-of-plane width divides out). A circular notch's are tabulated over t/R and n
 data/notch_factors.toml (written by scripts/notch_factor_table.py with this module's
 :func:`patch_factors`), and a description's circular or elliptical notch (its profile as
 geometry/mechanism/beams.py writes it) over t/R, across / along and nu in
-data/notch_description_factors.toml (scripts/notch_description_table.py, with
+data/notch_description_factors.json (scripts/notch_description_table.py, with
 :func:`profile_factors`; E I and E A within 6e-4 of the direct solve, kappa G A 3e-3, K_t 4 %:
 docs/beam_speed.md); both are interpolated (monotone cubic), so a first analysis and a design
 sweep pay nothing. Any other profile, or one outside a table's range, is computed, once per
@@ -36,6 +36,8 @@ level INFO). Lengths in m.
 """
 from dataclasses import dataclass
 import functools
+from importlib import resources
+import json
 import logging
 import math
 
@@ -59,7 +61,7 @@ BEAM_ELEMENTS = 80  # the reference beam of the profile (its own error < 1e-5)
 # is left at 1; from 8 % up it is the patch's; between, blended, so it is continuous in t/R
 SHEAR_SHARE = (0.02, 0.08)
 TABLE = "notch_factors.toml"
-DESCRIPTION_TABLE = "notch_description_factors.toml"
+DESCRIPTION_TABLE = "notch_description_factors.json"
 LOG = logging.getLogger(__name__)
 PROFILE_SAMPLES = 257  # a general profile's outline: a spline through this many samples
 NOTCH_DEPTH = 1.5  # a notch's (fillets') ends are at least this many times its least thickness
@@ -110,7 +112,7 @@ def tabulated(t_over_r: float, nu: float) -> NotchFactors | None:
     """A circular notch's NotchFactors at ``t_over_r`` = b / R and Poisson's ratio ``nu``,
     interpolated in data/notch_factors.toml (monotone cubic in ln(t/R), linear in nu); None
     outside its range."""
-    x, nus, values = _table(TABLE, "circular_notch", ("t_over_r", "nu"))
+    x, nus, values, _ = _table(TABLE, "circular_notch", ("t_over_r", "nu"))
     lx = math.log(t_over_r)
     if not (x[0] <= lx <= x[-1] and nus[0] <= nu <= nus[-1]):
         return None
@@ -123,20 +125,19 @@ def tabulated(t_over_r: float, nu: float) -> NotchFactors | None:
 def description_tabulated(t_over_r: float, aspect: float, nu: float) -> NotchFactors | None:
     """NotchFactors of a description's notch (geometry/mechanism/beams.py's profile: neck b,
     semi-axes R along the centre line and ``aspect`` R across it) at ``t_over_r`` = b / R,
-    interpolated in data/notch_description_factors.toml (monotone cubic in ln(t/R),
+    interpolated in data/notch_description_factors.json (monotone cubic in ln(t/R),
     ln(aspect) and nu); None outside its range, or where the table was made from another
     profile (beams.STATIONS)."""
     from ..geometry.mechanism.beams import STATIONS
 
     try:
-        x, y, nus, values = _table(DESCRIPTION_TABLE, "description_notch",
-                                   ("t_over_r", "aspect", "nu"))
+        x, y, nus, values, stations = _table(DESCRIPTION_TABLE, "description_notch",
+                                             ("t_over_r", "aspect", "nu"))
     except FileNotFoundError:
         LOG.warning("notch correction: data/%s is missing (solved directly)", DESCRIPTION_TABLE)
         return None
     point = (math.log(t_over_r), math.log(aspect), nu)
-    if (shared_toml(DESCRIPTION_TABLE)["description_notch"]["stations"] != STATIONS
-            or not all(a[0] <= p <= a[-1] for a, p in zip((x, y, nus), point))):
+    if stations != STATIONS or not all(a[0] <= p <= a[-1] for a, p in zip((x, y, nus), point)):
         return None
     v = pchip(nus, pchip(y, pchip(x, values, point[0]), point[1]), point[2])  # (fields,)
     return NotchFactors(*(float(f) for f in v))
@@ -144,12 +145,15 @@ def description_tabulated(t_over_r: float, aspect: float, nu: float) -> NotchFac
 
 @functools.lru_cache(maxsize=4)
 def _table(name: str, table: str, axes: tuple) -> tuple:
-    """(axis nodes (ln for t_over_r and aspect)..., values (fields, *reversed axes)) of
-    ``table`` in data/``name``: each field's nested rows, the first axis innermost."""
-    raw = shared_toml(name)[table]
+    """(axis nodes (ln for t_over_r and aspect)..., values (fields, *reversed axes), the
+    profile's stations or None) of ``table`` in data/``name`` (TOML, or JSON, read 50 times
+    faster): each field's nested rows, the first axis innermost, null a NaN."""
+    raw = (shared_toml(name) if name.endswith(".toml") else json.loads(
+        resources.files(shared_toml.__module__).joinpath(name).read_text()))[table]
     nodes = [np.asarray(raw[a], float) for a in axes]
     nodes = [np.log(n) if a in ("t_over_r", "aspect") else n for a, n in zip(axes, nodes)]
-    return (*nodes, np.array([raw[f] for f in NotchFactors.__dataclass_fields__], float))
+    values = np.array([raw[f] for f in NotchFactors.__dataclass_fields__], float)
+    return (*nodes, values, raw.get("stations"))
 
 
 def pchip(x, y, at: float) -> np.ndarray:

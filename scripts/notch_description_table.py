@@ -1,4 +1,4 @@
-"""Write data/notch_description_factors.toml: the 2-D correction of the beam model of a notch
+"""Write data/notch_description_factors.json: the 2-D correction of the beam model of a notch
 written as bodies and flexures (a circular or elliptical notch, its profile as
 geometry/mechanism/beams.py writes it), over t/R, across / along and Poisson's ratio; or check
 the table against the direct solve between its nodes.
@@ -15,6 +15,7 @@ directly at points halfway between the nodes (in ln(t/R), ln(aspect) and nu) and
 largest difference of each factor from the table's interpolation (docs/beam_speed.md).
 """
 import argparse
+import json
 from multiprocessing import Pool
 from pathlib import Path
 import time
@@ -23,7 +24,7 @@ T_OVER_R = (0.02, 0.03, 0.05, 0.07, 0.1, 0.14, 0.2, 0.28, 0.4, 0.56, 0.8, 1.1, 1
 ASPECT = (0.25, 0.35, 0.5, 0.7, 1.0, 1.4, 2.0, 2.8, 4.0)
 NU = (0.2, 0.3, 0.4)
 FIELDS = ("bending", "shear", "axial", "kt_bending", "kt_tension")
-TARGET = Path(__file__).resolve().parent.parent / "data" / "notch_description_factors.toml"
+TARGET = Path(__file__).resolve().parent.parent / "data" / "notch_description_factors.json"
 
 
 def direct(point: tuple):
@@ -48,39 +49,41 @@ def write(jobs: int) -> None:
     with Pool(jobs) as pool:
         found = pool.map(direct, points, chunksize=1)
     print(f"{len(points)} patches in {time.perf_counter() - start:.0f} s", flush=True)
-    fmt = lambda values: "[" + ", ".join(f"{v:.12g}" for v in values) + "]"
-    n_t, n_a = len(T_OVER_R), len(ASPECT)
-    lines = [
-        "# The 2-D correction of the beam model of a notch written as bodies and flexures",
-        "# (a circular or elliptical notch: neck b, semi-axes R along its centre line and",
-        "# aspect R across it, its profile t(s) as geometry/mechanism/beams.py writes it, on",
-        "# `stations` points a quarter of it), computed by flexfem:",
-        "# scripts/notch_description_table.py (flexfem.reduced.hinge_patch.profile_factors,",
-        "# the direct solve), not a published source. The notch with a stub of its end height",
-        "# at each end, rigid beyond, in plane stress (P2 triangles, `neck_elements` across the",
-        "# local thickness) against the same as beams: bending, shear and axial multiply E I,",
-        "# kappa G A and E A on the notch's beam elements; kt_bending and kt_tension are the",
-        "# neck's peak von Mises stress over 6 M / (w b^2) and N / (w b) (nan: a flat neck).",
-        "# Each field: [nu][aspect][t_over_r], t_over_r = b / R, aspect = across / along.",
-        "",
-        "[description_notch]",
-        f"neck_elements = {NECK_ELEMENTS}",
-        f"stations = {STATIONS}",
-        f"t_over_r = {fmt(T_OVER_R)}",
-        f"aspect = {fmt(ASPECT)}",
-        f"nu = {fmt(NU)}",
-    ]
-    for name in FIELDS:
-        values = [getattr(f, name) for f in found]
-        lines.append(f"{name} = [")
-        for i in range(len(NU)):
-            lines.append("    [")
-            lines += [f"        {fmt(values[(i * n_a + j) * n_t:(i * n_a + j + 1) * n_t])},"
-                      for j in range(n_a)]
-            lines.append("    ],")
-        lines.append("]")
-    TARGET.write_text("\n".join(lines) + "\n")
+    values = {name: [getattr(f, name) for f in found] for name in FIELDS}
+    TARGET.write_text(table_text(values, NECK_ELEMENTS, STATIONS))
     print(f"wrote {TARGET.name} in {time.perf_counter() - start:.0f} s")
+
+
+ABOUT = [
+    "The 2-D correction of the beam model of a notch written as bodies and flexures (a",
+    "circular or elliptical notch: neck b, semi-axes R along its centre line and aspect R",
+    "across it, its profile t(s) as geometry/mechanism/beams.py writes it, `stations` points",
+    "a quarter of it), computed by flexfem: scripts/notch_description_table.py",
+    "(flexfem.reduced.hinge_patch.profile_factors, the direct solve), not a published",
+    "source. The notch with a stub of its end height at each end, rigid beyond, in plane",
+    "stress (P2 triangles, `neck_elements` across the local thickness) against the same as",
+    "beams: bending, shear and axial multiply E I, kappa G A and E A on the notch's beam",
+    "elements; kt_bending and kt_tension are the neck's peak von Mises stress over",
+    "6 M / (w b^2) and N / (w b) (null: a flat neck, no K_t). Each field:",
+    "[nu][aspect][t_over_r], t_over_r = b / R, aspect = across / along. JSON: read in",
+    "0.3 ms where TOML takes 15 (a first analysis waits for it).",
+]
+
+
+def table_text(values: dict, neck_elements: int, stations: int) -> str:
+    """The JSON text of the table: ``values`` {field: entries in the order of
+    [nu][aspect][t_over_r], t_over_r fastest}, one row of t_over_r a line."""
+    fmt = lambda row: "[" + ", ".join("null" if v != v else f"{v:.12g}" for v in row) + "]"
+    n_t, n_a = len(T_OVER_R), len(ASPECT)
+    lines = ['{"description_notch": {', '"about": ' + json.dumps(ABOUT, indent=0) + ",",
+             f'"neck_elements": {neck_elements},', f'"stations": {stations},',
+             f'"t_over_r": {fmt(T_OVER_R)},', f'"aspect": {fmt(ASPECT)},', f'"nu": {fmt(NU)},']
+    for k, name in enumerate(FIELDS):
+        v = values[name]
+        blocks = ["[\n" + ",\n".join(fmt(v[(i * n_a + j) * n_t:(i * n_a + j + 1) * n_t])
+                                      for j in range(n_a)) + "]" for i in range(len(NU))]
+        lines.append(f'"{name}": [' + ",\n".join(blocks) + "]" + ("," if k < 4 else ""))
+    return "\n".join(lines) + "\n}}\n"
 
 
 def halfway(nodes: tuple, k: int, log: bool = True) -> float:

@@ -1,4 +1,4 @@
-"""The notch table of a description's notch (data/notch_description_factors.toml, read by
+"""The notch table of a description's notch (data/notch_description_factors.json, read by
 flexfem.reduced.hinge_patch): its interpolation against the direct 2-D solve between its
 nodes, within the accuracy docs/beam_speed.md states; what takes it and what is solved
 directly."""
