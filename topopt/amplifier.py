@@ -59,6 +59,9 @@ def amplifier_problem(force: float, k_in_min: float, k_actuator: float, k_output
         robust = Robust(eta, min_hinge)
         radius = radius_for(min_hinge, element, eta)
     width, height = nelx * dx, nely * h
+    # the output face: two elements, or with a minimum hinge one element more than it (so
+    # that the face the load acts on is no thinner than a hinge)
+    face = 2 * h if min_hinge is None else (math.ceil(min_hinge / h - 1e-9) + 1) * h
     (px0, px1), (_, py1) = env["pad"]
     px0, px1, py1 = round(px0 / dx) * dx, round(px1 / dx) * dx, round(py1 / h) * h
     (_, ox1), _ = env["output"]
@@ -83,7 +86,7 @@ def amplifier_problem(force: float, k_in_min: float, k_actuator: float, k_output
         + ((Constraint(Response("stress"), upper=stress_max),) if stress_max else ()),
         passive=(Passive(Region("box", ((0.0, 0.0), (px0, env["gap"]))), "void"),
                  Passive(Region("box", ((px0, 0.0), (px1, py1))), "solid"),
-                 Passive(Region("box", ((0.0, top - 2 * h), (ox1, top))), "solid")),
+                 Passive(Region("box", ((0.0, top - face), (ox1, top))), "solid")),
         optimizer=Optimizer("mma", 0.2, iterations, 0.01),
         projection=Projection(beta=1.0, beta_max=16.0, every=40), robust=robust)
 
@@ -142,7 +145,7 @@ def verify_amplifier(result, threshold: float = 0.3, neck: float = 0.6e-3,
     superposition); ``k_in_density`` (N/m); the outline and its number of parts."""
     from .model import Discrete
     from .outline import extract_outline, problem_anchors
-    from .verify import verify_mechanism
+    from .verify import mirror_lines, verify_mechanism
 
     problem = result.problem
     size = size or min(problem.grid.dx, problem.grid.dy) / 2
@@ -151,7 +154,8 @@ def verify_amplifier(result, threshold: float = 0.3, neck: float = 0.6e-3,
     free = {name: float(v @ u) for name, v in d.spring_vectors.items()}
     push = sum(ld.force[0] for ld in problem.case_loads(1))
     outline = extract_outline(result.density, problem.grid, problem_anchors(problem),
-                              threshold=threshold, close=neck / (2 * (2 ** 0.5 - 1)))
+                              threshold=threshold, close=neck / (2 * (2 ** 0.5 - 1)),
+                              mirrors=mirror_lines(problem))
     fitted = verify_mechanism(problem, outline, size=size)
     dens = result.displacements
     readings = shape_readings(problem, outline, size)

@@ -138,22 +138,31 @@ def _step(discrete, ev, z, it, mma, scale):
                       discrete.lower, discrete.upper, opt.move), scale
 
 
-def optimize(problem: Problem, out_dir=None, progress=None) -> Result:
+def optimize(problem: Problem, out_dir=None, progress=None, start=None) -> Result:
     """Optimise ``problem``; with ``out_dir`` the state is saved after every iteration and
     a rerun continues from it. ``progress(iteration, objective, volume, change)`` is called
-    after each iteration. A problem with large displacements starts from the optimum of its
-    linear twin (the same problem, small displacements; saved in ``out_dir``/linear), where
-    the load path already exists: a uniform grey start under the full load strains the grey
-    material far beyond any solid's."""
-    start = None
+    after each iteration. ``start``: (design variables, projection beta or None) to begin
+    from instead of the uniform start (clipped to the problem's passive bounds). A problem
+    with large displacements starts from the optimum of its linear twin (the same problem,
+    small displacements; saved in ``out_dir``/linear), where the load path already exists: a
+    uniform grey start under the full load strains the grey material far beyond any
+    solid's."""
+    linear = None
     if problem.nonlinear is not None:
         twin = replace(problem, nonlinear=None)
-        linear = optimize(twin, None if out_dir is None else Path(out_dir) / "linear", progress)
+        linear = optimize(twin, None if out_dir is None else Path(out_dir) / "linear", progress,
+                          start)
         start = (linear.design, linear.beta)
     discrete = Discrete(problem)
+    if start is not None:
+        if np.shape(start[0]) != (discrete.n_variables,):
+            raise ValueError(f"start: {np.shape(start[0])} design variables, the problem has "
+                             f"{discrete.n_variables}")
+        start = (np.clip(np.asarray(start[0], float), discrete.lower, discrete.upper),
+                 start[1] if problem.projection else None)
     with _blas().limit(limits=1):
         result = _optimize(discrete, out_dir, progress, start)
-    if start is not None:
+    if linear is not None:
         result.start_iterations = linear.iterations
     return result
 

@@ -38,13 +38,18 @@ def problem_anchors(problem) -> list:
     return [tuple(problem.grid.nodes[n]) for r in regions for n in r.nodes(problem.grid)]
 
 
-def _rings(density: np.ndarray, grid: Grid, threshold: float) -> list:
+def _rings(density: np.ndarray, grid: Grid, threshold: float, mirrors=()) -> list:
     from skimage.measure import find_contours
 
-    field = np.pad(density.reshape(grid.nelx, grid.nely), 1)  # [ix, iy], void around
+    field = np.pad(density.reshape(grid.nelx, grid.nely), 2)  # [ix, iy], void around
+    for axis, at in mirrors:    # a symmetry line: its mirror image beyond it, then void
+        side = 1 if at == 0.0 else -2
+        index, inner = [slice(1, -1), slice(1, -1)], [slice(1, -1), slice(1, -1)]
+        index[axis], inner[axis] = side, side + (1 if side == 1 else -1)
+        field[tuple(index)] = field[tuple(inner)]
     rings = []
     for c in find_contours(field, threshold):
-        xy = np.column_stack([(c[:, 0] - 0.5) * grid.dx, (c[:, 1] - 0.5) * grid.dy])
+        xy = np.column_stack([(c[:, 0] - 1.5) * grid.dx, (c[:, 1] - 1.5) * grid.dy])
         if len(xy) >= 4:
             rings.append(xy)
     return rings
@@ -52,9 +57,12 @@ def _rings(density: np.ndarray, grid: Grid, threshold: float) -> list:
 
 def extract_outline(density, grid: Grid, anchors=(), threshold: float = 0.5,
                     min_member: float = 0.0, simplify: float | None = None,
-                    close: float = 0.0) -> Outline:
+                    close: float = 0.0, mirrors=()) -> Outline:
     """The outline of ``density > threshold``. ``anchors``: points (m) the mechanism must
     reach (supports, loads, springs): a part touching none is an island, dropped;
+    ``mirrors``: symmetry lines at the grid's edges ((axis, value), m, as
+    topopt.verify.mirror_lines gives them), across which the solid continues straight
+    instead of being rounded off as at a free edge;
     ``min_member`` (m): members thinner than this are measured as ``thin_area``;
     ``simplify`` (m, default a quarter element): the outline's tolerance; ``close`` (m): a
     morphological closing of that radius (grown, then shrunk), which joins elements that
@@ -62,7 +70,8 @@ def extract_outline(density, grid: Grid, anchors=(), threshold: float = 0.5,
     import shapely
     from shapely.geometry import MultiPolygon, Point, Polygon, box
 
-    polys = [Polygon(r).buffer(0) for r in _rings(np.asarray(density), grid, threshold)]
+    polys = [Polygon(r).buffer(0) for r in _rings(np.asarray(density), grid, threshold,
+                                                  mirrors)]
     solid = reduce(lambda a, b: a.symmetric_difference(b), polys, Polygon())
     if close > 0:
         solid = solid.buffer(close, 16).buffer(-close, 16)

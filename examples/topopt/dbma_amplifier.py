@@ -6,10 +6,14 @@ topopt_amplifier.md). The report's quick mode reads these files; the full report
     .venv/bin/python examples/topopt/dbma_amplifier.py [--state FOLDER] [--iterations N]
 
 With --state the optimiser's state is saved there after every iteration (a rerun resumes);
---verify-only verifies the stored design again.
+--start FOLDER begins from the design and beta of another run's state there (of the same
+grid) instead of the uniform start; --verify-only verifies the stored design again.
 """
 import argparse
+from pathlib import Path
 import sys
+
+import numpy as np
 
 from flexfem.studies.dbma.topopt_robust import (ITERATIONS, dbma_limits, reverify, run_robust,
                                                 write_stored)
@@ -19,6 +23,8 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--state", default=None, help="folder for the optimiser's state")
     parser.add_argument("--iterations", type=int, default=ITERATIONS)
+    parser.add_argument("--start", default=None,
+                        help="state folder of an earlier run (same grid) to begin from")
     parser.add_argument("--verify-only", action="store_true",
                         help="verify the stored design again (no optimisation)")
     args = parser.parse_args()
@@ -33,7 +39,14 @@ def main() -> None:
         print(f"{it:4d} u_out {objective:.5g} m, volume {volume:.3f}, change {change:.3f}",
               file=sys.stderr, flush=True)
 
-    run = run_robust(limits, out_dir=args.state, progress=progress, iterations=args.iterations)
+    start = None
+    if args.start:
+        with np.load(Path(args.start) / "state.npz") as state:
+            start = (state["z"], float(state["beta"]),
+                     f"iteration {int(state['iteration'])} of an earlier run at beta "
+                     f"{float(state['beta']):g}")
+    run = run_robust(limits, out_dir=args.state, progress=progress, iterations=args.iterations,
+                     start=start)
     for path in write_stored(run):
         print(path)
 

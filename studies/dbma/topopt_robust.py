@@ -116,13 +116,15 @@ def reverify(stem=STORED) -> dict:
 
 
 def run_robust(limits: dict, out_dir=None, progress=None, iterations: int = ITERATIONS,
-               element: float = ELEMENT) -> dict:
+               element: float = ELEMENT, start=None) -> dict:
     """Optimise, verify (:func:`verify_design`) and measure the necks: the record the
-    report shows (JSON-able) and the physical densities."""
-    start = time.perf_counter()
+    report shows (JSON-able) and the physical densities. ``start``: (design variables,
+    beta, a note saying where they come from) to begin from instead of the uniform start."""
+    clock = time.perf_counter()
     problem = robust_problem(limits, iterations, element)
-    result = optimize(problem, out_dir=out_dir, progress=progress)
-    seconds = time.perf_counter() - start
+    result = optimize(problem, out_dir=out_dir, progress=progress,
+                      start=None if start is None else start[:2])
+    seconds = time.perf_counter() - clock
     verified, necks = verify_design(result)
     record = {"problem": {"element": element, "nelx": problem.grid.nelx,
                           "nely": problem.grid.nely, "min_hinge": min_hinge(),
@@ -135,6 +137,8 @@ def run_robust(limits: dict, out_dir=None, progress=None, iterations: int = ITER
               "result": result.summary(), "seconds": seconds,
               "verified": {k: v for k, v in verified.items() if k != "outline"},
               "necks": necks, "large": large_reading(problem, result.density)}
+    if start is not None:
+        record["start"] = {"beta": start[1], "from": start[2]}
     return {"record": _plain(record), "density": result.density, "result": result,
             "verified": verified}
 

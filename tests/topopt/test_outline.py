@@ -2,6 +2,7 @@
 the DXF re-imports with the same rings."""
 import ezdxf
 import numpy as np
+import pytest
 
 from flexfem.topopt import Grid
 from flexfem.topopt.outline import extract_outline, write_dxf
@@ -42,3 +43,18 @@ def test_a_closing_joins_a_one_node_hinge_by_a_neck():
     from shapely import LineString
     neck = LineString([(0.0, 0.004), (0.004, 0.0)]).intersection(closed.shape).length
     assert abs(neck - 2 * 0.5e-3 * (np.sqrt(2) - 1)) < 0.1e-3   # m, the neck's width
+
+
+def test_a_member_across_a_symmetry_line_keeps_its_width_there():
+    """A bar 3 elements thick along the top edge, its left end on the line x = 0: with the
+    line as a mirror the outline meets it square (3 elements across at x = 0); as a free
+    edge the corners are cut by half an element (2 elements across at x = 0)."""
+    from shapely.geometry import LineString
+
+    grid = Grid(10, 10, 10.0, 10.0)
+    density = np.zeros((10, 10))
+    density[:, 7:] = 1.0          # [ix, iy]: the top three rows
+    for mirrors, width in (([(0, 0.0)], 3.0), ([], 2.0)):
+        shape = extract_outline(density.ravel(), grid, mirrors=mirrors).shape
+        at_line = shape.intersection(LineString([(0.0, 0.0), (0.0, 10.0)])).length
+        assert at_line == pytest.approx(width, abs=1e-9)
