@@ -10,7 +10,7 @@ import numpy as np
 from ...fem import material as library_material
 from ...geometry.flexure_pivot import PivotGeometry
 from ..engine.tables import write_rows
-from ..report.figures import axis_label, pyplot, save
+from ..report.figures import label, pyplot, save
 from .design import default_workspace
 from .gravity import load_robot, workspace_torques
 from .negative_pivot import (
@@ -203,10 +203,7 @@ def plot_negative_pivots(path, rows: list) -> dict:
         ax.set_title(f"motor {r['motor']}: N = {r['transmission_ratio']:g}, L = "
                      f"{r['L_m'] * 1e3:.0f} mm, t = {r['t_m'] * 1e3:.2f} mm, "
                      f"w = {r['w_m'] * 1e3:.0f} mm, P = {r['P_N']:.0f} N", fontsize=9)
-        ax.set_xlabel(axis_label("pivot rotation", "deg"))
-        ax.set_ylabel(axis_label("moment on the hub", "N m"))
-        ax.grid(True, alpha=0.3)
-        ax.legend(fontsize=8)
+        label(ax, ("pivot rotation", "deg"), ("moment on the hub", "N m"), legend_size=8)
     fig.tight_layout()
     return save(fig, path, "Negative-stiffness compressed-leaf pivots of motors 2 and 4: hub "
                 "moment against rotation, beam-column linear stiffness, elastica and "

@@ -34,7 +34,7 @@ from ...fem import (Fixed, Model, PlaneStrain, PlaneStress, RigidFace, material,
 from ...fem.static import nodal_average
 from ...geometry.flexure_pivot import PivotGeometry, mesh_pivot
 from ..engine.tables import write_rows
-from ..report.figures import axis_label, pyplot, save
+from ..report.figures import label, pyplot, save
 from .design import pivot_designs
 from .pivots import (
     FlexurePivot,
@@ -242,10 +242,7 @@ def plot_moment_rotation(path, rows: list) -> dict:
                         label=f"FEM, {r['formulation'].replace('_', ' ')}")
         ax.set_title(f"motor {motor}: cross-spring, N = {mine[0]['transmission_ratio']:g}, "
                      f"L = {mine[0]['L_m'] * 1e3:.0f} mm, t = {mine[0]['t_m'] * 1e3:.2f} mm")
-        ax.set_xlabel(axis_label("pivot rotation", "deg"))
-        ax.set_ylabel(axis_label("moment on the hub", "N m"))
-        ax.grid(True, alpha=0.3)
-        ax.legend(fontsize=8)
+        label(ax, ("pivot rotation", "deg"), ("moment on the hub", "N m"), legend_size=8)
     fig.tight_layout()
     return save(fig, path, "Cross-spring flexure pivots sized as the torsion springs of motors "
                 "3 and 5: hub moment against rotation by large-deflection FEM (plane stress and "

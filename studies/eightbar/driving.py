@@ -51,7 +51,7 @@ from ...geometry.eightbar.flexure import EightBarFlexureParams
 from ...geometry.straight_line import straight_line_deviation
 from ..engine.tables import write_rows
 from ..report.comparison import Comparison, rows as comparison_rows
-from ..report.figures import axis_label, legend_outside, pyplot, save
+from ..report.figures import axis_label, plan_view, pyplot, save
 from .analysis import NEWTON_TOL as TOL
 from .analysis import build_model as build_suspension
 
@@ -169,10 +169,7 @@ def _draw_rigid(path: Path, tr, params: DrivingParams) -> dict:
     ax.plot(gx[:, 0] * 1e3, gx[:, 1] * 1e3, "k^", ms=5, label="ground pivots")
     for pts in (tr.ee_left, tr.ee_right):
         ax.plot(pts[:, 0] * 1e3, pts[:, 1] * 1e3, "g-", lw=2)
-    ax.set_aspect("equal")
-    ax.set_xlabel(axis_label("x", "mm"))
-    ax.set_ylabel(axis_label("y", "mm"))
-    legend_outside(ax)
+    plan_view(ax)
     fig.tight_layout()
     return save(fig, path, "The driving linkage of Chapter 6 as a rigid linkage: two Chebyshev "
                 "lambdas drive the two eight-bar suspensions in opposite directions, at both ends "

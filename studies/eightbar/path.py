@@ -31,7 +31,7 @@ from ...geometry.synthesis import (
 )
 from ..engine.tables import write_rows
 from ..report.comparison import Comparison, rows as comparison_rows
-from ..report.figures import axis_label, legend_outside, pyplot, save
+from ..report.figures import axis_label, plan_view, pyplot, save
 
 MM = 1e-3
 
@@ -201,10 +201,7 @@ def plot_eightbar(params: EightBarParams, tr, out: Path) -> dict:
     base = np.array(list(linkage.link("ground").points.values()))
     ax.plot(base[:, 0] * 1e3, base[:, 1] * 1e3, "k^", ms=8, label="ground pivots")
     ax.plot(tr.points[:, 0] * 1e3, tr.points[:, 1] * 1e3, "C3-", lw=2, label="end-effector path")
-    ax.set_aspect("equal")
-    ax.set_xlabel(axis_label("x", "mm"))
-    ax.set_ylabel(axis_label("y", "mm"))
-    legend_outside(ax)
+    plan_view(ax)
     fig.tight_layout()
     return save(fig, out, "The symmetric eight-bar as a rigid linkage at the middle (solid), "
                 "start (dotted) and end (dashed) of its travel, with its ground pivots and the "

@@ -26,6 +26,23 @@ def legend_outside(ax, **options) -> None:
               fontsize="small", **options)
 
 
+def label(ax, x: tuple, y: tuple, legend_size=None) -> None:
+    """Axis labels from (name, unit) pairs ``x`` and ``y``, a light grid and a legend inside
+    the axes in ``legend_size`` points (None: no grid or legend)."""
+    ax.set_xlabel(axis_label(*x))
+    ax.set_ylabel(axis_label(*y))
+    if legend_size is not None:
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=legend_size)
+
+
+def plan_view(ax) -> None:
+    """A drawing in its plane: equal axes in mm, the legend beside them."""
+    ax.set_aspect("equal")
+    label(ax, ("x", "mm"), ("y", "mm"))
+    legend_outside(ax)
+
+
 def save(fig, path, caption: str) -> dict:
     """Save ``fig`` as ``path`` (PNG), close it and return the report's figure entry
     {"file": name, "caption": caption}."""
