@@ -101,17 +101,19 @@ def _body(entry, i, names, loc: Locator) -> Body:
                         key, i) from None
 
 
-def _flexure(entry, i, names, loc: Locator):
+def flexure_head(entry, i: int, loc: Locator, kinds: dict, optional=("kind", "name", "fillet"),
+                 choose: str = "choose one of") -> tuple:
+    """The head of the ``i``-th [[flexure]] table, planar or spatial: its ``kind`` (one of
+    ``kinds``, {kind: its keys}; ``choose`` introduces them in the refusal), its keys (all but
+    ``optional`` required), ``between`` (two body names) and ``name``: (kind, between, name)."""
     if not isinstance(entry, dict):
         raise loc.error(f"[[flexure]] must be a table, not {entry!r}", "flexure", None, i)
     kind = entry.get("kind", "leaf")
-    if kind not in FLEXURE_KEYS:
-        raise loc.error(f"[[flexure]] kind = {kind!r}; choose one of {', '.join(FLEXURE_KEYS)}",
+    if kind not in kinds:
+        raise loc.error(f"[[flexure]] kind = {kind!r}; {choose} {', '.join(kinds)}",
                         "flexure", "kind", i)
-    keys = FLEXURE_KEYS[kind]
-    check_keys(entry, keys, loc, "flexure", i, f"[[flexure]] ({kind})")
-    required = [k for k in keys if k not in ("kind", "name", "fillet")]
-    missing = [k for k in required if k not in entry]
+    check_keys(entry, kinds[kind], loc, "flexure", i, f"[[flexure]] ({kind})")
+    missing = [k for k in kinds[kind] if k not in optional and k not in entry]
     if missing:
         raise loc.error(f"[[flexure]] ({kind}) needs {', '.join(missing)}", "flexure", None, i)
     between = entry["between"]
@@ -122,6 +124,12 @@ def _flexure(entry, i, names, loc: Locator):
     name = entry.get("name", "")
     if not isinstance(name, str):
         raise loc.error(f"[[flexure]] name = {name!r} must be a string", "flexure", "name", i)
+    return kind, between, name
+
+
+def _flexure(entry, i, names, loc: Locator):
+    kind, between, name = flexure_head(entry, i, loc, FLEXURE_KEYS)
+    keys = FLEXURE_KEYS[kind]
     values = {}
     for key in keys[3:]:
         if key not in entry:
