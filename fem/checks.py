@@ -1,5 +1,5 @@
 """The package's checks of plain values, defined once: a real number, a positive one, one in a
-range, a count (a whole number), a number or None.
+range, a count (a whole number), one of given choices, a number or None.
 
 Each returns the value (a float; an int for a count) or raises :class:`InputError`, a
 ValueError in one style that names the owner (where one is given), the value's name and the
@@ -78,6 +78,13 @@ def count(name: str, value, least: int = 1, most: int | None = None,
                 f"a whole number from {least:,} to {most:,}")
         raise InputError(name, value, must, owner)
     return int(value)
+
+
+def one_of(name: str, value, choices, owner: str | None = None):
+    """``value`` if it is one of ``choices`` (a kind, a method), else InputError listing them."""
+    if value not in choices:
+        raise InputError(name, value, f"one of {', '.join(map(repr, choices))}", owner)
+    return value
 
 
 def finite_or_none(name: str, value, none_means: str = "free"):

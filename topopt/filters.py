@@ -11,6 +11,7 @@ from functools import cached_property
 import numpy as np
 import scipy.sparse as sp
 
+from ..fem import checks
 from .grid import Grid
 
 KINDS = ("sensitivity", "density", "helmholtz", "none")
@@ -66,8 +67,7 @@ class Filter:
     radius: float = 1.5
 
     def __post_init__(self):
-        if self.kind not in KINDS:
-            raise ValueError(f"filter.kind = {self.kind!r}: choose one of {list(KINDS)}")
+        checks.one_of("filter.kind", self.kind, KINDS)
         if not (np.isfinite(self.radius) and self.radius > 1.0) and self.kind != "none":
             raise ValueError(f"filter.radius = {self.radius!r}: must be > 1 (elements)")
 

@@ -67,8 +67,7 @@ class Sample:
     seed: int = 0
 
     def __post_init__(self):
-        if self.method not in SAMPLE_METHODS:
-            raise ValueError(f"sample.method = {self.method!r} must be one of {SAMPLE_METHODS}")
+        checks.one_of("sample.method", self.method, SAMPLE_METHODS)
         checks.count("sample.n", self.n)
         if not self.ranges:
             raise ValueError("sample.ranges is empty: give at least one parameter range")

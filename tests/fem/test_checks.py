@@ -5,7 +5,7 @@ import pickle
 import numpy as np
 import pytest
 from flexfem.fem.checks import (InputError, count, finite_or_none, in_range, is_finite,
-                                is_real, positive, real)
+                                is_real, one_of, positive, real)
 
 
 def test_what_a_number_is():
@@ -59,3 +59,9 @@ def test_a_refusal_crosses_a_process_boundary_whole():
     error = pickle.loads(pickle.dumps(InputError("b", 0.0, "a finite number > 0", "DBMAParams")))
     assert isinstance(error, InputError) and str(error) == \
         "DBMAParams: b = 0.0 must be a finite number > 0"
+
+
+def test_one_of_names_the_choices():
+    assert one_of("kind", "lhs", ("lhs", "sobol")) == "lhs"
+    with pytest.raises(InputError, match=r"^sample: kind = 'grid' must be one of 'lhs', 'sobol'$"):
+        one_of("kind", "grid", ("lhs", "sobol"), owner="sample")
