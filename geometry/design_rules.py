@@ -7,12 +7,12 @@ thesis p. 38): every beam at least ``min_beam_width`` wide; no two parts closer 
 trench it faces) at most ``max_gap`` -- our reading of "the gap width is between 0.7 micron
 and 50 microns" for a layout with open space (docs/eightbar.md).
 """
-import math
 from dataclasses import dataclass
 
 import numpy as np
 
 from ..data import load_toml
+from ..fem import checks
 from .flexure_linkage import inside_convex, polygon_distance
 from .linkage_clearance import segment_distance
 
@@ -30,9 +30,7 @@ class FabricationRules:
 
     def __post_init__(self):
         for name in ("min_beam_width", "min_gap", "max_gap"):
-            value = getattr(self, name)
-            if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
-                raise ValueError(f"{name} = {value!r} m must be a finite number > 0")
+            checks.positive(name, getattr(self, name), owner="FabricationRules", unit="m")
         if not self.max_gap > self.min_gap:
             raise ValueError(f"max_gap = {self.max_gap} m must be > min_gap = {self.min_gap} m")
 

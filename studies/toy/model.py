@@ -18,6 +18,7 @@ The engine's tests add hooks (sleep, fail, crash) in a mechanism of their own
 import math
 from dataclasses import dataclass, fields
 
+from ...fem import checks
 from ..engine.validate import declare
 
 BASE_ELEMENTS = 8  # elements at size_factor = 1
@@ -41,9 +42,7 @@ class CantileverParams:
     def __post_init__(self):
         for name in ("length_m", "width_m", "thickness_root_m", "thickness_tip_m",
                      "youngs_modulus_pa"):
-            value = getattr(self, name)
-            if not value > 0:
-                raise ValueError(f"{name} = {value!r} must be > 0")
+            value = checks.positive(name, getattr(self, name))
             if name.endswith("_m") and not value <= 10.0:
                 raise ValueError(f"{name} = {value!r} m is larger than a cantilever of this "
                                  "model (at most 10 m); lengths are in m")
