@@ -45,6 +45,7 @@ from scipy.optimize import brentq
 
 from ...fem import Material
 from ...fem.checks import positive
+from .pivots import no_leaf_fits, pivot_rotation
 
 KL_DEFAULT = 0.75 * math.pi
 
@@ -225,12 +226,7 @@ def size_negative_pivot(K, theta_range_rad, material: Material, safety_factor=2.
     if not (math.pi / 2 < kL < math.pi):
         raise ValueError(f"kL = {kL!r} must be in (pi/2, pi): negative stiffness, below the "
                          "guided buckling load")
-    if not safety_factor >= 1.0:
-        raise ValueError(f"safety_factor = {safety_factor} must be >= 1")
-    positive("transmission_ratio", transmission_ratio)
-    theta_max = float(np.max(np.abs(theta_range_rad))) / transmission_ratio
-    if not theta_max > 0.0:
-        raise ValueError(f"theta_range_rad = {theta_range_rad} must not be all zero")
+    theta_max = pivot_rotation(theta_range_rad, transmission_ratio, safety_factor)
     k_pivot = K * transmission_ratio**2
     E, allowable = material.E, material.yield_strength / safety_factor
     f, b = float(stiffness_factor(kL)), bending_stress_factor(kL)
@@ -253,10 +249,9 @@ def size_negative_pivot(K, theta_range_rad, material: Material, safety_factor=2.
                                        theta_max=theta_max, stiffness=float(k_pivot),
                                        max_stress=float(stress),
                                        safety_factor=float(material.yield_strength / stress))
-    raise ValueError(
-        f"no compressed leaf with L in [{lengths[0]:.3f}, {lengths[-1]:.3f}] m and width <= "
-        f"max_width = {max_width} m gives K = {K} N m/rad over theta_max = {theta_max:.3f} rad "
-        f"({material.name}, safety factor {safety_factor}, N = {transmission_ratio}, kL = {kL:.3f})")
+    raise no_leaf_fits("compressed leaf", lengths, max_width, K, theta_max,
+                       f"{material.name}, safety factor {safety_factor}, N = "
+                       f"{transmission_ratio}, kL = {kL:.3f}")
 
 
 def plate_modulus(E, nu):

@@ -96,13 +96,7 @@ def size_flexure_pivot(K, theta_range_rad, material: Material, safety_factor=2.0
     if not K > 0.0:
         raise ValueError(f"K = {K} N m/rad must be > 0: a plain flexure pivot cannot supply a "
                          "negative stiffness")
-    if not safety_factor >= 1.0:
-        raise ValueError(f"safety_factor = {safety_factor} must be >= 1")
-    if not transmission_ratio > 0.0:
-        raise ValueError(f"transmission_ratio = {transmission_ratio} must be > 0")
-    theta_max = float(np.max(np.abs(theta_range_rad))) / transmission_ratio
-    if not theta_max > 0.0:
-        raise ValueError(f"theta_range_rad = {theta_range_rad} must not be all zero")
+    theta_max = pivot_rotation(theta_range_rad, transmission_ratio, safety_factor)
     k_pivot = K * transmission_ratio**2
     allowable = material.yield_strength / safety_factor
     if lengths is None:
@@ -120,10 +114,28 @@ def size_flexure_pivot(K, theta_range_rad, material: Material, safety_factor=2.0
                                 theta_max=theta_max, stiffness=float(k_pivot),
                                 max_stress=float(stress),
                                 safety_factor=float(material.yield_strength / stress))
-    raise ValueError(
-        f"no cross-spring pivot with L in [{lengths[0]:.3f}, {lengths[-1]:.3f}] m and width "
-        f"<= max_width = {max_width} m gives K = {K} N m/rad over theta_max = {theta_max:.3f} rad "
-        f"({material.name}, safety factor {safety_factor}, N = {transmission_ratio})")
+    raise no_leaf_fits("cross-spring pivot", lengths, max_width, K, theta_max,
+                       f"{material.name}, safety factor {safety_factor}, N = {transmission_ratio}")
+
+
+def pivot_rotation(theta_range_rad, transmission_ratio, safety_factor) -> float:
+    """The largest pivot rotation theta_max (rad): max |theta_range_rad| (motor, rad) / N,
+    once safety_factor >= 1 and the transmission ratio N > 0 are checked."""
+    if not safety_factor >= 1.0:
+        raise ValueError(f"safety_factor = {safety_factor} must be >= 1")
+    checks.positive("transmission_ratio", transmission_ratio)
+    theta_max = float(np.max(np.abs(theta_range_rad))) / transmission_ratio
+    if not theta_max > 0.0:
+        raise ValueError(f"theta_range_rad = {theta_range_rad} must not be all zero")
+    return theta_max
+
+
+def no_leaf_fits(what: str, lengths, max_width, K, theta_max, given: str) -> ValueError:
+    """The refusal of a pivot search: no ``what`` over ``lengths`` (m) within ``max_width``
+    (m) gives K (N m/rad) over theta_max (rad); ``given``: the material and factors."""
+    return ValueError(f"no {what} with L in [{lengths[0]:.3f}, {lengths[-1]:.3f}] m and width "
+                      f"<= max_width = {max_width} m gives K = {K} N m/rad over theta_max = "
+                      f"{theta_max:.3f} rad ({given})")
 
 
 def negative_stiffness_preload(K, lever_arm):
