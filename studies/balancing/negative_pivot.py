@@ -45,7 +45,7 @@ from scipy.optimize import brentq
 
 from ...fem import Material
 from ...fem.checks import positive
-from .pivots import no_leaf_fits, pivot_rotation
+from .pivots import LeafPivot, no_leaf_fits, pivot_rotation
 
 KL_DEFAULT = 0.75 * math.pi
 
@@ -153,22 +153,12 @@ def compressed_leaf_elastica(E, I, L, P, theta, n_nodes=201) -> Elastica:
 
 
 @dataclass(frozen=True)
-class CompressedLeafPivot:
-    """A leaf of length L, thickness t, width w (m) under compressive preload P (N) giving the
-    hub stiffness ``stiffness`` (N m/rad, < 0) at the pivot; transmission_ratio N (motor
-    angle / pivot angle), theta_max (rad, largest pivot rotation), kL = L sqrt(P / E I),
-    max_stress (Pa, clamp, beam-column small-angle), safety_factor = yield / max_stress."""
+class CompressedLeafPivot(LeafPivot):
+    """A leaf (a :class:`~.pivots.LeafPivot`) under compressive preload P (N) giving the hub
+    stiffness ``stiffness`` (N m/rad, < 0) at the pivot; kL = L sqrt(P / E I); max_stress at
+    the clamp (beam-column, small-angle)."""
 
-    L: float
-    t: float
-    w: float
     P: float
-    material: Material
-    transmission_ratio: float
-    theta_max: float
-    stiffness: float
-    max_stress: float
-    safety_factor: float
 
     def __post_init__(self):
         for attr in ("L", "t", "w", "P", "transmission_ratio", "theta_max", "max_stress",
@@ -189,17 +179,8 @@ class CompressedLeafPivot:
     def kL(self) -> float:
         return self.L * math.sqrt(self.P / (self.material.E * self.I))
 
-    @property
-    def stiffness_at_motor(self) -> float:
-        """K / N^2 (N m/rad)."""
-        return self.stiffness / self.transmission_ratio**2
-
     def as_dict(self) -> dict:
-        return {"L_m": self.L, "t_m": self.t, "w_m": self.w, "P_N": self.P, "kL": self.kL,
-                "material": self.material.name, "transmission_ratio": self.transmission_ratio,
-                "theta_max_rad": self.theta_max, "stiffness_Nm_per_rad": self.stiffness,
-                "stiffness_at_motor_Nm_per_rad": self.stiffness_at_motor,
-                "max_stress_Pa": self.max_stress, "safety_factor": self.safety_factor}
+        return self.row(P_N=self.P, kL=self.kL)
 
 
 def compressed_leaf_stress(E, t, w, L, P, theta):

@@ -24,22 +24,41 @@ from ...fem import Material, checks
 
 
 @dataclass(frozen=True)
-class FlexurePivot:
-    """A cross-spring pivot: leaf length L, thickness t, width w (m), n_leaves, its material,
-    transmission_ratio N (motor angle / pivot angle), theta_max (rad, largest pivot rotation),
-    stiffness (N m/rad, at the pivot), max_stress (Pa) and safety_factor = yield / max_stress.
-    """
+class LeafPivot:
+    """What a pivot of leaves has, however they are loaded: leaf length L, thickness t, width
+    w (m), its material, transmission_ratio N (motor angle / pivot angle), theta_max (rad,
+    largest pivot rotation), stiffness (N m/rad, at the pivot), max_stress (Pa) and
+    safety_factor = yield / max_stress."""
 
     L: float
     t: float
     w: float
-    n_leaves: int
     material: Material
     transmission_ratio: float
     theta_max: float
     stiffness: float
     max_stress: float
     safety_factor: float
+
+    @property
+    def stiffness_at_motor(self) -> float:
+        """Rotational stiffness seen by the motor, K / N^2 (N m/rad)."""
+        return self.stiffness / self.transmission_ratio**2
+
+    def row(self, **own) -> dict:
+        """The pivot as a table row, ``own`` (its kind's columns) after its sizes."""
+        return {"L_m": self.L, "t_m": self.t, "w_m": self.w, **own,
+                "material": self.material.name, "transmission_ratio": self.transmission_ratio,
+                "theta_max_rad": self.theta_max, "stiffness_Nm_per_rad": self.stiffness,
+                "stiffness_at_motor_Nm_per_rad": self.stiffness_at_motor,
+                "max_stress_Pa": self.max_stress, "safety_factor": self.safety_factor}
+
+
+@dataclass(frozen=True)
+class FlexurePivot(LeafPivot):
+    """A cross-spring pivot of ``n_leaves`` leaves (a :class:`LeafPivot`)."""
+
+    n_leaves: int
 
     def __post_init__(self):
         for attr in ("L", "t", "w", "transmission_ratio", "stiffness", "max_stress",
@@ -52,17 +71,8 @@ class FlexurePivot:
         if self.t >= self.L:
             raise ValueError(f"t = {self.t} must be < L = {self.L} (a leaf, not a block)")
 
-    @property
-    def stiffness_at_motor(self) -> float:
-        """Rotational stiffness seen by the motor, K / N^2 (N m/rad)."""
-        return self.stiffness / self.transmission_ratio**2
-
     def as_dict(self) -> dict:
-        return {"L_m": self.L, "t_m": self.t, "w_m": self.w, "n_leaves": self.n_leaves,
-                "material": self.material.name, "transmission_ratio": self.transmission_ratio,
-                "theta_max_rad": self.theta_max, "stiffness_Nm_per_rad": self.stiffness,
-                "stiffness_at_motor_Nm_per_rad": self.stiffness_at_motor,
-                "max_stress_Pa": self.max_stress, "safety_factor": self.safety_factor}
+        return self.row(n_leaves=self.n_leaves)
 
 
 def leaf_bending_stress(E, t, theta, L):
