@@ -138,7 +138,10 @@ def solve_buckling(model: BeamModel, supports, loads, n: int = 3, **options) -> 
     G = space.condense_global(global_matrix(model, geometric_stiffness(model,
                                                                        state.axial_force)),
                               ev.w)
-    G = (G + sp.diags(space.constraint_diagonal(state.q, r)[space.free])).tocsc()
+    # the links' second-order term about the reference configuration (zero rotation): linear
+    # buckling, whose factor does not depend on the size of the load
+    reference = np.zeros_like(state.q)
+    G = (G + sp.diags(space.constraint_diagonal(reference, r)[space.free])).tocsc()
     if not np.any(G.data):
         raise ValueError("the loads leave every beam without axial force: no buckling")
     factors, vectors = lowest_load_factors(ev.K, G, n)

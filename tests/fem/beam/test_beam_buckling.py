@@ -93,6 +93,19 @@ def test_a_rigid_arm_carries_its_load_around():
     assert got < P_E / 4 * 0.6  # the arm matters: 0.47 of the bare column's
 
 
+def test_linear_buckling_does_not_depend_on_the_load_size():
+    """Linear buckling is about the reference configuration: with the load on a rigid arm
+    across the column (its top turns under the load), the critical load is the same for a
+    1 N and a 1 mN load (the links' term evaluated at zero rotation, not at the state)."""
+    mesh = beam_chain([(0, 0), (L, 0)], Section.rect(W, T), 16)
+    nodes = np.vstack([mesh.nodes, [(L, L / 2)]])
+    model = BeamModel(nodes, mesh.elements, mesh.sections, STEEL,
+                      rigid_links=[RigidLink(16, (17,))], groups={"base": [0], "end": [17]})
+    critical = [p * solve_buckling(model, [Fixed("base")], [Force("end", (-p, 0.0))],
+                                   n=1).load_factors[0] for p in (1.0, 1e-3)]
+    assert critical[0] == pytest.approx(critical[1], rel=1e-9)
+
+
 def test_the_result_reads_as_the_continuums():
     """load_factors, shapes (n, n_nodes, 3) scaled to a largest translation of 1,
     vertex_shape, prebuckling (the face's static result) and critical_reaction."""
