@@ -33,8 +33,9 @@ from .static import StaticResult, UnderConstrainedError
 from .buckling import Buckling
 from .compliance import Compliance
 from .harmonic import FRF, HarmonicResult, Rayleigh
-from .analyses import (compliance_matrix, solve_buckling, solve_harmonic, solve_modes,
-                       solve_nonlinear, solve_static)
+from .analyses import (compliance_matrix, solve_buckling, solve_harmonic,
+                       solve_incremental_buckling, solve_modes, solve_nonlinear, solve_static)
+from .stability import StateBuckling
 from .beam import BeamGroup, BeamModel
 from .springs import ground_spring, group_spring
 from .stress import nonlinear_stress, nonlinear_stress_at
@@ -47,5 +48,5 @@ __all__ = [
     "mesh_from_gmsh", "nonlinear_stress", "nonlinear_stress_at", "read_mesh", "solve_modes", "solve_nonlinear", "solve_static",
     "von_mises", "write_mesh", "write_result",
     "Buckling", "Compliance", "FRF", "HarmonicResult", "Rayleigh", "compliance_matrix",
-    "solve_buckling", "solve_harmonic", "group_spring", "ground_spring", "BeamGroup", "BeamModel",
+    "solve_buckling", "solve_harmonic", "solve_incremental_buckling", "StateBuckling", "group_spring", "ground_spring", "BeamGroup", "BeamModel",
 ]
