@@ -28,7 +28,7 @@ data/notch_factors.toml (written by scripts/notch_factor_table.py with this modu
 :func:`patch_factors`), and a description's circular or elliptical notch (its profile as
 geometry/mechanism/beams.py writes it) over t/R, across / along and nu in
 data/notch_description_factors.json (scripts/notch_description_table.py, with
-:func:`profile_factors`; E I and E A within 6e-4 of the direct solve, kappa G A 3e-3, K_t 4 %:
+:func:`profile_factors`; E I within 6e-4 of the direct solve, E A 1e-3, kappa G A 3e-3, K_t 5 %:
 docs/beam_speed.md); both are interpolated (monotone cubic), so a first analysis and a design
 sweep pay nothing. Any other profile, or one outside a table's range, is computed, once per
 shape in a process (1-7 s), and says so in the log (logger ``flexfem.reduced.hinge_patch``,

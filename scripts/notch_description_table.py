@@ -3,7 +3,7 @@ written as bodies and flexures (a circular or elliptical notch, its profile as
 geometry/mechanism/beams.py writes it), over t/R, across / along and Poisson's ratio; or check
 the table against the direct solve between its nodes.
 
-    nice -n 10 .venv/bin/python scripts/notch_description_table.py --jobs 2   # ~20 min
+    nice -n 10 .venv/bin/python scripts/notch_description_table.py --jobs 2   # ~12 min
     nice -n 10 .venv/bin/python scripts/notch_description_table.py --check --jobs 2  # ~6 min
 
 Each entry is flexfem.reduced.hinge_patch.profile_factors (table=False) of the profile
