@@ -4,8 +4,8 @@ the bodies' names as boundary groups, "solid" the whole), with the planar format
 [material], [mesh], [[supports]], [[loads]] and [analysis] tables."""
 from dataclasses import replace
 
-from ..user_model.tables import (SectionSpec, parse_analysis, parse_loads, parse_material,
-                                 parse_mesh, parse_supports)
+from ..user_model.mechanism_tables import mechanism_parts
+from ..user_model.tables import SectionSpec, parse_loads, parse_supports
 from .tables import parse_spatial, split_moments
 
 #: Tables a spatial file may hold.
@@ -27,20 +27,10 @@ def spatial_spec(raw: dict, parameters: dict, loc, dim: int | None = None) -> tu
     if "material" not in raw:
         raise loc.error("[material] is required", None)
     loads, moments = split_moments(raw.get("loads", []), parameters, loc)
-    parts = {
-        "material": parse_material(raw["material"], loc),
-        "section": SectionSpec("solid"),
-        "mesh": parse_mesh(raw.get("mesh", {}), loc),
-        "supports": parse_supports(raw.get("supports", []), 3, loc),
-        "loads": parse_loads(loads, 3, loc),
-        "analysis": parse_analysis(raw.get("analysis", {}), loc),
-    }
-    if parts["mesh"].refine:
-        raise loc.error("[mesh] refine: every flexure is refined already (its diameter or "
-                        "thickness sets its element size)", "mesh", "refine")
-    if not parts["supports"]:
-        raise loc.error("the mechanism has no support: hold a body with [[supports]] group = "
-                        "'NAME'", None)
+    parts = mechanism_parts(raw, loc, SectionSpec("solid"), parse_supports,
+                            lambda _, dim, where: parse_loads(loads, dim, where), 3,
+                            "every flexure is refined already (its diameter or thickness "
+                            "sets its element size)")
     mechanism = parse_spatial(raw, parameters, loc, {s.group for s in parts["supports"]})
     names = {b.name for b in mechanism.bodies}
     for body, _, source in moments:

@@ -8,7 +8,7 @@ import math
 import tomllib
 
 from ..user_model.expressions import evaluate_expression
-from ..user_model.mechanism_tables import body_name
+from ..user_model.mechanism_tables import body_name, flexure_head
 from ..user_model.quantities import with_si_units
 from ..user_model.tables import Locator, check_keys
 from .detect import is_spatial  # noqa: F401 - the spatial tables' own test, re-exported
@@ -115,26 +115,11 @@ def _body(entry, i, names, loc: Locator) -> SolidBody:
 
 
 def _flexure(entry, i, names, loc: Locator):
-    if not isinstance(entry, dict):
-        raise loc.error(f"[[flexure]] must be a table, not {entry!r}", "flexure", None, i)
-    kind = entry.get("kind", "leaf")
-    if kind not in FLEXURE_KEYS:
-        raise loc.error(f"[[flexure]] kind = {kind!r}; a spatial mechanism's flexures: "
-                        f"{', '.join(FLEXURE_KEYS)}", "flexure", "kind", i)
+    kind, between, name = flexure_head(entry, i, loc, FLEXURE_KEYS,
+                                       ("kind", "name", "fillet", "crosses"),
+                                       "a spatial mechanism's flexures:")
     keys = FLEXURE_KEYS[kind]
-    check_keys(entry, keys, loc, "flexure", i, f"[[flexure]] ({kind})")
-    missing = [k for k in keys if k not in ("kind", "name", "fillet", "crosses")
-               and k not in entry]
-    if missing:
-        raise loc.error(f"[[flexure]] ({kind}) needs {', '.join(missing)}", "flexure", None, i)
-    between = entry["between"]
-    if not (isinstance(between, list) and len(between) == 2
-            and all(isinstance(b, str) for b in between)):
-        raise loc.error(f"[[flexure]] between = {between!r} must name two bodies "
-                        "[\"A\", \"B\"]", "flexure", "between", i)
-    name, crosses = entry.get("name", ""), entry.get("crosses", [])
-    if not isinstance(name, str):
-        raise loc.error(f"[[flexure]] name = {name!r} must be a string", "flexure", "name", i)
+    crosses = entry.get("crosses", [])
     if not (isinstance(crosses, list) and all(isinstance(c, str) for c in crosses)):
         raise loc.error(f"[[flexure]] crosses = {crosses!r} must name flexures [\"A\", ...]",
                         "flexure", "crosses", i)
