@@ -3,6 +3,7 @@ flexfem.reduced.hinge_patch): its interpolation against the direct 2-D solve bet
 nodes, within the accuracy docs/beam_speed.md states; what takes it and what is solved
 directly."""
 import logging
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -15,7 +16,7 @@ from flexfem.reduced.hinge_patch import (NotchFactors, description_tabulated, pc
                                          profile_factors)
 from flexfem.studies.user_model import analyze_model
 
-ROOT = __import__("pathlib").Path(__file__).resolve().parents[2]
+ROOT = Path(__file__).resolve().parents[2]
 # docs/beam_speed.md: the table against the direct solve halfway between its nodes (measured
 # 5.1e-4, 9.6e-4, 2.4e-3 and 4.5e-2 at 108 points by scripts/notch_description_table.py --check)
 ACCURACY = {"bending": 6e-4, "axial": 1e-3, "shear": 3e-3, "kt_bending": 5e-2,
