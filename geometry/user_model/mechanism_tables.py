@@ -147,16 +147,22 @@ def _flexure(entry, i, names, loc: Locator):
     return Notch(radius=values["radius"], across=values.get("across"), **common)
 
 
-def parse_mechanism(raw: dict, names: dict, depth: float, loc: Locator,
-                    supported=None) -> Mechanism:
-    """The Mechanism of the model file's ``[[body]]`` and ``[[flexure]]`` tables, checked
-    (:meth:`Mechanism.check`, ``supported``: the held groups); ``names``: the parameters
-    {name: value}; ``depth``: the [section] thickness (m)."""
+def check_arrays(raw: dict, loc: Locator) -> None:
+    """A one-line error unless the file's [[body]] and [[flexure]] are each an array of at
+    least one table (planar or spatial)."""
     for table in ("body", "flexure"):
         value = raw.get(table)
         if not (isinstance(value, list) and value and all(isinstance(e, dict) for e in value)):
             raise loc.error(f"{table} must be an array of tables: [[{table}]] ... (at least one)",
                             None, table)
+
+
+def parse_mechanism(raw: dict, names: dict, depth: float, loc: Locator,
+                    supported=None) -> Mechanism:
+    """The Mechanism of the model file's ``[[body]]`` and ``[[flexure]]`` tables, checked
+    (:meth:`Mechanism.check`, ``supported``: the held groups); ``names``: the parameters
+    {name: value}; ``depth``: the [section] thickness (m)."""
+    check_arrays(raw, loc)
     bodies = tuple(_body(e, i, names, loc) for i, e in enumerate(raw["body"]))
     flexures = tuple(_flexure(e, i, names, loc) for i, e in enumerate(raw["flexure"]))
     mechanism = Mechanism(bodies, flexures, depth, str(loc.path))
