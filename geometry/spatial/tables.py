@@ -8,7 +8,7 @@ import math
 import tomllib
 
 from ..user_model.expressions import evaluate_expression
-from ..user_model.mechanism_tables import body_name, flexure_head
+from ..user_model.mechanism_tables import body_name, check_arrays, flexure_head
 from ..user_model.quantities import with_si_units
 from ..user_model.tables import Locator, check_keys
 from .detect import is_spatial  # noqa: F401 - the spatial tables' own test, re-exported
@@ -177,11 +177,7 @@ def parse_spatial(raw: dict, names: dict, loc: Locator, supported=None) -> Spati
     """The SpatialMechanism of a model file's tables (``raw`` in SI units), checked
     (:meth:`SpatialMechanism.check`; ``supported``: the held groups, None: unchecked);
     ``names``: the [parameters] {name: value}."""
-    for table in ("body", "flexure"):
-        value = raw.get(table)
-        if not (isinstance(value, list) and value and all(isinstance(e, dict) for e in value)):
-            raise loc.error(f"{table} must be an array of tables: [[{table}]] ... (at least one)",
-                            None, table)
+    check_arrays(raw, loc)
     bodies = tuple(_body(e, i, names, loc) for i, e in enumerate(raw["body"]))
     flexures = tuple(_flexure(e, i, names, loc) for i, e in enumerate(raw["flexure"]))
     mechanism = SpatialMechanism(bodies, flexures, str(loc.path))
