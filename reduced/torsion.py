@@ -22,7 +22,8 @@ class TorsionScaled(Beam3DModel):
 
     def __init__(self, base: Beam3DModel, factors):
         super().__init__(base.nodes, base.elements, base.sections, base.material,
-                         rigid_links=base.rigid_links, point_masses=base.point_masses)
+                         rigid_links=base.rigid_links, point_masses=base.point_masses,
+                         groups=base.groups, shear=base.shear)
         self.j_factors = np.asarray(factors, dtype=float)
 
     def section_at(self, xi) -> dict:
