@@ -207,8 +207,9 @@ def test_quick_reproduction_report_renders(quick_report):
         "--window-size=1280,4000", f"--screenshot={out / 'screenshot.png'}",
         (out / "index.html").as_uri()], capture_output=True, timeout=120)
     assert (out / "screenshot.png").stat().st_size > 10_000
-    # printed on A4 it fits 12 pages (20 before the one-screen summary, 11 after)
-    assert 0 < printed_pages(out / "index.html") <= 12
+    # printed on A4 it fits 13 pages (20 before the one-screen summary, 11 after; the stage
+    # section's buckling-along-the-stroke figure and rows take the 13th)
+    assert 0 < printed_pages(out / "index.html") <= 13
 
 
 @pytest.mark.slow
