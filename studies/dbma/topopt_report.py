@@ -250,10 +250,12 @@ def _paragraph(quick: bool, full: dict, record: dict, quarter=None, verified=Non
         f"With a minimum hinge width (the DBMA's b = {p['min_hinge'] * 1e3:g} mm, by the "
         f"robust formulation: eroded, intermediate and dilated designs at thresholds "
         f"{' / '.join(f'{t:g}' for t in p['thresholds'])}, filter radius "
-        f"{p['filter_radius']:g} elements of {p['element'] * 1e3:g} mm on a "
+        f"{p['filter_radius']:.3g} elements of {p['element'] * 1e3:g} mm on a "
         f"{p['nelx']} x {p['nely']} grid) the design ran "
         f"{record['result']['iterations']} MMA iterations"
-        f" ({'converged' if record['result']['converged'] else 'not converged'}). "
+        + (f", begun from the design at {record['start']['from']}" if "start" in record
+           else "")
+        + f" ({'converged' if record['result']['converged'] else 'not converged'}). "
         + verdict_text(record, full["R_fem"]) + large_text(record))
     if quick:
         return ("An amplifier optimised by flexfem.topopt in the DBMA's quarter, its "
