@@ -59,6 +59,7 @@ class BlockFactorization(LinearFactor):
                 self._restore()
         self._embedded = in_place
         self.backend = self._factor.backend
+        self.memory = self._factor.memory  # PARDISO's (in core, out of core) peaks, or None
 
     def _restore(self) -> None:
         if self._undo is not None:

@@ -3,6 +3,7 @@ import numpy as np
 
 from . import linsolve, memory
 from .block_factor import BlockFactorization
+from .budget import factor_plan
 from .factor import factor
 from .boundary import component_indices, constrained_dofs, load_vector
 from .model import Model, von_mises
@@ -58,6 +59,8 @@ def solve_static(model: Model, supports, loads, solver: str = "auto",
             with BlockFactorization(K, I, "spd") as F:
                 u[I] = linsolve.refine_and_check(K_II, rhs, F.solve, rtol=1e-6)
                 chosen = F.backend
+                if chosen == "mkl-pardiso-ooc" and why == "asked for":
+                    why = f"asked for; {factor_plan(*F.memory)[1]}"
 
     Ku = symmetric_matvec(K, u)
     residual = Ku - f

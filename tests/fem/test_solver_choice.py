@@ -70,6 +70,13 @@ def test_auto_goes_out_of_core_where_only_the_working_set_fits(solid, monkeypatc
     monkeypatch.setenv(MEMORY_VARIABLE, "20")
     assert ooc_result.solver == "mkl-pardiso-ooc", ooc_result.info["solver_choice"]
     assert "out of core" in ooc_result.info["solver_choice"]
+    monkeypatch.setenv(MEMORY_VARIABLE, str(available / 2**30))
+    asked = solve_static(solid, [Fixed("fixed")], [Force("tip", (0.0, -10.0, 0.0))],
+                         solver="direct")
+    monkeypatch.setenv(MEMORY_VARIABLE, "20")
+    assert asked.solver == "mkl-pardiso-ooc"
+    assert asked.info["solver_choice"].startswith("asked for; ")
+    assert "out of core (the factor on disk)" in asked.info["solver_choice"]
     direct = _solve(solid)
     assert direct.solver == "mkl-pardiso"
     assert np.abs(ooc_result.u - direct.u).max() <= 1e-10 * np.abs(direct.u).max()
