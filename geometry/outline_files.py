@@ -6,8 +6,8 @@ tan(sweep / 4) of the arc from this point to the next, > 0 counter-clockwise, 0 
 edge. A face is [outer loop, hole loop, ...]. The DXF holds each loop as a closed LWPOLYLINE
 with its bulges (true arcs); the STEP each face as a planar face bounded by lines and circle
 arcs, or the solid extruded from it by ``depth`` (m). The mechanism's export
-(geometry/mechanism/export.py) and the topology optimiser's outline (topopt/) both write
-through here."""
+(geometry/mechanism/export.py), the spatial mechanism's solid (geometry/spatial/export.py)
+and the topology optimiser's outline (topopt/) all write through here."""
 import contextlib
 import math
 import os
@@ -46,10 +46,17 @@ def write_step(faces, path, depth: float | None = None) -> Path:
                     for face in faces]
         if depth is not None:
             occ.extrude(surfaces, 0.0, 0.0, depth)
-        occ.synchronize()
-        gmsh.option.setString("Geometry.OCCTargetUnit", "M")  # the model's unit: metres
-        with _quiet_stdout():
-            gmsh.write(str(path))
+        return write_session_step(gmsh, path)
+
+
+def write_session_step(gmsh, path) -> Path:
+    """The shapes of the open gmsh session (drawn in metres) as STEP in millimetres: the
+    writer :func:`write_step` and the spatial mechanism's solid
+    (geometry/spatial/export.py) share."""
+    gmsh.model.occ.synchronize()
+    gmsh.option.setString("Geometry.OCCTargetUnit", "M")  # the model's unit: metres
+    with _quiet_stdout():
+        gmsh.write(str(path))
     return Path(path)
 
 

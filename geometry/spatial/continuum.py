@@ -80,19 +80,65 @@ def _body_shapes(occ, body) -> list:
     return shapes
 
 
-def _flexure_shape(occ, f) -> list:
-    """The flexure's solid over its whole axis (from -> to, inside the bodies at its ends:
-    the fragment keeps the part outside them as the flexure)."""
-    start, axis = np.asarray(f.start, float), np.subtract(f.end, f.start)
+def _rim(f, centre, e) -> list:
+    """Points (m) round the section of flexure ``f`` about ``centre`` on the plane across the
+    unit axis ``e``: a leaf's four corners, eight points on a wire's circle."""
     if isinstance(f, Wire):
-        return [(3, occ.addCylinder(*start, *axis, f.diameter / 2))]
+        u = np.cross(e, np.eye(3)[int(np.argmin(np.abs(e)))])
+        u /= np.linalg.norm(u)
+        v = np.cross(e, u)
+        r = f.diameter / 2
+        return [centre + r * (math.cos(a) * u + math.sin(a) * v)
+                for a in np.linspace(0, 2 * math.pi, 8, endpoint=False)]
     w = np.asarray(f.width_along, float)
     w, n = w / np.linalg.norm(w) * f.width / 2, f.normal * f.thickness / 2
-    corners = [start - w - n, start + w - n, start + w + n, start - w + n]
-    points = [occ.addPoint(*c) for c in corners]
+    return [centre - w - n, centre + w - n, centre + w + n, centre - w + n]
+
+
+def root_extensions(mechanism: SpatialMechanism, index: int) -> tuple:
+    """(at from, at to) (m): how far flexure ``index``'s solid is drawn on beyond its ends
+    into their bodies. An end whose section lies wholly inside or on its body needs none (a
+    flexure standing square on a body's face); one that leaves part of its section outside
+    (an oblique leaf ending on a face: a wedge-shaped notch half its thickness deep) is
+    drawn on by its half-section, where that lies inside the body: the part inside is the
+    body's, so the root is solid, as the description means."""
+    f = mechanism.flexures[index]
+    a, b = np.asarray(f.start, float), np.asarray(f.end, float)
+    e = (b - a) / np.linalg.norm(b - a)
+    tol, out = mechanism.tol, []
+    for point, sign, name in ((a, -1.0, f.between[0]), (b, 1.0, f.between[1])):
+        body = mechanism.body(name)
+        if all(body.contains(p, tol) for p in _rim(f, point, e)):
+            out.append(0.0)
+            continue
+        reach = f.radius
+        deeper = point + sign * reach * e
+        inside = all(body.contains(p, tol) for p in _rim(f, deeper, e))
+        out.append(reach if inside else 0.0)
+    return tuple(out)
+
+
+def _flexure_shape(occ, f, extensions=(0.0, 0.0)) -> list:
+    """The flexure's solid over its whole axis (from -> to, inside the bodies at its ends,
+    drawn on by ``extensions`` (m) at each: :func:`root_extensions`; the fragment keeps the
+    part outside them as the flexure)."""
+    start, end = np.asarray(f.start, float), np.asarray(f.end, float)
+    e = (end - start) / np.linalg.norm(end - start)
+    start, end = start - extensions[0] * e, end + extensions[1] * e
+    axis = end - start
+    if isinstance(f, Wire):
+        return [(3, occ.addCylinder(*start, *axis, f.diameter / 2))]
+    points = [occ.addPoint(*c) for c in _rim(f, start, e)]
     lines = [occ.addLine(points[i], points[(i + 1) % 4]) for i in range(4)]
     face = occ.addPlaneSurface([occ.addCurveLoop(lines)])
     return [(d, t) for d, t in occ.extrude([(2, face)], *axis) if d == 3]
+
+
+def flexure_shapes(occ, mechanism: SpatialMechanism) -> list:
+    """[[(3, tag)] per flexure]: each flexure's solid (:func:`_flexure_shape`) with its
+    :func:`root_extensions`."""
+    return [_flexure_shape(occ, f, root_extensions(mechanism, i))
+            for i, f in enumerate(mechanism.flexures)]
 
 
 def draw(gmsh, mechanism: SpatialMechanism) -> dict:
@@ -101,7 +147,7 @@ def draw(gmsh, mechanism: SpatialMechanism) -> dict:
     tags] per flexure]}. A part that lies inside a body counts as that body."""
     occ = gmsh.model.occ
     body_tags = [_body_shapes(occ, b) for b in mechanism.bodies]
-    flexure_tags = [_flexure_shape(occ, f) for f in mechanism.flexures]
+    flexure_tags = flexure_shapes(occ, mechanism)
     inputs = body_tags + flexure_tags
     flat = [dt for tags in inputs for dt in tags]
     _, children = occ.fragment(flat, [])

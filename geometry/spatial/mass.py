@@ -68,3 +68,21 @@ def mass_properties(body) -> MassProperties:
     centroid = sum(v * c for v, c, _ in parts) / volume
     s = sum(si + v * np.outer(c - centroid, c - centroid) for v, c, si in parts)
     return MassProperties(float(volume), centroid, s)
+
+
+def flexure_volume(mechanism, index: int) -> float:
+    """The volume (m^3) of flexure ``index`` outside its bodies: its section (a wire's
+    pi d^2 / 4, a leaf's w t) times its free span (exact where the bodies' faces it crosses
+    are perpendicular to it and its section lies inside them there)."""
+    f = mechanism.flexures[index]
+    section = (np.pi * f.diameter ** 2 / 4 if hasattr(f, "diameter")
+               else f.width * f.thickness)
+    return float(section * mechanism.span(index).length)
+
+
+def mechanism_volume(mechanism) -> float:
+    """The description's volume (m^3): its bodies' (:func:`mass_properties`) and its
+    flexures' free spans (:func:`flexure_volume`); what the fused solid's STEP
+    (geometry/spatial/export.py) holds."""
+    return (sum(mass_properties(b).volume for b in mechanism.bodies)
+            + sum(flexure_volume(mechanism, i) for i in range(len(mechanism.flexures))))

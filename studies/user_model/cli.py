@@ -103,12 +103,20 @@ def register(subparsers):
 
 
 def run_export(args) -> dict:
-    """``flexfem export``: the outline of a model file of bodies and flexures as DXF or STEP."""
-    from ...geometry.mechanism.export import export
+    """``flexfem export``: the outline of a model file of bodies and flexures as DXF or STEP;
+    a spatial file's fused solid as STEP (geometry/spatial/export.py)."""
     from ...geometry.outline_files import UNIT
 
     spec = load_spec(args.model, parse_sets(args.set), allow_code=args.allow_code,
                      bodies_only="export")
+    if spec.spatial is not None:
+        from ...geometry.spatial.export import write_spatial_step
+
+        path = write_spatial_step(spec.spatial, args.out)
+        return {"model": spec.source, "out": str(path), "dim": 3, "format": "step",
+                "units": UNIT}
+    from ...geometry.mechanism.export import export
+
     path = export(spec.mechanism, args.out, args.dim)
     return {"model": spec.source, "out": str(path), "dim": args.dim,
             "format": path.suffix.lower().lstrip("."), "units": UNIT}
@@ -127,7 +135,8 @@ def register_export(subparsers):
     parser.add_argument("--set", action="append", metavar="NAME=VALUE", default=[],
                         help="override a [parameters] entry (SI); repeatable")
     parser.add_argument("--dim", type=int, choices=(2, 3), default=2,
-                        help="STEP: 2 the face (default), 3 the solid extruded by the depth")
+                        help="STEP: 2 the face (default), 3 the solid extruded by the depth; "
+                             "a spatial file's STEP is always its solid")
     parser.add_argument("--allow-code", action="store_true", help=argparse.SUPPRESS)
     parser.add_argument("--json", action="store_true", help="print one JSON object")
     parser.set_defaults(run=run_export, summarize=summarize_export)
