@@ -26,6 +26,11 @@ def spatial_spec(raw: dict, parameters: dict, loc, dim: int | None = None) -> tu
         raise loc.error(f"--dim {dim}: a mechanism of 3-D bodies is spatial (dim 3)", "body")
     if "material" not in raw:
         raise loc.error("[material] is required", None)
+    if not raw.get("supports"):  # before the shared tables' own refusal: name the bodies
+        bodies = raw.get("body") if isinstance(raw.get("body"), list) else []
+        names = [str(b["name"]) for b in bodies if isinstance(b, dict) and "name" in b]
+        raise loc.error("the mechanism has no support: hold a body with [[supports]] group = "
+                        f"'NAME' (bodies: {', '.join(names)})", None)
     loads, moments = split_moments(raw.get("loads", []), parameters, loc)
     parts = mechanism_parts(raw, loc, SectionSpec("solid"), parse_supports,
                             lambda _, dim, where: parse_loads(loads, dim, where), 3,

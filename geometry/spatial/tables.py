@@ -181,8 +181,27 @@ def parse_spatial(raw: dict, names: dict, loc: Locator, supported=None) -> Spati
     bodies = tuple(_body(e, i, names, loc) for i, e in enumerate(raw["body"]))
     flexures = tuple(_flexure(e, i, names, loc) for i, e in enumerate(raw["flexure"]))
     mechanism = SpatialMechanism(bodies, flexures, str(loc.path))
-    mechanism.check(supported)
+    mechanism.check()
+    if supported is not None:
+        _check_supports(raw, mechanism, loc)
     return mechanism
+
+
+def _check_supports(raw: dict, mechanism: SpatialMechanism, loc: Locator) -> None:
+    """Every [[supports]] group a body (the line of one that is not), and at least one
+    (the file and its bodies named where the table is missing)."""
+    names = [b.name for b in mechanism.bodies]
+    entries = raw.get("supports", [])
+    entries = entries if isinstance(entries, list) else []
+    for i, entry in enumerate(entries):
+        group = entry.get("group") if isinstance(entry, dict) else None
+        if group not in names:
+            raise loc.error(f"[[supports]] group = {group!r} is no body: a spatial mechanism "
+                            f"is held by its bodies ({', '.join(names)})", "supports",
+                            "group", i)
+    if not entries:
+        raise loc.error("the mechanism has no support: hold a body with [[supports]] group = "
+                        f"'NAME' (bodies: {', '.join(names)})", None)
 
 
 def load_spatial(path, overrides: dict | None = None) -> tuple:

@@ -56,7 +56,7 @@ def test_an_end_outside_its_body_is_refused(tmp_path):
 def test_width_along_not_perpendicular_is_refused(tmp_path):
     text = LEAF_GUIDE.replace("width_along = [1, 0, 0]", "width_along = [1, 0, 1]", 1)
     message = _error(tmp_path, text)
-    assert "flexure 1 'front'" in message and "not perpendicular" in message
+    assert re.search(r"line \d+: flexure 1 'front'", message) and "not perpendicular" in message
 
 
 def test_intersecting_flexures_are_refused_unless_declared(tmp_path):
@@ -65,7 +65,8 @@ def test_intersecting_flexures_are_refused_unless_declared(tmp_path):
     text = text.replace('from = ["-a", "-a", 0.0]\nto = ["-a", "-a", "L"]',
                         'from = ["-a", "-a", 0.0]\nto = ["a", "-a", "L"]')
     message = _error(tmp_path, text)
-    assert "intersects flexure 1 'w1'" in message and "crosses" in message
+    assert re.search(r"line \d+: flexure 2 'w2' .* intersects flexure 1 'w1'", message)
+    assert "crosses" in message
     declared = text.replace('name = "w2"', 'name = "w2"\ncrosses = ["w1"]')
     mechanism, _, _ = load_spatial(_write(tmp_path, declared, "crossing.toml"))
     assert len(mechanism.flexures) == 4
@@ -80,10 +81,24 @@ def test_a_body_joined_to_nothing_is_refused(tmp_path):
 
 
 def test_no_support_is_refused(tmp_path):
-    text = WIRE_GUIDE.replace('[[supports]]\ngroup = "base"', "")
+    path = _write(tmp_path, WIRE_GUIDE.replace('[[supports]]\ngroup = "base"', ""))
+    for read in (load_spec, load_spatial):
+        with pytest.raises(ValueError) as info:
+            read(path)
+        message = str(info.value)
+        assert message.startswith(f"{path}: the mechanism has no support")
+        assert "(bodies: base, stage)" in message
+
+
+def test_a_support_on_no_body_is_refused_at_its_line(tmp_path):
+    text = WIRE_GUIDE.replace('[[supports]]\ngroup = "base"',
+                              '[[supports]]\ngroup = "base"\n\n[[supports]]\ngroup = "solid"')
+    line = text.splitlines().index('group = "solid"') + 1
     path = _write(tmp_path, text)
-    with pytest.raises(ValueError, match="no support"):
+    with pytest.raises(ValueError) as info:
         load_spec(path)
+    assert str(info.value).startswith(f"{path} line {line}: [[supports]] group = 'solid' is "
+                                      "no body")
 
 
 def test_unknown_body_and_wrong_unit_are_refused(tmp_path):
