@@ -29,6 +29,7 @@ from ...fem.beam.spatial import Beam3DModel, NodalLoad, RigidLink, Section
 from ...geometry.spatial.description import Plate, SpatialMechanism
 from ...geometry.spatial.mass import mass_properties
 from .plate_action import plate_factor
+from .roots import axial_factor, block_depth, warping_factor
 
 #: Beam elements along each flexure's free span, by default.
 ELEMENTS = 8
@@ -43,12 +44,20 @@ def wire_section(diameter: float, nu: float) -> Section:
     return Section(A=area, Iy=second, Iz=second, J=2 * second, Ay=shear, Az=shear)
 
 
-def leaf_section(leaf: Plate, nu: float, curvature: float = 0.0) -> Section:
+def leaf_section(leaf: Plate, nu: float, curvature: float = 0.0, length: float | None = None,
+                 depths=None) -> Section:
     """The rectangle of a leaf (width along local z), its bending across the thickness
-    stiffened by :func:`~.plate_action.plate_factor` at ``curvature`` (1/m)."""
+    stiffened by :func:`~.plate_action.plate_factor` at ``curvature`` (1/m); given its free
+    ``length`` (m) and its bodies' ``depths`` (H_1, H_2) (m) along it, its roots' rules
+    (roots.py): G J with restrained warping, E A with the roots' axial compliance."""
     section = Section.rect(leaf.width, leaf.thickness)
     factor = plate_factor(leaf.width, leaf.thickness, nu, curvature)
-    return replace(section, factors=(factor, 1.0, 1.0, 1.0))
+    axial = 1.0 if depths is None else axial_factor(leaf.thickness, length, depths)
+    section = replace(section, factors=(factor, 1.0, axial, 1.0))
+    if length is None:
+        return section
+    return replace(section, J=section.J * warping_factor(leaf.width, leaf.thickness, length,
+                                                         nu, section.J))
 
 
 def _across(axis) -> np.ndarray:
@@ -79,10 +88,11 @@ class SpatialBeam:
 
 
 def beam_model(mechanism: SpatialMechanism, material, elements: int = ELEMENTS,
-               curvatures=None) -> SpatialBeam:
+               curvatures=None, roots: bool = True) -> SpatialBeam:
     """The :class:`SpatialBeam` of ``mechanism`` in ``material`` (E, nu, rho); ``elements``
     per flexure; ``curvatures``: one per flexure (1/m, the leaves' plate factor; None: 0,
-    at rest)."""
+    at rest); ``roots``: the leaves' root rules (roots.py; False: a rectangle clamped at
+    the faces)."""
     if not (isinstance(elements, int) and elements >= 1):
         raise ValueError(f"elements = {elements!r} must be a whole number >= 1 per flexure")
     n_f = len(mechanism.flexures)
@@ -103,7 +113,10 @@ def beam_model(mechanism: SpatialMechanism, material, elements: int = ELEMENTS,
         owned.append(list(range(len(chain), len(chain) + elements)))
         chain += [(first + k, first + k + 1) for k in range(elements)]
         if isinstance(f, Plate):
-            section, z = leaf_section(f, material.nu, curvatures[i]), f.width_along
+            depths = (block_depth(mechanism, i, 0), block_depth(mechanism, i, 1))
+            section = (leaf_section(f, material.nu, curvatures[i], span.length, depths)
+                       if roots else leaf_section(f, material.nu, curvatures[i]))
+            z = f.width_along
         else:
             section, z = wire_section(f.diameter, material.nu), _across(span.d)
         sections += [section] * elements

@@ -10,10 +10,11 @@ examples/spatial/guide.toml (3-D boxes and leaves, the same shape) give the same
   one (63 294 and 63 412 N/m against 62 689 and 62 700 at size factor 1, 0.016 % apart):
   held to 0.5 %.
 - The beam model: the spatial model is the planar one without the planar root extension
-  ([beam_model] root_extension = 0): equal to 1e-4 (the planar model's body stands at the
-  centroid of its outline where no flexure meets it, 44.11 mm up, the spatial one at the
-  body's centroid, 44.0 mm; the force's lever differs by that), the first frequency to
-  1e-5. With its default root extension (0.38 t per root, calibrated on the 2-D
+  ([beam_model] root_extension = 0): equal to 3e-4 (1.3e-4 apart: the planar model's body
+  stands at the centroid of its outline where no flexure meets it, 44.11 mm up, the
+  spatial one at the body's centroid, 44.0 mm, so the force's lever differs by that, 3e-5;
+  and the spatial leaves' roots are axially compliant, studies/spatial/roots.py, which the
+  stage's tilt feels, 1e-4), the first frequency to 1e-4. With its default root extension (0.38 t per root, calibrated on the 2-D
   plane-stress continuum, docs/beam.md) the planar beam model is 6 % softer than both 3-D
   continua (58 738 against 62 700 N/m): the wide leaf's 3-D roots do not soften as the
   plane-stress ones do (the blocks' clamping of its anticlastic curl stiffens them,
@@ -63,9 +64,9 @@ def test_the_beam_models_agree_without_the_planar_root_extension():
     planar = analyze_model(load_spec(PLANAR, {"beam_model.root_extension": 0.0}, dim=3),
                            model="beam")
     assert spatial["stiffness"]["stage"]["x"] == pytest.approx(
-        planar["stiffness"]["stage"]["x"], rel=1e-4)
+        planar["stiffness"]["stage"]["x"], rel=3e-4)
     assert spatial["frequencies_hz"][0] == pytest.approx(planar["frequencies_hz"][0],
-                                                         rel=1e-5)
+                                                         rel=1e-4)
     E, L, t, w = 200e9, 0.04, 0.001, 0.01  # two fixed-guided leaves: 24 E I / L^3
     assert spatial["stiffness"]["stage"]["x"] == pytest.approx(24 * E * w * t ** 3 / 12
                                                                / L ** 3, rel=0.01)

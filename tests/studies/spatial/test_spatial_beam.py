@@ -1,7 +1,7 @@
 """The spatial beam model of the examples (studies/spatial/beam_model.py) against the closed
 forms of issue 35: the four-wire guide's k_x = k_y = 4 * 12 E I / L^3, k_z = 4 E A / L and
 torsion 4 (12 E I r^2 / L^3 + G J / L); a leaf in torsion G J / L with J = w t^3 / 3 (1 - 0.63
-t / w); the cross-spring pivot's 2 E I / L (Wittrick) with its centre of compliance at the
+t / w) (a long one; a short one's roots restrain its warping); the cross-spring pivot's 2 E I / L (Wittrick) with its centre of compliance at the
 crossing. The beam has shear (Timoshenko); the closed forms have none: the tolerances are
 the shear's O((d/L)^2) share."""
 import math
@@ -54,15 +54,29 @@ def _one_leaf(t=0.001, w=0.01, L=0.03):
     return SpatialMechanism((base, top), (leaf,))
 
 
-def test_a_leaf_in_torsion_is_g_j_over_l():
+def _torsion(t, w, L):
     from flexfem.fem import Fixed
     steel = _spec("leaf_guide").material
-    t, w, L = 0.001, 0.01, 0.03
     beam = beam_model(_one_leaf(t, w, L), steel)
     c = compliance_matrix(beam.model, [Fixed("base")], "top")
     J = w * t ** 3 / 3 * (1 - 0.63 * t / w)
-    G = steel.E / (2 * (1 + steel.nu))
-    assert 1 / c.matrix[5, 5] == pytest.approx(G * J / L, rel=0.01)
+    return 1 / c.matrix[5, 5], steel.E / (2 * (1 + steel.nu)) * J / L
+
+
+def test_a_long_leaf_in_torsion_is_g_j_over_l():
+    k, closed = _torsion(0.001, 0.01, 1.0)  # w / L = 1/100: the roots' warping restraint 0.5 %
+    assert k == pytest.approx(closed, rel=0.01)
+
+
+def test_a_short_leaf_in_torsion_is_stiffened_by_its_restrained_roots():
+    """w / L = 1/3: Vlasov's non-uniform torsion with the strip's Gamma = w^3 t^3 / 144
+    (studies/spatial/roots.py) gives 1.19 G J / L."""
+    from flexfem.studies.spatial.roots import warping_factor
+    t, w, L = 0.001, 0.01, 0.03
+    k, closed = _torsion(t, w, L)
+    factor = warping_factor(w, t, L, 0.3, w * t ** 3 / 3 * (1 - 0.63 * t / w))
+    assert factor == pytest.approx(1.19, abs=0.01)
+    assert k == pytest.approx(factor * closed, rel=0.01)
 
 
 def test_leaf_guide_against_two_guided_leaves():
