@@ -1,7 +1,7 @@
 """Validation of the tables of a model file, one function per table. Each takes the raw
 TOML value and a :class:`Locator` (to name the file and line in errors) and returns frozen
 dataclasses with SI values."""
-from dataclasses import dataclass
+from dataclasses import KW_ONLY, dataclass
 from pathlib import Path
 
 from ...fem import checks
@@ -49,13 +49,21 @@ class SectionSpec:
 
 
 @dataclass(frozen=True)
-class Refinement:
-    """Element ``size`` (m) within ``distance`` (m) of group ``group``."""
+class GroupEntry:
+    """An entry of the model file on the Physical group ``group``; ``source`` (by keyword):
+    the file and line it was read from."""
 
     group: str
+    _: KW_ONLY
+    source: str = ""
+
+
+@dataclass(frozen=True)
+class Refinement(GroupEntry):
+    """Element ``size`` (m) within ``distance`` (m) of group ``group``."""
+
     size: float
     distance: float
-    source: str = ""
 
 
 @dataclass(frozen=True)
@@ -69,33 +77,27 @@ class MeshOptions:
 
 
 @dataclass(frozen=True)
-class SupportSpec:
+class SupportSpec(GroupEntry):
     """group held: all components at 0 (components None) or {axis index: value (m)}."""
 
-    group: str
     components: dict | None
-    source: str = ""
 
 
 @dataclass(frozen=True)
-class LoadSpec:
+class LoadSpec(GroupEntry):
     """kind 'force' (total force on the group, N) or 'traction' (Pa): vector per axis."""
 
-    group: str
     kind: str
     vector: tuple
-    source: str = ""
 
 
 @dataclass(frozen=True)
-class SelectRule:
+class SelectRule(GroupEntry):
     """Physical group ``group`` made of the CAD entities of dimension ``dim`` where the
     condition ``where`` holds (see selection.py)."""
 
-    group: str
     dim: int
     where: str
-    source: str = ""
 
 
 @dataclass(frozen=True)
@@ -248,7 +250,7 @@ def parse_mesh(raw, loc: Locator) -> MeshOptions:
             raise loc.error(f"{what} {r!r} needs group, size and distance (m)", "mesh", "refine")
         rules.append(Refinement(r["group"], positive(r, "size", loc, "mesh", what=what),
                                 positive(r, "distance", loc, "mesh", what=what),
-                                loc.at("mesh", "refine")))
+                                source=loc.at("mesh", "refine")))
     return MeshOptions(int(order), size, tuple(rules))
 
 
@@ -278,7 +280,8 @@ def parse_supports(raw, dim: int, loc: Locator) -> tuple:
                     raise loc.error(f"[[supports]] {axis} = {entry[axis]!r} must be a number "
                                     "(prescribed displacement, m)", "supports", axis, i)
                 components[k] = float(entry[axis])
-        out.append(SupportSpec(group, components or None, loc.at("supports", "group", i)))
+        out.append(SupportSpec(group, components or None,
+                               source=loc.at("supports", "group", i)))
     return tuple(out)
 
 
@@ -299,7 +302,8 @@ def parse_loads(raw, dim: int, loc: Locator) -> tuple:
         if not (isinstance(value, list) and len(value) == dim and all(map(is_number, value))):
             raise loc.error(f"[[loads]] {kind} = {value!r} must be a list of {dim} numbers "
                             f"({'N' if kind == 'force' else 'Pa'})", "loads", kind, i)
-        out.append(LoadSpec(group, kind, tuple(float(v) for v in value), loc.at("loads", kind, i)))
+        out.append(LoadSpec(group, kind, tuple(float(v) for v in value),
+                            source=loc.at("loads", kind, i)))
     return tuple(out)
 
 
@@ -318,7 +322,8 @@ def parse_selects(raw, loc: Locator) -> tuple:
             compile_rule(entry.get("where"))
         except ValueError as error:
             raise loc.error(f"[[select]] where: {error}", "select", "where", i) from None
-        out.append(SelectRule(group, int(dim), entry["where"], loc.at("select", "where", i)))
+        out.append(SelectRule(group, int(dim), entry["where"],
+                              source=loc.at("select", "where", i)))
     return tuple(out)
 
 
