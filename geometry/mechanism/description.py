@@ -9,7 +9,7 @@ is the part between the bodies. :class:`Mechanism` holds them and :meth:`Mechani
 built, naming the body or flexure. The continuum (draw.py) and the beam model (beams.py) are
 both derived from this one description, with the bodies' names as their groups.
 """
-from dataclasses import dataclass
+from dataclasses import KW_ONLY, dataclass
 import math
 
 import numpy as np
@@ -23,18 +23,27 @@ REACH = 1.0 / math.tan(math.radians(10))  # an oblique root's side meets the fac
 
 
 @dataclass(frozen=True)
-class Leaf:
-    """A leaf spring (blade) of in-plane ``thickness`` (m) from ``start`` to ``end`` (m) on its
-    centre line, joining the bodies ``between``; ``fillet``: root fillet radius (m, 0: square
-    roots)."""
+class Flexure:
+    """What every flexure has: the two bodies it joins ``between``, its centre line from
+    ``start`` to ``end`` (m), its in-plane ``thickness`` (m); by keyword its ``name`` and
+    ``source`` (where it was read)."""
 
     between: tuple
     start: tuple
     end: tuple
     thickness: float
-    fillet: float = 0.0
+    _: KW_ONLY
     name: str = ""
     source: str = ""
+
+
+@dataclass(frozen=True)
+class Leaf(Flexure):
+    """A leaf spring (blade) of in-plane ``thickness`` (m) from ``start`` to ``end`` (m) on its
+    centre line, joining the bodies ``between``; ``fillet``: root fillet radius (m, 0: square
+    roots)."""
+
+    fillet: float = 0.0
     kind = "leaf"
 
     @property
@@ -44,21 +53,15 @@ class Leaf:
 
 
 @dataclass(frozen=True)
-class Notch:
+class Notch(Flexure):
     """A notch hinge: neck ``thickness`` (m) at the middle of its free span, on the centre
     line from ``start`` to ``end`` (m) joining ``between``; its two cut-outs are circles of
     ``radius`` (m), or ellipses of semi-axes ``radius`` along the centre line and ``across``
     (m) across it. The blank is ``thickness + 2 across`` wide and its free span 2 radius long
     (the bodies' faces must be that far apart along it; the cut-outs are tangent to them)."""
 
-    between: tuple
-    start: tuple
-    end: tuple
-    thickness: float
     radius: float
     across: float | None = None
-    name: str = ""
-    source: str = ""
 
     @property
     def kind(self) -> str:
