@@ -16,29 +16,58 @@
 
 The same functions take a planar BeamModel with named groups (:mod:`.beam.face`): one set of
 supports and loads, by group name, for the continuum and the reduced beam model.
+Its names are imported when first used (PEP 562): importing one module of the package (the
+beam model's, the input checks) imports neither scikit-fem nor meshio nor the solvers.
 """
-from .boundary import (BodyForce, Fixed, Force, Gravity, PointForce, Prescribed, Pressure,
-                       Traction)
-from .export import write_mesh, write_result
+import importlib
+from typing import TYPE_CHECKING
+
+# light (it imports gmsh inside gmsh_session()), and imported now so that the function, not
+# its module of the same name, is flexfem.fem.gmsh_session whichever is imported first
 from .gmsh_session import gmsh_session
-from .factor import SingularStiffness
-from .linsolve import SingularSystemError
-from .materials import Material, material, material_names
-from .mesh import FEMesh, drop_unused_vertices, facets_where, mesh_from_gmsh, read_mesh
-from .modal import Modes
-from .model import Model, PlaneStrain, PlaneStress, Solid3D, von_mises
-from .nonlinear import NonConvergenceError, NonlinearResult
-from .rigid_face import RigidFace
-from .static import StaticResult, UnderConstrainedError
-from .buckling import Buckling
-from .compliance import Compliance
-from .harmonic import FRF, HarmonicResult, Rayleigh
-from .analyses import (compliance_matrix, solve_buckling, solve_harmonic,
-                       solve_incremental_buckling, solve_modes, solve_nonlinear, solve_static)
-from .stability import StateBuckling
-from .beam import BeamGroup, BeamModel
-from .springs import ground_spring, group_spring
-from .stress import nonlinear_stress, nonlinear_stress_at
+
+if TYPE_CHECKING:  # what a reader and a type checker see; imported on first use below
+    from .boundary import (BodyForce, Fixed, Force, Gravity, PointForce, Prescribed, Pressure,
+                           Traction)
+    from .export import write_mesh, write_result
+    from .factor import SingularStiffness
+    from .linsolve import SingularSystemError
+    from .materials import Material, material, material_names
+    from .mesh import FEMesh, drop_unused_vertices, facets_where, mesh_from_gmsh, read_mesh
+    from .modal import Modes
+    from .model import Model, PlaneStrain, PlaneStress, Solid3D, von_mises
+    from .nonlinear import NonConvergenceError, NonlinearResult
+    from .rigid_face import RigidFace
+    from .static import StaticResult, UnderConstrainedError
+    from .buckling import Buckling
+    from .compliance import Compliance
+    from .harmonic import FRF, HarmonicResult, Rayleigh
+    from .analyses import (compliance_matrix, solve_buckling, solve_harmonic,
+                           solve_incremental_buckling, solve_modes, solve_nonlinear, solve_static)
+    from .stability import StateBuckling
+    from .beam import BeamGroup, BeamModel
+    from .springs import ground_spring, group_spring
+    from .stress import nonlinear_stress, nonlinear_stress_at
+
+_EXPORTS = {  # name: the module that defines it
+    "BodyForce": "boundary", "Fixed": "boundary", "Force": "boundary", "Gravity": "boundary",
+    "PointForce": "boundary", "Prescribed": "boundary", "Pressure": "boundary",
+    "Traction": "boundary", "write_mesh": "export", "write_result": "export",
+    "SingularStiffness": "factor",
+    "SingularSystemError": "linsolve", "Material": "materials", "material": "materials",
+    "material_names": "materials", "FEMesh": "mesh", "drop_unused_vertices": "mesh",
+    "facets_where": "mesh", "mesh_from_gmsh": "mesh", "read_mesh": "mesh", "Modes": "modal",
+    "Model": "model", "PlaneStrain": "model", "PlaneStress": "model", "Solid3D": "model",
+    "von_mises": "model", "NonConvergenceError": "nonlinear", "NonlinearResult": "nonlinear",
+    "RigidFace": "rigid_face", "StaticResult": "static", "UnderConstrainedError": "static",
+    "Buckling": "buckling", "Compliance": "compliance", "FRF": "harmonic",
+    "HarmonicResult": "harmonic", "Rayleigh": "harmonic", "compliance_matrix": "analyses",
+    "solve_buckling": "analyses", "solve_harmonic": "analyses",
+    "solve_incremental_buckling": "analyses", "solve_modes": "analyses",
+    "solve_nonlinear": "analyses", "solve_static": "analyses", "StateBuckling": "stability",
+    "BeamGroup": "beam", "BeamModel": "beam", "ground_spring": "springs",
+    "group_spring": "springs", "nonlinear_stress": "stress", "nonlinear_stress_at": "stress",
+}
 
 __all__ = [
     "BodyForce", "FEMesh", "Fixed", "Force", "Gravity", "Material", "Model", "Modes",
@@ -50,3 +79,16 @@ __all__ = [
     "Buckling", "Compliance", "FRF", "HarmonicResult", "Rayleigh", "compliance_matrix",
     "solve_buckling", "solve_harmonic", "solve_incremental_buckling", "StateBuckling", "group_spring", "ground_spring", "BeamGroup", "BeamModel",
 ]
+
+
+def __getattr__(name: str):
+    """The exported ``name``, its module imported on first use (then cached here)."""
+    if name not in _EXPORTS:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    value = getattr(importlib.import_module(f".{_EXPORTS[name]}", __name__), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list:
+    return sorted(set(globals()) | set(_EXPORTS))

@@ -15,18 +15,44 @@ carry the same names
 :class:`.result_face.NotOnModel`. Options that only the continuum has (a rigid face in 3-D, a
 prestress, arc-length control) raise a TypeError or ValueError naming them on a beam model.
 """
+from abc import ABC
 from functools import singledispatch
+import importlib
+import sys
 
-from . import buckling, compliance, harmonic, modal, nonlinear, static
 from .beam import buckling as beam_buckling
 from .beam import face as beam_face
 from .beam import stroke_buckling
 from .beam.model import BeamModel
 from .beam.spatial import buckling as beam3d_buckling
 from .beam.spatial.model import Beam3DModel
-from .model import Model
 
 BEAM_MODELS = (BeamModel, Beam3DModel)
+
+
+class ContinuumModel(ABC):
+    """The continuum :class:`.model.Model` and its subclasses, as a dispatch type that does not
+    import it: the continuum's modules (scikit-fem) are imported when a continuum is solved,
+    and a beam model's analysis never imports them. No object is a Model before .model is
+    imported."""
+
+    @classmethod
+    def __subclasshook__(cls, other):
+        module = sys.modules.get(f"{__package__}.model")
+        return issubclass(other, module.Model) if module is not None else NotImplemented
+
+
+def continuum(target: str):
+    """The continuum's implementation "module:function" (in this package), imported when a
+    continuum model is first given to it."""
+    module_name, _, function_name = target.partition(":")
+
+    def solve(model, *args, **options):
+        module = importlib.import_module(f".{module_name}", __package__)
+        return getattr(module, function_name)(model, *args, **options)
+
+    solve.__name__ = solve.__qualname__ = function_name
+    return solve
 
 
 def dispatcher(name: str, continuum, planar, spatial=None):
@@ -38,25 +64,28 @@ def dispatcher(name: str, continuum, planar, spatial=None):
 
     unknown.__name__ = name
     function = singledispatch(unknown)
-    function.register(Model, continuum)
+    function.register(ContinuumModel, continuum)
     function.register(BeamModel, planar)
     function.register(Beam3DModel, planar if spatial is None else spatial)
     return function
 
 
 DISPATCH = {
-    "solve_static": dispatcher("solve_static", static.solve_static, beam_face.solve_static),
-    "solve_modes": dispatcher("solve_modes", modal.solve_modes, beam_face.solve_modes),
-    "solve_nonlinear": dispatcher("solve_nonlinear", nonlinear.solve_nonlinear,
+    "solve_static": dispatcher("solve_static", continuum("static:solve_static"),
+                               beam_face.solve_static),
+    "solve_modes": dispatcher("solve_modes", continuum("modal:solve_modes"),
+                              beam_face.solve_modes),
+    "solve_nonlinear": dispatcher("solve_nonlinear", continuum("nonlinear:solve_nonlinear"),
                                   beam_face.solve_nonlinear),
-    "compliance_matrix": dispatcher("compliance_matrix", compliance.compliance_matrix,
+    "compliance_matrix": dispatcher("compliance_matrix",
+                                    continuum("compliance:compliance_matrix"),
                                     beam_face.compliance_matrix),
-    "solve_harmonic": dispatcher("solve_harmonic", harmonic.solve_harmonic,
+    "solve_harmonic": dispatcher("solve_harmonic", continuum("harmonic:solve_harmonic"),
                                  beam_face.solve_harmonic),
-    "solve_buckling": dispatcher("solve_buckling", buckling.solve_buckling,
+    "solve_buckling": dispatcher("solve_buckling", continuum("buckling:solve_buckling"),
                                  beam_buckling.solve_buckling, beam3d_buckling.solve_buckling),
     "solve_incremental_buckling": dispatcher(
-        "solve_incremental_buckling", buckling.solve_incremental_buckling,
+        "solve_incremental_buckling", continuum("buckling:solve_incremental_buckling"),
         stroke_buckling.planar, stroke_buckling.spatial),
 }
 

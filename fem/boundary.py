@@ -3,8 +3,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-import skfem
-from skfem.helpers import dot
 
 from .checks import InputError, is_real
 
@@ -173,6 +171,8 @@ def _check_dim(vector, dim, what):
 
 
 def facet_basis(model, group):
+    import skfem  # the continuum's assembly: imported where a continuum is loaded
+
     facets = model.mesh.facets(group)
     if len(facets) == 0:
         raise ValueError(f"group {group!r} has no facets: a load on it would act on no nodes")
@@ -277,6 +277,9 @@ def _traction_form(model, load):
 
 def _surface_load(model, load) -> np.ndarray:
     """Nodal forces (N) of a Force, Traction or Pressure on the undeformed surface."""
+    import skfem
+    from skfem.helpers import dot
+
     fb = facet_basis(model, load.group)
     t = model.thickness
     if isinstance(load, Force):
@@ -291,6 +294,9 @@ def _surface_load(model, load) -> np.ndarray:
 
 def load_vector(model, loads) -> np.ndarray:
     """Assembled nodal force vector (N) of ``loads``."""
+    import skfem
+    from skfem.helpers import dot
+
     f = np.zeros(model.n_dofs)
     t = model.thickness
     for load in loads:

@@ -26,7 +26,6 @@ import scipy.sparse.linalg as spla
 from .amg import AmgFactor
 from .factor_protocol import LinearFactor, SingularStiffness, checked_rhs
 from .linsolve import Factorization, direct_backend, refine_and_check
-from .pmultigrid import PMultigridFactor
 
 __all__ = ["BACKENDS", "AmgFactor", "BandedFactor", "CheckedFactor", "LinearFactor",
            "SingularStiffness", "factor", "free_motion"]
@@ -62,6 +61,17 @@ class BandedFactor(LinearFactor):
         return self._factor.solve(checked_rhs(b, self.n))
 
 
+def _pmultigrid(A, kind, **options):
+    """fem/pmultigrid.py's PMultigridFactor, imported when it is asked for (its bases are
+    scikit-fem's: a beam model's solve does not import them)."""
+    from .pmultigrid import PMultigridFactor
+
+    return PMultigridFactor(A, kind, **options)
+
+
+_pmultigrid.needs_model = True  # as PMultigridFactor: model= and free= are required
+
+
 #: name -> constructor (A, kind, **options) -> LinearFactor; 'auto' resolves to a direct one
 BACKENDS = {
     "mkl-pardiso": _direct("mkl-pardiso"),
@@ -69,7 +79,7 @@ BACKENDS = {
     "superlu": _direct("superlu"),
     "banded": BandedFactor,
     "amg-cg": AmgFactor,
-    "pmg-cg": PMultigridFactor,  # needs model= and free= (fem/pmultigrid.py)
+    "pmg-cg": _pmultigrid,  # needs model= and free= (fem/pmultigrid.py)
 }
 
 

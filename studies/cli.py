@@ -13,6 +13,12 @@ with 130 at once, even inside gmsh or a solver: the command runs in a worker thr
 main thread, which receives SIGINT, ends the process (a study's store commits each case
 atomically, so nothing is left half-written; its worker processes exit with their parent).
 A closed stdout (``| head -1``) exits quietly.
+
+The command line starts lightly: the command modules hold their parsers and import what a
+command computes with (scikit-fem, gmsh, matplotlib, the topology optimisation) inside its
+``run``; a parser whose options need a heavy module is built when its command is chosen
+(``options.deferred``). ``flexfem analyze FILE --model beam`` imports none of them
+(tests/studies/test_cli_imports.py).
 """
 import argparse
 import json
@@ -22,23 +28,41 @@ import sys
 import threading
 import warnings
 
-from ..topopt import cli as topopt_cli
 from . import run_cli
 from .engine.serialize import jsonable
+from .lazy import Lazy
 from .mechanisms import command_modules, optimizers
-from .options import Parser
+from .options import Parser, deferred
 from .report import cli as report_cli
 from .spatial import cli as spatial_cli
 
+TOPOPT_HELP = "topology optimisation of a 2-D structure or compliant mechanism from a problem file"
+TOPOPT_DESCRIPTION = ("``flexfem topopt PROBLEM.toml [--json] [--out DIR]``: optimise the "
+                      "design a problem file describes; the state after every iteration, the "
+                      "densities and the result go into DIR, and a rerun with the same DIR "
+                      "continues where the last one stopped.")
+
 
 def register_optimize(subparsers) -> None:
-    """``flexfem optimize MECHANISM``: the design search of each mechanism that has one."""
+    """``flexfem optimize MECHANISM``: the design search of each mechanism that has one (its
+    options built, and its module imported, when that search is the command)."""
     parser = subparsers.add_parser("optimize", help="design search of a mechanism's dimensions")
     choices = parser.add_subparsers(dest="mechanism", required=True, metavar="MECHANISM")
     for name, module in optimizers().items():
         sub = choices.add_parser(name, help=module.HELP)
-        module.add_arguments(sub)
         sub.set_defaults(run=module.run, summarize=module.summarize)
+        deferred(sub, module.add_arguments)  # its defaults: the search's (OptimizeSpec)
+
+
+def register_topopt(subparsers) -> None:
+    """``flexfem topopt PROBLEM.toml``: its parser here, flexfem.topopt imported by its run."""
+    parser = subparsers.add_parser("topopt", help=TOPOPT_HELP, description=TOPOPT_DESCRIPTION)
+    parser.add_argument("problem", help="problem file (TOML; see docs/topopt.md)")
+    parser.add_argument("--out", default=None,
+                        help="output folder (default: PROBLEM's name + '_topopt' here)")
+    parser.add_argument("--json", action="store_true", help="print one JSON object")
+    parser.set_defaults(run=Lazy("..topopt.cli:run", __package__),
+                        summarize=Lazy("..topopt.cli:summarize", __package__))
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -49,7 +73,7 @@ def build_parser() -> argparse.ArgumentParser:
         module.register(subparsers)
     register_optimize(subparsers)
     run_cli.register(subparsers)
-    topopt_cli.register(subparsers)
+    register_topopt(subparsers)
     spatial_cli.register(subparsers)
     return parser
 

@@ -5,7 +5,6 @@ import json
 import math
 
 from ..fem import checks
-from .engine.convergence import parse_tolerance
 
 
 def _checked(text: str, check, what: str | None = None, **options):
@@ -83,6 +82,8 @@ def damping_ratio(text: str) -> float:
 
 def tolerance(text: str) -> float:
     """A relative tolerance, '0.5%' or 0.005."""
+    from .engine.convergence import parse_tolerance  # with plotting: only when --tol is given
+
     try:
         return parse_tolerance(text)
     except ValueError as error:
@@ -113,13 +114,50 @@ class DefaultsHelp(argparse.ArgumentDefaultsHelpFormatter):
 
 class Parser(argparse.ArgumentParser):
     """An argument parser whose help shows defaults; its sub-command parsers are Parsers too
-    (argparse makes sub-parsers of the parent's class)."""
+    (argparse makes sub-parsers of the parent's class).
+
+    A sub-command may add its arguments later (:func:`deferred`): its parser is built when it
+    is first used (parsing its words, its help, a look at its actions), so that the command
+    line starts without importing what only the other commands' options need."""
 
     def __init__(self, *args, **kwargs):
+        self.__dict__["_pending"] = None  # argparse's own __init__ reads _actions
         kwargs.setdefault("formatter_class", DefaultsHelp)
         super().__init__(*args, **kwargs)
+
+    @property
+    def _actions(self):
+        if self._pending is not None:
+            build, self._pending = self._pending, None
+            build(self)
+        return self.__dict__["_actions"]
+
+    @_actions.setter
+    def _actions(self, actions):
+        self.__dict__["_actions"] = actions
+
+    def parse_known_args(self, args=None, namespace=None):
+        self._actions  # noqa: B018 - builds a deferred parser before argparse reads its parts
+        return super().parse_known_args(args, namespace)
+
+    def format_usage(self):
+        self._actions  # noqa: B018
+        return super().format_usage()
+
+    def format_help(self):
+        self._actions  # noqa: B018
+        return super().format_help()
 
     def error(self, message):
         """A bad command line is one ``flexfem COMMAND: error: ...`` line and exit status 2,
         as every other error the user can cause (argparse would print the usage first)."""
         self.exit(2, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
+
+
+def deferred(parser, build) -> None:
+    """``build(parser)`` (it adds the parser's arguments and defaults) when ``parser`` is first
+    used, if it is a :class:`Parser`; at once otherwise (a plain argparse parser)."""
+    if isinstance(parser, Parser):
+        parser._pending = build
+    else:
+        build(parser)

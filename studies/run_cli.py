@@ -1,12 +1,26 @@
 """``flexfem sweep`` and ``flexfem converge``: parameter and mesh-convergence studies."""
 from .engine.executors import MAX_WORKERS
-from .engine.sweep import MAX_CASES
-from .options import count, json_object, tolerance, whole_number
-from .run import convergence_folder, run_convergence, run_front, sweep
+from .lazy import Lazy
+from .options import count, deferred, json_object, tolerance, whole_number
+
+# the studies, imported when a command runs (the study engine imports plotting)
+convergence_folder = Lazy(".run:convergence_folder", __package__)
+run_convergence = Lazy(".run:run_convergence", __package__)
+run_front = Lazy(".run:run_front", __package__)
+sweep = Lazy(".run:sweep", __package__)
 
 
 def register(subparsers):
     p = subparsers.add_parser("sweep", help="run a parameter study declared in a TOML file")
+    deferred(p, _sweep_arguments)  # its --max-cases default is the study engine's
+    c = subparsers.add_parser("converge", help="mesh-convergence study of one metric of a mechanism")
+    _converge_arguments(c)
+    register_front(subparsers)
+
+
+def _sweep_arguments(p) -> None:
+    from .engine.sweep import MAX_CASES
+
     p.add_argument("study", help="study file (TOML): mechanism, base, grid / cases / sample")
     p.add_argument("--out", help="output folder (default: ./<study name>)")
     p.add_argument("--workers", type=whole_number(1, MAX_WORKERS), help="local worker processes (default: one per CPU; 1: in-process)")
@@ -21,7 +35,8 @@ def register(subparsers):
     p.add_argument("--json", action="store_true", help="print the summary as one JSON object")
     p.set_defaults(run=_run_sweep, summarize=summarize_sweep)
 
-    c = subparsers.add_parser("converge", help="mesh-convergence study of one metric of a mechanism")
+
+def _converge_arguments(c) -> None:
     c.add_argument("mechanism", help="registered mechanism name (toy, dbma, eightbar) or a "
                                      "model file (MODEL.toml)")
     c.add_argument("--metric", required=True, help="metric returned by the mechanism's evaluate")
@@ -45,7 +60,6 @@ def register(subparsers):
                         "its folder")
     c.add_argument("--json", action="store_true", help="print the result as one JSON object")
     c.set_defaults(run=_run_converge, summarize=summarize_convergence)
-    register_front(subparsers)
 
 
 def register_front(subparsers):

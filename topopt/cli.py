@@ -1,19 +1,10 @@
 """``flexfem topopt PROBLEM.toml [--json] [--out DIR]``: optimise the design a problem file
 describes; the state after every iteration, the densities and the result go into DIR, and a
-rerun with the same DIR continues where the last one stopped."""
+rerun with the same DIR continues where the last one stopped. Its parser is
+``register_topopt`` in flexfem.studies.cli, which imports this module only when the command
+runs (the command line starts without importing flexfem.topopt)."""
 from pathlib import Path
 import sys
-
-HELP = "topology optimisation of a 2-D structure or compliant mechanism from a problem file"
-
-
-def register(subparsers) -> None:
-    parser = subparsers.add_parser("topopt", help=HELP, description=__doc__.splitlines()[0])
-    parser.add_argument("problem", help="problem file (TOML; see docs/topopt.md)")
-    parser.add_argument("--out", default=None,
-                        help="output folder (default: PROBLEM's name + '_topopt' here)")
-    parser.add_argument("--json", action="store_true", help="print one JSON object")
-    parser.set_defaults(run=run, summarize=summarize)
 
 
 def _progress(iteration, objective, volume, change) -> None:

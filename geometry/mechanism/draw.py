@@ -5,14 +5,18 @@ meshed with local refinement in every flexure; 2-D, or extruded by the depth to 
 group: the body's lateral faces). Lengths in m."""
 from contextlib import contextmanager
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ...fem import FEMesh, gmsh_session, mesh_from_gmsh
+from ...fem import gmsh_session
 from ...fem.budget import BOUNDARY_NODES, NODES_PER_ELEMENT, TETRAHEDRA_PER_CUBE, TRIANGLE, check_budget
 from ..mesh_fields import size_by_fields, threshold_field
 from ..polygon import inscribed_diameter
 from .description import REACH, Leaf, Mechanism, flexure_label, cross2
+
+if TYPE_CHECKING:  # the mesh (scikit-fem): imported by mesh_mechanism when it meshes
+    from ...fem import FEMesh
 
 
 def _polygon(occ, points) -> int:
@@ -326,7 +330,7 @@ def estimate_mesh(mechanism: Mechanism, dim: int = 2, size_factor: float = 1.0,
 
 def mesh_mechanism(mechanism: Mechanism, dim: int = 2, size_factor: float = 1.0,
                    coarse: float | None = None, order: int = 2,
-                   max_dofs: int | None = None) -> FEMesh:
+                   max_dofs: int | None = None) -> "FEMesh":
     """The meshed continuum (linear cells; the Model raises the order) with a boundary group
     per body. ``size_factor`` scales every element size; ``coarse``: the bodies' size (m). A
     mesh whose estimate (of ``order`` elements) is above ``max_dofs`` (None: half the
@@ -335,6 +339,8 @@ def mesh_mechanism(mechanism: Mechanism, dim: int = 2, size_factor: float = 1.0,
         raise ValueError(f"size_factor = {size_factor!r} must be a finite number > 0")
     check_budget(estimate_mesh(mechanism, dim, size_factor, coarse, order), dim, max_dofs,
                  what=f"the mechanism's mesh at size_factor {size_factor:g}")
+    from ...fem import mesh_from_gmsh  # scikit-fem's mesh: imported where one is made
+
     with gmsh_session("mechanism") as gmsh:
         shapes = draw(gmsh, mechanism, dim)
         _refine(gmsh, mechanism, shapes, size_factor, coarse, dim)

@@ -9,8 +9,9 @@ by the model file's ``[[select]]`` rules. ``.msh``: a finished mesh with Physica
 from dataclasses import dataclass
 from pathlib import Path
 import re
+from typing import TYPE_CHECKING
 
-from ...fem import FEMesh, gmsh_session, mesh_from_gmsh, read_mesh
+from ...fem import gmsh_session
 from ...fem.budget import NODES_PER_ELEMENT, TETRAHEDRA_PER_CUBE, TRIANGLE, BudgetError, \
     check_budget, default_max_dofs, memory_bytes
 from ..mechanism import mesh_mechanism
@@ -19,6 +20,9 @@ from .estimate import check_outlines, estimate_geometry_mesh
 from .geo_guard import check_geo, check_geometry_file
 from .msh_header import check_msh_counts
 from .selection import compile_rule, entity_values
+
+if TYPE_CHECKING:  # the mesh (scikit-fem): imported by _mesh when it meshes or reads one
+    from ...fem import FEMesh
 
 GEO_SUFFIXES = (".geo",)
 CAD_SUFFIXES = (".step", ".stp", ".brep")
@@ -214,7 +218,7 @@ def _refine(gmsh, refinements, coarse: float) -> None:
     gmsh.model.mesh.field.setAsBackgroundMesh(field)
 
 
-def mesh_geometry(spec, size_factor: float = 1.0, max_dofs: int | None = None) -> FEMesh:
+def mesh_geometry(spec, size_factor: float = 1.0, max_dofs: int | None = None) -> "FEMesh":
     """Mesh the model file's geometry (m) with its named groups. ``size_factor`` multiplies
     every element size (a .msh cannot be remeshed: only 1 is accepted). A mesh whose estimate
     (estimate.py) is above ``max_dofs`` (None: half the available memory) is refused before
@@ -246,7 +250,7 @@ def mesh_geometry(spec, size_factor: float = 1.0, max_dofs: int | None = None) -
                        what=f"meshing {spec.geometry.name}", **_mesh_limits(spec.dim, limit))
 
 
-def with_faces(mesh: FEMesh, spec) -> FEMesh:
+def with_faces(mesh: "FEMesh", spec) -> "FEMesh":
     """``mesh`` of a mechanism with a boundary group for each face of a body the model file
     names (``stage.top``: geometry/mechanism/faces.py)."""
     from ..mechanism.faces import face_facets, parse_face
@@ -307,7 +311,9 @@ def _check_nodes(gmsh, spec, limit: int, stage: str, what: str) -> None:
                           "MeshSize, Field) or raise the budget with --max-dofs N")
 
 
-def _mesh(spec, size_factor: float, max_dofs, limit: int) -> FEMesh:
+def _mesh(spec, size_factor: float, max_dofs, limit: int) -> "FEMesh":
+    from ...fem import mesh_from_gmsh, read_mesh  # scikit-fem: imported where a mesh is made
+
     suffix = spec.geometry.suffix.lower()
     if suffix in MESH_SUFFIXES:
         return _check_dim(read_mesh(spec.geometry), spec)
@@ -354,7 +360,7 @@ def _mesh(spec, size_factor: float, max_dofs, limit: int) -> FEMesh:
         return _check_dim(mesh_from_gmsh(gmsh), spec)
 
 
-def _check_dim(mesh: FEMesh, spec) -> FEMesh:
+def _check_dim(mesh: "FEMesh", spec) -> "FEMesh":
     if mesh.dim != spec.dim:
         raise ValueError(f"{spec.source}: dim = {spec.dim} but the mesh of {spec.geometry} is "
                          f"{mesh.dim}-D")

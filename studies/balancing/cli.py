@@ -1,7 +1,10 @@
 """``flexfem balance``: RMS-optimal static balancing of the five-bar robot's motors 2-5."""
 import math
 
-from .design import METHODS, balance_robot
+from ..lazy import Lazy
+from ..options import deferred
+
+balance_robot = Lazy(".design:balance_robot", __package__)  # imported when the command runs
 
 
 def run(args) -> dict:
@@ -31,6 +34,13 @@ def register(subparsers):
     parser = subparsers.add_parser(
         "balance", help="optimum static balancing of the five-bar robot (springs, torsion "
                         "springs, counterweights)")
+    deferred(parser, _arguments)
+
+
+def _arguments(parser) -> None:
+    """The command's options (its methods: the balancers the design knows)."""
+    from .design import METHODS
+
     parser.add_argument("--method", choices=[*METHODS, "all"], default="all",
                         help="balancer to optimise (default: all)")
     parser.add_argument("--json", action="store_true", help="print one JSON object")

@@ -2,15 +2,22 @@
 import dataclasses
 from pathlib import Path
 
-from ...fem.calculix import deck_lines
-from ...fem.export import write_mesh
-from ...geometry.dbma.drawing import mesh_dbma
-from ...geometry.dbma.params import paper_design
+from ..lazy import Lazy
 from ..options import count, damping_ratio, positive
-from .analysis import (actuator_loads, analyze_dbma, build_model, modal_supports,
-                       published, static_supports)
-from .dynamics import frf_study
-from .beam import analyze_dbma_beam
+
+# what the commands compute with, imported when one runs (meshing, the FEM, the beam model)
+deck_lines = Lazy("...fem.calculix:deck_lines", __package__)
+write_mesh = Lazy("...fem.export:write_mesh", __package__)
+mesh_dbma = Lazy("...geometry.dbma.drawing:mesh_dbma", __package__)
+paper_design = Lazy("...geometry.dbma.params:paper_design", __package__)
+actuator_loads = Lazy(".analysis:actuator_loads", __package__)
+analyze_dbma = Lazy(".analysis:analyze_dbma", __package__)
+build_model = Lazy(".analysis:build_model", __package__)
+modal_supports = Lazy(".analysis:modal_supports", __package__)
+published = Lazy(".analysis:published", __package__)
+static_supports = Lazy(".analysis:static_supports", __package__)
+frf_study = Lazy(".dynamics:frf_study", __package__)
+analyze_dbma_beam = Lazy(".beam:analyze_dbma_beam", __package__)
 
 MESH_SUFFIXES = (".msh", ".vtu", ".xdmf", ".inp")
 DECK_FORCE = 800.0  # N, the actuator force of the paper's tests (Sec. 5) and of analyze

@@ -1,7 +1,10 @@
 """``flexfem optimize dbma``: FEM-decided search of the DBMA hinge dimensions (SI units)."""
-from .optimize_spec import OptimizeSpec
-from .optimize_output import run as run_search
-from .optimize_output import summarize as summarize_search
+from ..lazy import Lazy
+
+# imported when the search runs (its options: when it is the command, studies/cli.py)
+OptimizeSpec = Lazy(".optimize_spec:OptimizeSpec", __package__)
+run_search = Lazy(".optimize_output:run", __package__)
+summarize_search = Lazy(".optimize_output:summarize", __package__)
 
 HELP = ("maximise the DBMA's amplification ratio over b, h, l under frequency, stress and "
         "output-stiffness constraints (analytical seed, 2-D FEM decides)")

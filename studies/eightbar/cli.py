@@ -3,17 +3,21 @@
 driving linkage) and ``flexfem eightbar mesh OUT``; ``--model beam`` on analyze and driving."""
 import argparse
 
-from ...fem import write_mesh
-from ...geometry.eightbar.flexure import EightBarFlexureParams, mesh_eightbar_flexure
-from ...geometry.straight_line import CLASSIC_LINKAGES
-from .analysis import analyze_eightbar, summary_row
-from ...geometry.eightbar.flexure import THESIS_TRAVEL
-from ...geometry.eightbar.rigid import EightBarParams
-from ..options import positive, whole_number
-from .beam import analyze_eightbar_beam
-from .driving_models import analyze_driving
-from .path import eightbar_path_summary, trace_classic
-from .stage import stage_study
+from ..lazy import Lazy
+from ..options import deferred, positive, whole_number
+
+# what the commands compute with, imported when one runs (meshing, the FEM, the beam model)
+write_mesh = Lazy("...fem:write_mesh", __package__)
+EightBarFlexureParams = Lazy("...geometry.eightbar.flexure:EightBarFlexureParams", __package__)
+mesh_eightbar_flexure = Lazy("...geometry.eightbar.flexure:mesh_eightbar_flexure", __package__)
+EightBarParams = Lazy("...geometry.eightbar.rigid:EightBarParams", __package__)
+analyze_eightbar = Lazy(".analysis:analyze_eightbar", __package__)
+summary_row = Lazy(".analysis:summary_row", __package__)
+analyze_eightbar_beam = Lazy(".beam:analyze_eightbar_beam", __package__)
+analyze_driving = Lazy(".driving_models:analyze_driving", __package__)
+eightbar_path_summary = Lazy(".path:eightbar_path_summary", __package__)
+trace_classic = Lazy(".path:trace_classic", __package__)
+stage_study = Lazy(".stage:stage_study", __package__)
 
 LINKAGE_CHOICES = ["watt", "roberts", "chebyshev", "peaucellier", "modified_peaucellier"]
 # points along a traced path: each costs ~2 ms (twice: the resolution check), 10,000 ~40 s;
@@ -168,11 +172,7 @@ def add_eightbar_commands(eb_sub) -> None:
     """Add ``trace``, ``analyze``, ``stage`` and ``mesh`` to the ``eightbar`` sub-command
     parsers."""
     p = eb_sub.add_parser("trace", help="trace the rigid-body eight-bar's end-effector path")
-    p.add_argument("--travel", type=positive, default=THESIS_TRAVEL,
-                   help="end-effector stroke traced, m (default the thesis' 33.1 mm, Ch. 5)")
-    p.add_argument("--points", type=points, default=251, help="points along the travel")
-    p.add_argument("--json", action="store_true", help="print one JSON object")
-    p.set_defaults(run=_run_eightbar_trace, summarize=_summarize_eightbar_trace)
+    deferred(p, _trace_arguments)  # its default travel is the eight-bar geometry's
     p = eb_sub.add_parser("analyze", help="FEM of the flexure suspension: stiffness, stress, "
                           "large-deflection path")
     p.add_argument("--travel", type=travel, default=None,
@@ -212,14 +212,32 @@ def add_eightbar_commands(eb_sub) -> None:
     p.set_defaults(run=_run_eightbar_mesh, summarize=_summarize_eightbar_mesh)
 
 
-def register(subparsers) -> None:
-    lk = subparsers.add_parser("linkage", help="classic straight-line linkages (thesis Ch. 2)")
-    lk_sub = lk.add_subparsers(dest="linkage_command", required=True)
-    p = lk_sub.add_parser("trace", help="trace a straight-line linkage and report its deviation")
+def _trace_arguments(p) -> None:
+    """``eightbar trace``'s options (its default travel from the eight-bar's geometry)."""
+    from ...geometry.eightbar.flexure import THESIS_TRAVEL
+
+    p.add_argument("--travel", type=positive, default=THESIS_TRAVEL,
+                   help="end-effector stroke traced, m (default the thesis' 33.1 mm, Ch. 5)")
+    p.add_argument("--points", type=points, default=251, help="points along the travel")
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.set_defaults(run=_run_eightbar_trace, summarize=_summarize_eightbar_trace)
+
+
+def _linkage_arguments(p) -> None:
+    """``linkage trace``'s options (its choices: the linkages the tracer knows)."""
+    from ...geometry.straight_line import CLASSIC_LINKAGES
+
     p.add_argument("name", choices=sorted(set(LINKAGE_CHOICES) & set(CLASSIC_LINKAGES)))
     p.add_argument("--points", type=points, default=201, help="points along the input range")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(run=_run_linkage_trace, summarize=_summarize_linkage_trace)
+
+
+def register(subparsers) -> None:
+    lk = subparsers.add_parser("linkage", help="classic straight-line linkages (thesis Ch. 2)")
+    lk_sub = lk.add_subparsers(dest="linkage_command", required=True)
+    p = lk_sub.add_parser("trace", help="trace a straight-line linkage and report its deviation")
+    deferred(p, _linkage_arguments)
 
     eb = subparsers.add_parser("eightbar", help="the symmetric rectilinear eight-bar (thesis Ch. 5)")
     eb_sub = eb.add_subparsers(dest="eightbar_command", required=True)

@@ -3,8 +3,6 @@ from collections import Counter
 import sys
 
 from ..mechanisms import report_sections
-from .render import comparison_cells, headline_groups
-from .reproduce import reproduce
 
 
 def register(subparsers):
@@ -21,6 +19,8 @@ def register(subparsers):
 
 
 def _run(args) -> dict:
+    from .reproduce import reproduce  # every section's studies: imported when the report runs
+
     progress = (lambda line: print(line, file=sys.stderr)) if sys.stderr.isatty() else None
     report = reproduce(args.out, quick=args.quick, full=args.full, resume=args.resume,
                        sections=args.section, progress=progress)
@@ -31,6 +31,8 @@ def _run(args) -> dict:
 def summarize(report: dict) -> str:
     """The design summary in the terminal: per source document its headline comparisons with
     their verdicts, then each section's count of comparisons by verdict; failures named."""
+    from .render import comparison_cells, headline_groups
+
     lines = []
     for _, doc, _, rows, _ in headline_groups(report):
         lines += ["", doc["title"]]

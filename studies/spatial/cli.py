@@ -1,14 +1,15 @@
 """``flexfem constraints MODEL.toml``: the exact-constraint analysis of a spatial model file
 (its degrees of freedom and over-constraints, exact_constraint.py)."""
-from ...geometry.spatial.tables import load_spatial
 from ..user_model.cli import parse_sets
-from .exact_constraint import exact_constraint
 
 
 def run(args) -> dict:
     """The analysis of ``args.model`` with its [[supports]] bodies held: {"model",
     "singular_values", "threshold", "dofs": [{body: twist}], "over_constraints":
     [[{flexure, constraint, weight}]], "summary"}."""
+    from ...geometry.spatial.tables import load_spatial  # imported when the command runs
+    from .exact_constraint import exact_constraint
+
     mechanism, raw, _ = load_spatial(args.model, parse_sets(args.set))
     held = {s.get("group") for s in raw.get("supports", []) if isinstance(s, dict)}
     report = exact_constraint(mechanism, held)

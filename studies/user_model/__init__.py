@@ -13,9 +13,31 @@ thin layer over these. See docs/model_files.md.
 
 ``analyze_model(spec) -> dict`` is the same analysis as a dict (``Report.to_dict()``).
 """
-from .analysis import analyze_model, build_model, evaluate, flat_metrics
-from .api import analyze, load_model
-from .model_report import Report
+import importlib
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:  # imported when first used (below): the command line's parsers import
+    # .summary and .cli without the analyses
+    from .analysis import analyze_model, build_model, evaluate, flat_metrics
+    from .api import analyze, load_model
+    from .model_report import Report
+
+_EXPORTS = {"analyze_model": "analysis", "build_model": "analysis", "evaluate": "analysis",
+            "flat_metrics": "analysis", "analyze": "api", "load_model": "api",
+            "Report": "model_report"}
 
 __all__ = ["Report", "analyze", "analyze_model", "build_model", "evaluate", "flat_metrics",
            "load_model"]
+
+
+def __getattr__(name: str):
+    """The exported ``name``, its module imported on first use (then cached here)."""
+    if name not in _EXPORTS:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    value = getattr(importlib.import_module(f".{_EXPORTS[name]}", __name__), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list:
+    return sorted(set(globals()) | set(_EXPORTS))

@@ -3,13 +3,12 @@ large-deflection solve where asked), as a JSON-able dict and as flat metrics for
 from pathlib import Path
 import re
 import tomllib
-from typing import Literal
+from typing import TYPE_CHECKING, Literal
 
 import numpy as np
 
-from ...fem import (Fixed, Force, Model, PlaneStrain, PlaneStress, Prescribed, Solid3D,
-                    Traction, compliance_matrix, solve_buckling, solve_harmonic, solve_modes,
-                    solve_nonlinear, solve_static)
+from ...fem import (Fixed, Force, Prescribed, Traction, compliance_matrix, solve_buckling,
+                    solve_harmonic, solve_modes, solve_nonlinear, solve_static)
 from ...geometry.user_model import ModelSpec, load_spec, mesh_geometry
 from ...geometry.user_model.names import override_keys
 from ...geometry.user_model.outputs_table import BUILT_IN, output_names
@@ -25,6 +24,9 @@ from .corners import sharp_corner
 from .stroke import stroke_limits
 from .stroke_check import UNCHECKED, stroke_check
 
+if TYPE_CHECKING:  # the continuum (scikit-fem): imported where one is built, never by the beam's
+    from ...fem import Model
+
 MODELS = ("continuum", "beam")
 
 _AXES = ("x", "y", "z")
@@ -36,6 +38,8 @@ UNITS = {"dofs": "-", "h": "m", "max_von_mises": "Pa", "mean_displacement_*": "m
 
 def formulation(spec: ModelSpec):
     """PlaneStress / PlaneStrain / Solid3D of the model file's [section]."""
+    from ...fem import PlaneStrain, PlaneStress, Solid3D
+
     if spec.section.kind == "plane_stress":
         return PlaneStress(spec.section.thickness)
     if spec.section.kind == "plane_strain":
@@ -53,16 +57,19 @@ def supports_and_loads(spec: ModelSpec) -> tuple[list, list]:
     return supports, loads
 
 
-def element_size(model: Model) -> float:
+def element_size(model: "Model") -> float:
     """Characteristic element size h (m): the mean edge length of the mesh."""
     mesh = model.mesh.mesh
     edges = mesh.facets if model.dim == 2 else mesh.edges
     return float(np.mean(np.linalg.norm(mesh.p[:, edges[0]] - mesh.p[:, edges[1]], axis=0)))
 
 
-def build_model(spec: ModelSpec, size_factor: float = 1.0, max_dofs: int | None = None) -> Model:
+def build_model(spec: ModelSpec, size_factor: float = 1.0,
+                max_dofs: int | None = None) -> "Model":
     """Mesh the geometry and make the Model (m, Pa); a mesh estimated above ``max_dofs``
     (None: half the available memory) is refused before meshing."""
+    from ...fem import Model
+
     mesh = mesh_geometry(spec, size_factor, max_dofs)
     return Model(mesh, spec.material, formulation(spec), order=spec.mesh.order)
 

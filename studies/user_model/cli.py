@@ -4,11 +4,15 @@ declares."""
 import argparse
 from pathlib import Path
 
-from ...geometry.user_model import load_spec
+from ..lazy import Lazy
 from ..options import count, length, size_factor
-from .api import analyze, load_model
-from .mesh_choice import with_mesh_size
 from .summary import LENGTH_UNITS, summarize
+
+# the analyses, imported when a command runs
+analyze = Lazy(".api:analyze", __package__)
+load_model = Lazy(".api:load_model", __package__)
+load_spec = Lazy("...geometry.user_model:load_spec", __package__)
+with_mesh_size = Lazy(".mesh_choice:with_mesh_size", __package__)
 
 
 def parse_sets(items) -> dict:
