@@ -24,9 +24,10 @@ import time
 import numpy as np
 
 from flexfem.fem import Material
-from flexfem.fem.beam import (BeamModel, Fixed, NodalLoad, Prescribed, RigidLink, Section,
-                              beam_chain, beam_from_profile, compliance, solve_beam_modes, solve_beam_nonlinear,
-                              solve_beam_static)
+from flexfem.fem.beam import (BeamModel, NodalLoad, RigidLink, Section, beam_chain,
+                              beam_from_profile, compliance, solve_beam_modes,
+                              solve_beam_nonlinear, solve_beam_static)
+from flexfem.fem.beam.supports import NodeFixed, NodePrescribed
 
 L, W, T, GAP, STROKE = 0.05, 0.01, 0.5e-3, 0.03, 0.005
 STEEL = Material("steel", E=200e9, nu=0.3, rho=7800.0)
@@ -41,7 +42,7 @@ def guide(n_per_leaf: int):
     stage = len(nodes) - 1
     model = BeamModel(nodes, g.elements, g.sections, STEEL,
                       rigid_links=[RigidLink(stage, (g.point_nodes[1], g.point_nodes[3]))])
-    return model, [Fixed((g.point_nodes[0], g.point_nodes[2]))], stage
+    return model, [NodeFixed((g.point_nodes[0], g.point_nodes[2]))], stage
 
 
 def linear_point(n_per_leaf: int) -> dict:
@@ -55,7 +56,7 @@ def linear_point(n_per_leaf: int) -> dict:
 
 def stroke(n_per_leaf: int, steps: int) -> dict:
     model, supports, stage = guide(n_per_leaf)
-    res = solve_beam_nonlinear(model, supports + [Prescribed(stage, "y", STROKE)], steps=steps)
+    res = solve_beam_nonlinear(model, supports + [NodePrescribed(stage, "y", STROKE)], steps=steps)
     return {"force N": res.final.reactions[stage][1], "shortening um": -res.final.q[stage, 0] * 1e6,
             "iterations": sum(res.iterations), "stress MPa": res.final.max_stress / 1e6}
 
@@ -71,7 +72,7 @@ def hinge_beam(profile: str, l: float, b: float, w: float, block: tuple):
     g = g.join(beam_chain([(l, 0), (l + Lb, 0)], Section.rect(w, H), 4))
     model = BeamModel(g.nodes, g.elements, g.sections, STEEL, shear=True)
     tip = g.node_at((l + Lb, 0))
-    return solve_beam_static(model, [Fixed(g.node_at((-Lb, 0)))],
+    return solve_beam_static(model, [NodeFixed(g.node_at((-Lb, 0)))],
                              [NodalLoad(tip, fy=1.0)]).q[tip, 1]
 
 

@@ -45,7 +45,8 @@ import numpy as np
 
 from ..data import shared_toml
 from ..fem import Fixed, Material, Model, PlaneStress, RigidFace, solve_static
-from ..fem.beam import BeamModel, Fixed as BeamFixed, Section, beam_chain
+from ..fem.beam import BeamModel, Section, beam_chain
+from ..fem.beam.supports import NodeFixed as BeamFixed
 from ..fem.beam.compliance import compliance as beam_compliance
 from ..fem.compliance import compliance_matrix
 from ..fem.gmsh_session import gmsh_session

@@ -17,8 +17,8 @@ import math
 import numpy as np
 
 from ..fem import Fixed as FEFixed, Force, Material, Model, PlaneStress, solve_static
-from ..fem.beam import (BeamModel, Fixed, NodalLoad, RigidLink, Section, beam_chain,
-                        solve_beam_static)
+from ..fem.beam import BeamModel, NodalLoad, RigidLink, Section, beam_chain, solve_beam_static
+from ..fem.beam.supports import NodeFixed
 from ..geometry.hinge_profiles import mesh_hinge_specimen, profile_thickness
 from .hinge_patch import notch_factors
 from .layout import ROOT_EXTENSION, profile_beam
@@ -48,7 +48,7 @@ def beam_specimen(profile: str, l: float, root_extension: float,
     tip, root = mesh.node_at((l + Lb, 0.0)), mesh.node_at((-Lb, 0.0))
     out = []
     for load in (NodalLoad(tip, fy=1.0), NodalLoad(tip, fx=1.0)):
-        q = solve_beam_static(model, [Fixed(root)], [load]).q
+        q = solve_beam_static(model, [NodeFixed(root)], [load]).q
         out.append(float(q[tip, 1] if load.fy else q[tip, 0]))
     return tuple(out)
 

@@ -64,7 +64,8 @@ def solid(t, l, w, H, Lb) -> np.ndarray:
 def beam(t, l, w, H, Lb, j_factor: float) -> np.ndarray:
     """The lifted beam model of the specimen (``leaf_between_blocks``), the leaf's J times
     ``j_factor``."""
-    from flexfem.fem.beam.spatial import Fixed, compliance3d
+    from flexfem.fem.beam.spatial import compliance3d
+    from flexfem.fem.beam.supports import NodeFixed
     from flexfem.reduced.spatial import lifted_model
     from flexfem.reduced.specimen import leaf_between_blocks
     from flexfem.reduced.torsion import TorsionScaled
@@ -73,7 +74,7 @@ def beam(t, l, w, H, Lb, j_factor: float) -> np.ndarray:
     factors = np.ones(len(planar.elements))
     factors[leaf] = j_factor
     model = TorsionScaled(lifted_model(planar, w), factors)
-    return compliance3d(model, [Fixed(root)], tip)
+    return compliance3d(model, [NodeFixed(root)], tip)
 
 
 def main(argv) -> None:

@@ -1,8 +1,8 @@
 """Compliance matrix of a node: its (x, y, theta) motion per unit (F_x, F_y, M) load.
 
-    C = compliance(model, [Fixed(0)], node=tip)               # linear, undeformed
+    C = compliance(model, [NodeFixed(0)], node=tip)               # linear, undeformed
     C = compliance(model, supports, node=tip, about=state)    # tangent at a converged state
-    C = shared_compliance(model, [Fixed(0)], node=tip)        # linear, the model's own factor
+    C = shared_compliance(model, [NodeFixed(0)], node=tip)        # linear, the model's own factor
 """
 import numpy as np
 

@@ -31,9 +31,7 @@ from ..rigid_face_input import RigidFace
 from .compliance import shared_compliance
 from .modal import BeamModes, solve_beam_modes
 from .model import BeamGroup, BeamModel
-from .supports import Fixed as NodeFixed
-from .supports import NodalLoad
-from .supports import Prescribed as NodePrescribed
+from .supports import NodalLoad, NodeFixed, NodePrescribed
 from ..beam_result import BeamPath, BeamResult
 from ..result_face import BeamFace
 from .nonlinear import solve_beam_nonlinear

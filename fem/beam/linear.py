@@ -2,10 +2,10 @@
 factored once and cached on the model: the linear static solves and the modal analysis of
 a design point share it.
 
-A static solve whose supports add a few Prescribed DOFs to the Fixed ones (a stiffness with
-the load point held in some directions) is solved on the Fixed supports' system with the
+A static solve whose supports add a few NodePrescribed DOFs to the NodeFixed ones (a stiffness with
+the load point held in some directions) is solved on the NodeFixed supports' system with the
 extra DOFs as constraints (Lagrange multipliers, a k x k Schur complement): one
-factorisation serves every load case of the point and the modes held by the Fixed supports.
+factorisation serves every load case of the point and the modes held by the NodeFixed supports.
 """
 import numpy as np
 
@@ -13,7 +13,7 @@ from .assembly import (Assembler, Evaluation, SingularBeamError, element_mass,
                        point_mass_blocks)
 from .banded import spd_factor
 from .model import BeamModel
-from .supports import Fixed
+from .supports import NodeFixed
 from .space import held_values
 
 MAX_EXTRA = 12  # extra prescribed DOFs solved by the Schur complement (more: own factor)
@@ -69,11 +69,11 @@ def linear_system(model: BeamModel, supports, held=None) -> LinearSystem:
 
 
 def _on_fixed(model: BeamModel, supports, held):
-    """(the Fixed supports' system, the other held DOFs) where those are few and the
+    """(the NodeFixed supports' system, the other held DOFs) where those are few and the
     supports' own system (of the DOFs ``held``) is not cached, else None."""
-    base = [s for s in supports if isinstance(s, Fixed)]
+    base = [s for s in supports if isinstance(s, NodeFixed)]
     if base and not model.is_cached(("linear", held.tobytes())):
-        if len(base) == len(supports):  # all Fixed: the supports' own system
+        if len(base) == len(supports):  # all NodeFixed: the supports' own system
             return linear_system(model, base, held), held[:0]
         system = linear_system(model, base)
         extra = np.setdiff1d(held, system.space.held)
@@ -84,7 +84,7 @@ def _on_fixed(model: BeamModel, supports, held):
 
 def solve_linear(model: BeamModel, supports, f_ext) -> tuple:
     """(q (n_dofs,), LinearSystem used, whether it holds the supports' DOFs alone) of
-    K q = f_ext with the supports' values: on the system of the Fixed supports with the
+    K q = f_ext with the supports' values: on the system of the NodeFixed supports with the
     other held DOFs as constraints where that system is nonsingular and they are few, else
     on the supports' own system."""
     values = held_values(model, supports)
@@ -101,7 +101,7 @@ def solve_linear(model: BeamModel, supports, f_ext) -> tuple:
 
 
 def modal_system(model: BeamModel, supports) -> tuple:
-    """(LinearSystem, j) for modes held by ``supports``: the Fixed supports' cached system
+    """(LinearSystem, j) for modes held by ``supports``: the NodeFixed supports' cached system
     with the other held DOFs' unknowns ``j`` kept at zero (:func:`held_at_zero`), where the
     static solves would use it; else the supports' own system and no ``j``."""
     held = _held(model, supports)

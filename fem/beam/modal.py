@@ -151,7 +151,7 @@ def _modes(K, M, n, n_free) -> tuple:
 
 
 def solve_beam_modes(model: BeamModel, supports, n: int = 6, about=None, loads=()) -> BeamModes:
-    """The ``n`` lowest natural frequencies (Hz) and shapes. supports : Fixed/Prescribed
+    """The ``n`` lowest natural frequencies (Hz) and shapes. supports : NodeFixed/NodePrescribed
     (held at their values at ``about``); about : a BeamState from solve_beam_nonlinear (with
     the same supports and ``loads``) to linearise about (default: undeformed)."""
     if not (isinstance(n, (int, np.integer)) and n >= 1):

@@ -1,6 +1,6 @@
 """Geometrically exact (co-rotational) static analysis of a beam model, planar or spatial.
 
-    res = solve_beam_nonlinear(model, [Fixed(0)], [NodalLoad(tip, fy=-P)], steps=20)
+    res = solve_beam_nonlinear(model, [NodeFixed(0)], [NodalLoad(tip, fy=-P)], steps=20)
     res.path(tip)      # (n_steps + 1, 3): planar u, v, theta; spatial the displacement (m)
 
 Load control: loads (dead) and prescribed DOFs scale with the load factor, stepped 0 -> 1.
@@ -51,8 +51,8 @@ class BeamNonlinearResult:
 def solve_beam_nonlinear(model, supports, loads=(), steps: int = 10, control=None,
                          max_iterations: int = 30, tol: float = 1e-9,
                          min_step: float = 1e-4) -> BeamNonlinearResult:
-    """Large-rotation static solve of a planar ``model`` under ``supports`` (Fixed,
-    Prescribed) and ``loads`` (NodalLoad, dead), as :func:`solve_path`."""
+    """Large-rotation static solve of a planar ``model`` under ``supports`` (NodeFixed,
+    NodePrescribed) and ``loads`` (NodalLoad, dead), as :func:`solve_path`."""
     check_step_arguments(steps, max_iterations, tol, min_step)
     if model.superelements:
         raise ValueError("solve_beam_nonlinear: the model has superelements, which are "

@@ -15,18 +15,18 @@ import numpy as np
 import scipy.sparse as sp
 
 from .model import BeamModel
-from .supports import Fixed, Prescribed, dof_index
+from .supports import NodeFixed, NodePrescribed, dof_index
 from .pattern import Condensed, block_dofs, global_matrix, shared
 
 
-def held_values(model, supports, kinds=(Fixed, Prescribed)) -> np.ndarray:
+def held_values(model, supports, kinds=(NodeFixed, NodePrescribed)) -> np.ndarray:
     """(n_dofs,) prescribed value of each held DOF (m, rad), NaN where free, of a planar or a
     spatial beam model; ``kinds``: the support classes of that model."""
     values = np.full(model.n_dofs, np.nan)
     per_node = model.n_dofs // model.n_nodes
     for sup in supports:
         if not isinstance(sup, kinds):
-            raise ValueError(f"supports: {sup!r} is not a Fixed or Prescribed")
+            raise ValueError(f"supports: {sup!r} is not a NodeFixed or NodePrescribed")
         for node, dof, value in sup.prescribed(per_node):
             if not 0 <= node < model.n_nodes:
                 raise ValueError(f"supports: node {node} outside 0..{model.n_nodes - 1}")

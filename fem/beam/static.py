@@ -81,7 +81,7 @@ def make_state(assembler: Assembler, q, r, lam, info=None, fb=None, w=None) -> B
 
 def solve_beam_static(model: BeamModel, supports, loads=()) -> BeamState:
     """Linear (small-displacement) static solve: K z = f - K_p p for the loads (NodalLoad)
-    and the supports' values (Fixed, Prescribed) at load factor 1. Forces and stresses are
+    and the supports' values (NodeFixed, NodePrescribed) at load factor 1. Forces and stresses are
     the linear element forces (no co-rotational update). The factor of K is cached on the
     model (fem/beam/linear.py): further load cases and supports of the model reuse it."""
     f_ext = load_vector(model, loads)

@@ -29,7 +29,7 @@ from .spatial import face as spatial_face
 from .spatial.corotational import local_deformations
 from .spatial.element import to_global
 from .spatial.static import linear_solution
-from .supports import Prescribed
+from .supports import NodePrescribed
 from ..stability import StateBuckling
 
 STEP = 1e-6  # the central differences' step: the largest motion, over the model's size
@@ -51,7 +51,7 @@ def path_state(state) -> tuple:
 
 def held_at_zero(model, supports, to_nodes) -> list:
     """The node supports of ``supports`` with every prescribed value 0 (the increments)."""
-    return [Prescribed(s.node, s.dof, 0.0) if isinstance(s, Prescribed) else s
+    return [NodePrescribed(s.node, s.dof, 0.0) if isinstance(s, NodePrescribed) else s
             for s in to_nodes(model, supports)]
 
 

@@ -1,14 +1,17 @@
-"""Node supports and loads of a beam model, planar or spatial alike.
+"""The beam solvers' node-addressed supports and loads, planar or spatial alike.
 
-A planar node has 3 DOFs (u_x, u_y, theta), a spatial node 6 (u_x, u_y, u_z, r_x, r_y, r_z):
-the planar ones are the spatial in-plane DOFs (theta = r_z). ``Fixed``, ``Prescribed`` and
+A user supports and loads a beam model by its groups with :mod:`flexfem.fem.boundary`'s
+``Fixed``, ``Prescribed`` and ``Force`` (the analysis face, :mod:`.face`, turns them into
+these); the solvers of :mod:`flexfem.fem.beam` take these node-addressed ones. A planar node
+has 3 DOFs (u_x, u_y, theta), a spatial node 6 (u_x, u_y, u_z, r_x, r_y, r_z): the planar
+ones are the spatial in-plane DOFs (theta = r_z). ``NodeFixed``, ``NodePrescribed`` and
 ``NodalLoad`` name DOFs and components without knowing the model; the model's assembly asks
 for them per node (``prescribed(per_node)``, ``NodalLoad.vector(per_node)``).
 
-    Fixed(0)                      # every DOF of node 0 (3 planar, 6 spatial)
-    Fixed([0, 5], ("x", "y"))     # the translations in the plane
-    Prescribed(20, "y", -1e-3)    # m, times the load factor
-    NodalLoad(20, fy=-1.0, m=0.1) # N, N m (m: the in-plane moment, also called mz)
+    NodeFixed(0)                     # every DOF of node 0 (3 planar, 6 spatial)
+    NodeFixed([0, 5], ("x", "y"))    # the translations in the plane
+    NodePrescribed(20, "y", -1e-3)   # m, times the load factor
+    NodalLoad(20, fy=-1.0, m=0.1)    # N, N m (m: the in-plane moment, also called mz)
 """
 from dataclasses import KW_ONLY, dataclass
 
@@ -34,7 +37,7 @@ def dof_index(dof, per_node: int = 3) -> int:
 
 
 @dataclass(frozen=True)
-class Fixed:
+class NodeFixed:
     """Hold ``dofs`` (default: all of each node's) of ``nodes`` at zero."""
 
     nodes: tuple
@@ -55,7 +58,7 @@ class Fixed:
 
 
 @dataclass(frozen=True)
-class Prescribed:
+class NodePrescribed:
     """Prescribe DOF ``dof`` of ``node`` to ``value`` (m or rad) times the load factor. A
     prescribed rotation of a spatial model is a rotation about that fixed global axis."""
 

@@ -16,7 +16,8 @@ import time
 import numpy as np
 
 from ...fem import solve_modes
-from ...fem.beam.spatial import Fixed, Prescribed, solve_beam3d_modes
+from ...fem.beam.spatial import solve_beam3d_modes
+from ...fem.beam.supports import NodeFixed, NodePrescribed
 from ...reduced.layout import ROOT_EXTENSION
 from ...reduced.dbma import dbma_beam3d_model
 from ...geometry.dbma.drawing import DBMALayout
@@ -48,8 +49,8 @@ def beam_modes3d(p: DBMAParams, layout: DBMALayout | None = None, n_modes: int =
         factors = np.ones(model.n_elements)
         factors[info["hinge_elements"]] = vlasov_factor(p.l, p.b, p.d, p.nu)
         model = TorsionScaled(model, factors)
-    supports = [Fixed(tuple(info["ground"]))] + [
-        Prescribed(info[pad], dof, 0.0) for pad in ("input_a", "input_b") for dof in PAD_DOFS]
+    supports = [NodeFixed(tuple(info["ground"]))] + [
+        NodePrescribed(info[pad], dof, 0.0) for pad in ("input_a", "input_b") for dof in PAD_DOFS]
     modes = solve_beam3d_modes(model, supports, n=n_modes)
     u = modes.shapes[:, :, :3]
     share = np.sum(u[:, :, 2] ** 2, axis=1) / np.sum(u ** 2, axis=(1, 2))

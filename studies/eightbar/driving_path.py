@@ -10,7 +10,8 @@ from dataclasses import replace
 
 import numpy as np
 
-from ...fem.beam import Fixed, Prescribed, solve_beam_nonlinear
+from ...fem.beam import solve_beam_nonlinear
+from ...fem.beam.supports import NodeFixed, NodePrescribed
 from ...reduced.layout import ROOT_EXTENSION
 from ...geometry.eightbar.driving import DrivingParams, trace_driving
 from ...reduced.driving import driving_beam_model
@@ -24,8 +25,8 @@ def beam_drive(model, info, end: float, steps: int = 4) -> list:
     per step the end-effectors' motion (m, rad) and the input force (N), input y from 0 to
     ``end`` (m), its x and rotation free."""
     inp = info["input"]
-    res = solve_beam_nonlinear(model, [Fixed(tuple(info["ground"])),
-                                       Prescribed(inp, "y", end)], steps=steps, tol=NEWTON_TOL)
+    res = solve_beam_nonlinear(model, [NodeFixed(tuple(info["ground"])),
+                                       NodePrescribed(inp, "y", end)], steps=steps, tol=NEWTON_TOL)
     rows = []
     for state in res.states:
         ql, qr = state.q[info["ee_L"]], state.q[info["ee_R"]]

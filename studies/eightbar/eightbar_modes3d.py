@@ -18,7 +18,7 @@ from skfem.models.elasticity import linear_elasticity
 
 from ...fem import Fixed, solve_modes
 from ...fem.beam.spatial import solve_beam3d_modes
-from ...fem.beam.spatial import Fixed as BeamFixed
+from ...fem.beam.supports import NodeFixed as BeamFixed
 from ...fem.beam.spatial.energy import strain_energy_share
 from ...reduced.layout import ROOT_EXTENSION
 from ...reduced.eightbar3d import eightbar_beam3d_model

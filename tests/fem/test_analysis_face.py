@@ -137,7 +137,8 @@ def test_stable_counts_the_tangents_negative_eigenvalues_through_a_snap_through(
     """A shallow clamped arch pushed down at its apex (displacement control): two eigenvalues
     cross zero within one step near the load peak (the determinant's sign would not see it),
     the Sturm count does; the arch is stable again once inverted."""
-    from flexfem.fem.beam import Fixed as NodeFixed, NodalLoad, solve_beam_nonlinear
+    from flexfem.fem.beam import NodalLoad, solve_beam_nonlinear
+    from flexfem.fem.beam.supports import NodeFixed
     from flexfem.fem.beam_result import BeamPath
     x = np.linspace(0.0, L, 41)
     mesh = beam_chain(list(zip(x, 0.002 * np.sin(np.pi * x / L))), Section.rect(W, 0.3e-3), 1)

@@ -3,7 +3,8 @@ condenses to the Timoshenko beam, a held face carries a pure moment and a pull a
 sections do, and bad input names the problem."""
 import numpy as np
 import pytest
-from flexfem.fem.beam import BeamModel, Fixed, Section, beam_chain
+from flexfem.fem.beam import BeamModel, Section, beam_chain
+from flexfem.fem.beam.supports import NodeFixed
 from flexfem.fem.beam.compliance import compliance
 from flexfem.fem.materials import Material
 from flexfem.reduced.patch2d import TensorPatch, cell_edges, held_face, section
@@ -17,7 +18,7 @@ def _beam_compliance(a, L):
     mesh = beam_chain([(a / 2, 0.0), (a / 2, L)], Section.rect(1.0, a), 4)
     model = BeamModel(mesh.nodes, mesh.elements, mesh.sections, Material("unit", 1.0, NU, 1.0),
                       shear=True)
-    return compliance(model, [Fixed(0)], 4)
+    return compliance(model, [NodeFixed(0)], 4)
 
 
 @pytest.mark.parametrize("cells", [4, 8])

@@ -14,7 +14,7 @@ from flexfem.fem.analyses import solve_incremental_buckling
 from flexfem.fem.beam import BeamModel, Section, beam_chain
 from flexfem.fem.beam.spatial import Beam3DModel
 from flexfem.fem.beam.spatial import Section as SpatialSection
-from flexfem.fem.beam.supports import Fixed as NodeFixed
+from flexfem.fem.beam.supports import NodeFixed
 from flexfem.fem.mesh import FEMesh, facets_where
 
 L, W, T = 0.05, 0.01, 0.5e-3  # m: length, out-of-plane width, in-plane thickness

@@ -6,7 +6,8 @@ import pytest
 
 from flexfem.fem import (Fixed as FEFixed, Material, Model, PlaneStress, gmsh_session,
                          mesh_from_gmsh)
-from flexfem.fem.beam import BeamModel, Fixed, Section, beam_chain
+from flexfem.fem.beam import BeamModel, Section, beam_chain
+from flexfem.fem.beam.supports import NodeFixed
 from flexfem.fem.beam.compliance import compliance
 from flexfem.fem.compliance import compliance_matrix
 from flexfem.reduced.layout import profile_beam
@@ -81,7 +82,7 @@ def _notch_beam(b, R, stub, nu, factors, rigid_ends=False):
         first, last = (-stub, 0.0), (l + stub, 0.0)
     model = BeamModel(mesh.nodes, mesh.elements, mesh.sections,
                       Material("steel", 200e9, nu, 7800.0), shear=True)
-    return compliance(model, [Fixed(mesh.node_at(first))], mesh.node_at(last))
+    return compliance(model, [NodeFixed(mesh.node_at(first))], mesh.node_at(last))
 
 
 @pytest.mark.parametrize("t_over_r, nu, stubs", [

@@ -3,9 +3,10 @@ their planar compliance in the plane, and about the strong axis each slice of th
 width enters its block as the planar root does (its axial compliance)."""
 import numpy as np
 import pytest
-from flexfem.fem.beam import Fixed as PlanarFixed
+from flexfem.fem.beam.supports import NodeFixed as PlanarFixed
 from flexfem.fem.beam.compliance import compliance
-from flexfem.fem.beam.spatial import Fixed, compliance3d
+from flexfem.fem.beam.spatial import compliance3d
+from flexfem.fem.beam.supports import NodeFixed
 from flexfem.fem.materials import Material
 from flexfem.reduced.spatial import lifted_model
 
@@ -29,7 +30,7 @@ def test_a_lifted_leaf_keeps_its_planar_compliance_in_the_plane():
     planar solver is the reference here; the 2-D continuum is the next test's)."""
     planar, lifted, root, tip = _leaf_between_blocks()
     C2 = compliance(planar, [PlanarFixed(root)], tip)
-    C3 = compliance3d(lifted, [Fixed(root)], tip)
+    C3 = compliance3d(lifted, [NodeFixed(root)], tip)
     for (i, j), (k, m) in {(0, 0): (0, 0), (1, 1): (1, 1), (5, 5): (2, 2),
                            (1, 5): (1, 2)}.items():
         assert C3[i, j] == pytest.approx(C2[k, m], rel=1e-10), (i, j)
@@ -52,7 +53,7 @@ def test_a_lifted_leafs_in_plane_compliance_is_the_2d_continuums():
     from flexfem.geometry.hinge_profiles import mesh_hinge_specimen
 
     _, lifted, root, tip = _leaf_between_blocks()
-    C3 = compliance3d(lifted, [Fixed(root)], tip)
+    C3 = compliance3d(lifted, [NodeFixed(root)], tip)
     mesh = mesh_hinge_specimen(L, T, "leaf", block_height=H, block_length=2 * H,
                                hinge_elements=8, size_factor=0.5)
     continuum = compliance_matrix(Model(mesh, STEEL, PlaneStress(W), order=2),
@@ -105,7 +106,7 @@ def _specimen_beam(t, l, w, H, Lb, slices=True):
         model = Beam3DModel(model.nodes, model.elements,
                             [replace(s, factors=(*s.factors[:3], 1.0)) for s in model.sections],
                             model.material, rigid_links=model.rigid_links, shear=model.shear)
-    return compliance3d(model, [Fixed(root)], tip)
+    return compliance3d(model, [NodeFixed(root)], tip)
 
 
 @pytest.mark.slow

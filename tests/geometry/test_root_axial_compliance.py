@@ -8,7 +8,8 @@ import pytest
 
 from flexfem.fem import Fixed as ContinuumFixed
 from flexfem.fem import Force, Material, Model, PlaneStress, solve_static
-from flexfem.fem.beam import BeamModel, Fixed, Section, beam_chain
+from flexfem.fem.beam import BeamModel, Section, beam_chain
+from flexfem.fem.beam.supports import NodeFixed
 from flexfem.fem.beam.compliance import compliance
 from flexfem.reduced.layout import profile_beam
 from flexfem.geometry.hinge_profiles import mesh_hinge_specimen
@@ -41,7 +42,7 @@ def _beam_extension(H):
     far = beam_chain([z, (LEAF + 2 * H, 0.0)], Section.rect(W, H), 4)
     mesh = near.join(leaf, tol=1e-12).join(far, tol=1e-12)
     model = BeamModel(mesh.nodes, mesh.elements, mesh.sections, STEEL, shear=True)
-    C = compliance(model, [Fixed(mesh.node_at((-2 * H, 0.0)))],
+    C = compliance(model, [NodeFixed(mesh.node_at((-2 * H, 0.0)))],
                    mesh.node_at((LEAF + 2 * H, 0.0)))
     return float(C[0, 0])
 

@@ -1,15 +1,15 @@
 """flexfem.fem.beam.spatial: a spatial (6 DOFs per node) co-rotational beam model.
 
     model = Beam3DModel(nodes, elements, Section.rect(10e-3, 2e-3), steel)
-    lin = solve_beam3d_static(model, [Fixed(0)], [NodalLoad(tip, fz=-1.0)])
-    big = solve_beam3d_nonlinear(model, [Fixed(0)], [NodalLoad(tip, fz=-50.0)], steps=20)
-    modes = solve_beam3d_modes(model, [Fixed(0)], n=6)
-    C = compliance3d(model, [Fixed(0)], node=tip)      # 6x6 at the tip
+    lin = solve_beam3d_static(model, [NodeFixed(0)], [NodalLoad(tip, fz=-1.0)])
+    big = solve_beam3d_nonlinear(model, [NodeFixed(0)], [NodalLoad(tip, fz=-50.0)], steps=20)
+    modes = solve_beam3d_modes(model, [NodeFixed(0)], n=6)
+    C = compliance3d(model, [NodeFixed(0)], node=tip)      # 6x6 at the tip
     lin.max_stress                                     # Pa: normal + torsion, rectangles
 """
 from ..assembly import SingularBeamError
 from .modal import Beam3DModes, solve_beam3d_modes
-from ..supports import Fixed, NodalLoad, Prescribed
+from ..supports import NodalLoad
 from ..section import Section, rect_torsion_constant, rect_torsion_shear
 from ..model import RigidLink
 from .model import Beam3DModel, element_frames
@@ -17,8 +17,8 @@ from .nonlinear import Beam3DNonlinearResult, NonConvergenceError, solve_beam3d_
 from .static import Beam3DState, compliance3d, solve_beam3d_static
 
 __all__ = [
-    "Beam3DModel", "Beam3DModes", "Beam3DNonlinearResult", "Beam3DState", "Fixed",
-    "NodalLoad", "NonConvergenceError", "Prescribed", "RigidLink", "Section",
+    "Beam3DModel", "Beam3DModes", "Beam3DNonlinearResult", "Beam3DState",
+    "NodalLoad", "NonConvergenceError", "RigidLink", "Section",
     "SingularBeamError", "compliance3d", "element_frames", "rect_torsion_constant",
     "rect_torsion_shear",
     "solve_beam3d_modes", "solve_beam3d_nonlinear", "solve_beam3d_static",

@@ -15,7 +15,7 @@ from .model import Beam3DModel
 
 def solve_beam3d_modes(model: Beam3DModel, supports, n: int = 6, about=None,
                        loads=()) -> Beam3DModes:
-    """The ``n`` lowest natural frequencies (Hz) and mode shapes; supports: Fixed/Prescribed
+    """The ``n`` lowest natural frequencies (Hz) and mode shapes; supports: NodeFixed/NodePrescribed
     (held); about: a Beam3DState from solve_beam3d_nonlinear with the same supports and
     ``loads`` (default: undeformed; see assembly.symmetric_tangent)."""
     if not (isinstance(n, (int, np.integer)) and not isinstance(n, bool) and n >= 1):

@@ -1,7 +1,7 @@
 """The spatial beam model's large-rotation solve: the beam models' one
 (:func:`flexfem.fem.beam.nonlinear.solve_path`), its configuration (u, R).
 
-    res = solve_beam3d_nonlinear(model, [Fixed(0)], [NodalLoad(tip, fz=P)], steps=20)
+    res = solve_beam3d_nonlinear(model, [NodeFixed(0)], [NodalLoad(tip, fz=P)], steps=20)
     res.path(tip)              # (n_steps + 1, 3) tip displacement
 """
 from ..nonlinear import (Beam3DNonlinearResult, NonConvergenceError,  # noqa: F401
@@ -20,8 +20,8 @@ def converged(asm, config, lam, ev=None):
 def solve_beam3d_nonlinear(model: Beam3DModel, supports, loads=(), steps: int = 10,
                            control=None, max_iterations: int = 30, tol: float = 1e-9,
                            min_step: float = 1e-4) -> Beam3DNonlinearResult:
-    """Large-rotation static solve of a spatial ``model`` under ``supports`` (Fixed,
-    Prescribed) and ``loads`` (NodalLoad, dead forces and moments about fixed global axes);
+    """Large-rotation static solve of a spatial ``model`` under ``supports`` (NodeFixed,
+    NodePrescribed) and ``loads`` (NodalLoad, dead forces and moments about fixed global axes);
     ``control=(node, dof, value)`` a translation DOF (m); otherwise as
     :func:`..nonlinear.solve_path`."""
     check_step_arguments(steps, max_iterations, tol, min_step)

@@ -1,7 +1,7 @@
 """Linear static analysis and the compliance matrix of a node of a spatial beam model.
 
-    res = solve_beam3d_static(model, [Fixed(0)], [NodalLoad(tip, fz=-1.0)])
-    C = compliance3d(model, [Fixed(0)], node=tip)     # 6x6 (x, y, z, rx, ry, rz)
+    res = solve_beam3d_static(model, [NodeFixed(0)], [NodalLoad(tip, fz=-1.0)])
+    C = compliance3d(model, [NodeFixed(0)], node=tip)     # 6x6 (x, y, z, rx, ry, rz)
 """
 from dataclasses import dataclass, field
 
@@ -70,7 +70,7 @@ def make_state(asm: SpatialAssembler, u, R, r, lam, fl, T, Tp, info=None) -> Bea
 
 def solve_beam3d_static(model: Beam3DModel, supports, loads=()) -> Beam3DState:
     """Linear (small-displacement) static solve for the loads (NodalLoad) and the supports'
-    values (Fixed, Prescribed) at load factor 1. Element forces are the linear ones; R is
+    values (NodeFixed, NodePrescribed) at load factor 1. Element forces are the linear ones; R is
     exp of the linear rotation vector."""
     return linear_solution(model, supports, loads)[0]
 

@@ -1,7 +1,8 @@
 """Beam models the beam-model tests share."""
 import numpy as np
 
-from flexfem.fem.beam import BeamModel, Fixed, RigidLink, Section, beam_chain
+from flexfem.fem.beam import BeamModel, RigidLink, Section, beam_chain
+from flexfem.fem.beam.supports import NodeFixed
 
 
 def cantilever(material, length=0.1, width=0.01, thickness=1e-3, n=20, shear=False):
@@ -20,4 +21,4 @@ def parallel_guide(material, length=0.05, width=0.01, thickness=0.5e-3, gap=0.03
     stage = len(nodes) - 1
     links = [RigidLink(stage, (g.point_nodes[1], g.point_nodes[3]))]
     model = BeamModel(nodes, g.elements, g.sections, material, rigid_links=links)
-    return model, [Fixed((g.point_nodes[0], g.point_nodes[2]))], stage
+    return model, [NodeFixed((g.point_nodes[0], g.point_nodes[2]))], stage

@@ -9,8 +9,8 @@ import pytest
 import scipy.sparse as sp
 
 from beam_models import parallel_guide
-from flexfem.fem.beam import (BeamMesh, Fixed, Prescribed, Section, beam_chain,
-                              solve_beam_nonlinear)
+from flexfem.fem.beam import BeamMesh, Section, beam_chain, solve_beam_nonlinear
+from flexfem.fem.beam.supports import NodeFixed, NodePrescribed
 from flexfem.fem.beam.assembly import Assembler, _parity, global_matrix
 from flexfem.fem.beam.pattern import Pattern
 from flexfem.reduced.layout import _line_mesh, filleted_thickness, profile_beam
@@ -20,7 +20,7 @@ def deformed_guide(steel):
     """The parallel guide (two rigid-link slaves) with its stage moved 4 mm and turned: a
     state where the links' weights are not the undeformed ones. (assembler, z, lam)."""
     model, supports, stage = parallel_guide(steel, n=8)
-    supports = supports + [Prescribed(stage, "y", 4e-3)]
+    supports = supports + [NodePrescribed(stage, "y", 4e-3)]
     res = solve_beam_nonlinear(model, supports, steps=4)
     asm = Assembler(model, supports, [])
     z = res.final.q.ravel()[asm.space.free] + 1e-3  # off equilibrium: r != 0 at the slaves
@@ -118,7 +118,7 @@ def test_model_cache_is_read_only(steel):
     Kb = Assembler(model, supports, []).Kb
     with pytest.raises(ValueError):
         Kb[0, 0, 0] = 0.0
-    assert Assembler(model, [Fixed(0)], []).Kb is Kb  # computed once per model
+    assert Assembler(model, [NodeFixed(0)], []).Kb is Kb  # computed once per model
 
 
 def test_factor_leaves_a_matrix_with_duplicates_alone():

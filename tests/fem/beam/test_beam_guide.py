@@ -4,8 +4,9 @@ import numpy as np
 import pytest
 
 from beam_models import parallel_guide
-from flexfem.fem.beam import (BeamModel, Fixed, NodalLoad, Prescribed, RigidLink, Section,
-                              beam_chain, compliance, solve_beam_nonlinear, solve_beam_static)
+from flexfem.fem.beam import (BeamModel, NodalLoad, RigidLink, Section, beam_chain, compliance,
+                              solve_beam_nonlinear, solve_beam_static)
+from flexfem.fem.beam.supports import NodeFixed, NodePrescribed
 
 L, W, T, GAP = 0.05, 0.01, 0.5e-3, 0.03
 
@@ -16,7 +17,7 @@ def test_parasitic_shortening(steel, ratio):
     shortens by 3/5 delta^2 / L; higher order terms ~ (delta / L)^2 relative."""
     model, supports, stage = parallel_guide(steel, L, W, T, GAP, n=50)
     delta = ratio * L
-    res = solve_beam_nonlinear(model, supports + [Prescribed(stage, "y", delta)], steps=10)
+    res = solve_beam_nonlinear(model, supports + [NodePrescribed(stage, "y", delta)], steps=10)
     shortening = -res.final.q[stage, 0]
     # measured: 0.99996, 1.0029, 1.0115
     assert shortening / (0.6 * delta**2 / L) == pytest.approx(1.0, abs=max(1e-3, 1.5 * ratio**2))
@@ -29,7 +30,7 @@ def test_displacement_control_matches_prescribed(steel):
     24 EI / L^3 at small stroke."""
     model, supports, stage = parallel_guide(steel, L, W, T, GAP, n=20)
     delta = 0.002
-    pres = solve_beam_nonlinear(model, supports + [Prescribed(stage, "y", delta)], steps=5)
+    pres = solve_beam_nonlinear(model, supports + [NodePrescribed(stage, "y", delta)], steps=5)
     ctrl = solve_beam_nonlinear(model, supports, [NodalLoad(stage, fy=1.0)], steps=5,
                                 control=(stage, "y", delta))
     assert ctrl.final.q == pytest.approx(pres.final.q, abs=1e-12)
@@ -49,7 +50,7 @@ def test_rigid_link_equals_stiff_beam(steel):
     stiff = BeamModel(g.nodes, g.elements, g.sections, steel)
     mid = g.node_at((L, GAP / 2))
     C_link = compliance(model, supports, stage)
-    C_beam = compliance(stiff, [Fixed((0, g.node_at((0, GAP))))], mid)
+    C_beam = compliance(stiff, [NodeFixed((0, g.node_at((0, GAP))))], mid)
     assert C_beam[1, 1] == pytest.approx(C_link[1, 1], rel=1e-3)
     assert C_beam[2, 2] == pytest.approx(C_link[2, 2], rel=1e-3)
     assert C_link[1, 1] == pytest.approx(L**3 / (24 * steel.E * W * T**3 / 12), rel=1e-3)
@@ -97,8 +98,8 @@ def test_load_on_a_rigid_link_slave(steel):
     g = mesh.join(beam_chain([(0.1, 0), arm], Section.rect(0.01, 0.1), 1))
     beam = BeamModel(g.nodes, g.elements, g.sections, steel)
     loads = [NodalLoad(21, fx=-5.0, fy=20.0)]
-    a = solve_beam_nonlinear(linked, [Fixed(0)], loads, steps=5).final
-    b = solve_beam_nonlinear(beam, [Fixed(0)], loads, steps=5).final
+    a = solve_beam_nonlinear(linked, [NodeFixed(0)], loads, steps=5).final
+    b = solve_beam_nonlinear(beam, [NodeFixed(0)], loads, steps=5).final
     assert a.q[20, 2] > 0.5                                     # large rotation
     assert a.q[[20, 21]] == pytest.approx(b.q[[20, 21]], rel=1e-5, abs=1e-9)
     assert a.reactions[0] == pytest.approx(b.reactions[0], rel=1e-5)

@@ -5,8 +5,9 @@ import pytest
 from scipy.integrate import quad
 
 from beam_models import cantilever
-from flexfem.fem.beam import (BeamModel, Fixed, NodalLoad, Prescribed, Section,
-                              beam_chain, beam_from_profile, compliance, solve_beam_static)
+from flexfem.fem.beam import (BeamModel, NodalLoad, Section, beam_chain, beam_from_profile,
+                              compliance, solve_beam_static)
+from flexfem.fem.beam.supports import NodeFixed, NodePrescribed
 
 L, W, T = 0.1, 0.01, 1e-3
 
@@ -20,7 +21,7 @@ def tip_compliance(E, A, I, length):
 @pytest.mark.parametrize("n", [1, 3, 10])
 def test_tip_compliance_is_exact(steel, n):
     model, tip = cantilever(steel, L, W, T, n=n)
-    C = compliance(model, [Fixed(0)], tip)
+    C = compliance(model, [NodeFixed(0)], tip)
     assert C == pytest.approx(tip_compliance(steel.E, W * T, W * T**3 / 12, L), rel=1e-10,
                               abs=1e-14)
 
@@ -32,14 +33,14 @@ def test_rotated_cantilever_compliance(steel):
     model = BeamModel(mesh.nodes, mesh.elements, mesh.sections, steel)
     R = np.array([[np.cos(a), -np.sin(a), 0], [np.sin(a), np.cos(a), 0], [0, 0, 1]])
     expected = R @ tip_compliance(steel.E, W * T, W * T**3 / 12, L) @ R.T
-    assert compliance(model, [Fixed(0)], 4) == pytest.approx(expected, rel=1e-9, abs=1e-14)
+    assert compliance(model, [NodeFixed(0)], 4) == pytest.approx(expected, rel=1e-9, abs=1e-14)
 
 
 def test_timoshenko_single_element_is_exact(steel):
     """Thick cantilever (L/h = 2): delta = P L^3 / 3EI + P L / (kappa G A) from one element."""
     h, P = 0.05, 1e3
     model, tip = cantilever(steel, L, W, h, n=1, shear=True)
-    res = solve_beam_static(model, [Fixed(0)], [NodalLoad(tip, fy=P)])
+    res = solve_beam_static(model, [NodeFixed(0)], [NodalLoad(tip, fy=P)])
     G, A, I = steel.E / 2.6, W * h, W * h**3 / 12
     delta = P * L**3 / (3 * steel.E * I) + P * L / (5 / 6 * G * A)
     assert res.q[tip, 1] == pytest.approx(delta, rel=1e-12)
@@ -49,7 +50,7 @@ def test_timoshenko_single_element_is_exact(steel):
 def test_stress_reactions_and_prescribed_motion(steel):
     P = 2.0
     model, tip = cantilever(steel, L, W, T, n=8)
-    res = solve_beam_static(model, [Fixed(0)], [NodalLoad(tip, fx=10.0, fy=P)])
+    res = solve_beam_static(model, [NodeFixed(0)], [NodalLoad(tip, fx=10.0, fy=P)])
     assert res.reactions[0] == pytest.approx([-10.0, -P, -P * L], rel=1e-12)
     sigma = 10.0 / (W * T) + P * L * 6 / (W * T**2)          # N/A + M c / I at the root
     assert res.max_stress == pytest.approx(sigma, rel=1e-12)
@@ -58,7 +59,7 @@ def test_stress_reactions_and_prescribed_motion(steel):
     assert res.axial_force == pytest.approx(np.full(8, 10.0), rel=1e-12)
     # a prescribed tip deflection: reaction = stiffness 3EI/L^3 x delta
     delta = 1e-3
-    res = solve_beam_static(model, [Fixed(0), Prescribed(tip, "y", delta)])
+    res = solve_beam_static(model, [NodeFixed(0), NodePrescribed(tip, "y", delta)])
     assert res.reactions[tip][1] == pytest.approx(3 * steel.E * W * T**3 / 12 / L**3 * delta,
                                                   rel=1e-10)
 
@@ -72,7 +73,7 @@ def _tapered_tip(steel, n, tapered=True, shear=False):
         mesh = beam_chain(np.column_stack([np.linspace(0, L, n + 1), np.zeros(n + 1)]),
                           [Section.rect(W, thickness(si)) for si in s], 1)
     model = BeamModel(mesh.nodes, mesh.elements, mesh.sections, steel, shear=shear)
-    res = solve_beam_static(model, [Fixed(0)], [NodalLoad(n, fy=1.0)])
+    res = solve_beam_static(model, [NodeFixed(0)], [NodalLoad(n, fy=1.0)])
     G = steel.E / (2 * (1 + steel.nu))
     bending = lambda x: (L - x)**2 / (steel.E * W * thickness(x)**3 / 12)
     shearing = lambda x: 1.0 / (5 / 6 * G * W * thickness(x)) if shear else 0.0
@@ -111,7 +112,7 @@ def test_circular_notch_hinge_rotational_compliance(steel):
         for n in (10, 20, 40):
             mesh = beam_from_profile((0, 0), (2 * R, 0), profile, w, n)
             model = BeamModel(mesh.nodes, mesh.elements, mesh.sections, steel, shear=shear)
-            errors.append(compliance(model, [Fixed(0)], n)[2, 2] / exact - 1)
+            errors.append(compliance(model, [NodeFixed(0)], n)[2, 2] / exact - 1)
         # the thickness quadratic within each element; measured 7.0e-4, 3.4e-5, 2.1e-6 (the
         # Hermite element before: -7.0e-3, -1.3e-3, -9.1e-5)
         assert abs(errors[1]) < 1e-4 and abs(errors[2]) < 1e-5, (shear, errors)

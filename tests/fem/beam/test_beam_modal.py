@@ -5,8 +5,9 @@ import pytest
 
 from beam_theory import timoshenko_cantilever_hz
 from beam_models import cantilever
-from flexfem.fem.beam import (BeamModel, Fixed, NodalLoad, RigidLink, Section, beam_chain,
+from flexfem.fem.beam import (BeamModel, NodalLoad, RigidLink, Section, beam_chain,
                               solve_beam_modes, solve_beam_nonlinear)
+from flexfem.fem.beam.supports import NodeFixed
 
 BETA_L = np.array([1.8751041, 4.6940911, 7.8547574])
 
@@ -19,7 +20,7 @@ def bending_modes(modes):
 def test_slender_cantilever_euler_bernoulli(steel):
     L, w, t = 0.1, 0.01, 1e-3          # L / t = 100: shear and rotary inertia ~1e-4
     model, _ = cantilever(steel, L, w, t, n=30)
-    modes = solve_beam_modes(model, [Fixed(0)], n=3)
+    modes = solve_beam_modes(model, [NodeFixed(0)], n=3)
     A, I = w * t, w * t**3 / 12
     f_eb = BETA_L**2 / (2 * np.pi * L**2) * np.sqrt(steel.E * I / (steel.rho * A))
     # rotary inertia lowers f_n by ~ (beta_n t)^2 / 24 / L^2 relative: < 3e-4 here
@@ -33,7 +34,7 @@ def test_slender_cantilever_euler_bernoulli(steel):
 def test_thick_cantilever_timoshenko(steel, n):
     L, w, h = 1.0, 0.1, 0.2            # L / h = 5
     model, _ = cantilever(steel, L, w, h, n=n, shear=True)
-    modes = solve_beam_modes(model, [Fixed(0)], n=6)
+    modes = solve_beam_modes(model, [NodeFixed(0)], n=6)
     f_ref = np.array(timoshenko_cantilever_hz(steel.E, steel.nu, steel.rho, w * h,
                                               w * h**3 / 12, L, 3))
     tol = {20: 3e-3, 40: 1e-3}[n]  # measured: n = 20: 1.3e-5, 3.5e-4, 1.9e-3; n = 40: 3e-6, 9e-5, 4.8e-4
@@ -51,7 +52,7 @@ def test_tip_mass_and_rigid_link(steel):
     nodes = np.vstack([mesh.nodes, [(L, 0.0)]])    # the block's centre at the tip
     model = BeamModel(nodes, mesh.elements, mesh.sections, steel,
                       rigid_links=[RigidLink(11, (10,))], point_masses={11: (m, 0.0)})
-    f = solve_beam_modes(model, [Fixed(0)], n=1).frequencies_hz[0]
+    f = solve_beam_modes(model, [NodeFixed(0)], n=1).frequencies_hz[0]
     k = 3 * steel.E * w * t**3 / 12 / L**3
     m_eff = m + 33 / 140 * steel.rho * w * t * L       # Rayleigh's beam mass correction
     assert f == pytest.approx(np.sqrt(k / m_eff) / (2 * np.pi), rel=1e-3)
@@ -62,7 +63,7 @@ def test_tension_stiffening_simply_supported(steel):
     under tension T has omega_n^2 = [(n pi / L)^4 EI + (n pi / L)^2 T] / (rho A)."""
     L, w, t, tension = 0.1, 0.01, 1e-3, 100.0          # T L^2 / EI = 6
     model, end = cantilever(steel, L, w, t, n=40)
-    supports = [Fixed(0, ("x", "y")), Fixed(end, ("y",))]
+    supports = [NodeFixed(0, ("x", "y")), NodeFixed(end, ("y",))]
     loads = [NodalLoad(end, fx=tension)]
     state = solve_beam_nonlinear(model, supports, loads, steps=1).final
     modes = solve_beam_modes(model, supports, n=3, about=state, loads=loads)

@@ -3,10 +3,10 @@ displacement control passes it; bad arguments raise ValueError naming them."""
 import pytest
 
 from beam_models import cantilever
-from flexfem.fem.beam import (BeamModel, Fixed, NodalLoad, NonConvergenceError, Prescribed,
-                              RigidLink, Section, SingularBeamError, beam_chain,
-                              beam_from_profile, compliance, solve_beam_modes,
-                              solve_beam_nonlinear, solve_beam_static)
+from flexfem.fem.beam import (BeamModel, NodalLoad, NonConvergenceError, RigidLink, Section,
+                              SingularBeamError, beam_chain, beam_from_profile, compliance,
+                              solve_beam_modes, solve_beam_nonlinear, solve_beam_static)
+from flexfem.fem.beam.supports import NodeFixed, NodePrescribed
 
 
 def shallow_arch(material, n=20):
@@ -14,7 +14,7 @@ def shallow_arch(material, n=20):
     mesh = beam_chain([(0, 0), (0.05, 0.005), (0.1, 0)], Section.rect(0.01, 1e-3), n)
     model = BeamModel(mesh.nodes, mesh.elements, mesh.sections, material)
     ends = (mesh.point_nodes[0], mesh.point_nodes[2])
-    return model, [Fixed(ends, ("x", "y"))], mesh.point_nodes[1]
+    return model, [NodeFixed(ends, ("x", "y"))], mesh.point_nodes[1]
 
 
 def test_snap_through(steel):
@@ -37,9 +37,9 @@ def test_snap_through(steel):
 def test_mechanism_raises(steel):
     model, tip = cantilever(steel, n=4)
     with pytest.raises(SingularBeamError):
-        solve_beam_static(model, [Fixed(0, ("y", "theta"))], [NodalLoad(tip, fy=1.0)])
+        solve_beam_static(model, [NodeFixed(0, ("y", "theta"))], [NodalLoad(tip, fy=1.0)])
     with pytest.raises(NonConvergenceError):
-        solve_beam_nonlinear(model, [Fixed(0, ("y", "theta"))], [NodalLoad(tip, fy=1.0)])
+        solve_beam_nonlinear(model, [NodeFixed(0, ("y", "theta"))], [NodalLoad(tip, fy=1.0)])
 
 
 @pytest.mark.parametrize("make, name", [
@@ -56,7 +56,7 @@ def test_mechanism_raises(steel):
      "material"),
     (lambda m: BeamModel([(0, 0), (1, 0)], [(0, 1)], Section.rect(0.01, 1e-3), m,
                          rigid_links=[RigidLink(0, (0,))]), "rigid_links"),
-    (lambda m: Fixed(0, ("z",)).prescribed().__next__(), "dof"),
+    (lambda m: NodeFixed(0, ("z",)).prescribed().__next__(), "dof"),
 ])
 def test_bad_input_names_argument(steel, make, name):
     with pytest.raises(ValueError, match=name):
@@ -66,20 +66,20 @@ def test_bad_input_names_argument(steel, make, name):
 def test_bad_solver_arguments(steel):
     model, tip = cantilever(steel, n=4)
     with pytest.raises(ValueError, match="steps"):
-        solve_beam_nonlinear(model, [Fixed(0)], [NodalLoad(tip, fy=1.0)], steps=0)
+        solve_beam_nonlinear(model, [NodeFixed(0)], [NodalLoad(tip, fy=1.0)], steps=0)
     with pytest.raises(ValueError, match="control"):
-        solve_beam_nonlinear(model, [Fixed(0)], [NodalLoad(tip, fy=1.0)], control=(0, "y", 1))
+        solve_beam_nonlinear(model, [NodeFixed(0)], [NodalLoad(tip, fy=1.0)], control=(0, "y", 1))
     with pytest.raises(ValueError, match="node"):
-        compliance(model, [Fixed(0)], node=99)
+        compliance(model, [NodeFixed(0)], node=99)
     with pytest.raises(ValueError, match="held"):
-        compliance(model, [Fixed(0)], node=0)
+        compliance(model, [NodeFixed(0)], node=0)
     with pytest.raises(ValueError, match="n = "):
-        solve_beam_modes(model, [Fixed(0)], n=0)
+        solve_beam_modes(model, [NodeFixed(0)], n=0)
     with pytest.raises(ValueError, match="supports"):
-        solve_beam_static(model, [Fixed(9)], [])
+        solve_beam_static(model, [NodeFixed(9)], [])
     with pytest.raises(ValueError, match="loads"):
-        solve_beam_static(model, [Fixed(0)], [NodalLoad(9, fy=1.0)])
+        solve_beam_static(model, [NodeFixed(0)], [NodalLoad(9, fy=1.0)])
     slave = BeamModel(model.nodes, model.elements, model.sections, steel,
                       rigid_links=[RigidLink(3, (4,))])
     with pytest.raises(ValueError, match="slave"):
-        solve_beam_static(slave, [Fixed(0), Prescribed(4, "y", 1e-3)])
+        solve_beam_static(slave, [NodeFixed(0), NodePrescribed(4, "y", 1e-3)])

@@ -2,9 +2,10 @@
 assembles exactly as the elements it stands for, and bad input names the problem."""
 import numpy as np
 import pytest
-from flexfem.fem.beam import (BeamModel, Fixed, NodalLoad, RigidLink, Section, Superelement,
-                              beam_chain, compliance, solve_beam_modes, solve_beam_nonlinear,
+from flexfem.fem.beam import (BeamModel, NodalLoad, RigidLink, Section, Superelement, beam_chain,
+                              compliance, solve_beam_modes, solve_beam_nonlinear,
                               solve_beam_static)
+from flexfem.fem.beam.supports import NodeFixed
 from flexfem.fem.beam.assembly import Assembler, mass_matrix
 from flexfem.fem.beam.pattern import global_matrix
 from flexfem.fem.materials import Material
@@ -36,11 +37,11 @@ def _models():
 def test_a_superelement_assembles_as_the_elements_it_stands_for():
     whole, split = _models()
     load = [NodalLoad(7, fx=3.0, fy=-2.0, m=0.01)]
-    a, b = (solve_beam_static(m, [Fixed(0)], load) for m in (whole, split))
+    a, b = (solve_beam_static(m, [NodeFixed(0)], load) for m in (whole, split))
     assert b.q == pytest.approx(a.q, rel=1e-10, abs=1e-14)
-    assert compliance(split, [Fixed(0)], 6) == pytest.approx(compliance(whole, [Fixed(0)], 6),
+    assert compliance(split, [NodeFixed(0)], 6) == pytest.approx(compliance(whole, [NodeFixed(0)], 6),
                                                              rel=1e-10)
-    fa, fb = (solve_beam_modes(m, [Fixed(0)], n=4) for m in (whole, split))
+    fa, fb = (solve_beam_modes(m, [NodeFixed(0)], n=4) for m in (whole, split))
     assert fb.frequencies_hz == pytest.approx(fa.frequencies_hz, rel=1e-10)
     assert fb.effective_mass == pytest.approx(fa.effective_mass, rel=1e-8)
 
@@ -48,7 +49,7 @@ def test_a_superelement_assembles_as_the_elements_it_stands_for():
 def test_the_nonlinear_solver_refuses_a_superelement():
     _, split = _models()
     with pytest.raises(ValueError, match="superelements, which are linear"):
-        solve_beam_nonlinear(split, [Fixed(0)], [NodalLoad(6, fy=1.0)])
+        solve_beam_nonlinear(split, [NodeFixed(0)], [NodalLoad(6, fy=1.0)])
 
 
 @pytest.mark.parametrize("nodes, K, match", [

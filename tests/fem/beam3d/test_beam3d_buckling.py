@@ -11,7 +11,7 @@ from flexfem.fem import Fixed, Force, material, solve_buckling
 from flexfem.fem.beam import BeamModel, RigidLink as PlanarLink, Section as PlanarSection
 from flexfem.fem.beam import beam_chain
 from flexfem.fem.beam.spatial import Beam3DModel, RigidLink, Section
-from flexfem.fem.beam.spatial import Fixed as NodeFixed
+from flexfem.fem.beam.supports import NodeFixed
 from flexfem.reduced.spatial import lifted_model
 
 L, W, T = 0.05, 0.75e-3, 0.5e-3   # width (local z) 1.5 times the thickness (local y)

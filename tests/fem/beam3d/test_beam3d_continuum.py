@@ -8,7 +8,8 @@ import skfem
 
 from flexfem.fem import Fixed as ContinuumFixed
 from flexfem.fem import Material, Model, Solid3D
-from flexfem.fem.beam.spatial import Beam3DModel, Fixed, Section, compliance3d
+from flexfem.fem.beam.spatial import Beam3DModel, Section, compliance3d
+from flexfem.fem.beam.supports import NodeFixed
 from flexfem.fem.compliance import compliance_matrix
 from flexfem.fem.mesh import FEMesh, facets_where
 
@@ -34,7 +35,7 @@ def test_leaf_compliance_beside_the_3d_continuum():
     nodes = np.linspace(0.0, L, 21)[:, None] * [1.0, 0.0, 0.0]
     section = Section.rect(W, T)
     beam = Beam3DModel(nodes, [(i, i + 1) for i in range(20)], section, ALU, shear=True)
-    ratio = np.diag(compliance3d(beam, [Fixed(0)], 20)) / np.diag(cont) - 1
+    ratio = np.diag(compliance3d(beam, [NodeFixed(0)], 20)) / np.diag(cont) - 1
     assert np.abs(ratio[[0, 2, 4]]).max() <= 0.015
     assert 0 < ratio[1] < 1 / (1 - ALU.nu**2) - 1
     G = ALU.E / (2 * (1 + ALU.nu))

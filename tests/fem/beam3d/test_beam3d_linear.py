@@ -5,9 +5,10 @@ import pytest
 
 from beam3d_models import closed_form_tip_compliance, straight
 from flexfem.fem import beam as planar
-from flexfem.fem.beam.spatial import (Beam3DModel, Fixed, NodalLoad, RigidLink, Section,
-                                SingularBeamError, compliance3d, rect_torsion_constant,
-                                solve_beam3d_nonlinear, solve_beam3d_static)
+from flexfem.fem.beam.spatial import (Beam3DModel, NodalLoad, RigidLink, Section,
+                                      SingularBeamError, compliance3d, rect_torsion_constant,
+                                      solve_beam3d_nonlinear, solve_beam3d_static)
+from flexfem.fem.beam.supports import NodeFixed
 
 
 @pytest.mark.parametrize("shear", [False, True])
@@ -15,7 +16,7 @@ def test_cantilever_tip_compliance_is_beam_theory(steel, shear):
     """Cubic (IIE) elements are exact for end loads: every entry to round-off."""
     section = Section.rect(5e-3, 2e-3)
     model, tip = straight(steel, section, length=0.1, n=4, shear=shear)
-    C = compliance3d(model, [Fixed(0)], node=tip)
+    C = compliance3d(model, [NodeFixed(0)], node=tip)
     ref = closed_form_tip_compliance(steel, section, 0.1, shear=shear)
     assert np.allclose(C, ref, rtol=1e-10, atol=1e-10 * np.abs(ref).max())
 
@@ -29,7 +30,7 @@ def test_skew_cantilever_compliance_transforms_as_a_tensor(steel):
     frame = model.frames[0]
     Q = np.kron(np.eye(2), frame)
     ref = Q @ closed_form_tip_compliance(steel, section, 0.08) @ Q.T
-    C = compliance3d(model, [Fixed(0)], node=tip)
+    C = compliance3d(model, [NodeFixed(0)], node=tip)
     assert np.allclose(C, ref, rtol=1e-9, atol=1e-9 * np.abs(ref).max())
     assert np.allclose(frame.T @ frame, np.eye(3))
 
@@ -50,7 +51,7 @@ def test_rigid_arm_adds_torsion_to_the_deflection(steel):
     nodes = np.vstack([np.linspace(0.0, L, 11)[:, None] * [1.0, 0.0, 0.0], [[L, d, 0.0]]])
     elements = np.column_stack([np.arange(10), np.arange(1, 11)])
     model = Beam3DModel(nodes, elements, section, steel, rigid_links=[RigidLink(10, 11)])
-    res = solve_beam3d_static(model, [Fixed(0)], [NodalLoad(11, fz=F)])
+    res = solve_beam3d_static(model, [NodeFixed(0)], [NodalLoad(11, fz=F)])
     G = steel.E / (2 * (1 + steel.nu))
     w = F * L**3 / (3 * steel.E * section.Iy) + F * d**2 * L / (G * section.J)
     assert res.u[11, 2] == pytest.approx(w, rel=1e-10)
@@ -80,13 +81,13 @@ def test_planar_model_agrees_on_an_in_plane_frame(steel):
     plane."""
     m2, m3, ends, top = _frames(steel)
     base = (ends[0], ends[3])
-    lin2 = planar.solve_beam_static(m2, [planar.Fixed(base)], [planar.NodalLoad(top, fx=5.0)])
-    lin3 = solve_beam3d_static(m3, [Fixed(base)], [NodalLoad(top, fx=5.0)])
+    lin2 = planar.solve_beam_static(m2, [NodeFixed(base)], [planar.NodalLoad(top, fx=5.0)])
+    lin3 = solve_beam3d_static(m3, [NodeFixed(base)], [NodalLoad(top, fx=5.0)])
     assert np.allclose(lin3.q[:, [0, 1, 5]], lin2.q, rtol=0, atol=1e-9 * np.abs(lin2.q).max())
     big = dict(fx=150.0, fy=-60.0)
-    nl2 = planar.solve_beam_nonlinear(m2, [planar.Fixed(base)],
+    nl2 = planar.solve_beam_nonlinear(m2, [NodeFixed(base)],
                                       [planar.NodalLoad(top, m=0.2, **big)], steps=10)
-    nl3 = solve_beam3d_nonlinear(m3, [Fixed(base)], [NodalLoad(top, mz=0.2, **big)], steps=10)
+    nl3 = solve_beam3d_nonlinear(m3, [NodeFixed(base)], [NodalLoad(top, mz=0.2, **big)], steps=10)
     q2, q3 = nl2.final.q, nl3.final.q
     assert np.abs(q2[:, 2]).max() > 0.3  # rad: a large-rotation state
     assert np.allclose(q3[:, [0, 1, 5]], q2, rtol=0, atol=1e-8 * np.abs(q2).max())
@@ -100,11 +101,11 @@ def test_a_mechanism_and_a_vertical_column_are_handled(steel):
     = global x by default, so its bending planes are still defined."""
     model, tip = straight(steel, Section.rect(2e-3, 1e-3), length=0.1, n=4)
     with pytest.raises(SingularBeamError, match="mechanism"):
-        compliance3d(model, [Fixed(0, ("x", "y", "z"))], node=tip)
+        compliance3d(model, [NodeFixed(0, ("x", "y", "z"))], node=tip)
     column, top = straight(steel, Section.rect(2e-3, 1e-3), length=0.1, n=4,
                            direction=(0.0, 0.0, 1.0))
     assert column.frames[0][:, 2] == pytest.approx([1.0, 0.0, 0.0])
-    C = compliance3d(column, [Fixed(0)], node=top)
+    C = compliance3d(column, [NodeFixed(0)], node=top)
     section = Section.rect(2e-3, 1e-3)
     # local y = z x x = global y: a force along global y bends about I_z
     assert C[1, 1] == pytest.approx(0.1**3 / (3 * steel.E * section.Iz), rel=1e-10)
@@ -123,7 +124,7 @@ def test_tapered_cantilever_tip_compliance_is_the_unit_load_integral(steel):
     sections = [Section.rect(w, t(a), thickness_end=t(b)) for a, b in zip(s[:-1], s[1:])]
     nodes = s[:, None] * [1.0, 0.0, 0.0]
     model = Beam3DModel(nodes, [(i, i + 1) for i in range(n)], sections, steel)
-    C = compliance3d(model, [Fixed(0)], node=n)
+    C = compliance3d(model, [NodeFixed(0)], node=n)
     E, G = steel.E, steel.E / (2 * (1 + steel.nu))
     cyy = quad(lambda x: (L - x) ** 2 / (E * w * t(x) ** 3 / 12), 0, L, epsabs=0)[0]
     czz = quad(lambda x: (L - x) ** 2 / (E * t(x) * w**3 / 12), 0, L, epsabs=0)[0]

@@ -5,7 +5,8 @@ import pytest
 from scipy.spatial.transform import Rotation
 
 from beam3d_models import straight
-from flexfem.fem.beam.spatial import Fixed, NodalLoad, Section, solve_beam3d_static
+from flexfem.fem.beam.spatial import NodalLoad, Section, solve_beam3d_static
+from flexfem.fem.beam.supports import NodeFixed
 from flexfem.fem.beam.spatial.energy import element_energies, strain_energy_share
 from flexfem.fem.beam.spatial.inertia import mass_properties
 
@@ -44,7 +45,7 @@ def test_element_energies_add_up_to_the_work_of_the_tip_load(steel):
     section = Section.rect(5e-3, 2e-3)
     model, tip = straight(steel, section, length=0.1, n=20, shear=True)
     load = NodalLoad(tip, fy=0.3, fz=-0.2, mx=0.01)
-    state = solve_beam3d_static(model, [Fixed(0)], [load])
+    state = solve_beam3d_static(model, [NodeFixed(0)], [load])
     rot = Rotation.from_matrix(state.R).as_rotvec()
     shape = np.hstack([state.u, rot])[None]
     e = element_energies(model, shape)[0]

@@ -4,7 +4,8 @@ import numpy as np
 import pytest
 
 from beam3d_models import straight
-from flexfem.fem.beam.spatial import Beam3DModel, Fixed, RigidLink, Section, solve_beam3d_modes
+from flexfem.fem.beam.spatial import Beam3DModel, RigidLink, Section, solve_beam3d_modes
+from flexfem.fem.beam.supports import NodeFixed
 
 BETA_L = np.array([1.8751041, 4.6940911, 7.8547574])
 
@@ -27,7 +28,7 @@ def test_cantilever_frequencies_in_all_four_families(steel):
     L, b, h = 0.2, 1e-3, 2e-3
     section = Section.rect(h, b)
     model, _ = straight(steel, section, length=L, n=40)
-    modes = solve_beam3d_modes(model, [Fixed(0)], n=40)
+    modes = solve_beam3d_modes(model, [NodeFixed(0)], n=40)
     kinds = np.array(_kind(modes))
     f = modes.frequencies_hz
     E, rho = steel.E, steel.rho
@@ -56,7 +57,7 @@ def test_point_mass_on_a_rigid_arm_matches_the_closed_form(steel):
     elements = np.column_stack([np.arange(10), np.arange(1, 11)])
     model = Beam3DModel(nodes, elements, section, steel, rigid_links=[RigidLink(10, 11)],
                         point_masses={11: (m, 0.0, 0.0, 0.0)})
-    modes = solve_beam3d_modes(model, [Fixed(0)], n=3)
+    modes = solve_beam3d_modes(model, [NodeFixed(0)], n=3)
     G = steel.E / (2 * (1 + steel.nu))
     k = 1.0 / (L**3 / (3 * steel.E * section.Iy) + d**2 * L / (G * section.J))
     f_z = np.sqrt(k / m) / (2 * np.pi)

@@ -7,8 +7,9 @@ import pytest
 from beam3d_models import straight
 from flexfem.data import load_toml
 from flexfem.fem import Material
-from flexfem.fem.beam.spatial import (Beam3DModel, Fixed, NodalLoad, Prescribed, RigidLink,
-                                Section, solve_beam3d_nonlinear)
+from flexfem.fem.beam.spatial import (Beam3DModel, NodalLoad, RigidLink, Section,
+                                      solve_beam3d_nonlinear)
+from flexfem.fem.beam.supports import NodeFixed, NodePrescribed
 from flexfem.fem.beam.spatial.assembly import SpatialAssembler
 from flexfem.fem.beam.spatial.rotations import expm, logm
 
@@ -23,7 +24,7 @@ def test_tangent_is_the_derivative_of_the_internal_force(steel):
     elements = [[0, 1], [1, 2], [2, 3]]
     model = Beam3DModel(nodes, elements, Section.rect(2e-3, 1e-3), steel,
                         rigid_links=[RigidLink(3, 4)], shear=True)
-    asm = SpatialAssembler(model, [Fixed(0)], [NodalLoad(4, fz=2.0, mx=0.1)])
+    asm = SpatialAssembler(model, [NodeFixed(0)], [NodalLoad(4, fz=2.0, mx=0.1)])
     u = rng.normal(scale=2e-3, size=(5, 3))
     R = expm(rng.normal(scale=0.7, size=(5, 3)))
     u[0], R[0] = 0.0, np.eye(3)
@@ -51,7 +52,7 @@ def test_tip_moment_rolls_the_cantilever_into_a_circle(steel, axis, inertia):
     L, n = 0.1, 20
     model, tip = straight(steel, section, length=L, n=n)
     M = 2 * np.pi * steel.E * getattr(section, inertia) / L
-    res = solve_beam3d_nonlinear(model, [Fixed(0)], [NodalLoad(tip, **{axis: M})], steps=8)
+    res = solve_beam3d_nonlinear(model, [NodeFixed(0)], [NodalLoad(tip, **{axis: M})], steps=8)
     assert np.linalg.norm(model.nodes[tip] + res.final.u[tip]) <= 1e-10 * L
     assert np.abs(res.final.R[tip] - np.eye(3)).max() <= 1e-10
     quarter = res.states[2]
@@ -72,7 +73,7 @@ def test_prescribed_rotation_turns_the_beam_rigidly(steel):
     no stress, the tip on the rotated axis."""
     model, tip = straight(steel, Section.rect(2e-3, 1e-3), length=0.1, n=10)
     turn = 2 * np.pi / 3
-    supports = [Fixed(0, ("x", "y", "z", "rx", "ry")), Prescribed(0, "rz", turn)]
+    supports = [NodeFixed(0, ("x", "y", "z", "rx", "ry")), NodePrescribed(0, "rz", turn)]
     res = solve_beam3d_nonlinear(model, supports, steps=4)
     expected = 0.1 * np.array([np.cos(turn), np.sin(turn), 0.0])
     assert model.nodes[tip] + res.final.u[tip] == pytest.approx(expected, abs=1e-12)
@@ -99,7 +100,7 @@ def test_45_degree_bend_matches_the_published_tip_positions():
     ref = load_toml("beam3d_benchmarks.toml")["bend45"]
     model, tip = _bend45(8, 1.0 / 6.0)
     P = ref["loads"]
-    res = solve_beam3d_nonlinear(model, [Fixed(0)], [NodalLoad(tip, fz=P[-1])], steps=12)
+    res = solve_beam3d_nonlinear(model, [NodeFixed(0)], [NodalLoad(tip, fz=P[-1])], steps=12)
     at = {round(lam * P[-1], 6): s for lam, s in zip(res.load_factors, res.states)}
     start = model.nodes[tip]
     for source, tol in (("simo_vu_quoc_1986", 0.005), ("bathe_bolourchi_1979", 0.02)):
@@ -115,10 +116,10 @@ def test_displacement_control_reaches_the_load_controlled_state(steel):
     P returns load factor 1 and the same configuration."""
     model, tip = straight(steel, Section.rect(1e-3, 2e-3), length=0.1, n=16)
     loads = [NodalLoad(tip, fz=-20.0, fy=5.0)]
-    by_load = solve_beam3d_nonlinear(model, [Fixed(0)], loads, steps=8)
+    by_load = solve_beam3d_nonlinear(model, [NodeFixed(0)], loads, steps=8)
     w = by_load.final.u[tip, 2]
     assert abs(w) > 0.03  # m: a large deflection of the 0.1 m beam
-    by_disp = solve_beam3d_nonlinear(model, [Fixed(0)], loads, steps=8, control=(tip, "z", w))
+    by_disp = solve_beam3d_nonlinear(model, [NodeFixed(0)], loads, steps=8, control=(tip, "z", w))
     assert by_disp.final.load_factor == pytest.approx(1.0, rel=1e-7)
     assert by_disp.final.u == pytest.approx(by_load.final.u, abs=1e-9)
 
@@ -126,11 +127,11 @@ def test_displacement_control_reaches_the_load_controlled_state(steel):
 def test_bad_input_is_named(steel):
     model, tip = straight(steel, Section.rect(2e-3, 1e-3), length=0.1, n=4)
     with pytest.raises(ValueError, match="translation"):
-        solve_beam3d_nonlinear(model, [Fixed(0)], [NodalLoad(tip, mz=1.0)],
+        solve_beam3d_nonlinear(model, [NodeFixed(0)], [NodalLoad(tip, mz=1.0)],
                                control=(tip, "rz", 0.1))
     with pytest.raises(ValueError, match="orientation"):
         straight(steel, Section.rect(2e-3, 1e-3), orientation=(2.0, 0.0, 0.0))
     with pytest.raises(ValueError, match="J"):
         Section(A=1.0, Iy=1.0, Iz=1.0, J=0.0)
     with pytest.raises(ValueError, match="dof"):
-        solve_beam3d_nonlinear(model, [Fixed(0, ("x", "w"))], [NodalLoad(tip, fz=1.0)])
+        solve_beam3d_nonlinear(model, [NodeFixed(0, ("x", "w"))], [NodalLoad(tip, fz=1.0)])

@@ -4,8 +4,9 @@ import numpy as np
 import pytest
 
 from beam3d_models import straight
-from flexfem.fem.beam.spatial import (Fixed, NodalLoad, Section, compliance3d, solve_beam3d_modes,
-                                solve_beam3d_nonlinear)
+from flexfem.fem.beam.spatial import (NodalLoad, Section, compliance3d, solve_beam3d_modes,
+                                      solve_beam3d_nonlinear)
+from flexfem.fem.beam.supports import NodeFixed
 
 
 def test_tension_raises_the_bending_frequencies_as_the_string_beam(steel):
@@ -16,7 +17,7 @@ def test_tension_raises_the_bending_frequencies_as_the_string_beam(steel):
     L, n = 0.2, 40
     model, end = straight(steel, section, length=L, n=n)
     T = 6 * steel.E * section.Iz / L**2
-    supports = [Fixed(0, ("x", "y", "z", "rx")), Fixed(end, ("y", "z"))]
+    supports = [NodeFixed(0, ("x", "y", "z", "rx")), NodeFixed(end, ("y", "z"))]
     loads = [NodalLoad(end, fx=T)]
     state = solve_beam3d_nonlinear(model, supports, loads, steps=2).final
     modes = solve_beam3d_modes(model, supports, n=12, about=state, loads=loads)
@@ -42,8 +43,8 @@ def test_tension_stiffens_the_tip_as_the_beam_column(steel):
     for dof, I in ((1, section.Iz), (2, section.Iy)):
         P = steel.E * I / L**2
         loads = [NodalLoad(tip, fx=P)]
-        state = solve_beam3d_nonlinear(model, [Fixed(0)], loads, steps=1).final
-        C = compliance3d(model, [Fixed(0)], tip, about=state, loads=loads)
+        state = solve_beam3d_nonlinear(model, [NodeFixed(0)], loads, steps=1).final
+        C = compliance3d(model, [NodeFixed(0)], tip, about=state, loads=loads)
         kk = np.sqrt(P / (steel.E * I))
         assert C[dof, dof] == pytest.approx((kk * L - np.tanh(kk * L)) / (P * kk), rel=1e-3)
 
@@ -51,6 +52,6 @@ def test_tension_stiffens_the_tip_as_the_beam_column(steel):
 def test_a_state_under_a_finite_moment_is_refused(steel):
     model, tip = straight(steel, Section.rect(2e-3, 1e-3), length=0.1, n=8)
     loads = [NodalLoad(tip, mz=0.5, fz=1.0)]
-    state = solve_beam3d_nonlinear(model, [Fixed(0)], loads, steps=4).final
+    state = solve_beam3d_nonlinear(model, [NodeFixed(0)], loads, steps=4).final
     with pytest.raises(ValueError, match="not symmetric"):
-        solve_beam3d_modes(model, [Fixed(0)], n=2, about=state, loads=loads)
+        solve_beam3d_modes(model, [NodeFixed(0)], n=2, about=state, loads=loads)

@@ -9,7 +9,8 @@ from beam3d_models import straight
 from flexfem.data import load_toml
 from flexfem.fem import Fixed as ContinuumFixed
 from flexfem.fem import Force, Model, Solid3D, Traction, solve_static
-from flexfem.fem.beam.spatial import Fixed, NodalLoad, Section, solve_beam3d_static
+from flexfem.fem.beam.spatial import NodalLoad, Section, solve_beam3d_static
+from flexfem.fem.beam.supports import NodeFixed
 from flexfem.fem.beam.section import rect_torsion_constant, rect_torsion_shear
 from flexfem.fem.beam.spatial.stress import section_stresses
 from flexfem.fem.mesh import FEMesh, facets_where
@@ -34,7 +35,7 @@ def test_cantilever_section_stresses_are_statics(steel):
     torsion shear is T times the rectangle's factor, at every point."""
     section = Section.rect(H, B)
     model, tip = straight(steel, section, length=L, n=4)
-    state = solve_beam3d_static(model, [Fixed(0)], [NodalLoad(tip, fx=N, fy=FY, fz=FZ,
+    state = solve_beam3d_static(model, [NodeFixed(0)], [NodalLoad(tip, fx=N, fy=FY, fz=FZ,
                                                               mx=TORQUE)])
     stresses = state.stresses(n_points=3)
     x = (np.arange(4)[:, None] + stresses["xi"][None, :]) * L / 4  # along the beam
@@ -49,7 +50,7 @@ def test_cantilever_section_stresses_are_statics(steel):
 def test_general_sections_have_no_stress(steel):
     section = Section(A=1e-4, Iy=1e-9, Iz=2e-9, J=5e-10)
     model, tip = straight(steel, section, length=L, n=2)
-    state = solve_beam3d_static(model, [Fixed(0)], [NodalLoad(tip, fz=1.0)])
+    state = solve_beam3d_static(model, [NodeFixed(0)], [NodalLoad(tip, fz=1.0)])
     assert np.all(np.isnan(section_stresses(model, state.local_forces)["normal"]))
     assert np.isnan(state.max_stress)
 
@@ -77,9 +78,9 @@ def test_mid_span_stresses_beside_the_3d_continuum(steel):
     tau = np.hypot(long_side[0, 1], long_side[0, 2])
 
     beam, tip = straight(steel, Section.rect(H, B), length=L, n=2, shear=True)
-    state = solve_beam3d_static(beam, [Fixed(0)], [NodalLoad(tip, fx=N, fy=FY, fz=FZ)])
+    state = solve_beam3d_static(beam, [NodeFixed(0)], [NodalLoad(tip, fx=N, fy=FY, fz=FZ)])
     normal = state.stresses(n_points=2)["normal"][1, 0]  # mid-span: the second element's start
-    torsion = solve_beam3d_static(beam, [Fixed(0)], [NodalLoad(tip, mx=TORQUE)]).stresses(
+    torsion = solve_beam3d_static(beam, [NodeFixed(0)], [NodalLoad(tip, mx=TORQUE)]).stresses(
         n_points=2)["torsion"][1, 0]
     assert corner == pytest.approx(normal, rel=0.01)
     assert tau == pytest.approx(torsion, rel=0.01)

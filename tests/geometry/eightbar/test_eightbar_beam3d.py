@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 
 from flexfem.fem import beam as planar
-from flexfem.fem.beam.spatial import Fixed, compliance3d, solve_beam3d_modes
+from flexfem.fem.beam.spatial import compliance3d, solve_beam3d_modes
+from flexfem.fem.beam.supports import NodeFixed
 from flexfem.fem.beam.spatial.inertia import mass_properties
 from flexfem.reduced.layout import link_inertia
 from flexfem.reduced.eightbar import eightbar_beam_model
@@ -39,12 +40,12 @@ def test_spatial_eightbar_matches_the_planar_model_in_plane():
     (measured 3e-8, 5e-8: round-off through K's conditioning and the eigensolver)."""
     m2, m3, info = _both(EightBarFlexureParams())
     ground, ee = tuple(info["ground"]), info["end_effector"]
-    C2 = planar.compliance(m2, [planar.Fixed(ground)], ee)
-    C3 = compliance3d(m3, [Fixed(ground)], ee)[np.ix_(IN_PLANE, IN_PLANE)]
+    C2 = planar.compliance(m2, [NodeFixed(ground)], ee)
+    C3 = compliance3d(m3, [NodeFixed(ground)], ee)[np.ix_(IN_PLANE, IN_PLANE)]
     assert np.abs(C3 - C2).max() <= 1e-6 * np.abs(np.diag(C2)).max()
     assert np.diag(C3) == pytest.approx(np.diag(C2), rel=1e-6)
-    f2 = planar.solve_beam_modes(m2, [planar.Fixed(ground)], n=6).frequencies_hz
-    in_plane, out_of_plane = _in_plane(solve_beam3d_modes(m3, [Fixed(ground)], n=10))
+    f2 = planar.solve_beam_modes(m2, [NodeFixed(ground)], n=6).frequencies_hz
+    in_plane, out_of_plane = _in_plane(solve_beam3d_modes(m3, [NodeFixed(ground)], n=10))
     assert in_plane[:6] == pytest.approx(f2, rel=1e-6)
     assert len(out_of_plane) >= 1
 
@@ -95,12 +96,12 @@ def test_flexible_links_converge_in_the_link_elements_and_decouple():
     f = []
     for size in (None, params.link_width / 2):
         model, info = eightbar_beam3d_model(params, link_element=size)
-        modes = solve_beam3d_modes(model, [Fixed(tuple(info["ground"]))], n=10)
+        modes = solve_beam3d_modes(model, [NodeFixed(tuple(info["ground"]))], n=10)
         _in_plane(modes)
         f.append(modes.frequencies_hz)
     assert f[1] == pytest.approx(f[0], rel=1e-6)
     rigid, info = eightbar_beam3d_model(params, links="rigid")
-    stiff = solve_beam3d_modes(rigid, [Fixed(tuple(info["ground"]))], n=10).frequencies_hz
+    stiff = solve_beam3d_modes(rigid, [NodeFixed(tuple(info["ground"]))], n=10).frequencies_hz
     assert np.all(f[0] <= stiff * (1 + 1e-9))
 
 

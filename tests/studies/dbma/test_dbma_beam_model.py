@@ -7,7 +7,8 @@ import dataclasses
 import numpy as np
 import pytest
 from flexfem.fem import Material
-from flexfem.fem.beam import BeamModel, Fixed, NodalLoad, solve_beam_static
+from flexfem.fem.beam import BeamModel, NodalLoad, solve_beam_static
+from flexfem.fem.beam.supports import NodeFixed
 from flexfem.reduced.layout import ROOT_EXTENSION
 from flexfem.reduced import dbma as gb
 from flexfem.geometry.dbma.drawing import DBMALayout, quarter_rects
@@ -40,7 +41,7 @@ def test_input_member_is_a_timoshenko_cantilever_from_the_pad_block(a, pad_heigh
     layout = DBMALayout(pad_height=pad_height)
     model, face, ends = _member_alone(p, layout, ROOT_EXTENSION)
     P = 3.0
-    s = solve_beam_static(model, [Fixed(face)], [NodalLoad(n, fx=P) for n in ends])
+    s = solve_beam_static(model, [NodeFixed(face)], [NodalLoad(n, fx=P) for n in ends])
     L = p.ll - (pad_height / 2 - ROOT_EXTENSION * a)
     I, A, G = p.d * a ** 3 / 12, p.d * a, p.E / (2 * (1 + p.nu))
     expected = (P * L ** 3 / (3 * p.E * I) + P * L / (5 / 6 * G * A)
@@ -55,7 +56,7 @@ def test_a_pad_lower_than_the_root_extension_is_a_point_support():
     p = dataclasses.replace(paper_design(), a=14 * MM)
     layout = DBMALayout(pad_height=6 * MM)
     model, face, ends = _member_alone(p, layout, ROOT_EXTENSION)
-    s = solve_beam_static(model, [Fixed(face)], [NodalLoad(n, fx=1.0) for n in ends])
+    s = solve_beam_static(model, [NodeFixed(face)], [NodalLoad(n, fx=1.0) for n in ends])
     I, A, G = p.d * p.a ** 3 / 12, p.d * p.a, p.E / (2 * (1 + p.nu))
     L = p.ll
     expected = (L ** 3 / (3 * p.E * I) + L / (5 / 6 * G * A)
@@ -67,7 +68,7 @@ def test_no_root_extension_makes_the_member_rigid_over_the_whole_pad():
     p = paper_design()
     layout = DBMALayout()
     model, face, ends = _member_alone(p, layout, 0.0)
-    s = solve_beam_static(model, [Fixed(face)], [NodalLoad(n, fx=1.0) for n in ends])
+    s = solve_beam_static(model, [NodeFixed(face)], [NodalLoad(n, fx=1.0) for n in ends])
     I, A, G = p.d * p.a ** 3 / 12, p.d * p.a, p.E / (2 * (1 + p.nu))
     L = p.ll - layout.pad_height / 2
     expected = (L ** 3 / (3 * p.E * I) + L / (5 / 6 * G * A)

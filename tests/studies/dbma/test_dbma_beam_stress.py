@@ -6,7 +6,8 @@ import dataclasses
 import numpy as np
 import pytest
 from flexfem.fem import Fixed as FEFixed, Force, Material, Model, PlaneStress, solve_static
-from flexfem.fem.beam import BeamModel, Fixed, NodalLoad, Section, beam_chain, solve_beam_static
+from flexfem.fem.beam import BeamModel, NodalLoad, Section, beam_chain, solve_beam_static
+from flexfem.fem.beam.supports import NodeFixed
 from flexfem.reduced.layout import profile_beam
 from flexfem.geometry.hinge_profiles import mesh_hinge_specimen, profile_thickness
 from flexfem.studies.dbma.beam_stress import filleted_peak_stress, shoulder_fillet_kt
@@ -62,7 +63,7 @@ def _beam_peaks(b, H):
     out = []
     for load, nominal in ((NodalLoad(tip, m=M), 6 * M / (W * b * b)),
                           (NodalLoad(tip, fx=P), P / (W * b))):
-        state = solve_beam_static(model, [Fixed(root)], [load])
+        state = solve_beam_static(model, [NodeFixed(root)], [load])
         out.append(filleted_peak_stress(model, state, b, kt_t, kt_b)[0] / nominal)
     return out, (kt_b, kt_t)
 

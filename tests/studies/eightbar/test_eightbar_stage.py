@@ -67,11 +67,11 @@ def test_beam_modes_lanczos_dense_and_arpack_paths_agree():
     the dense solve is done inverted, since the direct form lost 5e-5 of f1 to the nearly
     singular mass (tiny rotary inertias)."""
     import flexfem.fem.beam.modal as beam_modal
-    from flexfem.fem.beam import Fixed
+    from flexfem.fem.beam.supports import NodeFixed
     from flexfem.reduced.eightbar import eightbar_beam_model
 
     model, info = eightbar_beam_model(EightBarFlexureParams(), n_per_flexure=12)
-    supports = [Fixed(tuple(info["ground"]))]
+    supports = [NodeFixed(tuple(info["ground"]))]
     lanczos = beam_modal.solve_beam_modes(model, supports, n=4)
     old = beam_modal.KRYLOV_FROM, beam_modal.DENSE_EIGEN_LIMIT
     try:

@@ -41,3 +41,21 @@ def test_the_support_stiffness_falls_along_the_stroke():
         assert np.all(np.diff(out["stiffness"][axis]) < 0)
     with pytest.raises(ValueError, match="distinct axes"):
         support_along_stroke(model, [Fixed("base")], "stage", "y", 0.001, {"y": 1.0})
+
+
+@pytest.mark.slow
+def test_the_beam_follows_the_continuum_along_the_stroke_within_5_percent():
+    """The continuum at size factor 1.5 (75 k DOFs, minutes; docs/spatial.md has the
+    default mesh's numbers too); the beam model with its leaves' root rules
+    (studies/spatial/roots.py): the roots' axial compliance is in k_z from rest on, the
+    restrained warping of the leaves' torsion in k_x's fall along the stroke."""
+    from flexfem.studies.user_model.analysis import build_model
+
+    spec, model = _beam()
+    stroke = 0.1 * spec.constants["L"]
+    beam = support_along_stroke(model, [Fixed("base")], "stage", "y", stroke, PROBES, steps=3)
+    solid = support_along_stroke(build_model(spec, size_factor=1.5), [Fixed("base")], "stage",
+                                 "y", stroke, PROBES, steps=3)
+    for axis in PROBES:
+        ratio = np.array(beam["stiffness"][axis]) / np.array(solid["stiffness"][axis])
+        assert np.all(np.abs(ratio - 1) < 0.05), (axis, ratio)
