@@ -7,8 +7,8 @@ spatial Beam3DModel alike.
 Each function is a :func:`functools.singledispatch` on the model's type (``DISPATCH[name]``):
 a continuum :class:`.model.Model` goes to the continuum's function (:mod:`.static`,
 :mod:`.modal`, ...), a planar :class:`.beam.BeamModel` and a spatial
-:class:`.beam.spatial.Beam3DModel` to the beam models' one face :mod:`.beam.face` (linear buckling:
-:mod:`.beam.buckling`, :mod:`.beam.spatial.buckling`); any other type is a TypeError. The public
+:class:`.beam.spatial.Beam3DModel` to the beam models' one face :mod:`.beam.face` (buckling:
+:mod:`.beam.buckling`, :mod:`.beam.stroke_buckling`); any other type is a TypeError. The public
 function takes ``model`` by position or keyword and hands it to the dispatcher. The results
 carry the same names
 (:data:`.result_face.SHARED`); what a beam model cannot give raises
@@ -24,7 +24,6 @@ from .beam import buckling as beam_buckling
 from .beam import face as beam_face
 from .beam import stroke_buckling
 from .beam.model import BeamModel
-from .beam.spatial import buckling as beam3d_buckling
 from .beam.spatial.model import Beam3DModel
 
 BEAM_MODELS = (BeamModel, Beam3DModel)
@@ -83,10 +82,10 @@ DISPATCH = {
     "solve_harmonic": dispatcher("solve_harmonic", continuum("harmonic:solve_harmonic"),
                                  beam_face.solve_harmonic),
     "solve_buckling": dispatcher("solve_buckling", continuum("buckling:solve_buckling"),
-                                 beam_buckling.solve_buckling, beam3d_buckling.solve_buckling),
+                                 beam_buckling.solve_buckling),
     "solve_incremental_buckling": dispatcher(
         "solve_incremental_buckling", continuum("buckling:solve_incremental_buckling"),
-        stroke_buckling.planar, stroke_buckling.spatial),
+        stroke_buckling.solve_incremental_buckling),
 }
 
 
@@ -224,7 +223,7 @@ def solve_buckling(model, supports, loads, n: int = 3, **options):
         How many load factors (-).
     **options
         A model's own options (:func:`.buckling.solve_buckling`,
-        :func:`.beam.buckling.solve_buckling`, :func:`.beam.spatial.buckling.solve_buckling`).
+        :func:`.beam.buckling.solve_buckling`, planar and spatial).
 
     Returns
     -------

@@ -27,6 +27,7 @@ from .face import BeamResult, node_loads, node_supports, supported_groups
 from .linear import linear_system
 from .model import BeamModel
 from .pattern import global_matrix
+from .spatial.buckling import prebuckling as spatial_prebuckling
 from .static import solve_beam_static
 
 
@@ -118,33 +119,41 @@ def check_n(n) -> None:
         raise ValueError(f"number of buckling modes n = {n!r} must be a positive integer")
 
 
-def solve_buckling(model: BeamModel, supports, loads, n: int = 3, **options) -> BeamBuckling:
-    """The ``n`` lowest positive critical load factors and shapes of the loads (Force on a
-    group, N) and the prescribed values of the supports (held at zero in the shapes) of a
-    grouped planar beam model. Raises ValueError if the loads compress no beam."""
+def planar_prebuckling(model: BeamModel, held, nodal) -> tuple:
+    """(linear state, reduced K, reduced K_g, T = dq/dz) of a planar model under node
+    supports ``held`` and loads ``nodal``: K_g the elements' geometric stiffness of the
+    state's axial forces plus the rigid links' second-order term of its forces about the
+    reference configuration (zero rotation: linear buckling, whose factor does not depend
+    on the size of the load)."""
+    if model.superelements:
+        raise ValueError("solve_buckling: the model has superelements, whose geometric "
+                         "stiffness is unknown; solve the continuum")
+    state = solve_beam_static(model, held, nodal)
+    system = linear_system(model, held)
+    space, ev = system.space, system.ev
+    r = ev.full_times(state.q.ravel()) - load_vector(model, nodal)  # the prebuckling forces
+    G = space.condense_global(global_matrix(model, geometric_stiffness(model,
+                                                                       state.axial_force)),
+                              ev.w)
+    G = G + sp.diags(space.constraint_diagonal(np.zeros_like(state.q), r)[space.free])
+    return state, ev.K, G.tocsc(), space.jacobian(ev.w)
+
+
+def solve_buckling(model, supports, loads, n: int = 3, **options) -> BeamBuckling:
+    """The ``n`` lowest positive critical load factors and shapes (per node: u_x, u_y, theta
+    planar; u_x, u_y, u_z, r_x, r_y, r_z spatial) of the loads (Force on a group, N) and the
+    prescribed values of the supports (held at zero in the shapes) of a grouped planar or
+    spatial beam model. Raises ValueError if the loads compress no beam."""
     check_n(n)
     if options:
         raise TypeError(f"solve_buckling: option(s) {sorted(options)} are the continuum's; "
                         "the beam model takes none of them")
-    if model.superelements:
-        raise ValueError("solve_buckling: the model has superelements, whose geometric "
-                         "stiffness is unknown; solve the continuum")
-    held, nodal = node_supports(model, supports), node_loads(model, loads)
-    state = solve_beam_static(model, held, nodal)
-    system = linear_system(model, held)
-    space, ev = system.space, system.ev
-    q = state.q.ravel()
-    r = ev.full_times(q) - load_vector(model, nodal)  # the prebuckling forces on each DOF
-    G = space.condense_global(global_matrix(model, geometric_stiffness(model,
-                                                                       state.axial_force)),
-                              ev.w)
-    # the links' second-order term about the reference configuration (zero rotation): linear
-    # buckling, whose factor does not depend on the size of the load
-    reference = np.zeros_like(state.q)
-    G = (G + sp.diags(space.constraint_diagonal(reference, r)[space.free])).tocsc()
+    prebuckling = planar_prebuckling if model.dim == 2 else spatial_prebuckling
+    state, K, G, T = prebuckling(model, node_supports(model, supports),
+                                 node_loads(model, loads))
     if not np.any(G.data):
         raise ValueError("the loads leave every beam without axial force: no buckling")
-    factors, vectors = lowest_load_factors(ev.K, G, n)
-    full = space.expand(vectors, np.zeros(len(space.held)), ev.w).T
-    return BeamBuckling(model, factors, scaled_shapes(full, 3),
+    factors, vectors = lowest_load_factors(K, G, n)
+    full = np.asarray(T @ vectors).T
+    return BeamBuckling(model, factors, scaled_shapes(full, model.PER_NODE),
                         BeamResult(model, state, tuple(supported_groups(supports))))

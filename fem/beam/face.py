@@ -289,8 +289,6 @@ def no_options(what: str, options: dict, ignored: tuple) -> None:
                         "takes none of them")
 
 
-Beam3DHarmonic = BeamHarmonic  # the spatial model's name: the same class
-
-__all__ = ["Beam3DHarmonic", "BeamGroup", "BeamHarmonic", "BeamPath", "BeamResult",
+__all__ = ["BeamGroup", "BeamHarmonic", "BeamPath", "BeamResult",
            "compliance_matrix", "held_rotations", "node_loads", "node_supports",
            "solve_harmonic", "solve_modes", "solve_nonlinear", "solve_static"]

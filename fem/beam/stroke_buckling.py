@@ -25,7 +25,6 @@ from .nonlinear import negative_eigenvalues
 from .pattern import global_matrix
 from .spatial import assembly as spatial_assembly
 from .spatial import buckling as spatial_buckling
-from .spatial import face as spatial_face
 from .spatial.corotational import local_deformations
 from .spatial.element import to_global
 from .spatial.static import linear_solution
@@ -49,10 +48,10 @@ def path_state(state) -> tuple:
     return states[step], path.load_factors[step] * np.asarray(path.applied), step
 
 
-def held_at_zero(model, supports, to_nodes) -> list:
+def held_at_zero(model, supports) -> list:
     """The node supports of ``supports`` with every prescribed value 0 (the increments)."""
     return [NodePrescribed(s.node, s.dof, 0.0) if isinstance(s, NodePrescribed) else s
-            for s in to_nodes(model, supports)]
+            for s in node_supports(model, supports)]
 
 
 def _difference_step(dq, size: float, per_node: int) -> float:
@@ -72,17 +71,28 @@ def _check_stable(K) -> None:
                          "these supports: the state is not stable, no buckling about it")
 
 
-def planar(model: BeamModel, state, supports, loads, n: int = 3,
-           **options) -> StateBuckling:
-    """:func:`solve_incremental_buckling` of a planar beam model (see the module)."""
+def solve_incremental_buckling(model, state, supports, loads, n: int = 3,
+                                **options) -> StateBuckling:
+    """:func:`flexfem.fem.buckling.solve_incremental_buckling` of a planar or spatial beam
+    model (see the module)."""
     check_n(n)
     no_options("solve_incremental_buckling", options, ())
-    if model.superelements:
+    if getattr(model, "superelements", ()):
         raise ValueError("solve_incremental_buckling: the model has superelements, whose "
                          "geometric stiffness is unknown; solve the continuum")
     at, f_state, step = path_state(state)
-    asm = Assembler(model, held_at_zero(model, supports, node_supports),
-                    node_loads(model, loads))
+    held, nodal = held_at_zero(model, supports), node_loads(model, loads)
+    K, G, T, dq = (_planar if model.dim == 2 else _spatial)(model, at, f_state, held, nodal)
+    factors, vectors = lowest_load_factors(K, G, n)
+    full = np.asarray(T @ vectors).T
+    per_node = model.PER_NODE
+    return StateBuckling(model, factors, scaled_shapes(full, per_node),
+                         np.asarray(dq).reshape(-1, per_node), step)
+
+
+def _planar(model: BeamModel, at, f_state, held, nodal) -> tuple:
+    """(K_T, K_G reduced, T = dq/dz, du full) of a planar model about the state ``at``."""
+    asm = Assembler(model, held, nodal)
     space, q = asm.space, at.q
     fe, ke, _ = asm.elements(q)
     w = space.weights(q)
@@ -103,19 +113,13 @@ def planar(model: BeamModel, state, supports, loads, n: int = 3,
     local = T0 @ geometric_stiffness(model, dN) @ T0.transpose(0, 2, 1)
     G = space.condense_global(global_matrix(model, T.transpose(0, 2, 1) @ local @ T,
                                             space.constraint_diagonal(q, dr)), w)
-    factors, vectors = lowest_load_factors(K, G, n)
-    full = space.expand(vectors, rest, w).T
-    return StateBuckling(model, factors, scaled_shapes(full, 3), dq.reshape(-1, 3), step)
+    return K, G, space.jacobian(w), dq
 
 
-def spatial(model, state, supports, loads, n: int = 3, **options) -> StateBuckling:
-    """:func:`solve_incremental_buckling` of a spatial beam model (see the module)."""
-    check_n(n)
-    no_options("solve_incremental_buckling", options, ())
-    at, f_state, step = path_state(state)
+def _spatial(model, at, f_state, held, nodal) -> tuple:
+    """(K_T, K_G reduced, T = dq/dz, du full) of a spatial model about the state ``at``."""
     # the assembler of the increments' supports and loads, as the linear solve builds it
-    asm = linear_solution(model, held_at_zero(model, supports, spatial_face.node_supports),
-                          spatial_face.node_loads(model, loads))[-1]
+    asm = linear_solution(model, held, nodal)[-1]
     space, u, R = asm.space, at.u, at.R
     r, _, _, T, _, K_full, _ = asm.evaluate(u, R, 0.0)
     K_full = K_full + space.constraint_tangent(R, -f_state)  # r = f_int - the state's loads
@@ -133,8 +137,4 @@ def spatial(model, state, supports, loads, n: int = 3, **options) -> StateBuckli
     links = space.constraint_tangent(R, dr)
     G_full = spatial_assembly.scatter(model, E @ local @ E.transpose(0, 2, 1)) \
         + 0.5 * (links + links.T)
-    G = (T.T @ G_full @ T).tocsc()
-    factors, vectors = lowest_load_factors(K, G, n)
-    full = np.asarray(T @ vectors).T
-    return StateBuckling(model, factors, scaled_shapes(full, 6),
-                         np.asarray(T @ dz).reshape(-1, 6), step)
+    return K, (T.T @ G_full @ T).tocsc(), T, T @ dz

@@ -17,7 +17,7 @@ import re
 import numpy as np
 
 from ...fem.beam.face import group as beam_group
-from ...fem.beam.spatial.face import group as beam3d_group
+from ...fem.beam.face import group as beam3d_group
 from ...fem.static_result import group_basis
 
 _AXES = ("x", "y", "z")

@@ -1,6 +1,6 @@
-"""Linear (eigenvalue) buckling of a spatial beam model with named groups:
-``solve_buckling(model, supports, loads, n) -> BeamBuckling`` (the planar model's result,
-:mod:`flexfem.fem.beam.buckling`), the continuum's solve_buckling on the spatial beam.
+"""The spatial beam model's part of the linear (eigenvalue) buckling of
+:func:`flexfem.fem.beam.buckling.solve_buckling`: its geometric stiffness and prebuckling
+system.
 
 About the linear static state, (K + lambda K_g) phi = 0 with each element's consistent
 geometric stiffness of its axial force N: N int (v'^2 + w'^2 + u'^2) dx in both bending
@@ -13,11 +13,9 @@ is not.
 """
 import numpy as np
 
-from ..buckling import BeamBuckling, check_n, lowest_load_factors, scaled_shapes
 from ..element import WXI, XI, gram, bending_shape_functions
 from .assembly import scatter
 from .element import AXIAL, TORSION, XY, XZ, XZ_SIGN, put_block, to_global
-from ..face import BeamResult, node_loads, node_supports, supported_groups
 from .model import Beam3DModel
 from .static import linear_solution
 
@@ -47,25 +45,13 @@ def geometric_stiffness(model: Beam3DModel, axial_force) -> np.ndarray:
     return np.einsum("eij,ejk,elk->eil", Eg, local, Eg)
 
 
-def solve_buckling(model: Beam3DModel, supports, loads, n: int = 3,
-                   **options) -> BeamBuckling:
-    """The ``n`` lowest positive critical load factors and shapes (u_x, u_y, u_z, r_x, r_y,
-    r_z per node) of the loads (Force on a group, N) and the prescribed values of the
-    supports (held at zero in the shapes) of a grouped spatial beam model. Raises
-    ValueError if the loads compress no beam."""
-    check_n(n)
-    if options:
-        raise TypeError(f"solve_buckling: option(s) {sorted(options)} are the continuum's; "
-                        "the beam model takes none of them")
-    state, _, r, K, T, asm = linear_solution(model, node_supports(model, supports),
-                                             node_loads(model, loads))
+def prebuckling(model: Beam3DModel, held, nodal) -> tuple:
+    """(linear state, reduced K, reduced K_g, T = dq/dz) of a spatial model under node
+    supports ``held`` and loads ``nodal``: K_g the elements' geometric stiffness of the
+    state's axial forces plus the rigid links' (symmetrised) second-order term of its forces
+    about the reference configuration."""
+    state, _, r, K, T, asm = linear_solution(model, held, nodal)
     links = asm.space.constraint_tangent(asm.space.reference()[1], r)
     G_full = scatter(model, geometric_stiffness(model, state.axial_force)) \
         + 0.5 * (links + links.T)
-    G = (T.T @ G_full @ T).tocsc()
-    if not np.any(G.data):
-        raise ValueError("the loads leave every beam without axial force: no buckling")
-    factors, vectors = lowest_load_factors(K, G, n)
-    full = np.asarray(T @ vectors).T
-    return BeamBuckling(model, factors, scaled_shapes(full, 6),
-                        BeamResult(model, state, supported_groups(supports)))
+    return state, K, (T.T @ G_full @ T).tocsc(), T

@@ -10,7 +10,7 @@ from flexfem.fem import (Fixed, Force, Prescribed, compliance_matrix, material,
                          solve_static)
 from flexfem.fem.beam import BeamGroup, BeamModel, Section as PlanarSection, beam_chain
 from flexfem.fem.beam.spatial import Beam3DModel, Section
-from flexfem.fem.beam.spatial.face import held_rotations
+from flexfem.fem.beam.face import held_rotations
 from flexfem.reduced.spatial import lifted_model
 
 L, W, T, N = 0.05, 0.01, 0.5e-3, 40
