@@ -24,7 +24,6 @@ from dataclasses import dataclass
 import functools
 import hashlib
 import importlib
-import importlib.metadata
 from pathlib import Path
 import tomllib
 
@@ -147,6 +146,8 @@ ENTRY_POINT_GROUP = "flexfem.mechanisms"
 def plugin_mechanisms() -> dict:
     """{name: entry point} of the mechanisms installed packages register in the group
     ``flexfem.mechanisms`` (a built-in name wins over a package's)."""
+    import importlib.metadata  # the installed packages' metadata: read when a name is looked up
+
     points = importlib.metadata.entry_points(group=ENTRY_POINT_GROUP)
     return {ep.name: ep for ep in points if ep.name not in MECHANISMS}
 
