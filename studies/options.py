@@ -102,6 +102,20 @@ def json_object(text: str) -> dict:
     return value
 
 
+MODELS = ("continuum", "beam")
+
+
+def add_model_options(parser, model_help: str, dim_default: int | None = None,
+                      dim_help: str | None = None, dest: str = "model") -> None:
+    """A command's ``--model continuum|beam`` (default continuum: the FEM; beam: the reduced
+    beam model) and, with ``dim_help``, its ``--dim 2|3`` (default ``dim_default``)."""
+    parser.add_argument("--model", dest=dest, choices=MODELS, default="continuum",
+                        help=model_help)
+    if dim_help is not None:
+        parser.add_argument("--dim", type=int, choices=(2, 3), default=dim_default,
+                            help=dim_help)
+
+
 class DefaultsHelp(argparse.ArgumentDefaultsHelpFormatter):
     """Help that shows every option's default, unless the help text already says it."""
 

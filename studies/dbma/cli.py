@@ -3,7 +3,7 @@ import dataclasses
 from pathlib import Path
 
 from ..lazy import Lazy
-from ..options import count, damping_ratio, positive
+from ..options import add_model_options, count, damping_ratio, positive
 
 # what the commands compute with, imported when one runs (meshing, the FEM, the beam model)
 deck_lines = Lazy("...fem.calculix:deck_lines", __package__)
@@ -134,10 +134,9 @@ def register(subparsers):
     analyze.add_argument("--max-dofs", type=count, default=None,
                          help="refuse a mesh above this many unknowns (default: what half the "
                               "available memory affords)")
-    analyze.add_argument("--model", choices=("continuum", "beam"), default="continuum",
-                         help="continuum: FEM (default); beam: the reduced beam model (its "
-                              "statics in-plane; --dim 3: the spatial beam's modes, out of "
-                              "plane too)")
+    add_model_options(analyze, "continuum: FEM (default); beam: the reduced beam model (its "
+                               "statics in-plane; --dim 3: the spatial beam's modes, out of "
+                               "plane too)")
     analyze.add_argument("--json", action="store_true", help="print one JSON object")
     analyze.set_defaults(run=run_analyze, summarize=summarize_analyze)
     frf = commands.add_parser("frf", help="output compliance, FRF from actuator force to "

@@ -4,7 +4,7 @@ driving linkage) and ``flexfem eightbar mesh OUT``; ``--model beam`` on analyze 
 import argparse
 
 from ..lazy import Lazy
-from ..options import deferred, positive, whole_number
+from ..options import add_model_options, deferred, positive, whole_number
 
 # what the commands compute with, imported when one runs (meshing, the FEM, the beam model)
 write_mesh = Lazy("...fem:write_mesh", __package__)
@@ -19,6 +19,7 @@ eightbar_path_summary = Lazy(".path:eightbar_path_summary", __package__)
 trace_classic = Lazy(".path:trace_classic", __package__)
 stage_study = Lazy(".stage:stage_study", __package__)
 
+BEAM_HELP = "continuum: 2-D FEM (default); beam: the reduced beam model (~0.1 s)"
 LINKAGE_CHOICES = ["watt", "roberts", "chebyshev", "peaucellier", "modified_peaucellier"]
 # points along a traced path: each costs ~2 ms (twice: the resolution check), 10,000 ~40 s;
 # the tracer refuses fewer than 3 and a sampling too coarse for the path
@@ -178,18 +179,14 @@ def add_eightbar_commands(eb_sub) -> None:
     p.add_argument("--travel", type=travel, default=None,
                    help="end-to-end travel in m (default 0.0331, the thesis')")
     p.add_argument("--quick", action="store_true", help="coarse mesh, half stroke mirrored")
-    p.add_argument("--model", choices=("continuum", "beam"), default="continuum",
-                   help="continuum: 2-D FEM (default); beam: the reduced beam model (~0.1 s)")
-    p.add_argument("--dim", type=int, choices=(2, 3), default=2,
-                   help="continuum in 2-D (plane stress, default) or 3-D (the solid, 240k DOFs:"
-                   " linear and modal only, ~40 s); with --model beam, 3: the spatial beam's "
-                   "modes (out of plane too)")
+    add_model_options(p, BEAM_HELP, 2, "continuum in 2-D (plane stress, default) or 3-D (the "
+                      "solid, 240k DOFs: linear and modal only, ~40 s); with --model beam, 3: "
+                      "the spatial beam's modes (out of plane too)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(run=_run_eightbar_analyze, summarize=_summarize_eightbar_analyze)
     p = eb_sub.add_parser("driving", help="the Ch. 6 driving linkage (two lambdas, two "
                           "suspensions): input stiffness, transmission, stress, modes")
-    p.add_argument("--model", choices=("continuum", "beam"), default="continuum",
-                   help="continuum: 2-D FEM (default); beam: the reduced beam model (~0.1 s)")
+    add_model_options(p, BEAM_HELP)
     p.add_argument("--quick", action="store_true", help="continuum: 2x coarser mesh")
     p.add_argument("--modes", type=whole_number(0, 100), default=3,
                    help="natural frequencies computed")

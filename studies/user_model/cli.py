@@ -5,7 +5,7 @@ import argparse
 from pathlib import Path
 
 from ..lazy import Lazy
-from ..options import count, length, size_factor
+from ..options import add_model_options, count, length, size_factor
 from .summary import LENGTH_UNITS, summarize
 
 # the analyses, imported when a command runs
@@ -75,10 +75,8 @@ def register(subparsers):
     parser.add_argument("--set", action="append", metavar="NAME=VALUE", default=[],
                         help="override a [parameters] entry (SI), or TABLE.KEY such as "
                              "material.E; repeatable")
-    parser.add_argument("--model", dest="reduced", choices=("continuum", "beam"),
-                        default="continuum",
-                        help="continuum: the FEM of the geometry (default); beam: the beam "
-                             "model the file declares ([[beam]], [[rigid]])")
+    add_model_options(parser, "continuum: the FEM of the geometry (default); beam: the beam "
+                              "model the file declares ([[beam]], [[rigid]])", dest="reduced")
     parser.add_argument("--max-dofs", type=count, default=None, metavar="N",
                         help="refuse a mesh estimated above N unknowns, before meshing "
                              "(default: what half the available memory affords)")
