@@ -100,7 +100,7 @@ class BeamResult(BeamStateFace):
 @dataclass(frozen=True, eq=False)
 class BeamPath(BeamPathFace):
     """Converged steps of a large-rotation solve, read by group as the continuum's
-    NonlinearResult. ``result``: the BeamNonlinearResult or Beam3DNonlinearResult (states
+    NonlinearResult. ``result``: the BeamNonlinearResult (states
     per step); ``faces``: the rigid faces' groups (planar); ``face_loads``: {face: (F_x,
     F_y, M)} at load factor 1; ``applied``: the nodal load vector at load factor 1 (N, N m)."""
 

@@ -18,13 +18,13 @@ from .mesh import BeamMesh, beam_chain, beam_from_profile, profile_chain
 from .model import BeamGroup, BeamModel, RigidLink
 from .section import Section
 from .nonlinear import BeamNonlinearResult, NonConvergenceError, solve_beam_nonlinear
-from .static import BeamState, BeamStaticResult, solve_beam_static
+from .static import BeamState, solve_beam_static
 from .superelement import Superelement
 from .supports import NodalLoad
 
 __all__ = [
     "BeamGroup", "BeamMesh", "BeamModel", "BeamModes", "BeamNonlinearResult", "BeamState",
-    "BeamStaticResult", "NodalLoad", "NonConvergenceError", "RigidLink",
+    "NodalLoad", "NonConvergenceError", "RigidLink",
     "Section", "SingularBeamError", "Superelement", "beam_chain", "beam_from_profile",
     "compliance", "profile_chain", "solve_beam_modes",
     "solve_beam_nonlinear", "solve_beam_static",

@@ -146,8 +146,6 @@ class BeamAssembler:
         return -space.reduce(f, ev.w)[0]
 
 
-Assembler = BeamAssembler  # the name the planar modules import it by
-
 
 class Factor:
     """Sparse LU (SuperLU: single-threaded, fast for the banded systems of beam models) of

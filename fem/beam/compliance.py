@@ -6,7 +6,7 @@
 """
 import numpy as np
 
-from .assembly import Assembler, solve
+from .assembly import BeamAssembler, solve
 from .linear import linear_system
 from .model import BeamModel
 
@@ -17,7 +17,7 @@ def compliance(model: BeamModel, supports, node: int, about=None, loads=()) -> n
     and ``loads`` (tangent compliance, stress stiffening included), default undeformed. The
     node may be a rigid-link slave; its DOFs must not be held."""
     _check_node(model, node)
-    asm = Assembler(model, supports, loads)
+    asm = BeamAssembler(model, supports, loads)
     if about is None:
         z, lam = np.zeros(asm.space.n), 0.0
     else:

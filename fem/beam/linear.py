@@ -9,7 +9,7 @@ factorisation serves every load case of the point and the modes held by the Node
 """
 import numpy as np
 
-from .assembly import (Assembler, Evaluation, SingularBeamError, element_mass,
+from .assembly import (BeamAssembler, Evaluation, SingularBeamError, element_mass,
                        point_mass_blocks)
 from .banded import spd_factor
 from .model import BeamModel
@@ -24,7 +24,7 @@ class LinearSystem:
     (on first use) for ``supports`` (their held DOFs; the values are the caller's)."""
 
     def __init__(self, model: BeamModel, supports):
-        self.asm = Assembler(model, supports, ())
+        self.asm = BeamAssembler(model, supports, ())
         self.space = space = self.asm.space
         q = np.zeros((model.n_nodes, 3))
         _, ke, _ = self.asm.elements(q)

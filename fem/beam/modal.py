@@ -11,7 +11,7 @@ import numpy as np
 import scipy.linalg as sla
 import scipy.sparse.linalg as spla
 
-from .assembly import (DENSE_EIGEN_LIMIT, ORDERING, Assembler, SingularBeamError,
+from .assembly import (DENSE_EIGEN_LIMIT, ORDERING, BeamAssembler, SingularBeamError,
                        element_mass, load_vector, mass_matrix, point_mass_diagonal)
 from .eigen import lowest_modes
 from .linear import held_at_zero, linear_system, modal_system
@@ -69,8 +69,6 @@ class BeamModes:
         """(n_nodes, dim) translations of mode k at the nodes."""
         return self.shapes[k][:, :self.model.dim].copy()
 
-
-Beam3DModes = BeamModes  # the spatial model's name: the same class
 
 
 def _state_z(asm, about):
@@ -167,7 +165,7 @@ def solve_beam_modes(model: BeamModel, supports, n: int = 6, about=None, loads=(
             system = linear_system(model, supports)
         space, ev, K = system.space, system.ev, system.ev.K
     else:
-        asm = Assembler(model, supports, loads)
+        asm = BeamAssembler(model, supports, loads)
         ev = asm.evaluate(*_state_z(asm, about))
         space, K = asm.space, ev.K
         _check_count(n, space.n)

@@ -16,7 +16,7 @@ import numpy as np
 
 from ..newton import NonConvergenceError, check_step_arguments
 from ..stepping import StepFailed, march
-from .assembly import Assembler
+from .assembly import BeamAssembler
 from .static import make_state
 from .stepper import Stepper, negative_eigenvalues, step_failure  # noqa: F401 (public here)
 
@@ -57,7 +57,7 @@ def solve_beam_nonlinear(model, supports, loads=(), steps: int = 10, control=Non
     if model.superelements:
         raise ValueError("solve_beam_nonlinear: the model has superelements, which are "
                          "linear (small rotations only); use the linear solves")
-    return solve_path(Assembler(model, supports, loads), converged, steps, control,
+    return solve_path(BeamAssembler(model, supports, loads), converged, steps, control,
                       max_iterations, tol, min_step)
 
 
@@ -108,5 +108,3 @@ def solve_path(asm, state, steps: int = 10, control=None, max_iterations: int = 
     return BeamNonlinearResult(model=asm.model, load_factors=np.array(lams), states=states,
                                iterations=its, info=info)
 
-
-Beam3DNonlinearResult = BeamNonlinearResult  # the spatial solve's result: the same class

@@ -3,7 +3,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .assembly import Assembler
+from .assembly import BeamAssembler
 from .supports import load_vector
 from .element import bending_stress
 from .linear import solve_linear
@@ -57,10 +57,8 @@ class BeamState:
         return e, xi, a + xi * (b - a)
 
 
-BeamStaticResult = BeamState
 
-
-def make_state(assembler: Assembler, q, r, lam, info=None, fb=None, w=None) -> BeamState:
+def make_state(assembler: BeamAssembler, q, r, lam, info=None, fb=None, w=None) -> BeamState:
     """Package a converged state: reactions from the residual r = f_int - lam f_ext; basic
     element forces ``fb`` (n_e, 3) from the co-rotational element and the links' weights
     ``w`` (Space.weights) at q unless given."""
@@ -87,7 +85,7 @@ def solve_beam_static(model: BeamModel, supports, loads=()) -> BeamState:
     f_ext = load_vector(model, loads)
     q, system, own = solve_linear(model, supports, f_ext)
     # the reactions are the supports' own: the system's Space where it holds their DOFs
-    asm = system.asm if own else Assembler(model, supports, loads)
+    asm = system.asm if own else BeamAssembler(model, supports, loads)
     r = system.ev.full_times(q) - f_ext
     q = q.reshape(-1, 3)
     fb = np.einsum("eij,ej->ei", asm.Kb, _natural(model, q))

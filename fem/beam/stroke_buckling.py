@@ -16,7 +16,7 @@ loads are not scaled, so this is not the path's limit point.
 """
 import numpy as np
 
-from .assembly import Assembler, Factor, gather
+from .assembly import BeamAssembler, Factor, gather
 from .buckling import check_n, geometric_stiffness, lowest_load_factors, scaled_shapes
 from .element import rotation_to_global
 from .face import no_options, node_loads, node_supports
@@ -92,7 +92,7 @@ def solve_incremental_buckling(model, state, supports, loads, n: int = 3,
 
 def _planar(model: BeamModel, at, f_state, held, nodal) -> tuple:
     """(K_T, K_G reduced, T = dq/dz, du full) of a planar model about the state ``at``."""
-    asm = Assembler(model, held, nodal)
+    asm = BeamAssembler(model, held, nodal)
     space, q = asm.space, at.q
     fe, ke, _ = asm.elements(q)
     w = space.weights(q)

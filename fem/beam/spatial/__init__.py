@@ -8,16 +8,16 @@
     lin.max_stress                                     # Pa: normal + torsion, rectangles
 """
 from ..assembly import SingularBeamError
-from .modal import Beam3DModes, solve_beam3d_modes
+from .modal import solve_beam3d_modes
 from ..supports import NodalLoad
 from ..section import Section, rect_torsion_constant, rect_torsion_shear
 from ..model import RigidLink
 from .model import Beam3DModel, element_frames
-from .nonlinear import Beam3DNonlinearResult, NonConvergenceError, solve_beam3d_nonlinear
+from .nonlinear import NonConvergenceError, solve_beam3d_nonlinear
 from .static import Beam3DState, compliance3d, solve_beam3d_static
 
 __all__ = [
-    "Beam3DModel", "Beam3DModes", "Beam3DNonlinearResult", "Beam3DState",
+    "Beam3DModel", "Beam3DState",
     "NodalLoad", "NonConvergenceError", "RigidLink", "Section",
     "SingularBeamError", "compliance3d", "element_frames", "rect_torsion_constant",
     "rect_torsion_shear",

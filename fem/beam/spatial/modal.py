@@ -8,13 +8,13 @@ import numpy as np
 import scipy.sparse.linalg as spla
 
 from ..assembly import DENSE_EIGEN_LIMIT
-from ..modal import Beam3DModes, dense_lowest_modes, negative_shift
+from ..modal import BeamModes, dense_lowest_modes, negative_shift
 from .assembly import SpatialAssembler, mass_matrix, symmetric_tangent
 from .model import Beam3DModel
 
 
 def solve_beam3d_modes(model: Beam3DModel, supports, n: int = 6, about=None,
-                       loads=()) -> Beam3DModes:
+                       loads=()) -> BeamModes:
     """The ``n`` lowest natural frequencies (Hz) and mode shapes; supports: NodeFixed/NodePrescribed
     (held); about: a Beam3DState from solve_beam3d_nonlinear with the same supports and
     ``loads`` (default: undeformed; see assembly.symmetric_tangent)."""
@@ -40,5 +40,5 @@ def solve_beam3d_modes(model: Beam3DModel, supports, n: int = 6, about=None,
     gamma = full @ (M_full @ trans)
     total = float(trans[:, 0] @ (M_full @ trans[:, 0]))
     freq = np.sqrt(np.clip(w2, 0.0, None)) / (2.0 * np.pi)
-    return Beam3DModes(model=model, frequencies_hz=freq, shapes=full.reshape(n, -1, 6),
+    return BeamModes(model=model, frequencies_hz=freq, shapes=full.reshape(n, -1, 6),
                        masses=(gamma**2, total))

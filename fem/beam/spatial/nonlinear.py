@@ -4,7 +4,7 @@
     res = solve_beam3d_nonlinear(model, [NodeFixed(0)], [NodalLoad(tip, fz=P)], steps=20)
     res.path(tip)              # (n_steps + 1, 3) tip displacement
 """
-from ..nonlinear import (Beam3DNonlinearResult, NonConvergenceError,  # noqa: F401
+from ..nonlinear import (BeamNonlinearResult, NonConvergenceError,  # noqa: F401
                          check_step_arguments, solve_path)
 from .assembly import SpatialAssembler
 from .model import Beam3DModel
@@ -19,7 +19,7 @@ def converged(asm, config, lam, ev=None):
 
 def solve_beam3d_nonlinear(model: Beam3DModel, supports, loads=(), steps: int = 10,
                            control=None, max_iterations: int = 30, tol: float = 1e-9,
-                           min_step: float = 1e-4) -> Beam3DNonlinearResult:
+                           min_step: float = 1e-4) -> BeamNonlinearResult:
     """Large-rotation static solve of a spatial ``model`` under ``supports`` (NodeFixed,
     NodePrescribed) and ``loads`` (NodalLoad, dead forces and moments about fixed global axes);
     ``control=(node, dof, value)`` a translation DOF (m); otherwise as

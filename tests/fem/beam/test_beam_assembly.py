@@ -11,7 +11,7 @@ import scipy.sparse as sp
 from beam_models import parallel_guide
 from flexfem.fem.beam import BeamMesh, Section, beam_chain, solve_beam_nonlinear
 from flexfem.fem.beam.supports import NodeFixed, NodePrescribed
-from flexfem.fem.beam.assembly import Assembler, _parity, global_matrix
+from flexfem.fem.beam.assembly import BeamAssembler, _parity, global_matrix
 from flexfem.fem.beam.pattern import Pattern
 from flexfem.reduced.layout import _line_mesh, filleted_thickness, profile_beam
 
@@ -22,7 +22,7 @@ def deformed_guide(steel):
     model, supports, stage = parallel_guide(steel, n=8)
     supports = supports + [NodePrescribed(stage, "y", 4e-3)]
     res = solve_beam_nonlinear(model, supports, steps=4)
-    asm = Assembler(model, supports, [])
+    asm = BeamAssembler(model, supports, [])
     z = res.final.q.ravel()[asm.space.free] + 1e-3  # off equilibrium: r != 0 at the slaves
     return asm, z, 1.0
 
@@ -115,10 +115,10 @@ def test_line_mesh_declines_coincident_nodes():
 
 def test_model_cache_is_read_only(steel):
     model, supports, stage = parallel_guide(steel, n=4)
-    Kb = Assembler(model, supports, []).Kb
+    Kb = BeamAssembler(model, supports, []).Kb
     with pytest.raises(ValueError):
         Kb[0, 0, 0] = 0.0
-    assert Assembler(model, [NodeFixed(0)], []).Kb is Kb  # computed once per model
+    assert BeamAssembler(model, [NodeFixed(0)], []).Kb is Kb  # computed once per model
 
 
 def test_factor_leaves_a_matrix_with_duplicates_alone():

@@ -6,7 +6,7 @@ from flexfem.fem.beam import (BeamModel, NodalLoad, RigidLink, Section, Superele
                               compliance, solve_beam_modes, solve_beam_nonlinear,
                               solve_beam_static)
 from flexfem.fem.beam.supports import NodeFixed
-from flexfem.fem.beam.assembly import Assembler, mass_matrix
+from flexfem.fem.beam.assembly import BeamAssembler, mass_matrix
 from flexfem.fem.beam.pattern import global_matrix
 from flexfem.fem.materials import Material
 
@@ -16,7 +16,7 @@ MESH = beam_chain([(0.0, 0.0), (0.06, 0.01)], Section.rect(0.01, 1e-3), 6)
 
 def _matrices(model: BeamModel) -> tuple:
     """(K, M) dense global matrices of a beam model (undeformed)."""
-    ev = Assembler(model, [], ()).evaluate(np.zeros(model.n_dofs), 0.0)
+    ev = BeamAssembler(model, [], ()).evaluate(np.zeros(model.n_dofs), 0.0)
     return global_matrix(model, ev.ke).toarray(), mass_matrix(model).toarray()
 
 
