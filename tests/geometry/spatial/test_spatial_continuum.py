@@ -28,7 +28,7 @@ def test_groups_and_estimate(spec):
     assert set(mesh.boundaries) == {"base", "stage"}
     nodes = mesh.mesh.nvertices
     estimate = estimate_mesh(spec.spatial, order=1)
-    assert 0.6 < estimate["nodes"] / nodes < 2  # the budget's estimate: 0.84 of the nodes here
+    assert 0.6 < estimate["nodes"] / nodes < 2  # the budget's estimate: 1.13 of the nodes here
 
 
 def _stiffness(spec, axis, vector, size_factor):
@@ -38,14 +38,15 @@ def _stiffness(spec, axis, vector, size_factor):
 
 
 def test_axial_stiffness_against_4_E_A_over_L(spec):
-    """At the default mesh (two elements through the wire) the section is a polygon of about
-    six sides, whose area is at least that of the inscribed hexagon, 0.83 of the circle's;
-    the bodies' and roots' compliance softens a little more. docs/spatial.md records the
-    convergence on the example itself (0.84 -> 0.90 at size_factor 0.7)."""
+    """At size factor 1.5 (a quick mesh: 11 elements round the wire, continuum.AROUND / 1.5)
+    the section is a polygon of about eleven sides, 0.95 of the circle's area; the bodies'
+    and the roots' compliance soften more at this stubby L / d = 10: 0.89 here, 0.90 at
+    the default 16 round, 0.92 at 32 (docs/spatial.md). Without the curvature-based size (two elements
+    through the wire alone, a polygon of about six sides) it was 0.82."""
     E, d, L = spec.material.E, 1e-3, 0.01
     closed = 4 * E * math.pi * d ** 2 / 4 / L
-    ratio = _stiffness(spec, "z", (0.0, 0.0, 1.0), 1.0) / closed
-    assert 0.7 < ratio < 1.0
+    ratio = _stiffness(spec, "z", (0.0, 0.0, 1.0), 1.5) / closed
+    assert 0.85 < ratio < 1.0
 
 
 CYLINDER_AND_PRISM = """
