@@ -28,7 +28,7 @@ from ..boundary import Fixed, Force, Prescribed
 from ..compliance import Compliance, moved_compliance, rotation_frame
 from ..harmonic import FRF, check_frequencies, damping_ratios
 from ..rigid_face_input import RigidFace
-from .compliance import shared_compliance
+from .compliance import compliance, shared_compliance
 from .modal import BeamModes, solve_beam_modes
 from .model import BeamGroup, BeamModel
 from .supports import NodalLoad, NodeFixed, NodePrescribed
@@ -37,7 +37,7 @@ from ..result_face import BeamFace
 from .nonlinear import solve_beam_nonlinear
 from .spatial.modal import solve_beam3d_modes
 from .spatial.nonlinear import solve_beam3d_nonlinear
-from .spatial.static import compliance3d, solve_beam3d_static
+from .spatial.static import solve_beam3d_static
 from .static import solve_beam_static
 
 AXES = ("x", "y", "z")
@@ -45,7 +45,7 @@ ROTATIONS = {2: (None, None, "theta"), 3: ("rx", "ry", "rz")}  # about x, y, z
 NAMES = {2: "planar beam model", 3: "spatial beam model"}
 # each dimension's solvers: static, modes, nonlinear, compliance; Newton's default iterations
 SOLVERS = {2: (solve_beam_static, solve_beam_modes, solve_beam_nonlinear, shared_compliance, 25),
-           3: (solve_beam3d_static, solve_beam3d_modes, solve_beam3d_nonlinear, compliance3d,
+           3: (solve_beam3d_static, solve_beam3d_modes, solve_beam3d_nonlinear, compliance,
                30)}
 
 

@@ -14,7 +14,8 @@ from ..section import Section, rect_torsion_constant, rect_torsion_shear
 from ..model import RigidLink
 from .model import Beam3DModel, element_frames
 from .nonlinear import NonConvergenceError, solve_beam3d_nonlinear
-from .static import Beam3DState, compliance3d, solve_beam3d_static
+from .static import Beam3DState, solve_beam3d_static
+from ..compliance import compliance as compliance3d
 
 __all__ = [
     "Beam3DModel", "Beam3DState",

@@ -1,14 +1,14 @@
-"""Linear static analysis and the compliance matrix of a node of a spatial beam model.
+"""Linear static analysis of a spatial beam model (its compliance matrix: the beam models'
+one :func:`flexfem.fem.beam.compliance.compliance`, by its spatial name ``compliance3d``).
 
     res = solve_beam3d_static(model, [NodeFixed(0)], [NodalLoad(tip, fz=-1.0)])
-    C = compliance3d(model, [NodeFixed(0)], node=tip)     # 6x6 (x, y, z, rx, ry, rz)
 """
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from ..assembly import Factor
-from .assembly import SpatialAssembler, symmetric_tangent
+from .assembly import SpatialAssembler
 from .corotational import kinematics
 from .model import Beam3DModel
 from .rotations import expm, logm
@@ -94,21 +94,3 @@ def linear_solution(model: Beam3DModel, supports, loads=()) -> tuple:
     state = make_state(asm, q6[:, :3], expm(q6[:, 3:]), r, 1.0, fl, T, Tp,
                        {"n_unknowns": space.n})
     return state, q, r, K, T, asm
-
-
-def compliance3d(model: Beam3DModel, supports, node: int, about=None, loads=()) -> np.ndarray:
-    """6x6 compliance of ``node``'s (x, y, z, r_x, r_y, r_z) under (F_x, F_y, F_z, M_x,
-    M_y, M_z) with the supports held (m/N, 1/N, rad/(N m)); about: a converged Beam3DState
-    of the same supports and ``loads`` (tangent compliance, stress stiffening included;
-    rotations as spins about the global axes), default undeformed. The node may be a
-    rigid-link slave; none of its DOFs may be held."""
-    if not (isinstance(node, (int, np.integer)) and 0 <= node < model.n_nodes):
-        raise ValueError(f"node = {node!r} must be a node index in 0..{model.n_nodes - 1}")
-    asm = SpatialAssembler(model, supports, loads)
-    K, T, _, _ = symmetric_tangent(asm, about)
-    rows = T[6 * int(node):6 * int(node) + 6]
-    if np.any(abs(rows).sum(axis=1) == 0):
-        raise ValueError(f"node = {node}: a DOF of it is held by a support; its compliance "
-                         "is zero there")
-    X = Factor(K).solve(rows.T.toarray())
-    return np.asarray(rows @ X)
