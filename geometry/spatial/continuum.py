@@ -84,7 +84,8 @@ def _prism(occ, prism) -> list:
     return [(d, t) for d, t in occ.extrude([(2, face)], *shift) if d == 3]
 
 
-def _body_shapes(occ, body) -> list:
+def body_shapes(occ, body) -> list:
+    """[(3, tag)]: a body's boxes, cylinders and prisms drawn and fused into one shape."""
     shapes = [(3, occ.addBox(*lo, *np.subtract(hi, lo))) for lo, hi in body.boxes]
     shapes += [(3, occ.addCylinder(*c.start, *np.subtract(c.end, c.start), c.diameter / 2))
                for c in body.cylinders]
@@ -161,7 +162,7 @@ def draw(gmsh, mechanism: SpatialMechanism) -> dict:
     group per body and "solid"; {"bodies": {name: [volume tags]}, "flexures": [[volume
     tags] per flexure]}. A part that lies inside a body counts as that body."""
     occ = gmsh.model.occ
-    body_tags = [_body_shapes(occ, b) for b in mechanism.bodies]
+    body_tags = [body_shapes(occ, b) for b in mechanism.bodies]
     flexure_tags = flexure_shapes(occ, mechanism)
     inputs = body_tags + flexure_tags
     flat = [dt for tags in inputs for dt in tags]

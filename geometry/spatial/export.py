@@ -7,13 +7,13 @@ from pathlib import Path
 
 from ...fem import gmsh_session
 from ..outline_files import write_session_step
-from .continuum import _body_shapes, flexure_shapes
+from .continuum import body_shapes, flexure_shapes
 from .description import SpatialMechanism
 
 
 def _fused(gmsh, mechanism: SpatialMechanism) -> list:
     occ = gmsh.model.occ
-    shapes = [dt for b in mechanism.bodies for dt in _body_shapes(occ, b)]
+    shapes = [dt for b in mechanism.bodies for dt in body_shapes(occ, b)]
     shapes += [dt for tags in flexure_shapes(occ, mechanism) for dt in tags]
     try:
         shapes, _ = occ.fuse(shapes[:1], shapes[1:])
