@@ -20,53 +20,58 @@ CASE_LABELS = {"drive_critical_n": "drive F_x", "off_axis_plus_y_n": "off-axis +
                "off_axis_minus_y_n": "off-axis -F_y"}
 
 
+def stroke_figure(out: dict, key: str, panels: int = 1) -> tuple:
+    """A figure of ``panels`` side by side for the rows ``out[key]`` along the stroke: (fig,
+    axes, rows, their stroke positions x in mm)."""
+    rows = out[key]
+    fig, axes = pyplot().subplots(1, panels, figsize=(10, 3.8) if panels == 2 else (6.5, 3.8))
+    return fig, axes, rows, [r["x_m"] * 1e3 for r in rows]
+
+
+def saved_against_stroke(fig, path: Path, caption: str, *panels) -> dict:
+    """``fig`` saved as ``path`` with ``caption`` (the report's figure entry), each (axes, y
+    label) of ``panels`` labelled as a plot against the stroke x (mm), the first's legend
+    outside; two panels laid out tight."""
+    for ax, ylabel in panels:
+        ax.set_xlabel(axis_label("stroke x", "mm"))
+        ax.set_ylabel(ylabel)
+    legend_outside(panels[0][0])
+    if len(panels) > 1:
+        fig.tight_layout()
+    return save(fig, path, caption)
+
+
 def plot_stiffness(out: dict, path: Path) -> dict:
     """k_x, k_y, k_y / k_x and k_theta against the stroke."""
-    plt = pyplot()
-    rows = out["stroke"]
-    x = [r["x_m"] * 1e3 for r in rows]
-    fig, (ax, ax2) = plt.subplots(1, 2, figsize=(10, 3.8))
+    fig, (ax, ax2), rows, x = stroke_figure(out, "stroke", panels=2)
     ax.semilogy(x, [r["k_x"] for r in rows], "o-", label="k_x (drive), N/m")
     ax.semilogy(x, [r["k_y"] for r in rows], "s-", label="k_y (support, motion held), N/m")
     ax.semilogy(x, [r["k_theta"] for r in rows], "^-", label="k_theta (rotation), N m/rad")
-    ax.set_xlabel(axis_label("stroke x", "mm"))
-    ax.set_ylabel("stiffness")
-    legend_outside(ax)
     ax2.plot(x, [r["support_ratio"] for r in rows], "o-")
-    ax2.set_xlabel(axis_label("stroke x", "mm"))
-    ax2.set_ylabel(axis_label("support-stiffness ratio k_y / k_x", "-"))
-    fig.tight_layout()
     s = out["summary"]
-    return save(fig, path, (
+    caption = (
         "The end-effector face's stiffness from its 3 x 3 tangent compliance about the "
         "large-deflection state at each stroke position: drive stiffness k_x, support stiffness "
         "across the motion k_y (motion held, rotation free) and rotational stiffness k_theta "
-        f"(forces free); right, k_y / k_x, at least {s['support_ratio_min']:.3g} over the stroke."))
+        f"(forces free); right, k_y / k_x, at least {s['support_ratio_min']:.3g} over the stroke.")
+    return saved_against_stroke(fig, path, caption, (ax, "stiffness"),
+                                (ax2, axis_label("support-stiffness ratio k_y / k_x", "-")))
 
 
 def plot_frequencies(out: dict, path: Path) -> dict:
     """The first three prestressed natural frequencies against the stroke."""
-    plt = pyplot()
-    rows = out["stroke"]
-    x = [r["x_m"] * 1e3 for r in rows]
-    fig, ax = plt.subplots(figsize=(6.5, 3.8))
+    fig, ax, rows, x = stroke_figure(out, "stroke")
     for i, marker in zip((1, 2, 3), "os^"):
         ax.plot(x, [r[f"f{i}_hz"] for r in rows], marker + "-", label=f"mode {i}")
-    ax.set_xlabel(axis_label("stroke x", "mm"))
-    ax.set_ylabel(axis_label("natural frequency", "Hz"))
-    legend_outside(ax)
-    return save(fig, path, (
-        "First three natural frequencies of the suspension, prestressed about the "
-        "large-deflection state at each stroke position (end-effector free: the drive "
-        "disconnected)."))
+    caption = ("First three natural frequencies of the suspension, prestressed about the "
+               "large-deflection state at each stroke position (end-effector free: the drive "
+               "disconnected).")
+    return saved_against_stroke(fig, path, caption, (ax, axis_label("natural frequency", "Hz")))
 
 
 def plot_buckling(out: dict, path: Path) -> dict:
     """The critical added loads along the stroke, continuum and beam model; their ratio."""
-    plt = pyplot()
-    rows = out["stroke_buckling"]
-    x = [r["x_m"] * 1e3 for r in rows]
-    fig, (ax, ax2) = plt.subplots(1, 2, figsize=(10, 3.8))
+    fig, (ax, ax2), rows, x = stroke_figure(out, "stroke_buckling", panels=2)
     for (key, label), colour in zip(CASE_LABELS.items(), ("C0", "C1", "C2")):
         ax.plot(x, [r[key] for r in rows], "o-", color=colour, label=f"{label}, continuum")
         ax.plot(x, [r[f"beam_{key}"] for r in rows], "s--", color=colour,
@@ -74,20 +79,17 @@ def plot_buckling(out: dict, path: Path) -> dict:
         ax2.plot(x, [r[ratio_key(key)] for r in rows], "o-", color=colour, label=label)
     for bound in (1 - BEAM_TOLERANCE, 1 + BEAM_TOLERANCE):
         ax2.axhline(bound, color="0.5", lw=0.8, ls=":")
-    ax.set_xlabel(axis_label("stroke x", "mm"))
-    ax.set_ylabel(axis_label("critical added force", "N"))
-    legend_outside(ax)
-    ax2.set_xlabel(axis_label("stroke x", "mm"))
-    ax2.set_ylabel(axis_label("beam model / continuum", "-"))
-    fig.tight_layout()
     b = out["buckling"]
-    return save(fig, path, (
+    caption = (
         "Buckling along the stroke: the critical force added on the released end-effector "
         "face about the large-deflection state at each position (incremental linearised "
         "buckling), the drive force in the stroke's sense and a force across the stroke in "
         "each sense; continuum (solid) and the beam model about its own path (dashed). Right, "
         f"beam / continuum, at worst {b['beam_buckling_worst_ratio']:.3f} (dotted: "
-        f"+-{100 * BEAM_TOLERANCE:.0f} %)."))
+        f"+-{100 * BEAM_TOLERANCE:.0f} %).")
+    return saved_against_stroke(fig, path, caption,
+                                (ax, axis_label("critical added force", "N")),
+                                (ax2, axis_label("beam model / continuum", "-")))
 
 
 def beam_rows(out: dict) -> list[Comparison]:
