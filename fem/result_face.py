@@ -8,6 +8,8 @@ under the same name. A member a beam model cannot give (a nodal stress field, an
 point stress) is in its result's ``unsupported`` and raises :class:`NotOnModel`, an
 AttributeError naming the member, the result and what the beam model gives instead.
 """
+from operator import attrgetter
+
 import numpy as np
 
 SHARED = {
@@ -67,6 +69,12 @@ PATH_UNSUPPORTED = {
 }
 
 
+def alias(path: str, doc: str) -> property:
+    """A read-only property: the attribute at ``path`` (dotted: "state.max_stress") of the
+    result, documented ``doc``."""
+    return property(attrgetter(path), doc=doc)
+
+
 def group_nodes(model, name) -> list:
     """The node indices of the beam model's group ``name``; ValueError naming the known
     groups."""
@@ -111,20 +119,10 @@ class BeamStateFace(BeamFace):
         r = reaction_vector(len(q), self.state.reactions, q.shape[1])
         return 0.5 * float(self.u @ (self.applied_force + r))
 
-    @property
-    def von_mises_element_max(self) -> np.ndarray:
-        """The beam stress per element (beam_stress), Pa."""
-        return self.beam_stress
-
-    @property
-    def max_von_mises(self) -> float:
-        """Largest beam stress (beam_stress), Pa."""
-        return self.state.max_stress
-
-    @property
-    def max_von_mises_element(self) -> float:
-        """The beam stress has no smoothing: max_von_mises, Pa."""
-        return self.state.max_stress
+    von_mises_element_max = alias("beam_stress", "The beam stress per element (beam_stress), Pa.")
+    max_von_mises = alias("state.max_stress", "Largest beam stress (beam_stress), Pa.")
+    max_von_mises_element = alias("state.max_stress",
+                                  "The beam stress has no smoothing: max_von_mises, Pa.")
 
 
 class BeamPathFace(BeamFace):
@@ -136,17 +134,9 @@ class BeamPathFace(BeamFace):
     strain_limit = BEAM_STRAIN_LIMIT
     preload_end = 0
 
-    @property
-    def load_factors(self) -> np.ndarray:
-        return self.result.load_factors
-
-    @property
-    def iterations(self) -> list:
-        return self.result.iterations
-
-    @property
-    def info(self) -> dict:
-        return self.result.info
+    load_factors = alias("result.load_factors", "The load factor of each step (-).")
+    iterations = alias("result.iterations", "The Newton iterations of each step.")
+    info = alias("result.info", "The solver's own figures.")
 
     @property
     def u(self) -> list:
