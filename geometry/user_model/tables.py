@@ -1,7 +1,7 @@
 """Validation of the tables of a model file, one function per table. Each takes the raw
 TOML value and a :class:`Locator` (to name the file and line in errors) and returns frozen
 dataclasses with SI values."""
-from dataclasses import KW_ONLY, dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 from ...fem import checks
@@ -50,12 +50,10 @@ class SectionSpec:
 
 @dataclass(frozen=True)
 class GroupEntry:
-    """An entry of the model file on the Physical group ``group``; ``source`` (by keyword):
-    the file and line it was read from."""
+    """An entry of the model file on Physical group ``group``, read at ``source`` (by keyword)."""
 
     group: str
-    _: KW_ONLY
-    source: str = ""
+    source: str = field(default="", kw_only=True)
 
 
 @dataclass(frozen=True)
@@ -280,8 +278,7 @@ def parse_supports(raw, dim: int, loc: Locator) -> tuple:
                     raise loc.error(f"[[supports]] {axis} = {entry[axis]!r} must be a number "
                                     "(prescribed displacement, m)", "supports", axis, i)
                 components[k] = float(entry[axis])
-        out.append(SupportSpec(group, components or None,
-                               source=loc.at("supports", "group", i)))
+        out.append(SupportSpec(group, components or None, source=loc.at("supports", "group", i)))
     return tuple(out)
 
 
@@ -302,8 +299,7 @@ def parse_loads(raw, dim: int, loc: Locator) -> tuple:
         if not (isinstance(value, list) and len(value) == dim and all(map(is_number, value))):
             raise loc.error(f"[[loads]] {kind} = {value!r} must be a list of {dim} numbers "
                             f"({'N' if kind == 'force' else 'Pa'})", "loads", kind, i)
-        out.append(LoadSpec(group, kind, tuple(float(v) for v in value),
-                            source=loc.at("loads", kind, i)))
+        out.append(LoadSpec(group, kind, tuple(map(float, value)), source=loc.at("loads", kind, i)))
     return tuple(out)
 
 
@@ -322,8 +318,7 @@ def parse_selects(raw, loc: Locator) -> tuple:
             compile_rule(entry.get("where"))
         except ValueError as error:
             raise loc.error(f"[[select]] where: {error}", "select", "where", i) from None
-        out.append(SelectRule(group, int(dim), entry["where"],
-                              source=loc.at("select", "where", i)))
+        out.append(SelectRule(group, int(dim), entry["where"], source=loc.at("select", "where", i)))
     return tuple(out)
 
 
