@@ -7,7 +7,8 @@ import sys
 import warnings
 
 #: The public face: a user's own model file, the analyses and their results, materials and
-#: models, the study engine's sweep and convergence entry points.
+#: models (the continuum's and the beam's), the study engine's sweep and convergence entry
+#: points.
 PUBLIC_MODULES = (
     "flexfem.studies.user_model",
     "flexfem.studies.user_model.api",
@@ -21,6 +22,12 @@ PUBLIC_MODULES = (
     "flexfem.fem.harmonic",
     "flexfem.fem.materials",
     "flexfem.fem.model",
+    "flexfem.fem.beam",
+    "flexfem.fem.beam.model",
+    "flexfem.fem.beam.section",
+    "flexfem.fem.beam.mesh",
+    "flexfem.fem.beam.spatial",
+    "flexfem.fem.beam.spatial.model",
     "flexfem.studies.engine.sweep",
     "flexfem.studies.engine.convergence",
 )

@@ -1,15 +1,18 @@
-"""flexfem.fem.beam: a reduced planar beam model of flexure mechanisms (co-rotational).
+"""flexfem.fem.beam: the reduced beam model of flexure mechanisms (co-rotational), planar
+here and spatial in :mod:`.spatial`, analysed by the same face as the continuum::
 
+    from flexfem.fem import Fixed, Force, material, solve_static, solve_buckling
     mesh = beam_chain([(0, 0), (0.05, 0)], Section.rect(0.01, 0.5e-3), n_per_segment=20)
-    model = BeamModel(mesh.nodes, mesh.elements, mesh.sections, material("structural_steel"))
-    lin = solve_beam_static(model, [NodeFixed(0)], [NodalLoad(20, fy=-1.0)])
-    big = solve_beam_nonlinear(model, [NodeFixed(0)], [NodalLoad(20, fy=-5.0)], steps=20)
-    modes = solve_beam_modes(model, [NodeFixed(0)], n=3)
-    C = compliance(model, [NodeFixed(0)], node=20)      # 3x3 (x, y, theta) at the tip
+    model = BeamModel(mesh.nodes, mesh.elements, mesh.sections, material("structural_steel"),
+                      groups={"root": [0], "tip": [20]})
+    lin = solve_static(model, [Fixed("root")], [Force("tip", (0.0, -1.0))])
+    lin.mean_displacement("tip")                      # m: (0, -2.0e-3), P L^3 / (3 E I)
+    solve_buckling(model, [Fixed("root")], [Force("tip", (-1.0, 0.0))]).load_factors
+    # [20.56...] N: pi^2 E I / (4 L^2)
 
-The solvers here take node-addressed supports (:mod:`.supports`: NodeFixed, NodePrescribed);
-a user meets the continuum's group supports and loads (fem/boundary: Fixed, Prescribed,
-Force) on a model with groups, through the analysis face (fem.solve_static etc.).
+``solve_nonlinear``, ``solve_modes`` and ``compliance_matrix`` of ``flexfem.fem`` take a beam
+model too. The solvers of this package take node-addressed supports (:mod:`.supports`);
+they are the face's inside.
 """
 from .assembly import SingularBeamError
 from .compliance import compliance

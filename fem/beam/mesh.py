@@ -54,9 +54,22 @@ def point_distances(a, b) -> np.ndarray:
 
 
 def beam_chain(points, sections, n_per_segment) -> BeamMesh:
-    """Straight segments between consecutive ``points`` ((k, 2), m), each cut into
-    ``n_per_segment`` (int or one per segment) elements of its Section (one, or one per
-    segment). Point j is node ``point_nodes[j]``."""
+    """A planar chain of straight beam segments.
+
+    Parameters
+    ----------
+    points : array_like, shape (k, 2)
+        The segments' ends (m), k >= 2.
+    sections : Section or sequence of Section
+        One section for every segment, or one per segment.
+    n_per_segment : int or sequence of int
+        Elements per segment (>= 1).
+
+    Returns
+    -------
+    BeamMesh
+        Nodes (m), elements, sections; point j is node ``point_nodes[j]``.
+    """
     pts = np.asarray(points, dtype=float)
     if pts.ndim != 2 or pts.shape[1] != 2 or len(pts) < 2:
         raise ValueError(f"points must be (k >= 2, 2) coordinates, got shape {pts.shape}")

@@ -139,10 +139,38 @@ class BeamModelBase:
 
 
 class BeamModel(BeamModelBase):
-    """Planar beam model (:class:`BeamModelBase`): nodes (n, 2) m; shear default off
-    (Euler-Bernoulli); point_masses {node: (mass kg, rotary inertia kg m^2)}; superelements:
-    Superelement sequence (linear parts condensed onto nodes; assembled as pairs of nodes,
-    ``pairs``, after the elements: ``connectivity``)."""
+    """A planar beam model: co-rotational beams between nodes, 3 DOFs a node (u, v in m,
+    theta in rad), analysed by the face (``flexfem.fem.solve_static`` and the others) with
+    the group supports and loads of ``flexfem.fem`` (``Fixed("root")``, ``Force("tip",
+    (fx, fy))``) on its ``groups``.
+
+    Parameters
+    ----------
+    nodes : array_like, shape (n, 2)
+        Node coordinates (m).
+    elements : array_like, shape (n_e, 2)
+        The two node indices of each element.
+    sections : Section or sequence of Section
+        One section for every element, or one per element (:class:`.section.Section`).
+    material : Material
+        The elastic material (E, nu in Pa and -, rho in kg/m^3).
+    shear : bool
+        Timoshenko shear deformation where a section has a shear area (default off:
+        Euler-Bernoulli).
+    rigid_links : sequence of RigidLink
+        Nodes that move rigidly with a master node (a body).
+    point_masses : dict, optional
+        {node: (mass kg, rotary inertia kg m^2)}.
+    superelements : sequence of Superelement
+        Linear parts condensed onto pairs of nodes (assembled after the elements).
+    groups : dict, optional
+        {name: BeamGroup or node indices}: the places supports and loads name.
+
+    Raises
+    ------
+    ValueError
+        Nodes, elements, sections or links that do not fit together, naming which.
+    """
 
     dim, PER_NODE, POINT_MASS = 2, 3, (2, "(m >= 0, J >= 0)")
 

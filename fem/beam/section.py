@@ -96,11 +96,25 @@ class Section:
     @classmethod
     def rect(cls, width: float, thickness: float, thickness_end: float | None = None,
              thickness_mid: float | None = None):
-        """Rectangle ``width`` (along local z: out of a planar mechanism's plane) by
-        ``thickness`` (along local y: in the plane), m; the thickness tapered linearly to
-        ``thickness_end`` at the second node, or quadratically through ``thickness_mid``
-        too. Shear areas 5/6 of the mid-length section (the stiffness follows A along the
-        taper); depth_y = thickness, depth_z = width."""
+        """A rectangular section, optionally tapered along the element.
+
+        Parameters
+        ----------
+        width : float
+            The side along local z (m): out of a planar mechanism's plane.
+        thickness : float
+            The side along local y (m): in the plane, at the first node.
+        thickness_end : float, optional
+            The thickness at the second node (m): a linear taper.
+        thickness_mid : float, optional
+            The thickness at mid-length (m): a quadratic taper through it.
+
+        Returns
+        -------
+        Section
+            A, Iy, Iz, J (Saint-Venant's, of the rectangle) at the first node; shear areas
+            5/6 of the mid-length section; depth_y = thickness, depth_z = width.
+        """
         b, h = positive("thickness", thickness), positive("width", width)
         end = positive("thickness_end", thickness_end, allow_none=True)
         mid = positive("thickness_mid", thickness_mid, allow_none=True)

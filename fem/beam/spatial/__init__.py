@@ -1,11 +1,11 @@
-"""flexfem.fem.beam.spatial: a spatial (6 DOFs per node) co-rotational beam model.
+"""flexfem.fem.beam.spatial: the spatial (6 DOFs per node) co-rotational beam model, analysed
+by the same face and group supports and loads as the planar one::
 
-    model = Beam3DModel(nodes, elements, Section.rect(10e-3, 2e-3), steel)
-    lin = solve_beam3d_static(model, [NodeFixed(0)], [NodalLoad(tip, fz=-1.0)])
-    big = solve_beam3d_nonlinear(model, [NodeFixed(0)], [NodalLoad(tip, fz=-50.0)], steps=20)
-    modes = solve_beam3d_modes(model, [NodeFixed(0)], n=6)
-    C = compliance3d(model, [NodeFixed(0)], node=tip)      # 6x6 at the tip
-    lin.max_stress                                     # Pa: normal + torsion, rectangles
+    from flexfem.fem import Fixed, Force, compliance_matrix, solve_static
+    model = Beam3DModel(nodes, elements, Section.rect(10e-3, 2e-3), steel,
+                        groups={"root": [0], "tip": [tip]})
+    lin = solve_static(model, [Fixed("root")], [Force("tip", (0.0, 0.0, -1.0))])
+    C = compliance_matrix(model, [Fixed("root")], "tip")   # 6x6 at the tip
 """
 from ..assembly import SingularBeamError
 from .modal import solve_beam3d_modes
