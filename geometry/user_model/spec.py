@@ -71,6 +71,12 @@ class ModelSpec:
         return self.section.thickness
 
 
+#: What a model file's required tables hold, for the message when one is missing.
+REQUIRED = {
+    "material": 'name = "structural_steel" (a library material) or E, nu and rho (SI)',
+    "section": "thickness = the out-of-plane depth (m) of a planar model",
+}
+
 def _read(path: Path) -> tuple[str, dict]:
     if not path.is_file():
         raise ValueError(f"{path}: the model file does not exist")
@@ -220,7 +226,7 @@ def _mechanism_spec(path: Path, raw: dict, loc: Locator, overridden: set, dim: i
         raise loc.error(f"dim = {dim!r} must be 2 or 3", None, "dim")
     for table in ("material", "section"):
         if table not in raw:
-            raise loc.error(f"[{table}] is required", None)
+            raise loc.error(f"[{table}] is required: {REQUIRED[table]}", None)
     section_raw = dict(raw["section"]) if isinstance(raw["section"], dict) else raw["section"]
     if isinstance(section_raw, dict):
         section_raw.setdefault("kind", "plane_stress")
@@ -343,7 +349,7 @@ def load_spec(path, overrides: dict | None = None, allow_code: bool = False,
                         "and flexures ([[body]], [[flexure]]) are extruded", None, "dim")
     for table in ("material", "section"):
         if table not in raw:
-            raise loc.error(f"[{table}] is required", None)
+            raise loc.error(f"[{table}] is required: {REQUIRED[table]}", None)
     parts = {
         "material": parse_material(raw["material"], loc),
         "section": parse_section(raw["section"], dim, loc),
