@@ -19,7 +19,7 @@ supports and loads, by group name, for the continuum and the reduced beam model.
 Its names are imported when first used (PEP 562): importing one module of the package (the
 beam model's, the input checks) imports neither scikit-fem nor meshio nor the solvers.
 """
-import importlib
+from .lazy_exports import lazy_exports
 from typing import TYPE_CHECKING
 
 # light (it imports gmsh inside gmsh_session()), and imported now so that the function, not
@@ -80,15 +80,4 @@ __all__ = [
     "solve_buckling", "solve_harmonic", "solve_incremental_buckling", "StateBuckling", "group_spring", "ground_spring", "BeamGroup", "BeamModel",
 ]
 
-
-def __getattr__(name: str):
-    """The exported ``name``, its module imported on first use (then cached here)."""
-    if name not in _EXPORTS:
-        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    value = getattr(importlib.import_module(f".{_EXPORTS[name]}", __name__), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__() -> list:
-    return sorted(set(globals()) | set(_EXPORTS))
+__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)

@@ -13,7 +13,7 @@ thin layer over these. See docs/model_files.md.
 
 ``analyze_model(spec) -> dict`` is the same analysis as a dict (``Report.to_dict()``).
 """
-import importlib
+from ...fem.lazy_exports import lazy_exports
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:  # imported when first used (below): the command line's parsers import
@@ -29,15 +29,4 @@ _EXPORTS = {"analyze_model": "analysis", "build_model": "analysis", "evaluate": 
 __all__ = ["Report", "analyze", "analyze_model", "build_model", "evaluate", "flat_metrics",
            "load_model"]
 
-
-def __getattr__(name: str):
-    """The exported ``name``, its module imported on first use (then cached here)."""
-    if name not in _EXPORTS:
-        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    value = getattr(importlib.import_module(f".{_EXPORTS[name]}", __name__), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__() -> list:
-    return sorted(set(globals()) | set(_EXPORTS))
+__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)
