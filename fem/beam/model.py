@@ -59,8 +59,8 @@ class BeamModelBase:
     dim, PER_NODE, POINT_MASS = 0, 0, (0, "")
 
     def _setup(self, nodes, elements, sections, material: Material, shear: bool) -> np.ndarray:
-        """Check and set nodes, elements, material, shear and sections; returns the element
-        chords (n_e, dim) m."""
+        """Check and set nodes, elements, material, shear, sections and the element lengths
+        (m); returns the element chords (n_e, dim) m."""
         dim = self.dim
         self.nodes = np.asarray(nodes, dtype=float)
         shape = self.nodes.shape
@@ -78,12 +78,12 @@ class BeamModelBase:
         if len(secs) != len(self.elements) or not all(isinstance(s, Section) for s in secs):
             raise ValueError(f"sections: need one Section or {len(self.elements)} Sections")
         self.sections = secs
-        return self.nodes[self.elements[:, 1]] - self.nodes[self.elements[:, 0]]
-
-    def _check_lengths(self) -> None:
+        d = self.nodes[self.elements[:, 1]] - self.nodes[self.elements[:, 0]]
+        self.lengths = np.hypot(d[:, 0], d[:, 1]) if dim == 2 else np.linalg.norm(d, axis=1)
         if np.any(self.lengths <= 0):
             bad = np.flatnonzero(self.lengths <= 0).tolist()
             raise ValueError(f"elements {bad} have zero length")
+        return d
 
     def _links(self, rigid_links, point_masses) -> None:
         """Set and check the rigid links (master_of) and the point masses."""
@@ -179,8 +179,6 @@ class BeamModel(BeamModelBase):
         d = self._setup(nodes, elements, sections, material, shear)
         self.section_table = np.array([s.planar_row for s in self.sections],
                                       dtype=float).reshape(-1, PLANAR_COLUMNS)
-        self.lengths = np.hypot(d[:, 0], d[:, 1])
-        self._check_lengths()
         self.angles = np.arctan2(d[:, 1], d[:, 0])
         self._links(rigid_links, point_masses)
         self.superelements = tuple(superelements)

@@ -82,8 +82,6 @@ class Beam3DModel(BeamModelBase):
         d = self._setup(nodes, elements, sections, material, shear)
         if any(s.Iy is None or s.J is None for s in self.sections):
             raise ValueError("sections: a spatial model needs Iy and J on every Section")
-        self.lengths = np.linalg.norm(d, axis=1)
-        self._check_lengths()
         self.frames = element_frames(self.nodes, self.elements, orientation)
         self._links(rigid_links, point_masses)
         self._groups(groups)
