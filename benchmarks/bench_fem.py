@@ -376,7 +376,8 @@ def table(rows: list[dict]) -> str:
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--sizes", choices=["small", "all"], default="all")
-    parser.add_argument("--rows", nargs="*", choices=list(ROWS), help="run only these rows")
+    parser.add_argument("--rows", nargs="*", choices=list(ROWS) + SOLID_ROWS + SMALL_SOLIDS,
+                        help="run only these rows (of the suite)")
     parser.add_argument("--threads", type=int, default=2, help="ccx OpenMP/solver threads")
     parser.add_argument("--timeout", type=float, default=600.0, help="per program and row, s")
     parser.add_argument("--skip-ccx", nargs="*", default=[],
@@ -425,10 +426,14 @@ def main(argv=None) -> int:
         return 0
     python = sys.executable
     if args.suite == "solids":
-        rows = SMALL_SOLIDS if args.sizes == "small" else SOLID_ROWS
+        rows = args.rows or (SMALL_SOLIDS if args.sizes == "small" else SOLID_ROWS)
+        if set(rows) - set(SOLID_ROWS + SMALL_SOLIDS):
+            parser.error(f"--suite solids: rows are {', '.join(SOLID_ROWS + SMALL_SOLIDS)}")
         print(solid_table(run_solids(rows, args, python)))
         return 0
     rows = args.rows or (SMALL if args.sizes == "small" else list(ROWS))
+    if set(rows) - set(ROWS):
+        parser.error(f"--suite cantilever: rows are {', '.join(ROWS)}")
     if args.install == "default":
         rows = args.rows or DEFAULT_INSTALL_ROWS
         python = default_install(args.venv)
