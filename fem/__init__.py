@@ -40,11 +40,12 @@ if TYPE_CHECKING:  # what a reader and a type checker see; imported on first use
     from .rigid_face import RigidFace
     from .static import StaticResult, UnderConstrainedError
     from .buckling import Buckling
-    from .compliance import Compliance
-    from .harmonic import FRF, HarmonicResult, Rayleigh
+    from .compliance_result import Compliance
+    from .frequency_response import FRF, Rayleigh
+    from .harmonic import HarmonicResult
     from .analyses import (compliance_matrix, solve_buckling, solve_harmonic,
                            solve_incremental_buckling, solve_modes, solve_nonlinear, solve_static)
-    from .stability import StateBuckling
+    from .state_buckling import StateBuckling
     from .beam import BeamGroup, BeamModel
     from .springs import ground_spring, group_spring
     from .stress import nonlinear_stress, nonlinear_stress_at
@@ -60,11 +61,11 @@ _EXPORTS = {  # name: the module that defines it
     "Model": "model", "PlaneStrain": "model", "PlaneStress": "model", "Solid3D": "model",
     "von_mises": "model", "NonConvergenceError": "nonlinear", "NonlinearResult": "nonlinear",
     "RigidFace": "rigid_face", "StaticResult": "static", "UnderConstrainedError": "static",
-    "Buckling": "buckling", "Compliance": "compliance", "FRF": "harmonic",
-    "HarmonicResult": "harmonic", "Rayleigh": "harmonic", "compliance_matrix": "analyses",
+    "Buckling": "buckling", "Compliance": "compliance_result", "FRF": "frequency_response",
+    "HarmonicResult": "harmonic", "Rayleigh": "frequency_response", "compliance_matrix": "analyses",
     "solve_buckling": "analyses", "solve_harmonic": "analyses",
     "solve_incremental_buckling": "analyses", "solve_modes": "analyses",
-    "solve_nonlinear": "analyses", "solve_static": "analyses", "StateBuckling": "stability",
+    "solve_nonlinear": "analyses", "solve_static": "analyses", "StateBuckling": "state_buckling",
     "BeamGroup": "beam", "BeamModel": "beam", "ground_spring": "springs",
     "group_spring": "springs", "nonlinear_stress": "stress", "nonlinear_stress_at": "stress",
 }

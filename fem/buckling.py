@@ -21,8 +21,8 @@ from .factor import factor
 from .boundary import constrained_dofs, load_vector
 from .hyperelastic import geometric_stiffness
 from .model import Model, scalar_element
-from .stability import (StateBuckling, count_negative_eigenvalues, state_displacement,
-                        tangent_stiffness)
+from .stability import count_negative_eigenvalues, state_displacement, tangent_stiffness
+from .state_buckling import StateBuckling
 from .static import StaticResult, solve_static, vertex_displacement
 
 

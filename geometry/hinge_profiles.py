@@ -13,8 +13,6 @@ the profile's ``half_height`` on either side of its centre line.
 import math
 import numbers
 
-from ..fem.gmsh_session import gmsh_session
-from ..fem.mesh import mesh_from_gmsh
 
 HINGE_PROFILES = ("leaf", "filleted", "circular")
 ARC_ELEMENTS = 36  # mesh: element edges per full circle on the arcs (gmsh's curvature sizing)
@@ -124,7 +122,8 @@ def mesh_hinge_specimen(l: float, b: float, profile: str = "leaf",
     in the hinge's core l x b, growing to H / 4 (both times size_factor). Groups: 'body',
     'hinges' (cells), 'fixed' (left end), 'tip' (right end), 'top' and 'bottom' (the right
     block's faces y = +-H/2)."""
-
+    from ..fem.gmsh_session import gmsh_session  # meshing only here: the profiles stay light
+    from ..fem.mesh import mesh_from_gmsh
     check_hinge_profile(profile, fillet_radius, "mesh_hinge_specimen")
     for name, value in (("l", l), ("b", b), ("block_length", block_length),
                         ("size_factor", size_factor)):

@@ -44,13 +44,10 @@ import math
 import numpy as np
 
 from ..data import shared_toml
-from ..fem import Fixed, Material, Model, PlaneStress, RigidFace, solve_static
 from ..fem.beam import BeamModel, Section, beam_chain
 from ..fem.beam.supports import NodeFixed as BeamFixed
 from ..fem.beam.compliance import compliance as beam_compliance
-from ..fem.compliance import compliance_matrix
-from ..fem.gmsh_session import gmsh_session
-from ..fem.mesh import mesh_from_gmsh
+from ..fem.materials import Material
 from .layout import profile_beam
 from ..geometry.hinge_profiles import ARC_ELEMENTS, add_hinge_surface, check_hinge_profile, profile_thickness
 
@@ -302,6 +299,8 @@ def _fit(thickness, l: float, breaks, nu: float, outline, neck, neck_elements: i
     ``thickness`` (m) with the stubs as beams; K_t at the section ``neck`` (m from the start;
     None: NaN). The beam's compliance is linear in each factor's inverse, which four solves
     separate (the notch's bending, shear and axial parts and the rest)."""
+    from ..fem import Fixed, Model, PlaneStress  # the continuum only where a patch is solved
+    from ..fem.compliance import compliance_matrix
     w = 1e-3
     b = float(thickness(neck if neck is not None else l / 2))
     h0, h1 = float(thickness(0.0)), float(thickness(l))
@@ -350,6 +349,7 @@ def _fit(thickness, l: float, breaks, nu: float, outline, neck, neck_elements: i
 def _neck_stress(patch, x: float, b: float, moment: float = 0.0, force=(0.0, 0.0)) -> float:
     """Largest von Mises stress (Pa) at the surface points (x, +-b / 2) of the neck under the
     tip face's ``moment`` (N m) or ``force`` (N), the root clamped."""
+    from ..fem import Fixed, RigidFace, solve_static
     res = solve_static(patch, [Fixed("root")], [],
                        rigid_faces=[RigidFace("tip", moment=moment, force=force)])
     y = 0.5 * b * (1 - 1e-6)
@@ -365,6 +365,8 @@ def _patch_mesh(drawn, l: float, span, thickness, neck, b: float, neck_elements:
     clipped to the notch), down to b / (NECK_REFINEMENT neck_elements) at the neck's surface
     points (``neck``, +-b / 2; none if None; b its thickness, m); boundary groups 'root' (x =
     x0) and 'tip' (x = x1). ``arcs``: the outline's curves are arcs (curvature sizing on)."""
+    from ..fem.gmsh_session import gmsh_session
+    from ..fem.mesh import mesh_from_gmsh
     fine = b / (NECK_REFINEMENT * neck_elements)
     xs = np.linspace(0.0, l, PROFILE_SAMPLES)
     ts = np.asarray(thickness(xs), dtype=float)  # the size follows these (gmsh asks often)

@@ -25,8 +25,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..boundary import Fixed, Force, Prescribed
-from ..compliance import Compliance, moved_compliance, rotation_frame
-from ..harmonic import FRF, check_frequencies, damping_ratios
+from ..compliance_result import Compliance, moved_compliance, rotation_frame
+from ..frequency_response import FRF, check_frequencies, damping_ratios
 from ..rigid_face_input import RigidFace
 from .compliance import compliance, shared_compliance
 from .modal import BeamModes, solve_beam_modes

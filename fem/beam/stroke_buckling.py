@@ -29,7 +29,7 @@ from .spatial.corotational import local_deformations
 from .spatial.element import to_global
 from .spatial.static import linear_solution
 from .supports import NodePrescribed
-from ..stability import StateBuckling
+from ..state_buckling import StateBuckling
 
 STEP = 1e-6  # the central differences' step: the largest motion, over the model's size
 

@@ -18,7 +18,6 @@ import numpy as np
 
 from ...fem.beam.face import group as beam_group
 from ...fem.beam.face import group as beam3d_group
-from ...fem.static_result import group_basis
 
 _AXES = ("x", "y", "z")
 _WORD = re.compile(r"\W")
@@ -26,6 +25,7 @@ _WORD = re.compile(r"\W")
 
 def _points(model, u, group, basis=None):
     """(X (dim, n), U (dim, n), w (n,)) at the quadrature points of the group."""
+    from ...fem.static_result import group_basis  # the continuum's: a beam run goes without
     basis = basis or group_basis(model, group)
     x = np.asarray(basis.global_coordinates())
     uh = np.asarray(basis.interpolate(u))
@@ -104,6 +104,7 @@ def observe_steps(path, groups) -> list:
     NonlinearResult or the beam model's BeamPath), step 0 (no load) included."""
     if hasattr(path, "step"):
         return [observe_beam(path.step(k), groups) for k in range(len(path.load_factors))]
+    from ...fem.static_result import group_basis
     bases = {g: group_basis(path.model, g) for g in groups}
     return [observe_continuum(path.model, u, groups, True, bases) for u in path.u]
 
