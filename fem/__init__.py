@@ -62,7 +62,8 @@ _EXPORTS = {  # name: the module that defines it
     "von_mises": "model", "NonConvergenceError": "nonlinear", "NonlinearResult": "nonlinear",
     "RigidFace": "rigid_face", "StaticResult": "static", "UnderConstrainedError": "static",
     "Buckling": "buckling", "Compliance": "compliance_result", "FRF": "frequency_response",
-    "HarmonicResult": "harmonic", "Rayleigh": "frequency_response", "compliance_matrix": "analyses",
+    "HarmonicResult": "harmonic", "Rayleigh": "frequency_response",
+    "compliance_matrix": "analyses",
     "solve_buckling": "analyses", "solve_harmonic": "analyses",
     "solve_incremental_buckling": "analyses", "solve_modes": "analyses",
     "solve_nonlinear": "analyses", "solve_static": "analyses", "StateBuckling": "state_buckling",
@@ -70,15 +71,6 @@ _EXPORTS = {  # name: the module that defines it
     "group_spring": "springs", "nonlinear_stress": "stress", "nonlinear_stress_at": "stress",
 }
 
-__all__ = [
-    "BodyForce", "FEMesh", "Fixed", "Force", "Gravity", "Material", "Model", "Modes",
-    "NonConvergenceError", "NonlinearResult", "PlaneStrain", "PlaneStress", "PointForce", "Pressure",
-    "Prescribed", "RigidFace", "SingularStiffness", "SingularSystemError", "Solid3D", "StaticResult", "Traction",
-    "UnderConstrainedError", "drop_unused_vertices", "facets_where", "gmsh_session", "material", "material_names",
-    "mesh_from_gmsh", "nonlinear_stress", "nonlinear_stress_at", "read_mesh", "solve_modes", "solve_nonlinear", "solve_static",
-    "von_mises", "write_mesh", "write_result",
-    "Buckling", "Compliance", "FRF", "HarmonicResult", "Rayleigh", "compliance_matrix",
-    "solve_buckling", "solve_harmonic", "solve_incremental_buckling", "StateBuckling", "group_spring", "ground_spring", "BeamGroup", "BeamModel",
-]
+__all__ = sorted([*_EXPORTS, "gmsh_session"])
 
 __getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)
