@@ -55,8 +55,11 @@ def write_session_step(gmsh, path) -> Path:
     (geometry/spatial/export.py) share."""
     gmsh.model.occ.synchronize()
     gmsh.option.setString("Geometry.OCCTargetUnit", "M")  # the model's unit: metres
-    with _quiet_stdout():
-        gmsh.write(str(path))
+    try:
+        with _quiet_stdout():
+            gmsh.write(str(path))
+    except Exception as error:  # gmsh raises a bare Exception with its last error
+        raise OSError(f"{path}: the STEP file could not be written ({error})") from None
     return Path(path)
 
 

@@ -107,3 +107,11 @@ def test_an_elliptical_notch_is_written_close_to_its_ellipse(tmp_path):
         gmsh.model.occ.synchronize()
         written = sum(gmsh.model.occ.getMass(*f) for f in gmsh.model.getEntities(2))
     assert written == pytest.approx(area(mechanism), rel=1e-7)
+
+
+@pytest.mark.parametrize("name", ["out.step", "out.dxf"])
+def test_a_folder_that_is_not_there_is_one_line_naming_the_file(tmp_path, capsys, name):
+    target = tmp_path / "no_such_folder" / name
+    assert main(["export", str(GUIDE), str(target)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("flexfem export: error:") and name in err[0]
