@@ -42,25 +42,17 @@ def solve_static(model: Model, supports, loads, solver: str = "auto",
         chosen, why = solver_choice(
             len(I), model.dim, solver,
             lambda: linsolve.block_to_factorize(K, I, "spd", upper=True))
-        if chosen == "amg" and model.order > 1:
-            # quadratic elements: p-multigrid CG, AMG on the P1 level (fem/pmultigrid.py)
-            u[I], iterative = solve_pmg(model, K, I, rhs)
-            linsolve.check_solution(K_II, u[I], rhs, rtol=1e-6)
-            chosen, why = "pmg-cg", f"{why}; {iterative['iterations']} CG iterations"
-        elif chosen == "amg":
-            with factor(linsolve.block_to_factorize(K, I, "general", upper=True), "spd",
-                        "amg-cg", near_null_space=rigid_body_dof_modes(model)[I]) as F:
-                u[I] = F.solve(rhs)
-            linsolve.check_solution(K_II, u[I], rhs, rtol=1e-6)
-            chosen = "amg-cg"
+        if chosen == "amg":
+            u[I], chosen, why = _iterative(model, K, I, K_II, rhs, why)
         else:
-            # K_II is symmetric positive definite once check_supports has passed: Cholesky,
-            # on K's own arrays (no copy of the block)
-            with BlockFactorization(K, I, "spd") as F:
-                u[I] = linsolve.refine_and_check(K_II, rhs, F.solve, rtol=1e-6)
-                chosen = F.backend
-                if chosen == "mkl-pardiso-ooc" and why == "asked for":
-                    why = f"asked for; {factor_plan(*F.memory)[1]}"
+            try:
+                u[I], chosen, why = _direct(K, I, K_II, rhs, why)
+            except MemoryError as error:
+                if solver != "auto":
+                    raise
+                u[I], chosen, why = _iterative(
+                    model, K, I, K_II, rhs, f"{why}; but the direct factorization ran out "
+                    f"of memory ({error}), so the iterative path")
 
     Ku = symmetric_matvec(K, u)
     residual = Ku - f
@@ -80,3 +72,27 @@ def solve_static(model: Model, supports, loads, solver: str = "auto",
         solver=chosen, info={"n_dofs": model.n_dofs, "n_constrained": len(D),
                              "solver_choice": why},
         nodal_stress_full=np.moveaxis(nodal, 2, 0))
+
+
+def _iterative(model, K, I, K_II, rhs, why: str) -> tuple:
+    """(u_I, solver, why) by the iterative path: p-multigrid CG on quadratic elements (AMG on
+    the P1 level, fem/pmultigrid.py), AMG-CG on linear ones."""
+    if model.order > 1:
+        u_I, iterative = solve_pmg(model, K, I, rhs)
+        linsolve.check_solution(K_II, u_I, rhs, rtol=1e-6)
+        return u_I, "pmg-cg", f"{why}; {iterative['iterations']} CG iterations"
+    with factor(linsolve.block_to_factorize(K, I, "general", upper=True), "spd",
+                "amg-cg", near_null_space=rigid_body_dof_modes(model)[I]) as F:
+        u_I = F.solve(rhs)
+    linsolve.check_solution(K_II, u_I, rhs, rtol=1e-6)
+    return u_I, "amg-cg", why
+
+
+def _direct(K, I, K_II, rhs, why: str) -> tuple:
+    """(u_I, backend, why) by the direct factorization: K_II is symmetric positive definite
+    once check_supports has passed (Cholesky, on K's own arrays: no copy of the block)."""
+    with BlockFactorization(K, I, "spd") as F:
+        u_I = linsolve.refine_and_check(K_II, rhs, F.solve, rtol=1e-6)
+        if F.backend == "mkl-pardiso-ooc" and why == "asked for":
+            why = f"asked for; {factor_plan(*F.memory)[1]}"
+        return u_I, F.backend, why

@@ -80,3 +80,24 @@ def test_auto_goes_out_of_core_where_only_the_working_set_fits(solid, monkeypatc
     direct = _solve(solid)
     assert direct.solver == "mkl-pardiso"
     assert np.abs(ooc_result.u - direct.u).max() <= 1e-10 * np.abs(direct.u).max()
+
+
+def test_auto_takes_the_iterative_path_where_the_factorization_runs_out_of_memory(solid,
+                                                                                monkeypatch):
+    """A direct factorization that fails for memory (PARDISO's error -2, MemoryError) is
+    retried by the iterative path under 'auto', and says so; a solver asked for by name
+    keeps its error."""
+    from flexfem.fem import static
+
+    direct = _solve(solid)
+
+    def out_of_memory(*args, **kwargs):
+        raise MemoryError("PARDISO error -2: not enough memory")
+
+    monkeypatch.setattr(static, "BlockFactorization", out_of_memory)
+    result = _solve(solid)
+    assert result.solver == "pmg-cg" and "ran out of memory" in result.info["solver_choice"]
+    assert np.abs(result.u - direct.u).max() <= 1e-5 * np.abs(direct.u).max()
+    with pytest.raises(MemoryError):
+        solve_static(solid, [Fixed("fixed")], [Force("tip", (0.0, -10.0, 0.0))],
+                     solver="direct")
