@@ -50,24 +50,16 @@ class Beam3DModel(BeamModelBase):
     ----------
     nodes : array_like, shape (n, 3)
         Node coordinates (m).
-    elements : array_like, shape (n_e, 2)
-        The two node indices of each element.
+    elements, material, rigid_links, groups, shear
+        As the planar :class:`~flexfem.fem.beam.model.BeamModel`'s.
     sections : Section or sequence of Section
-        One section for every element, or one per element; each needs ``Iy`` and ``J``
+        One for every element, or one per element; each needs ``Iy`` and ``J``
         (``Section.rect`` gives them).
-    material : Material
-        The elastic material (E, nu in Pa and -, rho in kg/m^3).
     orientation : array_like, optional
         The reference for each element's local z axis, (3,) or (n_e, 3) (see
         :func:`element_frames`; None: global z, or global y for an element along z).
-    rigid_links : sequence of RigidLink
-        Nodes that move rigidly with a master node (a body).
     point_masses : dict, optional
         {node: (mass kg, Jx, Jy, Jz kg m^2 about global axes through the node)}.
-    groups : dict, optional
-        {name: BeamGroup or node indices}: the places supports and loads name.
-    shear : bool
-        Timoshenko shear deformation where a section has shear areas (default off).
 
     Raises
     ------
