@@ -309,7 +309,7 @@ def load_vector(model, loads) -> np.ndarray:
                 f[dofs[node]] += load.vector[i]
         elif isinstance(load, (BodyForce, Gravity)):
             if isinstance(load, Gravity):
-                vector = model.material.rho * np.array(load.acceleration)
+                vector = model.material.density * np.array(load.acceleration)
             else:
                 vector = np.array(load.vector)
             _check_dim(vector, model.dim, type(load).__name__)

@@ -92,7 +92,8 @@ def deck_lines(model: Model, supports, loads=(), n_modes: int | None = None) -> 
     mat = model.material
     lines = inp_lines(am, heading=f"flexfem model: {am.element_type}, {mat.name}")
     lines += ["*MATERIAL, NAME=MAT", "*ELASTIC", f"{_number(mat.E)}, {_number(mat.nu)}",
-              "*DENSITY", _number(mat.rho), "*SOLID SECTION, ELSET=EALL, MATERIAL=MAT"]
+              *(("*DENSITY", _number(mat.rho)) if mat.rho is not None else ()),
+              "*SOLID SECTION, ELSET=EALL, MATERIAL=MAT"]
     if isinstance(model.formulation, PlaneStress):
         lines.append(_number(model.formulation.thickness))
     lines.append("*BOUNDARY")

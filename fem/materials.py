@@ -18,8 +18,9 @@ class Material:
         Young's modulus (Pa), > 0.
     nu : float
         Poisson's ratio (-), in (-1, 0.5).
-    rho : float
-        Density (kg/m^3), > 0.
+    rho : float or None
+        Density (kg/m^3), > 0; None: unknown, for static analyses (masses and
+        frequencies need it: :attr:`density` says so).
     yield_strength : float
         The stress at which the design fails (Pa; the fracture strength of a brittle
         material); math.inf where unknown.
@@ -44,7 +45,7 @@ class Material:
     name: str
     E: float
     nu: float
-    rho: float
+    rho: float | None
     yield_strength: float = math.inf
     source: str = "user-defined"
     ultimate_strength: float = math.inf
@@ -55,8 +56,9 @@ class Material:
     def __post_init__(self):
         owner = f"material {self.name!r}"
         checked = {"E": checks.positive("E", self.E, owner=owner, unit="Pa"),
-                   "nu": checks.in_range("nu", self.nu, (-1.0, 0.5), owner=owner, closed=False),
-                   "rho": checks.positive("rho", self.rho, owner=owner, unit="kg/m^3")}
+                   "nu": checks.in_range("nu", self.nu, (-1.0, 0.5), owner=owner, closed=False)}
+        if self.rho is not None:
+            checked["rho"] = checks.positive("rho", self.rho, owner=owner, unit="kg/m^3")
         for name in ("yield_strength", "ultimate_strength"):
             value = getattr(self, name)
             if not (checks.is_real(value) and value > 0):
@@ -74,6 +76,21 @@ class Material:
             checked["fatigue_cycles"] = float(self.fatigue_cycles)
         for name, value in checked.items():
             object.__setattr__(self, name, value)
+
+    @property
+    def density(self) -> float:
+        """rho (kg/m^3); a ValueError naming the material where it has none (a mass matrix,
+        a frequency, an inertia needs it)."""
+        if self.rho is None:
+            raise ValueError(f"material {self.name!r} has no density: masses and frequencies "
+                             "need rho (kg/m^3)")
+        return self.rho
+
+    @property
+    def density_or_nan(self) -> float:
+        """rho (kg/m^3), NaN where unknown: for the masses a model is built with and may
+        never use (its modal and weight solvers ask :attr:`density`, which refuses)."""
+        return math.nan if self.rho is None else self.rho
 
     @property
     def lame(self) -> tuple[float, float]:

@@ -191,7 +191,7 @@ class Model:
         skfem's BilinearForm rho t u.v)."""
         M = symmetric.upper(assembly.consistent_mass(
             self.mesh.mesh, scalar_element(self.mesh.mesh, self.order), self.quadrature,
-            self.node_pattern, self.dim, self.material.rho * self.thickness))
+            self.node_pattern, self.dim, self.material.density * self.thickness))
         memory.release_freed()
         return M
 

@@ -263,7 +263,7 @@ def layout_beam_model(layout, material, out_of_plane: float, fillet_radius: floa
     nodes = [mesh.nodes]
     masters, masses, slaves, n = {}, {}, {}, len(mesh.nodes)
     for link in layout.links:
-        m, centroid, J = link_inertia(layout.parts, link, out_of_plane, material.rho)
+        m, centroid, J = link_inertia(layout.parts, link, out_of_plane, material.density_or_nan)
         anchored = link in (anchors or {}) and centroid is not None
         point = np.asarray(anchors[link] if anchored else centroid, float)
         masters[link], slaves[link] = n, []

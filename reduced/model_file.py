@@ -298,7 +298,9 @@ def beam_model(spec) -> tuple:
         first = _master_group(body, supported)
         master = named[first] if first is not None else slaves[0]
         if body.blocks:
-            m, c, J = _body_mass(body, spec.material.rho * spec.thickness)
+            m, c, J = _body_mass(body, 1.0)  # per kg/m^2: its centroid needs no density
+            rho_t = spec.material.density_or_nan * spec.thickness
+            m, J = rho_t * m, rho_t * J
             centre = nodes.at(c, among=set(slaves) | set(named.values()))
             masses[centre] = (masses.get(centre, (0, 0))[0] + m,
                               masses.get(centre, (0, 0))[1] + J)

@@ -229,7 +229,7 @@ def local_mass(model) -> np.ndarray:
 
 
 def _local_mass(model) -> np.ndarray:
-    L, rho = model.lengths, model.material.rho
+    L, rho = model.lengths, model.material.density
     phi = shear_parameter(model)
     A, I, _ = sections(model, XI)
     Nw, Np = shape_values(XI, L, phi)

@@ -8,7 +8,7 @@ import math
 
 from ..mechanism import Body, Leaf, Mechanism, Notch
 from .expressions import evaluate_expression, is_number
-from .tables import (Locator, check_keys, parse_analysis, parse_loads, parse_material, parse_mesh,
+from .tables import (Locator, check_density, check_keys, parse_analysis, parse_loads, parse_material, parse_mesh,
                      parse_supports)
 
 BODY_KEYS = ("name", "box", "polygon")
@@ -228,4 +228,5 @@ def mechanism_parts(raw: dict, loc: Locator, section, supports, loads, dim: int,
     if not parts["supports"]:
         raise loc.error("the mechanism has no support: hold a body with [[supports]] group = "
                         "'NAME'", None)
+    check_density(parts, loc)
     return parts

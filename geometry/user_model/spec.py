@@ -16,9 +16,9 @@ from .outputs_table import parse_outputs
 from .points_table import parse_points
 from .quantities import with_si_units
 from .geometry import CAD_SUFFIXES, GEO_SUFFIXES, SUFFIXES, inspect_geometry
-from .tables import (Analysis, LoadSpec, Locator, MeshOptions, SectionSpec, SupportSpec, is_number,
-                     parse_analysis, parse_loads, parse_material, parse_mesh, parse_section,
-                     parse_selects, parse_supports)
+from .tables import (Analysis, LoadSpec, Locator, MeshOptions, SectionSpec, SupportSpec,
+                     check_density, is_number, parse_analysis, parse_loads, parse_material,
+                     parse_mesh, parse_section, parse_selects, parse_supports)
 
 TOP_KEYS = ("geometry", "dim", "description", "parameters", "material", "section", "mesh",
             "supports", "loads", "select", "analysis", "beam", "rigid", "beam_model", "body",
@@ -359,6 +359,7 @@ def load_spec(path, overrides: dict | None = None, allow_code: bool = False,
         "selects": parse_selects(raw.get("select", []), loc),
         "analysis": parse_analysis(raw.get("analysis", {}), loc),
     }
+    check_density(parts, loc)
     if parts["selects"] and geometry.suffix.lower() not in CAD_SUFFIXES:
         raise loc.error("[[select]] rules are for CAD files (.step/.stp/.brep); "
                         f"{geometry.name} names its own groups", "select")

@@ -165,9 +165,9 @@ def positive(raw: dict, key: str, loc: Locator, table, index: int = 0, what=None
 
 
 def parse_material(raw, loc: Locator) -> Material:
-    """A library material by ``name`` (keys given override it) or E, nu, rho
-    (yield_strength, ultimate_strength, fatigue_strength with fatigue_cycles optional), Pa
-    and kg/m^3."""
+    """A library material by ``name`` (keys given override it) or E and nu (rho,
+    yield_strength, ultimate_strength, fatigue_strength with fatigue_cycles optional), Pa
+    and kg/m^3. Without rho the material serves static analyses (:func:`check_density`)."""
     keys = ("name", "E", "nu", "rho", "yield_strength", "ultimate_strength",
             "fatigue_strength", "fatigue_cycles")
     raw = dict(check_keys(raw, keys, loc, "material"))
@@ -183,15 +183,15 @@ def parse_material(raw, loc: Locator) -> Material:
         values["fatigue_source"] = (material(name).fatigue_source if not set(raw) & {
             "fatigue_strength", "fatigue_cycles"} else f"model file {loc.path}")
     else:
-        missing = [k for k in ("E", "nu", "rho") if k not in raw]
+        missing = [k for k in ("E", "nu") if k not in raw]
         if missing:
             known = ", ".join(material_names())
-            msg = (f"[material] name = {name!r} is not in the library ({known}); give E, nu and "
-                   f"rho (missing: {', '.join(missing)})" if name is not None else
-                   f"[material] needs a library name ({known}) or E, nu and rho (missing: "
-                   f"{', '.join(missing)})")
+            msg = (f"[material] name = {name!r} is not in the library ({known}); give E and nu "
+                   f"(rho for frequencies; missing: {', '.join(missing)})" if name is not None
+                   else f"[material] needs a library name ({known}) or E and nu (rho for "
+                   f"frequencies; missing: {', '.join(missing)})")
             raise loc.error(msg, "material", "name" if name is not None else None)
-        values, source = dict(raw), f"model file {loc.path}"
+        values, source = {"rho": None, **raw}, f"model file {loc.path}"
         if "fatigue_strength" in raw:
             values["fatigue_source"] = source
     for key, (low, high, unit) in PHYSICAL.items():
@@ -203,6 +203,18 @@ def parse_material(raw, loc: Locator) -> Material:
         return Material(name=name or "user", source=source, **values)
     except ValueError as error:
         raise loc.error(f"[material]: {error}", "material") from None
+
+
+def check_density(parts: dict, loc: Locator) -> None:
+    """Refuse, before anything is solved, an [analysis] that needs masses (modes, harmonic)
+    of a [material] without rho."""
+    analysis = parts["analysis"]
+    asked = [name for name, on in (("modes", analysis.modes),
+                                   ("harmonic", analysis.harmonic)) if on]
+    if asked and parts["material"].rho is None:
+        raise loc.error(f"[analysis] {' and '.join(asked)} need{'s' * (len(asked) == 1)} the "
+                        "material's density: add rho "
+                        "(kg/m^3) to [material]", "material")
 
 
 def parse_section(raw, dim: int, loc: Locator) -> SectionSpec:

@@ -123,8 +123,8 @@ def beam_model(mechanism: SpatialMechanism, material, elements: int = ELEMENTS,
         orientation += [np.asarray(z, float)] * elements
     masses = {}
     for k, p in enumerate(props):
-        j = np.diag(p.inertia(material.rho))
-        masses[k] = (p.mass(material.rho), *(float(v) for v in j))
+        j = np.diag(p.inertia(material.density_or_nan))
+        masses[k] = (p.mass(material.density_or_nan), *(float(v) for v in j))
     model = Beam3DModel(np.array(nodes), np.array(chain), sections, material,
                         orientation=np.array(orientation),
                         rigid_links=[RigidLink(masters[n], tuple(s)) for n, s in slaves.items()],

@@ -58,7 +58,7 @@ def spatial_model(spec, planar):
     masses = {}
     for node, _ in planar.point_masses.items():
         for body in mechanism.bodies:
-            m, c, j = _box_inertias(body, spec.material.rho, mechanism.depth)
+            m, c, j = _box_inertias(body, spec.material.density, mechanism.depth)
             if np.linalg.norm(planar.nodes[node] - c) <= 10 * tol:
                 masses[node] = (m, *j)
                 break

@@ -11,6 +11,7 @@ from meshes import beam_2d, beam_3d
 from flexfem.fem import (
     Fixed,
     Force,
+    Material,
     Model,
     PlaneStrain,
     PlaneStress,
@@ -83,6 +84,16 @@ def test_deck_has_the_calculix_cards(tet_model):
     cload = text.split("*CLOAD\n")[1].split("\n*")[0].splitlines()
     total = sum(float(line.split(",")[2]) for line in cload if line.split(",")[1].strip() == "2")
     assert total == pytest.approx(-1000.0, rel=1e-12)
+
+
+def test_a_material_without_density_has_no_density_card():
+    """E and nu only serve a static deck; its mass is refused by name."""
+    model = Model(beam_2d(1.0, 0.1, 0.05), Material("bare", 200e9, 0.3, None),
+                  PlaneStress(0.004), order=2)
+    text = "\n".join(deck_lines(model, SUPPORTS, [Force("tip", (0.0, -1.0))]))
+    assert "*ELASTIC" in text and "*DENSITY" not in text
+    with pytest.raises(ValueError, match="material 'bare' has no density"):
+        model.mass_upper
 
 
 def test_plane_stress_deck_carries_the_thickness(steel):

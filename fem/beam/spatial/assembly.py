@@ -37,6 +37,7 @@ def mass_matrix(model: Beam3DModel, u=None, R=None) -> sp.csr_matrix:
     """Consistent global mass matrix (kg, kg m, kg m^2), point masses included; at a
     configuration (u, R) the element masses turn with their co-rotated frames and the point
     masses' inertia with their nodes (default: undeformed)."""
+    _ = model.material.density  # its clear error where the material has none
     frames = model.frames
     if R is not None:
         frames = local_deformations(model, model.nodes + u, R)[1][2]

@@ -52,7 +52,7 @@ def local_matrices(model):
     s, mid, L = model.section_at(XI), model.section_at([0.5]), model.lengths
     shear = model.section_table()
     mat = model.material
-    E, rho = mat.E, mat.rho
+    E, rho = mat.E, mat.density_or_nan
     G = E / (2.0 * (1.0 + mat.nu))
     n = model.n_elements
     K, M = np.zeros((n, 12, 12)), np.zeros((n, 12, 12))

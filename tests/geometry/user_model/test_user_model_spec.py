@@ -102,7 +102,7 @@ def test_mesh_size_and_refinement(tmp_path):
     (('[[loads]]', '[extra]\na = 1\n[[loads]]'), ["line 17:", "unknown table 'extra'"]),
     (('name = "structural_steel"', 'name = "spring_steel"'),
      ["line 8:", "'spring_steel' is not in the library", "structural_steel",
-      "missing: E, nu, rho"]),
+      "missing: E, nu)"]),
     (('name = "structural_steel"', 'name = "structural_steel"\nnu = 0.7'), ["line 7:", "nu = 0.7"]),
     (('force = [1.0, 0.0]', 'pressure = 1e5'), ["line 19:", "pressure is not available yet"]),
     (('force = [1.0, 0.0]', 'force = [1.0, 0.0, 0.0]'), ["line 19:", "list of 2 numbers"]),
