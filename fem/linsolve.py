@@ -59,11 +59,19 @@ def _mkl_candidates() -> list:
     return [p for p in paths if p]
 
 
+#: PARDISO's 32-bit interface counts its factor's entries in 32-bit integers: a factor past
+#: 2^31 - 1 entries (16 GiB; a compact 3-D P2 solid of about 1M DOFs) fails with error -2.
+#: From this much factor memory (bytes, its analysis' permanent memory; a margin below the
+#: 16 GiB) the factorization is made by pardiso_64 instead, its integers all 64-bit.
+WIDE_FACTOR_BYTES = 0.75 * (2**31 - 1) * 8
+
+
 @functools.cache
-def _mkl_pardiso():
-    """MKL's ``pardiso`` entry point (ctypes), found once: the runtime library of the
-    installed ``mkl`` wheel (see :func:`_mkl_candidates`), else through pypardiso's search
-    (~0.8 s); None where neither is found."""
+def _mkl_pardiso(width: int = 32):
+    """MKL's ``pardiso`` (``width`` 32) or ``pardiso_64`` (64: every integer argument 64-bit)
+    entry point (ctypes), found once: the runtime library of the installed ``mkl`` wheel (see
+    :func:`_mkl_candidates`), else through pypardiso's search (~0.8 s); None where neither is
+    found."""
     library = None
     for path in _mkl_candidates():
         try:
@@ -78,30 +86,35 @@ def _mkl_pardiso():
         except Exception:  # not installed, or its library search failed
             return None
     try:
-        fn = library.pardiso
+        fn = library.pardiso if width == 32 else library.pardiso_64
     except AttributeError:
         return None
-    i32p, dp = ctypes.POINTER(ctypes.c_int32), ctypes.c_void_p
+    ip, dp = ctypes.POINTER(ctypes.c_int32 if width == 32 else ctypes.c_int64), ctypes.c_void_p
     # pt, maxfct, mnum, mtype, phase, n, a, ia, ja, perm, nrhs, iparm, msglvl, b, x, error
-    fn.argtypes = [ctypes.POINTER(ctypes.c_int64)] + [i32p] * 5 + [dp] * 4 + [i32p] * 3 \
-        + [dp] * 2 + [i32p]
+    fn.argtypes = [ctypes.POINTER(ctypes.c_int64)] + [ip] * 5 + [dp] * 4 + [ip] * 3 \
+        + [dp] * 2 + [ip]
     fn.restype = None
     return fn
 
 
 def pardiso_call(pt, mtype, phase, n, data, indptr, indices, iparm, b, x) -> None:
-    """One call of MKL's pardiso (zero-based CSR, iparm[34] = 1); raises on its error code."""
-    fn = _mkl_pardiso()
-    error = ctypes.c_int32(0)
-    one = ctypes.c_int32(1)
+    """One call of MKL's pardiso (zero-based CSR, iparm[34] = 1); raises on its error code.
+    An int64 ``iparm`` calls pardiso_64 (``indptr`` and ``indices`` int64 too)."""
+    width = 8 * iparm.dtype.itemsize
+    if indptr.dtype != iparm.dtype or indices.dtype != iparm.dtype:
+        raise TypeError(f"pardiso: indptr and indices must be int{width} like iparm")
+    fn = _mkl_pardiso(width)
+    integer = ctypes.c_int32 if width == 32 else ctypes.c_int64
+    error = integer(0)
+    one = integer(1)
     nrhs = 1 if b.ndim == 1 else b.shape[1]
     null = ctypes.c_void_p()
     fn(pt.ctypes.data_as(ctypes.POINTER(ctypes.c_int64)), ctypes.byref(one), ctypes.byref(one),
-       ctypes.byref(ctypes.c_int32(mtype)), ctypes.byref(ctypes.c_int32(phase)),
-       ctypes.byref(ctypes.c_int32(n)), data.ctypes.data_as(ctypes.c_void_p),
+       ctypes.byref(integer(mtype)), ctypes.byref(integer(phase)),
+       ctypes.byref(integer(n)), data.ctypes.data_as(ctypes.c_void_p),
        indptr.ctypes.data_as(ctypes.c_void_p), indices.ctypes.data_as(ctypes.c_void_p), null,
-       ctypes.byref(ctypes.c_int32(nrhs)), iparm.ctypes.data_as(ctypes.POINTER(ctypes.c_int32)),
-       ctypes.byref(ctypes.c_int32(0)), b.ctypes.data_as(ctypes.c_void_p),
+       ctypes.byref(integer(nrhs)), iparm.ctypes.data_as(ctypes.POINTER(integer)),
+       ctypes.byref(integer(0)), b.ctypes.data_as(ctypes.c_void_p),
        x.ctypes.data_as(ctypes.c_void_p), ctypes.byref(error))
     if error.value == -4 or error.value == -7:
         raise SingularStiffness(f"PARDISO: {_PARDISO_ERRORS[error.value]}; the model is "
@@ -118,7 +131,7 @@ def pardiso_release(pt, mtype, n, iparm, folder: str | None = None) -> None:
     ``iparm`` it was made with (the two-level factorization's release crashes on defaults),
     and remove the out-of-core ``folder`` (its factor files); idempotent."""
     if np.any(pt):
-        empty_i, empty_d = np.zeros(1, dtype=np.int32), np.zeros(1)
+        empty_i, empty_d = np.zeros(1, dtype=iparm.dtype), np.zeros(1)
         pardiso_call(pt, mtype, -1, n, empty_d, empty_i, empty_i, iparm, empty_d, empty_d.copy())
         pt[:] = 0
     if folder is not None:
@@ -218,16 +231,10 @@ class Factorization(LinearFactor):
             raise SingularStiffness("the matrix has an empty row: a DOF that nothing stiffens")
         self._data = np.ascontiguousarray(A.data, dtype=float)
         self.holds_matrix = True
-        self._indptr = A.indptr.astype(np.int32, copy=False)
-        self._indices = A.indices.astype(np.int32, copy=False)
-        self._iparm = pardiso_iparm(self.kind)
-        self._pt = np.zeros(64, dtype=np.int64)
-        memory.release_freed()  # before the factor, the largest allocation, is made
-        # release the MKL factor when this object goes away, even without free()
-        self._finalizer = weakref.finalize(self, pardiso_release, self._pt, self._mtype, self.n,
-                                          self._iparm)
-        self._call(11)  # the analysis: the ordering and the factor's size
-        self.memory = pardiso_memory(self._iparm)
+        self._analyse(A, np.int32)
+        if self._iparm[15] * 1024 > WIDE_FACTOR_BYTES:  # past the 32-bit interface's reach
+            self._finalizer()
+            self._analyse(A, np.int64)
         if analysis_only:
             return  # nothing to drop
         if out_of_core is None:
@@ -241,8 +248,22 @@ class Factorization(LinearFactor):
         # solves; with perturbed pivots they refine iteratively on the matrix
         if (not keep_matrix and self.kind == "spd" and self._iparm[13] == 0
                 and not _spd_solve_reads_matrix()):
-            self._data, self._indices = np.zeros(1), np.zeros(1, dtype=np.int32)
+            self._data, self._indices = np.zeros(1), np.zeros(1, dtype=self._indices.dtype)
             self.holds_matrix = False
+
+    def _analyse(self, A, integer) -> None:
+        """PARDISO's analysis (phase 11: the ordering and the factor's size, ``memory``) of
+        ``A`` through its ``integer`` (np.int32 or np.int64) interface."""
+        self._indptr = A.indptr.astype(integer, copy=False)
+        self._indices = A.indices.astype(integer, copy=False)
+        self._iparm = pardiso_iparm(self.kind).astype(integer)
+        self._pt = np.zeros(64, dtype=np.int64)
+        memory.release_freed()  # before the factor, the largest allocation, is made
+        # release the MKL factor when this object goes away, even without free()
+        self._finalizer = weakref.finalize(self, pardiso_release, self._pt, self._mtype, self.n,
+                                          self._iparm)
+        self._call(11)
+        self.memory = pardiso_memory(self._iparm)
 
     def _call(self, phase: int) -> None:
         """One PARDISO phase on this factorization; freed where it fails."""
