@@ -8,12 +8,8 @@ right-hand sides (the static solve, every Lanczos step of the modal solve), then
 (or use it as a context manager; it is also freed when the object is collected). PARDISO's
 factor lives in MKL's memory, outside Python's, and is released only by ``free()``.
 """
-import ctypes
 import functools
-import glob
 import os
-import shutil
-import sys
 import tempfile
 import weakref
 
@@ -26,6 +22,8 @@ from .amg import AmgFactor
 from .budget import FACTOR_SHARE, available_memory_bytes, factor_plan
 from .factor_protocol import (FLOOR_CAP, ROUNDOFF_FACTOR, LinearFactor,  # noqa: F401
                               SingularStiffness, check_solution, refine_and_check)  # interface
+from .pardiso import (WIDE_FACTOR_BYTES, mkl_pardiso, pardiso_call, pardiso_iparm, pardiso_memory,
+                      pardiso_release)
 from .restriction import Restriction  # noqa: F401 (part of this module's interface)
 from .symmetric import symmetric_from_upper
 
@@ -33,139 +31,8 @@ from .symmetric import symmetric_from_upper
 # symmetric indefinite (Bunch-Kaufman on the upper triangle), real non-symmetric (LU)
 MATRIX_KINDS = {"spd": 2, "symmetric": -2, "general": 11}
 
-_PARDISO_ERRORS = {-1: "input inconsistent", -2: "not enough memory", -3: "reordering problem",
-                   -4: "zero pivot (the matrix is singular, or not positive definite)",
-                   -5: "unclassified internal error", -6: "reordering failed",
-                   -7: "diagonal matrix is singular", -8: "32-bit integer overflow",
-                   -9: "not enough memory for the out-of-core solver",
-                   -10: "error opening out-of-core files", -11: "read/write error with OOC files"}
-
-
 #: the singular-matrix error of every factorisation (fem/factor.py), by its older name
 SingularSystemError = SingularStiffness
-
-
-def _mkl_candidates() -> list:
-    """Paths where a pip-installed MKL keeps its runtime library (the ``mkl`` wheel, a
-    dependency of flexfem on x86-64 Linux, Windows and Intel macOS): the environment's, then
-    the user site's; FLEXFEM_MKL_RT or PYPARDISO_MKL_RT name one explicitly."""
-    import site
-
-    paths = [os.environ.get("FLEXFEM_MKL_RT"), os.environ.get("PYPARDISO_MKL_RT")]
-    for base in dict.fromkeys([sys.prefix, sys.base_prefix, getattr(site, "USER_BASE", None)]):
-        if base:
-            paths += sorted(glob.glob(os.path.join(base, "lib", "libmkl_rt.*")))
-            paths += sorted(glob.glob(os.path.join(base, "Library", "bin", "mkl_rt*.dll")))
-    return [p for p in paths if p]
-
-
-#: PARDISO's 32-bit interface counts its factor's entries in 32-bit integers: a factor past
-#: 2^31 - 1 entries (16 GiB; a compact 3-D P2 solid of about 1M DOFs) fails with error -2.
-#: From this much factor memory (bytes, its analysis' permanent memory; a margin below the
-#: 16 GiB) the factorization is made by pardiso_64 instead, its integers all 64-bit.
-WIDE_FACTOR_BYTES = 0.75 * (2**31 - 1) * 8
-
-
-@functools.cache
-def _mkl_pardiso(width: int = 32):
-    """MKL's ``pardiso`` (``width`` 32) or ``pardiso_64`` (64: every integer argument 64-bit)
-    entry point (ctypes), found once: the runtime library of the installed ``mkl`` wheel (see
-    :func:`_mkl_candidates`), else through pypardiso's search (~0.8 s); None where neither is
-    found."""
-    library = None
-    for path in _mkl_candidates():
-        try:
-            library = ctypes.CDLL(path)
-            break
-        except OSError:
-            continue
-    if library is None:
-        try:
-            import pypardiso
-            library = pypardiso.PyPardisoSolver().libmkl
-        except Exception:  # not installed, or its library search failed
-            return None
-    try:
-        fn = library.pardiso if width == 32 else library.pardiso_64
-    except AttributeError:
-        return None
-    ip, dp = ctypes.POINTER(ctypes.c_int32 if width == 32 else ctypes.c_int64), ctypes.c_void_p
-    # pt, maxfct, mnum, mtype, phase, n, a, ia, ja, perm, nrhs, iparm, msglvl, b, x, error
-    fn.argtypes = [ctypes.POINTER(ctypes.c_int64)] + [ip] * 5 + [dp] * 4 + [ip] * 3 \
-        + [dp] * 2 + [ip]
-    fn.restype = None
-    return fn
-
-
-def pardiso_call(pt, mtype, phase, n, data, indptr, indices, iparm, b, x) -> None:
-    """One call of MKL's pardiso (zero-based CSR, iparm[34] = 1); raises on its error code.
-    An int64 ``iparm`` calls pardiso_64 (``indptr`` and ``indices`` int64 too)."""
-    width = 8 * iparm.dtype.itemsize
-    if indptr.dtype != iparm.dtype or indices.dtype != iparm.dtype:
-        raise TypeError(f"pardiso: indptr and indices must be int{width} like iparm")
-    fn = _mkl_pardiso(width)
-    integer = ctypes.c_int32 if width == 32 else ctypes.c_int64
-    error = integer(0)
-    one = integer(1)
-    nrhs = 1 if b.ndim == 1 else b.shape[1]
-    null = ctypes.c_void_p()
-    fn(pt.ctypes.data_as(ctypes.POINTER(ctypes.c_int64)), ctypes.byref(one), ctypes.byref(one),
-       ctypes.byref(integer(mtype)), ctypes.byref(integer(phase)),
-       ctypes.byref(integer(n)), data.ctypes.data_as(ctypes.c_void_p),
-       indptr.ctypes.data_as(ctypes.c_void_p), indices.ctypes.data_as(ctypes.c_void_p), null,
-       ctypes.byref(integer(nrhs)), iparm.ctypes.data_as(ctypes.POINTER(integer)),
-       ctypes.byref(integer(0)), b.ctypes.data_as(ctypes.c_void_p),
-       x.ctypes.data_as(ctypes.c_void_p), ctypes.byref(error))
-    if error.value == -4 or error.value == -7:
-        raise SingularStiffness(f"PARDISO: {_PARDISO_ERRORS[error.value]}; the model is "
-                                  "under-constrained, has disconnected parts or a mechanism")
-    if error.value in (-2, -9):
-        raise MemoryError(f"PARDISO error {error.value}: {_PARDISO_ERRORS[error.value]}")
-    if error.value != 0:
-        raise RuntimeError(f"PARDISO error {error.value}: "
-                           f"{_PARDISO_ERRORS.get(error.value, 'unknown')}")
-
-
-def pardiso_release(pt, mtype, n, iparm, folder: str | None = None) -> None:
-    """Release the factor that the handle ``pt`` holds in MKL (phase -1), with the
-    ``iparm`` it was made with (the two-level factorization's release crashes on defaults),
-    and remove the out-of-core ``folder`` (its factor files); idempotent."""
-    if np.any(pt):
-        empty_i, empty_d = np.zeros(1, dtype=iparm.dtype), np.zeros(1)
-        pardiso_call(pt, mtype, -1, n, empty_d, empty_i, empty_i, iparm, empty_d, empty_d.copy())
-        pt[:] = 0
-    if folder is not None:
-        shutil.rmtree(folder, ignore_errors=True)
-
-
-def pardiso_memory(iparm) -> tuple[int, int]:
-    """(in core, out of core): the peak memory (bytes) of PARDISO's factorization with the
-    factor in memory, max(symbolic, permanent + numerical), and with it on disk, max(symbolic,
-    permanent + the least out-of-core working set), from its analysis (MKL's iparm[14..16]
-    and iparm[62], KiB)."""
-    symbolic, permanent, numerical = (int(v) for v in iparm[14:17])
-    return (max(symbolic, permanent + numerical) * 1024,
-            max(symbolic, permanent + int(iparm[62])) * 1024)
-
-
-def pardiso_iparm(kind: str) -> np.ndarray:
-    """PARDISO's parameters (iparm, 64 int32) of flexfem's factorizations of ``kind``."""
-    iparm = np.zeros(64, dtype=np.int32)
-    iparm[0] = 1     # these values, not the defaults
-    iparm[1] = 3     # nested-dissection ordering (parallel METIS)
-    iparm[7] = 0     # no automatic iterative refinement (see solve_and_check)
-    iparm[9] = 13 if kind == "general" else 8  # pivot perturbation 1e-13 / 1e-8
-    iparm[10] = 1 if kind == "general" else 0  # scaling (non-symmetric only)
-    iparm[12] = 1 if kind == "general" else 0  # weighted matching (non-symmetric only)
-    iparm[34] = 1    # zero-based indices
-    # symmetric kinds: PARDISO groups rows of like pattern (the dim DOFs of a node) into
-    # variable-size blocks (VBSR, 80 % alike): the ordering works on the much smaller
-    # block graph, -25 % to -40 % CPU on 3-D P2 (docs/performance.md)
-    iparm[36] = 0 if kind == "general" else -80
-    # two-level factorization: the same factor and time on 2 cores, ~15 MiB less peak on a
-    # 3-D P2 K of 36k DOFs; out of core too (one-level VBSR met a false zero pivot there)
-    iparm[23] = 1
-    return iparm
 
 
 class Factorization(LinearFactor):
@@ -200,7 +67,7 @@ class Factorization(LinearFactor):
         self.holds_matrix = False  # whether the solves still read A's arrays (PARDISO)
         self.memory = None  # PARDISO's (in core, out of core) peaks, bytes
         self.backend = direct_backend(kind) if backend is None else backend
-        if self.backend == "mkl-pardiso" and _mkl_pardiso() is None:
+        if self.backend == "mkl-pardiso" and mkl_pardiso() is None:
             raise ValueError("backend 'mkl-pardiso': MKL's runtime library is not installed")
         if self.backend == "cholmod" and (kind != "spd" or _cholmod() is None):
             raise ValueError("backend 'cholmod': SPD matrices only, with scikit-sparse installed")
@@ -375,7 +242,7 @@ def direct_backend(kind: str = "spd") -> str:
     """The direct solver a factorization of ``kind`` uses here: 'mkl-pardiso' where MKL is
     installed (flexfem's default on x86-64), else 'cholmod' for SPD matrices where
     scikit-sparse is, else 'superlu' (SciPy's, single-threaded: ~16x slower on 3-D P2)."""
-    if _mkl_pardiso() is not None:
+    if mkl_pardiso() is not None:
         return "mkl-pardiso"
     if kind == "spd" and _cholmod() is not None:
         return "cholmod"

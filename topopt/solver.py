@@ -9,6 +9,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from ..fem import linsolve
+from ..fem.pardiso import pardiso_call, pardiso_release
 from ..fem.factor import LinearFactor, factor
 
 SPD = 2  # PARDISO's real symmetric positive definite matrix type
@@ -41,7 +42,7 @@ class PatternSolver(LinearFactor):
         self._analysed = False
         if self.backend == "mkl-pardiso":
             self._pt, self._iparm = np.zeros(64, dtype=np.int64), _iparm()
-            self._finalizer = weakref.finalize(self, linsolve.pardiso_release, self._pt, SPD,
+            self._finalizer = weakref.finalize(self, pardiso_release, self._pt, SPD,
                                                n, self._iparm)
 
     def factor(self, data: np.ndarray) -> None:
@@ -69,7 +70,7 @@ class PatternSolver(LinearFactor):
         return np.ascontiguousarray(x)
 
     def _call(self, phase: int, b, x) -> None:
-        linsolve.pardiso_call(self._pt, SPD, phase, self.n, self._data, self._indptr,
+        pardiso_call(self._pt, SPD, phase, self.n, self._data, self._indptr,
                                self._indices, self._iparm, b, x)
 
     def free(self) -> None:

@@ -8,8 +8,8 @@ import math
 
 from ..mechanism import Body, Leaf, Mechanism, Notch
 from .expressions import evaluate_expression, is_number
-from .tables import (Locator, check_density, check_keys, parse_analysis, parse_loads, parse_material, parse_mesh,
-                     parse_supports)
+from .material_table import check_density, parse_material
+from .tables import Locator, check_keys, parse_analysis, parse_loads, parse_mesh, parse_supports
 
 BODY_KEYS = ("name", "box", "polygon")
 FLEXURE_KEYS = {"leaf": ("kind", "name", "between", "from", "to", "thickness", "fillet"),

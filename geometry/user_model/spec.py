@@ -16,9 +16,10 @@ from .outputs_table import parse_outputs
 from .points_table import parse_points
 from .quantities import with_si_units
 from .geometry import CAD_SUFFIXES, GEO_SUFFIXES, SUFFIXES, inspect_geometry
+from .material_table import check_density, parse_material
 from .tables import (Analysis, LoadSpec, Locator, MeshOptions, SectionSpec, SupportSpec,
-                     check_density, is_number, parse_analysis, parse_loads, parse_material,
-                     parse_mesh, parse_section, parse_selects, parse_supports)
+                     is_number, parse_analysis, parse_loads, parse_mesh, parse_section,
+                     parse_selects, parse_supports)
 
 TOP_KEYS = ("geometry", "dim", "description", "parameters", "material", "section", "mesh",
             "supports", "loads", "select", "analysis", "beam", "rigid", "beam_model", "body",
@@ -383,12 +384,11 @@ def load_spec(path, overrides: dict | None = None, allow_code: bool = False,
     observable = {g for g, d in info.groups.items() if d in (dim - 1, dim)}
     outputs = parse_outputs(raw.get("outputs"), {**info.constants, **parameters}, observable,
                             dim, loc)
-    description = raw.get("description", "")
     beams = parse_beams(raw, {**info.constants, **parameters},
                         parts["section"].thickness if dim == 2 else None, loc)
     if beams is not None and dim != 2:
         raise loc.error("[[beam]]: the beam model is planar (dim = 2)", "beam")
     return ModelSpec(path=path, geometry=geometry, dim=dim, parameters=parameters,
                      groups=info.groups, constants=info.constants,
-                     description=str(description), beams=beams, allow_code=allow_code,
-                     outputs=outputs, **parts)
+                     description=str(raw.get("description", "")), beams=beams,
+                     allow_code=allow_code, outputs=outputs, **parts)

@@ -7,7 +7,7 @@ from flexfem.fem import linsolve
 from flexfem.fem.block_factor import BlockFactorization, decouple
 from flexfem.fem.symmetric import upper
 
-HAS_PARDISO = linsolve._mkl_pardiso() is not None
+HAS_PARDISO = linsolve.mkl_pardiso() is not None
 
 
 def _spd(n=80, seed=0):

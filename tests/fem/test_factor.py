@@ -11,7 +11,7 @@ from flexfem.fem.factor import BACKENDS, LinearFactor, factor
 
 def available(name: str) -> bool:
     if name == "mkl-pardiso":
-        return linsolve._mkl_pardiso() is not None
+        return linsolve.mkl_pardiso() is not None
     if name == "cholmod":
         return linsolve._cholmod() is not None
     return True

@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 import scipy.sparse as sp
 import skfem
+from flexfem.fem import pardiso
 from flexfem.fem.factor import factor
 from flexfem.fem import (
     FEMesh,
@@ -21,7 +22,7 @@ from flexfem.fem import (
     solve_static,
 )
 
-HAS_PARDISO = linsolve._mkl_pardiso() is not None
+HAS_PARDISO = linsolve.mkl_pardiso() is not None
 STEEL = Material("steel", E=200e9, nu=0.3, rho=7800.0)
 
 
@@ -38,7 +39,7 @@ def backend(request, monkeypatch):
     if request.param == "pardiso" and not HAS_PARDISO:
         pytest.skip("MKL (a default dependency on x86-64) not installed")
     if request.param == "fallback":
-        monkeypatch.setattr(linsolve, "_mkl_pardiso", lambda: None)
+        monkeypatch.setattr(linsolve, "mkl_pardiso", lambda: None)
     return request.param
 
 
@@ -169,10 +170,10 @@ def test_mkl_is_found_without_pypardiso(monkeypatch):
     in the environment directly."""
     import sys
     monkeypatch.setitem(sys.modules, "pypardiso", None)  # import pypardiso -> ImportError
-    linsolve._mkl_pardiso.cache_clear()
+    linsolve.mkl_pardiso.cache_clear()
     try:
-        assert any("mkl_rt" in p for p in linsolve._mkl_candidates())
-        assert linsolve._mkl_pardiso() is not None
+        assert any("mkl_rt" in p for p in pardiso.mkl_candidates())
+        assert linsolve.mkl_pardiso() is not None
         assert linsolve.direct_backend("symmetric") == "mkl-pardiso"
     finally:
-        linsolve._mkl_pardiso.cache_clear()
+        linsolve.mkl_pardiso.cache_clear()

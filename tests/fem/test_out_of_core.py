@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import scipy.sparse as sp
-from flexfem.fem import Material, Model, SingularStiffness, linsolve
+from flexfem.fem import Material, Model, SingularStiffness, linsolve, pardiso
 from flexfem.fem.budget import MEMORY_VARIABLE, factor_plan
 from flexfem.fem.factor import factor
 from flexfem.fem.model import Solid3D
@@ -124,6 +124,6 @@ def test_a_factor_past_the_32_bit_reach_is_made_by_pardiso_64(stiffness, tmp_pat
     assert list(tmp_path.iterdir()) == []  # its files removed too
     assert np.abs(x_64 - x_32).max() <= 1e-10 * np.abs(x_32).max()
     with pytest.raises(TypeError, match="int64 like iparm"):
-        linsolve.pardiso_call(np.zeros(64, np.int64), 2, 11, 3, np.ones(3),
-                              np.zeros(4, np.int32), np.zeros(3, np.int32),
-                              np.zeros(64, np.int64), np.ones(3), np.ones(3))
+        pardiso.pardiso_call(np.zeros(64, np.int64), 2, 11, 3, np.ones(3), np.zeros(4, np.int32),
+                             np.zeros(3, np.int32), np.zeros(64, np.int64), np.ones(3),
+                             np.ones(3))

@@ -5,7 +5,7 @@ import pytest
 import scipy.sparse as sp
 from flexfem.fem import linsolve
 
-HAS_PARDISO = linsolve._mkl_pardiso() is not None
+HAS_PARDISO = linsolve.mkl_pardiso() is not None
 
 
 def _spd(n=40, seed=0):
@@ -32,7 +32,7 @@ def test_block_to_factorize(pardiso, monkeypatch):
     if pardiso and not HAS_PARDISO:
         pytest.skip("MKL (a default dependency on x86-64) not installed")
     if not pardiso:
-        monkeypatch.setattr(linsolve, "_mkl_pardiso", lambda: None)
+        monkeypatch.setattr(linsolve, "mkl_pardiso", lambda: None)
     A = _spd()
     I = np.arange(1, 40, 2)
     block = A[I][:, I]

@@ -11,7 +11,7 @@ from flexfem.fem.factor import factor
 from flexfem.fem.model import scalar_element
 from flexfem.fem.symmetric import symmetric_from_upper, symmetric_matvec, upper
 
-HAS_PARDISO = linsolve._mkl_pardiso() is not None
+HAS_PARDISO = linsolve.mkl_pardiso() is not None
 STEEL = Material("steel", E=200e9, nu=0.3, rho=7800.0)
 
 

@@ -15,8 +15,8 @@ from flexfem.geometry.mechanism.draw import element_sizes, estimate_mesh
 from flexfem.geometry.user_model import load_spec
 from flexfem.geometry.user_model.beam_tables import beam_options
 from flexfem.geometry.user_model.names import OVERRIDE_KEYS
-from flexfem.geometry.user_model.tables import (Locator, parse_analysis, parse_material,
-                                                parse_mesh, parse_section)
+from flexfem.geometry.user_model.material_table import parse_material
+from flexfem.geometry.user_model.tables import Locator, parse_analysis, parse_mesh, parse_section
 from flexfem.studies.mechanisms import get_evaluator
 from flexfem.studies.run import run_front, study_from_dict, sweep
 
