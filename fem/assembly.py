@@ -202,6 +202,27 @@ def elasticity_stiffness_upper(mesh: skfem.Mesh, element: skfem.Element, quadrat
     return upper_csr(blocks, pattern, dim)
 
 
+def tangent_stiffness_upper(mesh: skfem.Mesh, element: skfem.Element, quadrature,
+                            pattern: NodePattern, dim: int, modulus: np.ndarray):
+    """Upper triangle (CSR, sorted) of the tangent K_e[a i, b k] = sum_q w_q d_J phi_a
+    A_iJkL d_L phi_b of a ``modulus`` A (dim, dim, dim, dim, n_elements, n_points) (N/m^2
+    times the thickness in 2-D) at the points of ``quadrature``, with A's major symmetry
+    (A_iJkL = A_kLiJ, as a hyperelastic tangent has): K symmetric. Element blocks batched
+    (two matrix products per block), summed on the node pattern as the linear stiffness."""
+    blocks = np.zeros((len(pattern.indices), dim, dim))
+    for block, G, dx in block_gradients(mesh, element, quadrature):
+        n_b, n_local, _, n_q = G.shape
+        A = np.moveaxis(modulus[..., block, :], (4, 5), (0, 1)) * dx[:, :, None, None, None, None]
+        Gq = G.transpose(0, 3, 1, 2)                                       # (e, q, a, J)
+        W = np.matmul(Gq, A.transpose(0, 1, 3, 2, 4, 5).reshape(n_b, n_q, dim, -1))
+        W = W.reshape(n_b, n_q, n_local, dim, dim, dim)                    # (e, q, a, i, k, L)
+        W = W.transpose(0, 2, 3, 4, 1, 5).reshape(n_b, n_local * dim * dim, n_q * dim)
+        K = np.matmul(W, Gq.transpose(0, 1, 3, 2).reshape(n_b, n_q * dim, n_local))  # (e, aik, b)
+        K = K.reshape(n_b, n_local, dim, dim, n_local).transpose(0, 1, 2, 4, 3)
+        add_node_blocks(blocks, pattern, block, K.reshape(n_b, n_local * dim, n_local * dim))
+    return upper_csr(blocks, pattern, dim)
+
+
 def upper_csr(blocks: np.ndarray, pattern: NodePattern, dim: int):
     """Upper triangle (diagonal included), CSR with sorted indices, of the symmetric matrix
     of the (nnz, dim, dim) node ``blocks`` on the upper ``pattern``, exact zeros dropped.

@@ -17,6 +17,7 @@ from skfem.helpers import ddot, eye, grad, mul, transpose, trace
 from . import assembly
 from .model import Model, PlaneStrain, scalar_element, von_mises
 from .projection import nodal_average
+from .symmetric import symmetric_from_upper
 from .stepping import StepFailed  # raised here, caught by the step driver
 
 STRAIN_LIMIT = 0.05
@@ -58,11 +59,6 @@ def _internal_force(v, w):
     return w.t * ddot(mul(w.F, w.S), grad(v))
 
 
-@skfem.BilinearForm
-def _tangent(du, v, w):
-    return np.einsum("ij...,ijkl...,kl...->...", grad(v), np.asarray(w.A), grad(du))
-
-
 def tangent_modulus(F: np.ndarray, S: np.ndarray, lam: float, mu: float) -> np.ndarray:
     """A_iJkL = delta_ik S_JL + F_iM C_MJNL F_kN (Pa), (dim,) * 4 + (n_elements, n_points):
     dP = A : grad du, the consistent tangent of P = F S for St. Venant-Kirchhoff."""
@@ -78,14 +74,14 @@ def tangent_modulus(F: np.ndarray, S: np.ndarray, lam: float, mu: float) -> np.n
 
 class Assembler:
     """Internal force (N) and tangent (N/m) of a model, on the model's stiffness quadrature
-    (exact for the linear part, so the tangent at u = 0 is ``model.stiffness``). The sparse
-    pattern is computed once and reused."""
+    (exact for the linear part, so the tangent at u = 0 is ``model.stiffness``); the tangent
+    batched on the model's node pattern (:func:`.assembly.tangent_stiffness_upper`)."""
 
     def __init__(self, model: Model):
+        self.model = model
         self.basis = model.stiffness_basis
         self.lam, self.mu = model.lame
         self.t = model.thickness
-        self._pattern = None
 
     def state(self, u: np.ndarray):
         """(F, S) at the quadrature points; raises StepFailed where det F <= 0."""
@@ -100,18 +96,11 @@ class Assembler:
         return _internal_force.assemble(self.basis, F=F, S=S, t=self.t)
 
     def tangent(self, F, S) -> sp.csr_matrix:
-        A = self.t * tangent_modulus(F, S, self.lam, self.mu)
-        coo = _tangent.coo_data(self.basis, A=A)
-        if self._pattern is None:
-            n = coo.shape[0]
-            keys = coo.indices[0].astype(np.int64) * n + coo.indices[1]
-            unique, where = np.unique(keys, return_inverse=True)
-            rows, cols = np.divmod(unique, n)
-            indptr = np.searchsorted(rows, np.arange(n + 1))
-            self._pattern = (where, cols.astype(np.int32), indptr.astype(np.int32), len(unique), n)
-        where, cols, indptr, nnz, n = self._pattern
-        data = np.bincount(where, weights=coo.data, minlength=nnz)
-        return sp.csr_matrix((data, cols, indptr), shape=(n, n))
+        m = self.model
+        upper = assembly.tangent_stiffness_upper(
+            m.mesh.mesh, scalar_element(m.mesh.mesh, m.order), m.stiffness_quadrature,
+            m.node_pattern, m.dim, self.t * tangent_modulus(F, S, self.lam, self.mu))
+        return symmetric_from_upper(upper)
 
 
 def final_stress(model: Model, u: np.ndarray):
