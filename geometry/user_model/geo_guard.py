@@ -290,10 +290,12 @@ def _check_tokens(path: Path, toks: list[Token], defined: set) -> None:
         if tok.kind == "op":
             if word not in _OPERATORS:
                 _refuse(path, tok.line, f"{word!r} is not part of a geometry")
-            if word in (">", ">>") and _text(toks, i - 1) == ")" and toks[i + 1:i + 2] and \
-                    toks[i + 1].kind == "string":
-                _refuse(path, tok.line, f"{word!r} \"FILE\" writes a file")
             continue
+        if word == "Printf" and after == "(":  # it prints to the terminal, never to a file
+            redirect = _text(toks, _closing(toks, i + 1) + 1)
+            if redirect in (">", ">>"):
+                _refuse(path, tok.line, f"Printf(...) {redirect} FILE writes a file (whatever "
+                                        "names it: a string, StrCat, a variable)")
         if word in ("Mesh", "Geometry", "General") and after == ".":
             option, assigned = _text(toks, i + 2), _text(toks, i + 3) in _ASSIGN
             allowed = {"Mesh": MESH_OPTIONS, "Geometry": GEOMETRY_OPTIONS,
