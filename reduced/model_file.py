@@ -276,6 +276,10 @@ def beam_model(spec) -> tuple:
     if beams is None:
         raise ValueError(f"{spec.source}: the model file declares no beams ([[beam]], "
                          "docs/model_files.md, 'The beam model'); use the continuum model")
+    if spec.section.kind != "plane_stress":
+        raise ValueError(f"{spec.source}: [section] kind = {spec.section.kind!r}: the beam "
+                         "model is plane stress (its beams' depth free to contract across "
+                         "it); analyse plane strain with the continuum (--model continuum)")
     scale = max(math.dist(a, b) for line in beams.beams for a, b in zip(line.points,
                                                                       line.points[1:]))
     tol = 1e-9 * scale

@@ -342,12 +342,18 @@ class Mechanism:
         return span
 
     def _check_overlaps(self, spans) -> None:
-        """Overlapping flexures are refused; two leaves that cross at an angle are a joint."""
+        """Overlapping or touching flexures are refused (the continuum would fuse them into
+        one, the beam model keep two); two leaves that cross at an angle are a joint."""
         for i, (f, s) in enumerate(zip(self.flexures, spans)):
             for j in range(i + 1, len(spans)):
                 g, t = self.flexures[j], spans[j]
                 crossing = (isinstance(f, Leaf) and isinstance(g, Leaf)
                             and abs(cross2(s.d, t.d)) > math.sin(math.radians(10)))
                 if not crossing and convex_overlap(s.corners(f.width), t.corners(g.width),
-                                                    self.tol):
-                    raise _error(g, f"{flexure_label(g, j)} overlaps {flexure_label(f, i)}")
+                                                    -self.tol):
+                    touching = not convex_overlap(s.corners(f.width), t.corners(g.width),
+                                                  self.tol)
+                    raise _error(g, f"{flexure_label(g, j)} {'touches' if touching else 'overlaps'}"
+                                    f" {flexure_label(f, i)}" + (
+                                        " (no gap between them: the continuum would fuse them "
+                                        "into one flexure)" if touching else ""))

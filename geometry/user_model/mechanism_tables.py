@@ -170,6 +170,17 @@ def parse_mechanism(raw: dict, names: dict, depth: float, loc: Locator,
     return mechanism
 
 
+def check_held_bodies(raw: dict, supports, loc: Locator) -> None:
+    """Refuse a support whose group is neither a [[body]] nor a body's face, by its line
+    (before the mechanism's own check would find it held by nothing)."""
+    bodies = sorted(str(b["name"]) for b in raw.get("body", []) if isinstance(b, dict)
+                    and "name" in b)
+    for i, s in enumerate(supports):
+        if s.group not in bodies and s.group.rpartition(".")[0] not in bodies:
+            raise loc.error(f"[[supports]] group = {s.group!r} is no body (nor a body's face); "
+                            f"bodies: {', '.join(bodies)}", "supports", "group", i)
+
+
 def body_supports(raw, dim: int, loc: Locator) -> tuple:
     """The [[supports]] of bodies and flexures: x, y and z (m, prescribed displacements). A z
     holds the extruded solid's out-of-plane motion (--dim 3: with x or y alone the solid could

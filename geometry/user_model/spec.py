@@ -10,7 +10,8 @@ from ..mechanism import Mechanism
 from ..spatial.detect import is_spatial
 from .beam_tables import BeamSpec, beam_options, parse_beams
 from .geo_guard import check_inside
-from .mechanism_tables import body_loads, body_supports, mechanism_parts, parse_mechanism
+from .mechanism_tables import (body_loads, body_supports, check_held_bodies, mechanism_parts,
+                               parse_mechanism)
 from .names import check_override_key, nearest, unknown_name
 from .outputs_table import parse_outputs
 from .points_table import parse_points
@@ -232,7 +233,11 @@ def _mechanism_spec(path: Path, raw: dict, loc: Locator, overridden: set, dim: i
     if isinstance(section_raw, dict):
         section_raw.setdefault("kind", "plane_stress")
     section = parse_section(section_raw, 2, loc)
-    if section.kind != "plane_stress" or "thickness" not in section_raw:
+    if section.kind != "plane_stress":
+        raise loc.error(f"[section] kind = {section.kind!r}: bodies and flexures are plane "
+                        "stress (their beam model's depth contracts freely); drop kind and "
+                        "give thickness = the out-of-plane depth (m)", "section", "kind")
+    if "thickness" not in section_raw:
         raise loc.error("[section] of bodies and flexures: thickness = the out-of-plane depth "
                         "(m; kind plane_stress, the default)", "section")
     parts = mechanism_parts(raw, loc, section if dim == 2 else SectionSpec("solid"),
@@ -240,6 +245,7 @@ def _mechanism_spec(path: Path, raw: dict, loc: Locator, overridden: set, dim: i
                             "flexures is refined already (its thickness sets its element size)")
     parameters = _parameters(raw.get("parameters", {}), loc, overridden)
     held = {s.group for s in parts["supports"]}  # a held face holds its body
+    check_held_bodies(raw, parts["supports"], loc)
     mechanism = parse_mechanism(raw, parameters, section.thickness, loc,
                                 held | {g.rpartition(".")[0] for g in held if "." in g})
     if parts["mesh"].size is not None:  # a size the mesh cannot honour: refused, not raised

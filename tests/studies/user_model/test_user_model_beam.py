@@ -205,6 +205,19 @@ def test_traction_and_missing_beams_refused(tmp_path):
         analyze_model(load_spec(bare), model="beam")
 
 
+def test_plane_strain_is_the_continuums_only(tmp_path):
+    """The beams' depth contracts freely (plane stress): a plane-strain file's beam model is
+    refused, by name, where it gave the plane-stress numbers; its continuum runs."""
+    path, _ = _guide_copy(tmp_path, 'kind = "plane_stress"', 'kind = "plane_strain"')
+    with pytest.raises(ValueError, match=r"kind = 'plane_strain': the beam model is plane "
+                                         r"stress .* \(--model continuum\)"):
+        analyze_model(load_spec(path), model="beam")
+    strain = analyze_model(load_spec(path), model="continuum")
+    stress = analyze_model(load_spec(GUIDE), model="continuum")
+    (group, k), = stress["stiffness"].items()
+    assert strain["stiffness"][group]["x"] > 1.05 * k["x"]  # 1 / (1 - nu^2) stiffer, at most
+
+
 @pytest.mark.slow
 def test_compliance_and_large_deflection_keys_and_values():
     """[analysis] compliance and steps: the continuum's keys; the lateral compliance and the
