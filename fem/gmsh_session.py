@@ -12,9 +12,15 @@ it: a write to a closed pipe -- to a worker of a process pool that died, or a Da
 would then kill the process instead of raising BrokenPipeError. The session restores Python's
 disposition: with ``signal.signal`` in the main thread, through the C library elsewhere
 (``signal.signal`` refuses other threads, but the disposition is the process's).
+
+gmsh's FLTK writes its preferences (``~/.fltk/fltk.org/fltk.prefs``) when it is initialised;
+nothing a model runs may write outside its output folder, so HOME points at a temporary
+folder, removed at once, for that call.
 """
 import ctypes
+import os
 import signal
+import tempfile
 import threading
 from contextlib import contextmanager
 
@@ -33,6 +39,21 @@ def _restore_sigpipe(disposition) -> None:
 
 
 @contextmanager
+def _home_elsewhere():
+    """HOME set to a new temporary folder (removed afterwards) while the block runs."""
+    home = os.environ.get("HOME")
+    with tempfile.TemporaryDirectory(prefix="flexfem-gmsh-home-") as folder:
+        os.environ["HOME"] = folder
+        try:
+            yield
+        finally:
+            if home is None:
+                os.environ.pop("HOME", None)
+            else:
+                os.environ["HOME"] = home
+
+
+@contextmanager
 def gmsh_session(name: str = "flexfem", verbose: bool = False):
     """Yield an initialised ``gmsh`` module holding one empty model called ``name``."""
     import gmsh
@@ -43,7 +64,8 @@ def gmsh_session(name: str = "flexfem", verbose: bool = False):
         if gmsh.isInitialized():
             raise RuntimeError("a gmsh session is already open in this process; close it first")
         sigpipe = signal.getsignal(signal.SIGPIPE)  # Python's own (SIG_IGN), not the kernel's
-        gmsh.initialize(readConfigFiles=False, interruptible=False)
+        with _home_elsewhere():
+            gmsh.initialize(readConfigFiles=False, interruptible=False)
         _restore_sigpipe(sigpipe)
         try:
             gmsh.option.setNumber("General.Terminal", 1 if verbose else 0)

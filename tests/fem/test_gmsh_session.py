@@ -68,3 +68,17 @@ def test_a_session_runs_in_a_thread_and_keeps_sigpipe_ignored():
                          capture_output=True, text=True, timeout=60)
     assert run.returncode == 0, (run.returncode, run.stderr)
     assert run.stdout.split("\n")[:2] == ["nodes True", "after: BrokenPipeError"]
+
+
+def test_a_session_writes_nothing_in_home(tmp_path, monkeypatch):
+    """gmsh's FLTK preferences (~/.fltk) go to a temporary folder, removed: nothing outside
+    the output folder is written; HOME is as it was."""
+    import os
+
+    monkeypatch.setenv("HOME", str(tmp_path))
+    with gmsh_session() as gmsh:
+        gmsh.model.occ.addBox(0, 0, 0, 1, 1, 1)
+        gmsh.model.occ.synchronize()
+        gmsh.model.mesh.generate(3)
+        assert os.environ["HOME"] == str(tmp_path)
+    assert list(tmp_path.iterdir()) == []
