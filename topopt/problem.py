@@ -187,6 +187,10 @@ def check_problem(p: Problem) -> None:
         checks.positive("stiffness", s.stiffness, owner=f"spring {s.name!r}")
     if not p.supports or not p.loads:
         raise ValueError("support, load: give at least one [[support]] and one [[load]]")
+    for case in sorted({load.case for load in p.loads}):
+        if not any(f != 0 for load in p.loads if load.case == case for f in load.force):
+            raise ValueError(f"load case {case}: every [[load]] force is zero, so nothing "
+                             "moves; give a force (N)")
     _check_cases(p)
     for r in [p.objective] + [c.response for c in p.constraints]:
         _check_response(p, r)

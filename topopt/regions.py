@@ -1,5 +1,5 @@
 """Where a support, load, spring or passive region acts: an edge, a box or a point (m)."""
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -11,10 +11,12 @@ EDGES = ("left", "right", "bottom", "top")
 @dataclass(frozen=True)
 class Region:
     """``kind`` 'edge' (value: one of EDGES), 'box' (value: ((x0, y0), (x1, y1)), m) or
-    'point' (value: (x, y), m: the nearest node)."""
+    'point' (value: (x, y), m: the nearest node, inside the domain or within half a cell of
+    it); ``key``: where a problem file gives it ('support[0].where'), for messages."""
 
     kind: str
     value: object
+    key: str = field(default="", compare=False, repr=False)  # not in the problem's digest
 
     def nodes(self, grid: Grid) -> np.ndarray:
         """Indices of the grid's nodes in this region (never empty)."""
@@ -37,10 +39,18 @@ class Region:
         elif self.kind == "box":
             found = np.flatnonzero(_inside(xy, self.value, box_tol))
         else:
+            x, y = self.value
+            reach = 0.5 * max(grid.dx, grid.dy)
+            if not (-reach <= x <= grid.lx + reach and -reach <= y <= grid.ly + reach):
+                raise ValueError(f"{self._named()} = {list(self.value)} lies outside the "
+                                 f"design domain (0 to {grid.lx:g} by 0 to {grid.ly:g})")
             found = np.array([np.argmin(np.sum((xy - np.asarray(self.value)) ** 2, axis=1))])
         if found.size == 0:
-            raise ValueError(f"{self.kind} = {self.value!r} holds no {what} of the grid")
+            raise ValueError(f"{self._named()} = {self.value!r} holds no {what} of the grid")
         return found
+
+    def _named(self) -> str:
+        return f"{self.key}.{self.kind}" if self.key else self.kind
 
     def touching(self, grid: Grid) -> np.ndarray:
         """Indices of the elements with a node in this region."""
@@ -65,13 +75,14 @@ def parse_region(data, key: str) -> Region:
     if kind == "edge":
         if value not in EDGES:
             raise ValueError(f"{key}.edge = {value!r}: choose one of {list(EDGES)}")
-        return Region("edge", value)
+        return Region("edge", value, key)
     if kind == "point":
-        return Region("point", _pair(value, f"{key}.point"))
+        return Region("point", _pair(value, f"{key}.point"), key)
     if kind == "box":
         if not isinstance(value, (list, tuple)) or len(value) != 2:
             raise ValueError(f"{key}.box = {value!r}: give [[x0, y0], [x1, y1]] (m)")
-        return Region("box", (_pair(value[0], f"{key}.box"), _pair(value[1], f"{key}.box")))
+        return Region("box", (_pair(value[0], f"{key}.box"), _pair(value[1], f"{key}.box")),
+                      key)
     raise ValueError(f"{key}: unknown region {kind!r}; choose edge, box or point")
 
 

@@ -87,6 +87,13 @@ BAD = [
     ("[domain]\nnelx = 4\nnely = 4\n[objective]\nkind = 'compliance'\n"
      "[[support]]\nwhere = {edge = 'left'}\n[[load]]\nwhere = {point = [4, 4]}\n"
      "force = [0, 1]\n[[constraint]]\nkind = 'volume'\nmax = 1.5\n", "volume max"),
+    ("[domain]\nnelx = 4\nnely = 4\n[objective]\nkind = 'compliance'\n"
+     "[[support]]\nwhere = {edge = 'left'}\n[[load]]\nwhere = {point = [4, 4]}\n"
+     "force = [0, 0]\n", "load case 1: every [[load]] force is zero"),
+    ("[domain]\nnelx = 4\nnely = 4\n[objective]\nkind = 'compliance'\n"
+     "[[support]]\nwhere = {edge = 'left'}\n[[load]]\nwhere = {point = [40, 4]}\n"
+     "force = [0, 1]\n[[constraint]]\nkind = 'volume'\nmax = 0.5\n",
+     "load[0].where.point = [40.0, 4.0] lies outside the design domain"),
     ("[domain\n", "not valid TOML"),
 ]
 
