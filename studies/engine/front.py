@@ -37,6 +37,7 @@ import math
 
 import numpy as np
 
+from ...geometry.user_model.quantities import si_value
 from .store import CaseResult, ResultStore, case_key, flexfem_version
 from .checks import warn_stale
 from .validate import check_metric_names, check_parameter_names, normalise_options, \
@@ -84,6 +85,19 @@ class Front:
             if not (isinstance(value, int) and low <= value <= 10_000):
                 raise ValueError(f"search.{name} = {value!r} must be an integer from {low} "
                                  "to 10000")
+        if not (isinstance(self.seed, int) and not isinstance(self.seed, bool)
+                and self.seed >= 0):
+            raise ValueError(f"search.seed = {self.seed!r} must be an integer >= 0")
+
+
+def _bound(value, where: str) -> float:
+    """A constraint's bound: a number (SI) or a quantity string such as '0.5 mm'."""
+    if isinstance(value, (int, float)) and not isinstance(value, bool):
+        return float(value)
+    if isinstance(value, str) and " " in value.strip():
+        number, unit = value.strip().split(None, 1)
+        return si_value(number, unit, None, where)
+    raise ValueError(f"{where} = {value!r} must be a number (SI) or a quantity ('0.5 mm')")
 
 
 def front_from_dict(data: dict) -> Front:
@@ -93,17 +107,24 @@ def front_from_dict(data: dict) -> Front:
     unknown = sorted(set(data) - allowed)
     if unknown:
         raise ValueError(f"unknown key(s) {unknown}; allowed: {sorted(allowed)}")
-    objectives = tuple((o.get("metric"), o.get("goal")) for o in data.get("objectives", []))
+    for o in data.get("objectives", []):
+        if not isinstance(o, dict) or set(o) != {"metric", "goal"}:
+            extra = sorted(set(o) - {"metric", "goal"}) if isinstance(o, dict) else []
+            raise ValueError(f"objective {o!r} must be {{ metric, goal = 'min' | 'max' }}"
+                             + (f"; unknown key(s) {extra}" if extra else ""))
+    objectives = tuple((o["metric"], o["goal"]) for o in data.get("objectives", []))
     constraints = []
     for c in data.get("constraints", []):
         if set(c) - {"metric", "at_most", "at_least"} or len(c) != 2 or "metric" not in c:
             raise ValueError(f"constraint {c!r} must be {{ metric, at_most | at_least }}")
-        sense = "<=" if "at_most" in c else ">="
-        constraints.append((c["metric"], sense, float(c.get("at_most", c.get("at_least")))))
+        sense, key = ("<=", "at_most") if "at_most" in c else (">=", "at_least")
+        constraints.append((c["metric"], sense, _bound(c[key], f"constraint {c['metric']!r} "
+                                                                f"{key}")))
     search = data.get("search", {})
-    if set(search) - {"population", "generations", "seed"}:
-        raise ValueError(f"[search] keys are population, generations and seed, not "
-                         f"{sorted(set(search))}")
+    unknown = sorted(set(search) - {"population", "generations", "seed"})
+    if unknown:
+        raise ValueError(f"[search]: unknown key(s) {unknown}; the keys are population, "
+                         "generations and seed")
     references = []
     for r in data.get("reference", []):
         if not (isinstance(r, dict) and set(r) == {"name", "params"}

@@ -54,3 +54,29 @@ def test_a_constraint_cuts_the_front(tmp_path):
 def test_code_is_refused_without_allow_code(tmp_path, capsys):
     assert main(["front", _front_file(tmp_path), "--out", str(tmp_path / "o")]) == 2
     assert "--allow-code" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("old, new, message", [
+    ('goal = "min"\n[[objectives]]', 'goal = "min"\nweight = 2\n[[objectives]]',
+     r"unknown key\(s\) \['weight'\]"),
+    ("seed = 1", 'seed = "abc"', "search.seed = 'abc' must be an integer >= 0"),
+    ("seed = 1", "seed = 1\npopulaton = 8", r"\[search\]: unknown key\(s\) \['populaton'\]"),
+    ("[search]", '[[constraints]]\nmetric = "f1"\nat_least = "half"\n[search]',
+     "constraint 'f1' at_least = 'half' must be a number"),
+])
+def test_a_bad_front_file_is_refused_by_its_key(tmp_path, old, new, message):
+    path = _front_file(tmp_path)
+    text = open(path).read()
+    assert old in text
+    open(path, "w").write(text.replace(old, new, 1))
+    with pytest.raises(ValueError, match=message):
+        run_front(path, tmp_path / "out", allow_code=True)
+    assert not (tmp_path / "out").exists()
+
+
+def test_a_constraint_bound_may_carry_a_unit():
+    from flexfem.studies.engine.front import _bound
+
+    assert _bound("0.5 mm", "at_least") == pytest.approx(5e-4)
+    assert _bound("2 kN/m", "at_least") == pytest.approx(2000.0)
+    assert _bound(3, "at_least") == 3.0
