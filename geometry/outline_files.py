@@ -23,9 +23,11 @@ _PER_METRE = 1000.0
 
 
 def write_dxf(loops, path) -> int:
-    """Each loop (m) as a closed LWPOLYLINE in millimetres, arcs as bulges; returns the
-    number of polylines written."""
+    """Each loop (m) as a closed LWPOLYLINE in millimetres, arcs as bulges, the header's
+    extents ($EXTMIN, $EXTMAX) those of the drawing (a viewer's "zoom extents"); returns the
+    number of polylines written. OSError naming ``path`` where it cannot be written."""
     import ezdxf
+    from ezdxf import bbox
 
     doc = ezdxf.new("R2010")
     doc.units = ezdxf.units.MM
@@ -33,7 +35,15 @@ def write_dxf(loops, path) -> int:
     for loop in loops:
         msp.add_lwpolyline([(_PER_METRE * x, _PER_METRE * y, 0.0, 0.0, b) for x, y, b in loop],
                            format="xyseb", close=True)
-    doc.saveas(path)
+    box = bbox.extents(msp)
+    if box.has_data:  # both: ezdxf copies the layout's on saving, unless its minimum is 0
+        msp.reset_extents(box.extmin, box.extmax)
+        doc.header["$EXTMIN"], doc.header["$EXTMAX"] = box.extmin, box.extmax
+    try:
+        doc.saveas(path)
+    except OSError as error:
+        raise OSError(f"{path}: the DXF file could not be written "
+                      f"({error.strerror or error})") from None
     return len(loops)
 
 

@@ -17,6 +17,7 @@ from .engine.store import export_csv, export_parquet, parquet_available
 from .engine.sweep import Study, plot_metric
 from .engine.tolerance import confirm_extremes, summarize
 from .engine.validate import check_metric_names, check_parameter_names, declared_options
+from .out_folder import check_out, prepare_out
 from .mechanisms import (
     MODEL_PREFIX,
     check_mechanism,
@@ -149,7 +150,7 @@ def sweep(study, out_dir=None, workers: int | None = None, scheduler: str | None
     study name a "module:function" (Python code; see studies/mechanisms.py)."""
     if not isinstance(study, Study):
         study = load_study(study, allow_code=allow_code)
-    out = Path(out_dir if out_dir is not None else study.name)
+    out = check_out(out_dir if out_dir is not None else study.name)
     result = run_study(study, out / "results.sqlite", allow_code=allow_code, workers=workers,
                        scheduler=scheduler, retry_failed=retry_failed, progress=progress,
                        max_cases=max_cases)
@@ -224,8 +225,7 @@ def run_front(path, out_dir=None, allow_code: bool = False) -> dict:
     mechanism = _mechanism_of(data, path.parent, allow_code, str(path))
     check_mechanism(mechanism, allow_code=allow_code)
     front = front_from_dict({**data, "mechanism": mechanism})
-    out = Path(out_dir if out_dir is not None else name)
-    out.mkdir(parents=True, exist_ok=True)
+    out = prepare_out(out_dir if out_dir is not None else name)
     result = search_front(front, get_evaluator(mechanism, allow_code=allow_code),
                           out / "evaluations.sqlite")
     summary = {"name": name, "mechanism": mechanism, "out": str(out),
@@ -306,7 +306,7 @@ def run_convergence(mechanism: str, metric: str, tol="0.5%", n_levels: int = 4, 
             raise ValueError(f"max_dofs = {max_dofs!r}: mechanism {mechanism!r} takes no mesh "
                              "budget (it meshes nothing)")
         evaluate = functools.partial(evaluate, max_dofs=max_dofs)  # not part of a level's key
-    store = Path(out_dir) / "levels.sqlite" if out_dir is not None else None
+    store = check_out(out_dir) / "levels.sqlite" if out_dir is not None else None
     result = converge(evaluate, metric, levels, params=params, tol=tolerance, dim=dim,
                       store=store, mechanism=mechanism, progress=progress)
     summary = {"mechanism": mechanism, **result.to_dict(), "figures": [],

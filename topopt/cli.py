@@ -21,6 +21,8 @@ def run(args) -> dict:
     options = shape_options(read_problem_file(args.problem))
     problem = load_problem(args.problem)
     out = Path(args.out) if args.out else Path(Path(args.problem).stem + "_topopt")
+    if out.exists() and not out.is_dir():  # refused before the optimisation runs
+        raise ValueError(f"--out {out}: is a file, not a folder; give a folder")
     progress = _progress if sys.stderr.isatty() else None
     result = optimize(problem, out_dir=out, progress=progress)
     summary = result.summary()

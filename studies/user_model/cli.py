@@ -6,6 +6,7 @@ from pathlib import Path
 
 from ..lazy import Lazy
 from ..options import add_model_options, count, length, size_factor
+from ..out_folder import check_out
 from .summary import LENGTH_UNITS, summarize
 
 # the analyses, imported when a command runs
@@ -38,8 +39,6 @@ def run(args) -> dict:
     (``Report.write``), listed under "files"."""
     out = getattr(args, "out", None)
     if out is not None:  # a folder that cannot be written is refused before the solve
-        from .page import check_out  # matplotlib: only where pictures are drawn
-
         check_out(out)
     sets = with_mesh_size(parse_sets(args.set), getattr(args, "mesh_size", None))
     model = load_model(args.model, sets, allow_code=args.allow_code,

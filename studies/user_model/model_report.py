@@ -156,7 +156,8 @@ class Report:
         list of str
             The files written, the page last.
         """
-        from .page import check_out, write_outputs  # matplotlib: only where pictures are drawn
+        from ..out_folder import check_out
+        from .page import write_outputs  # matplotlib: only where pictures are drawn
 
         check_out(out_dir)
         if self.solved_model is None:

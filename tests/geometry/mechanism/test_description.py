@@ -110,6 +110,8 @@ def test_dxf_has_true_arcs_in_mm_and_the_area_of_the_model(tmp_path):
     export(mechanism, tmp_path / "guide.dxf")
     doc = ezdxf.readfile(tmp_path / "guide.dxf")
     assert doc.units == ezdxf.units.MM
+    (x0, y0, _), (x1, y1, _) = doc.header["$EXTMIN"], doc.header["$EXTMAX"]
+    assert (x0, y0, x1, y1) == pytest.approx((-15.0, -5.0, 15.0, 48.0))  # mm, "zoom extents"
     loops = [list(p.get_points("xyb")) for p in doc.modelspace().query("LWPOLYLINE")]
     assert all(p.closed for p in doc.modelspace().query("LWPOLYLINE"))
     assert sum(1 for loop in loops for x, y, b in loop if b) == 8  # two leaves, four fillets
