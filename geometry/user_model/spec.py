@@ -17,6 +17,7 @@ from .outputs_table import parse_outputs
 from .points_table import parse_points
 from .quantities import with_si_units
 from .geometry import CAD_SUFFIXES, GEO_SUFFIXES, SUFFIXES, inspect_geometry
+from .group_checks import check_groups
 from .material_table import check_density, parse_material
 from .tables import (Analysis, LoadSpec, Locator, MeshOptions, SectionSpec, SupportSpec,
                      is_number, parse_analysis, parse_loads, parse_mesh, parse_section,
@@ -181,37 +182,6 @@ def _check_parameters(parameters: dict, geometry: Path, constants: dict, loc: Lo
             raise loc.error(f"[parameters] {message}", "parameters", name)
 
 
-def _check_groups(spec_parts: dict, groups: dict, geometry: Path, dim: int, loc: Locator):
-    """Every support, load and refinement names a group of the geometry; loads a boundary."""
-    listed = ", ".join(sorted(n for n, d in groups.items() if d in (dim - 1, dim)))
-    entries = [("supports", i, s.group) for i, s in enumerate(spec_parts["supports"])]
-    entries += [("loads", i, load.group) for i, load in enumerate(spec_parts["loads"])]
-    for table, i, group in entries:
-        if groups.get(group) not in (dim - 1, dim):
-            hint = (" (name groups with [[select]] rules)"
-                    if geometry.suffix.lower() in CAD_SUFFIXES else "")
-            raise loc.error(f"[[{table}]] group {group!r} is not a group of {geometry.name}; "
-                            f"groups: {listed or 'none'}{hint}", table, "group", i)
-        if table == "loads" and groups[group] != dim - 1:
-            raise loc.error(f"[[loads]] group {group!r} is a {dim}-D subdomain of "
-                            f"{geometry.name}; a force or traction needs a boundary group "
-                            f"(dimension {dim - 1})", table, "group", i)
-    analysis = spec_parts["analysis"]
-    named = [("compliance", analysis.compliance, dim - 1)]
-    if analysis.harmonic:
-        named.append(("harmonic", analysis.harmonic.group, None))
-    for key, group, needed in named:
-        if group is not None and (groups.get(group) not in (dim - 1, dim)
-                                  or needed not in (None, groups[group])):
-            raise loc.error(f"[analysis] {key} group {group!r} is not a "
-                            f"{'boundary ' if needed is not None else ''}group of "
-                            f"{geometry.name}; groups: {listed or 'none'}", "analysis", key)
-    for r in spec_parts["mesh"].refine:
-        if r.group not in groups:
-            raise loc.error(f"[mesh] refine group {r.group!r} is not a group of "
-                            f"{geometry.name}; groups: {listed or 'none'}", "mesh", "refine")
-
-
 def _mechanism_spec(path: Path, raw: dict, loc: Locator, overridden: set, dim: int | None,
                     allow_code: bool) -> ModelSpec:
     """A model file of ``[[body]]`` and ``[[flexure]]`` tables: its continuum (2-D, or with
@@ -266,7 +236,7 @@ def _mechanism_spec(path: Path, raw: dict, loc: Locator, overridden: set, dim: i
     outputs = parse_outputs(raw.get("outputs"), parameters, taken | set(points), dim, loc)
     faces = named_faces(parts, outputs, bodies, dim)
     groups |= {name: dim - 1 for name in faces}
-    _check_groups(parts, groups, path, dim, loc)
+    check_groups(parts, groups, path, dim, loc)
     from ..mechanism.beams import beam_spec  # it builds on beam_tables: imported when used
 
     options = beam_options(raw.get("beam_model", {}), loc)
@@ -284,7 +254,7 @@ def _spatial_spec(path: Path, raw: dict, loc: Locator, overridden: set, dim: int
 
     parameters = _parameters(raw.get("parameters", {}), loc, overridden)
     parts, groups = spatial_spec(raw, parameters, loc, dim)
-    _check_groups(parts, groups, path, 3, loc)
+    check_groups(parts, groups, path, 3, loc)
     return ModelSpec(path=path, geometry=path, dim=3, parameters=parameters, groups=groups,
                      constants=dict(parameters), allow_code=allow_code,
                      description=str(raw.get("description", "")), **parts)
@@ -382,7 +352,7 @@ def load_spec(path, overrides: dict | None = None, allow_code: bool = False,
     if info.dim != dim:
         raise loc.error(f"dim = {dim} but {geometry.name} is {info.dim}-D", None,
                         "dim" if "dim" in raw else None)
-    _check_groups(parts, info.groups, geometry, dim, loc)
+    check_groups(parts, info.groups, geometry, dim, loc)
     if "points" in raw:
         raise loc.error("[points] are points of bodies: a file of [[body]] and [[flexure]] "
                         "names them (a geometry file's groups are observed as they are)",

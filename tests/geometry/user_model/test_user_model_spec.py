@@ -97,6 +97,8 @@ def test_mesh_size_and_refinement(tmp_path):
     (("L = 0.04", "Lx = 0.04"),
      ["line 5:", "'Lx' is not a DefineConstant of guide.geo", "L, d, hb, hs, lc_block"]),
     (("dim = 2", "dim = 2\ncolour = 1"), ["line 3:", "unknown key 'colour'"]),
+    (('force = [1.0, 0.0]', 'force = [1.0, 0.0]\n[analysis]\ncompliance = "fixed"'),
+     ["line 21:", "[analysis] compliance group 'fixed' is held by a [[supports]]"]),
     (('thickness = 0.01', 'thickness = 0.01\nwidth = 2'),
      ["line 13:", "[section]: unknown key 'width'"]),
     (('[[loads]]', '[extra]\na = 1\n[[loads]]'), ["line 17:", "unknown table 'extra'"]),
