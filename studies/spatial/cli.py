@@ -6,13 +6,16 @@ from ..user_model.cli import parse_sets
 def run(args) -> dict:
     """The analysis of ``args.model`` with its [[supports]] bodies held: {"model",
     "singular_values", "threshold", "dofs": [{body: twist}], "over_constraints":
-    [[{flexure, constraint, weight}]], "summary"}."""
-    from ...geometry.spatial.tables import load_spatial  # imported when the command runs
+    [[{flexure, constraint, weight}]], "summary"}. The whole file is checked, as analyze
+    checks it."""
+    from ...geometry.user_model import load_spec  # imported when the command runs
     from .exact_constraint import exact_constraint
 
-    mechanism, raw, _ = load_spatial(args.model, parse_sets(args.set))
-    held = {s.get("group") for s in raw.get("supports", []) if isinstance(s, dict)}
-    report = exact_constraint(mechanism, held)
+    spec = load_spec(args.model, parse_sets(args.set))
+    if getattr(spec, "spatial", None) is None:
+        raise ValueError(f"{args.model}: not a spatial mechanism: no body has a 3-D box, a "
+                         "cylinder or a prism (a planar file: docs/model_files.md)")
+    report = exact_constraint(spec.spatial, {s.group for s in spec.supports})
     return {"model": str(args.model), "singular_values": report.singular_values.tolist(),
             "threshold": report.threshold,
             "dofs": [{body: twist.tolist() for body, twist in dof} for dof in report.dofs],

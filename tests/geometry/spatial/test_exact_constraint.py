@@ -62,3 +62,18 @@ def test_the_command_says_over_constrained_by_one(capsys):
     assert main(["constraints", str(EXAMPLES / "wire_guide.toml")]) == 0
     out = capsys.readouterr().out
     assert "over-constrained by 1" in out and "singular values:" in out
+
+
+def test_the_command_checks_the_whole_file(tmp_path, capsys):
+    """A file analyze would refuse (a planar force on a spatial stage) is refused here too,
+    by its line; a planar file is named as one."""
+    from flexfem.studies.cli import main
+
+    text = (EXAMPLES / "guide.toml").read_text()
+    assert "force = [1.0, 0.0, 0.0]" in text
+    bad = tmp_path / "guide.toml"
+    bad.write_text(text.replace("force = [1.0, 0.0, 0.0]", "force = [1.0, 0.0]"))
+    assert main(["constraints", str(bad)]) == 2
+    assert "[[loads]] force = [1.0, 0.0] must be a list of 3 numbers" in capsys.readouterr().err
+    assert main(["constraints", str(EXAMPLES.parent / "bodies" / "guide.toml")]) == 2
+    assert "not a spatial mechanism" in capsys.readouterr().err
