@@ -98,7 +98,29 @@ MEMORY_VARIABLE = "FLEXFEM_MEMORY_GIB"
 
 def available_memory_bytes() -> int:
     """Memory available to a new allocation: ``FLEXFEM_MEMORY_GIB`` where it is set, else
-    what is available now (Linux MemAvailable), else free pages."""
+    what is available now (Linux MemAvailable), else free pages; never more than this
+    process' address-space limit leaves (``ulimit -v``: PARDISO's out-of-core budget is one
+    reservation, refused with its error -2 beyond it)."""
+    return int(min(_memory_bytes(), _address_space_left()))
+
+
+def _address_space_left() -> float:
+    """Bytes the address-space limit (RLIMIT_AS) leaves above this process' virtual size;
+    inf where there is no limit (or it cannot be read)."""
+    try:
+        import resource
+
+        limit = resource.getrlimit(resource.RLIMIT_AS)[0]
+        if limit == resource.RLIM_INFINITY:
+            return math.inf
+        with open("/proc/self/status") as f:
+            size = next(int(line.split()[1]) * 1024 for line in f if line.startswith("VmSize:"))
+        return max(limit - size, 0)
+    except (ImportError, OSError, ValueError, StopIteration):
+        return math.inf
+
+
+def _memory_bytes() -> int:
     fixed = os.environ.get(MEMORY_VARIABLE)
     if fixed:
         try:

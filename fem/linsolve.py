@@ -99,7 +99,7 @@ class Factorization(LinearFactor):
         self._data = np.ascontiguousarray(A.data, dtype=float)
         self.holds_matrix = True
         self._analyse(A, np.int32)
-        if self._iparm[15] * 1024 > WIDE_FACTOR_BYTES:  # past the 32-bit interface's reach
+        if int(self._iparm[16]) * 1024 > WIDE_FACTOR_BYTES:  # the factor, past 32-bit reach
             self._finalizer()
             self._analyse(A, np.int64)
         if analysis_only:

@@ -36,8 +36,8 @@ def mkl_candidates() -> list:
 
 #: PARDISO's 32-bit interface counts its factor's entries in 32-bit integers: a factor past
 #: 2^31 - 1 entries (16 GiB; a compact 3-D P2 solid of about 1M DOFs) fails with error -2.
-#: From this much factor memory (bytes, its analysis' permanent memory; a margin below the
-#: 16 GiB) the factorization is made by pardiso_64 instead, its integers all 64-bit.
+#: From this size of factor (bytes, its analysis' iparm[16]; a margin below the 16 GiB) the
+#: factorization is made by pardiso_64 instead, its integers all 64-bit.
 WIDE_FACTOR_BYTES = 0.75 * (2**31 - 1) * 8
 
 

@@ -127,3 +127,21 @@ def test_a_factor_past_the_32_bit_reach_is_made_by_pardiso_64(stiffness, tmp_pat
         pardiso.pardiso_call(np.zeros(64, np.int64), 2, 11, 3, np.ones(3), np.zeros(4, np.int32),
                              np.zeros(3, np.int32), np.zeros(64, np.int64), np.ones(3),
                              np.ones(3))
+
+
+def test_the_memory_plan_keeps_within_the_address_space_limit():
+    """Under ``ulimit -v`` the memory a plan counts on (and so PARDISO's out-of-core budget,
+    one reservation) is what the limit leaves above the process, not the machine's free
+    memory: the 1M-DOF cube's factorization failed with error -2 there. Run in a process
+    of its own under a fixed 3 GiB limit."""
+    import subprocess
+
+    code = ("import resource; resource.setrlimit(resource.RLIMIT_AS, (3 * 2**30, 3 * 2**30)); "
+            "from flexfem.fem.budget import available_memory_bytes; "
+            "size = next(int(l.split()[1]) * 1024 for l in open('/proc/self/status') "
+            "if l.startswith('VmSize:')); "
+            "print(available_memory_bytes(), size)")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          env={**os.environ, MEMORY_VARIABLE: "1000"})
+    available, size = (int(v) for v in done.stdout.split())
+    assert 0 < available <= 3 * 2**30 - size + 2**20  # the limit's, not the 1000 GiB asked
