@@ -125,7 +125,8 @@ def parse_outputs(raw, parameters: dict, groups, dim: int, loc) -> tuple:
             known = sorted(set(parameters) | set(groups))
             raise ValueError(f"{where}: [outputs] {name} = {text!r}: {unknown!r} is neither a "
                              f"parameter ({', '.join(sorted(parameters)) or 'none'}) nor "
-                             f"GROUP.COMPONENT{nearest(unknown, known)}")
+                             f"GROUP.COMPONENT nor a function ({', '.join(FUNCTIONS)})"
+                             f"{nearest(unknown, known)}")
         used = tuple(sorted(names_in(substituted) & set(parameters)))
         allowed = frozenset(used) | {f"__obs{i}" for i in range(len(observed))}
         try:

@@ -126,6 +126,7 @@ def test_a_face_of_a_body_in_3d_is_a_face_of_its_solid(guide):
     ('"stage.ux / Lx"', ["'Lx' is neither a parameter", "L, d, t"]),
     ('"stage.ux.ux"', ["'stage.ux' is not a group"]),
     ('"__import__(1)"', ["is neither a parameter"]),
+    ('"exp(stage.ux)"', ["'exp' is neither a parameter", "nor a function (sqrt, sin, cos"]),
     ("3", ["must be an expression string"]),
 ])
 def test_an_unknown_group_component_or_name_is_refused_with_the_line(guide, expression, words):
