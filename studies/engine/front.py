@@ -218,6 +218,12 @@ def search_front(front: Front, evaluate, store_path) -> dict:
                 counts["evaluations"] += 1
                 if metrics is None:
                     counts["failed"] += 1
+                    if counts["failed"] == counts["evaluations"] == front.population:
+                        first = next((c.error for c in store.results()
+                                      if c.status != "ok" and c.error), "")
+                        raise ValueError(f"every design of the first generation "
+                                         f"({front.population}) failed, so the search stops "
+                                         f"(they are stored); the first: {first}")
                     out["F"] = np.full(len(signs), 1e30)
                     out["G"] = np.ones(n_con) if n_con else []
                     return

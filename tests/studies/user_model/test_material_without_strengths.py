@@ -143,10 +143,11 @@ def test_a_front_constrained_by_a_stroke_says_why_its_designs_fail(tmp_path, cap
     front = front.replace("population = 24", "population = 4").replace("generations = 12",
                                                                       "generations = 1")
     (tmp_path / "front.toml").write_text(front)
-    assert main(["front", str(tmp_path / "front.toml"), "--out", str(tmp_path / "out")]) == 0
-    out = capsys.readouterr().out
-    assert "a failed design:" in out and "'stroke_limit_yield' is missing (not available: " \
-                                         "stroke_limit_yield: needs yield_strength" in out
+    assert main(["front", str(tmp_path / "front.toml"), "--out", str(tmp_path / "out")]) == 2
+    err = capsys.readouterr().err  # every design fails alike: the search stops after the first
+    assert "every design of the first generation (4) failed, so the search stops" in err
+    assert "'stroke_limit_yield' is missing (not available: stroke_limit_yield: needs " \
+           "yield_strength" in err and err.count("\n") == 1
 
 
 def test_converge_of_a_stroke_says_what_it_needs(tmp_path, capsys):
