@@ -1,8 +1,15 @@
 """The [material] table of a model file: a library material, or E and nu (rho and the
 strengths optional), checked against what solids have."""
+import math
+
 from ...fem import checks
 from ...fem.materials import Material, material, material_names
 from .tables import Locator, check_keys, located
+
+#: The largest yield strain (yield_strength / E) a model file's material may have: metals,
+#: silicon and engineering polymers lie below ~3 %; above it is a units mistake (kPa for GPa),
+#: and the continuum's St. Venant-Kirchhoff law holds to a few per cent of strain only.
+YIELD_STRAIN_LIMIT = 0.1
 
 #: What solids have (elastomers to diamond, aerogels to osmium): a model file's value outside
 #: is a units mistake (MPa for Pa, g/cm^3 for kg/m^3) or overflows the solve.
@@ -45,6 +52,12 @@ def parse_material(raw, loc: Locator) -> Material:
             raise loc.error(f"[material] {key} = {values[key]!r} is outside what solids have "
                             f"({low:g} to {high:g} {unit}); check the units ({unit})",
                             "material", key)
+    strain = values.get("yield_strength", math.inf) / values["E"]
+    if math.isfinite(strain) and strain > YIELD_STRAIN_LIMIT and {"E", "yield_strength"} & set(raw):
+        raise loc.error(f"[material] yield_strength / E = {strain:.3g}: a strain at yield above "
+                        f"{YIELD_STRAIN_LIMIT:.0%} is no flexure material's (a unit mistake: "
+                        "E and the strengths are in Pa); check E and yield_strength",
+                        "material", "E" if "E" in raw else "yield_strength")
     try:
         return Material(name=name or "user", source=source, **values)
     except ValueError as error:

@@ -106,6 +106,8 @@ def test_mesh_size_and_refinement(tmp_path):
      ["line 8:", "'spring_steel' is not in the library", "structural_steel",
       "missing: E, nu)"]),
     (('name = "structural_steel"', 'name = "structural_steel"\nnu = 0.7'), ["line 7:", "nu = 0.7"]),
+    (('name = "structural_steel"', 'name = "structural_steel"\nE = 200e3'),
+     ["line 9:", "yield_strength / E = 1.25e+03", "a unit mistake"]),
     (('force = [1.0, 0.0]', 'pressure = 1e5'), ["line 19:", "pressure is not available yet"]),
     (('force = [1.0, 0.0]', 'force = [1.0, 0.0, 0.0]'), ["line 19:", "list of 2 numbers"]),
     (('kind = "plane_stress"', 'kind = "solid"'), ["line 11:", "does not fit dim = 2"]),
