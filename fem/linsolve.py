@@ -22,8 +22,7 @@ from .amg import AmgFactor
 from .budget import FACTOR_SHARE, available_memory_bytes, factor_plan
 from .factor_protocol import (FLOOR_CAP, ROUNDOFF_FACTOR, LinearFactor,  # noqa: F401
                               SingularStiffness, check_solution, refine_and_check)  # interface
-from .pardiso import (WIDE_FACTOR_BYTES, mkl_pardiso, pardiso_call, pardiso_iparm, pardiso_memory,
-                      pardiso_release)
+from .pardiso import mkl_pardiso, pardiso_call, pardiso_iparm, pardiso_memory, pardiso_release
 from .restriction import Restriction  # noqa: F401 (part of this module's interface)
 from .symmetric import symmetric_from_upper
 
@@ -98,10 +97,16 @@ class Factorization(LinearFactor):
             raise SingularStiffness("the matrix has an empty row: a DOF that nothing stiffens")
         self._data = np.ascontiguousarray(A.data, dtype=float)
         self.holds_matrix = True
-        self._analyse(A, np.int32)
-        if int(self._iparm[16]) * 1024 > WIDE_FACTOR_BYTES:  # the factor, past 32-bit reach
-            self._finalizer()
-            self._analyse(A, np.int64)
+        self._indptr = A.indptr.astype(np.int32, copy=False)
+        self._indices = A.indices.astype(np.int32, copy=False)
+        self._iparm = pardiso_iparm(self.kind)
+        self._pt = np.zeros(64, dtype=np.int64)
+        memory.release_freed()  # before the factor, the largest allocation, is made
+        # release the MKL factor when this object goes away, even without free()
+        self._finalizer = weakref.finalize(self, pardiso_release, self._pt, self._mtype, self.n,
+                                          self._iparm)
+        self._call(11)  # the analysis: the ordering and the factor's size
+        self.memory = pardiso_memory(self._iparm)
         if analysis_only:
             return  # nothing to drop
         if out_of_core is None:
@@ -115,22 +120,8 @@ class Factorization(LinearFactor):
         # solves; with perturbed pivots they refine iteratively on the matrix
         if (not keep_matrix and self.kind == "spd" and self._iparm[13] == 0
                 and not _spd_solve_reads_matrix()):
-            self._data, self._indices = np.zeros(1), np.zeros(1, dtype=self._indices.dtype)
+            self._data, self._indices = np.zeros(1), np.zeros(1, dtype=np.int32)
             self.holds_matrix = False
-
-    def _analyse(self, A, integer) -> None:
-        """PARDISO's analysis (phase 11: the ordering and the factor's size, ``memory``) of
-        ``A`` through its ``integer`` (np.int32 or np.int64) interface."""
-        self._indptr = A.indptr.astype(integer, copy=False)
-        self._indices = A.indices.astype(integer, copy=False)
-        self._iparm = pardiso_iparm(self.kind).astype(integer)
-        self._pt = np.zeros(64, dtype=np.int64)
-        memory.release_freed()  # before the factor, the largest allocation, is made
-        # release the MKL factor when this object goes away, even without free()
-        self._finalizer = weakref.finalize(self, pardiso_release, self._pt, self._mtype, self.n,
-                                          self._iparm)
-        self._call(11)
-        self.memory = pardiso_memory(self._iparm)
 
     def _call(self, phase: int) -> None:
         """One PARDISO phase on this factorization; freed where it fails."""

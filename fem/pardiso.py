@@ -34,19 +34,12 @@ def mkl_candidates() -> list:
     return [p for p in paths if p]
 
 
-#: PARDISO's 32-bit interface counts its factor's entries in 32-bit integers: a factor past
-#: 2^31 - 1 entries (16 GiB; a compact 3-D P2 solid of about 1M DOFs) fails with error -2.
-#: From this size of factor (bytes, its analysis' iparm[16]; a margin below the 16 GiB) the
-#: factorization is made by pardiso_64 instead, its integers all 64-bit.
-WIDE_FACTOR_BYTES = 0.75 * (2**31 - 1) * 8
-
-
 @functools.cache
-def mkl_pardiso(width: int = 32):
-    """MKL's ``pardiso`` (``width`` 32) or ``pardiso_64`` (64: every integer argument 64-bit)
-    entry point (ctypes), found once: the runtime library of the installed ``mkl`` wheel (see
-    :func:`mkl_candidates`), else through pypardiso's search (~0.8 s); None where neither is
-    found."""
+def mkl_pardiso():
+    """MKL's ``pardiso`` entry point (ctypes), found once: the runtime library of the
+    installed ``mkl`` wheel (see :func:`mkl_candidates`), else through pypardiso's search
+    (~0.8 s); None where neither is found. (Its 32-bit integers serve factors past 2^31
+    entries: the 1M-DOF cube's 2.4e9, measured; only iparm[17]'s count overflows.)"""
     library = None
     for path in mkl_candidates():
         try:
@@ -61,10 +54,10 @@ def mkl_pardiso(width: int = 32):
         except Exception:  # not installed, or its library search failed
             return None
     try:
-        fn = library.pardiso if width == 32 else library.pardiso_64
+        fn = library.pardiso
     except AttributeError:
         return None
-    ip, dp = ctypes.POINTER(ctypes.c_int32 if width == 32 else ctypes.c_int64), ctypes.c_void_p
+    ip, dp = ctypes.POINTER(ctypes.c_int32), ctypes.c_void_p
     # pt, maxfct, mnum, mtype, phase, n, a, ia, ja, perm, nrhs, iparm, msglvl, b, x, error
     fn.argtypes = [ctypes.POINTER(ctypes.c_int64)] + [ip] * 5 + [dp] * 4 + [ip] * 3 \
         + [dp] * 2 + [ip]
@@ -73,23 +66,19 @@ def mkl_pardiso(width: int = 32):
 
 
 def pardiso_call(pt, mtype, phase, n, data, indptr, indices, iparm, b, x) -> None:
-    """One call of MKL's pardiso (zero-based CSR, iparm[34] = 1); raises on its error code.
-    An int64 ``iparm`` calls pardiso_64 (``indptr`` and ``indices`` int64 too)."""
-    width = 8 * iparm.dtype.itemsize
-    if indptr.dtype != iparm.dtype or indices.dtype != iparm.dtype:
-        raise TypeError(f"pardiso: indptr and indices must be int{width} like iparm")
-    fn = mkl_pardiso(width)
-    integer = ctypes.c_int32 if width == 32 else ctypes.c_int64
-    error = integer(0)
-    one = integer(1)
+    """One call of MKL's pardiso (zero-based CSR, iparm[34] = 1, int32 indices and iparm);
+    raises on its error code."""
+    fn = mkl_pardiso()
+    error = ctypes.c_int32(0)
+    one = ctypes.c_int32(1)
     nrhs = 1 if b.ndim == 1 else b.shape[1]
     null = ctypes.c_void_p()
     fn(pt.ctypes.data_as(ctypes.POINTER(ctypes.c_int64)), ctypes.byref(one), ctypes.byref(one),
-       ctypes.byref(integer(mtype)), ctypes.byref(integer(phase)),
-       ctypes.byref(integer(n)), data.ctypes.data_as(ctypes.c_void_p),
+       ctypes.byref(ctypes.c_int32(mtype)), ctypes.byref(ctypes.c_int32(phase)),
+       ctypes.byref(ctypes.c_int32(n)), data.ctypes.data_as(ctypes.c_void_p),
        indptr.ctypes.data_as(ctypes.c_void_p), indices.ctypes.data_as(ctypes.c_void_p), null,
-       ctypes.byref(integer(nrhs)), iparm.ctypes.data_as(ctypes.POINTER(integer)),
-       ctypes.byref(integer(0)), b.ctypes.data_as(ctypes.c_void_p),
+       ctypes.byref(ctypes.c_int32(nrhs)), iparm.ctypes.data_as(ctypes.POINTER(ctypes.c_int32)),
+       ctypes.byref(ctypes.c_int32(0)), b.ctypes.data_as(ctypes.c_void_p),
        x.ctypes.data_as(ctypes.c_void_p), ctypes.byref(error))
     if error.value == -4 or error.value == -7:
         raise SingularStiffness(f"PARDISO: {ERRORS[error.value]}; the model is "
@@ -106,7 +95,7 @@ def pardiso_release(pt, mtype, n, iparm, folder: str | None = None) -> None:
     ``iparm`` it was made with (the two-level factorization's release crashes on defaults),
     and remove the out-of-core ``folder`` (its factor files); idempotent."""
     if np.any(pt):
-        empty_i, empty_d = np.zeros(1, dtype=iparm.dtype), np.zeros(1)
+        empty_i, empty_d = np.zeros(1, dtype=np.int32), np.zeros(1)
         pardiso_call(pt, mtype, -1, n, empty_d, empty_i, empty_i, iparm, empty_d, empty_d.copy())
         pt[:] = 0
     if folder is not None:

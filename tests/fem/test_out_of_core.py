@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import scipy.sparse as sp
-from flexfem.fem import Material, Model, SingularStiffness, linsolve, pardiso
+from flexfem.fem import Material, Model, SingularStiffness, linsolve
 from flexfem.fem.budget import MEMORY_VARIABLE, factor_plan
 from flexfem.fem.factor import factor
 from flexfem.fem.model import Solid3D
@@ -101,32 +101,6 @@ def test_out_of_core_of_the_other_kinds(stiffness, kind, tmp_path):
         assert F.backend == "mkl-pardiso-ooc"
         x_out = F.solve(b)
     assert np.abs(x_out - x_in).max() <= 1e-10 * np.abs(x_in).max()
-
-
-@needs_pardiso
-@pytest.mark.parametrize("out_of_core", [False, True])
-def test_a_factor_past_the_32_bit_reach_is_made_by_pardiso_64(stiffness, tmp_path, monkeypatch,
-                                                             out_of_core):
-    """A factor of more than 2^31 - 1 entries goes to PARDISO's 64-bit interface (the 32-bit
-    one fails there with error -2): made to take it at any size, the same solution."""
-    b = np.random.default_rng(2).standard_normal(stiffness.shape[0])
-    with linsolve.Factorization(stiffness, "spd", out_of_core=out_of_core,
-                                scratch=str(tmp_path)) as F:
-        assert F._iparm.dtype == np.int32
-        x_32, memory_32 = F.solve(b), F.memory
-    monkeypatch.setattr(linsolve, "WIDE_FACTOR_BYTES", 0.0)
-    with linsolve.Factorization(stiffness, "spd", out_of_core=out_of_core,
-                                scratch=str(tmp_path)) as F:
-        assert F._iparm.dtype == np.int64 and F._indptr.dtype == np.int64
-        assert F.backend == ("mkl-pardiso-ooc" if out_of_core else "mkl-pardiso")
-        x_64 = F.solve(b)
-        assert F.memory[0] >= memory_32[0]  # the same factor, wider indices
-    assert list(tmp_path.iterdir()) == []  # its files removed too
-    assert np.abs(x_64 - x_32).max() <= 1e-10 * np.abs(x_32).max()
-    with pytest.raises(TypeError, match="int64 like iparm"):
-        pardiso.pardiso_call(np.zeros(64, np.int64), 2, 11, 3, np.ones(3), np.zeros(4, np.int32),
-                             np.zeros(3, np.int32), np.zeros(64, np.int64), np.ones(3),
-                             np.ones(3))
 
 
 def test_the_memory_plan_keeps_within_the_address_space_limit():
