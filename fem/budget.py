@@ -99,8 +99,7 @@ MEMORY_VARIABLE = "FLEXFEM_MEMORY_GIB"
 def available_memory_bytes() -> int:
     """Memory available to a new allocation: ``FLEXFEM_MEMORY_GIB`` where it is set, else
     what is available now (Linux MemAvailable), else free pages; never more than this
-    process' address-space limit leaves (``ulimit -v``: PARDISO's out-of-core budget is one
-    reservation, refused with its error -2 beyond it)."""
+    process' address-space limit (``ulimit -v``) leaves."""
     return int(min(_memory_bytes(), _address_space_left()))
 
 

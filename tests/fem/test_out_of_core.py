@@ -104,10 +104,9 @@ def test_out_of_core_of_the_other_kinds(stiffness, kind, tmp_path):
 
 
 def test_the_memory_plan_keeps_within_the_address_space_limit():
-    """Under ``ulimit -v`` the memory a plan counts on (and so PARDISO's out-of-core budget,
-    one reservation) is what the limit leaves above the process, not the machine's free
-    memory: the 1M-DOF cube's factorization failed with error -2 there. Run in a process
-    of its own under a fixed 3 GiB limit."""
+    """Under ``ulimit -v`` the memory a plan counts on (and PARDISO's out-of-core budget) is
+    at most what the limit leaves above the process, whatever else is free or asked for. Run
+    in a process of its own under a fixed 3 GiB limit."""
     import subprocess
 
     code = ("import resource; resource.setrlimit(resource.RLIMIT_AS, (3 * 2**30, 3 * 2**30)); "
