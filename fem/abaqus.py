@@ -112,7 +112,8 @@ def abaqus_mesh(femesh: FEMesh, order: int = 1) -> AbaqusMesh:
         points, elements = mesh.p.T, corners
     else:
         n_nodes = mesh.p.shape[1] + edge_nodes(mesh).shape[1]
-        points = skfem.Basis(mesh, scalar_element(mesh, 2), intorder=1).doflocs[:, :n_nodes].T
+        curved = femesh.cell_mesh(2)  # the edge nodes on their curved surfaces, if any
+        points = skfem.Basis(curved, scalar_element(curved, 2), intorder=1).doflocs[:, :n_nodes].T
         elements = np.hstack([corners, mid_edge_nodes(mesh, corners, pairs)])
     points = np.hstack([points, np.zeros((points.shape[0], 3 - points.shape[1]))])
     node_sets = {g: group_nodes(femesh, g, order) for g in femesh.group_names}

@@ -176,7 +176,7 @@ def facet_basis(model, group):
     facets = model.mesh.facets(group)
     if len(facets) == 0:
         raise ValueError(f"group {group!r} has no facets: a load on it would act on no nodes")
-    return skfem.FacetBasis(model.mesh.mesh, model.basis.elem, facets=facets,
+    return skfem.FacetBasis(model.cell_mesh, model.basis.elem, facets=facets,
                             intorder=2 * model.order)
 
 

@@ -17,7 +17,7 @@ def face_geometry(model, group: str) -> tuple:
         raise ValueError(f"face = {group!r} must be a boundary group, not a subdomain")
     dofs = group_dofs(model, group)
     pair = np.array([dofs[0], dofs[1], dofs[2]])
-    fb = skfem.FacetBasis(model.mesh.mesh, model.basis.elem,
+    fb = skfem.FacetBasis(model.cell_mesh, model.basis.elem,
                           facets=model.mesh.facets(group), intorder=2)
     x = np.asarray(fb.global_coordinates())
     area = float(np.sum(fb.dx))

@@ -98,7 +98,7 @@ class Assembler:
     def tangent(self, F, S) -> sp.csr_matrix:
         m = self.model
         upper = assembly.tangent_stiffness_upper(
-            m.mesh.mesh, scalar_element(m.mesh.mesh, m.order), m.stiffness_quadrature,
+            m.cell_mesh, scalar_element(m.cell_mesh, m.order), m.stiffness_quadrature,
             m.node_pattern, m.dim, self.t * tangent_modulus(F, S, self.lam, self.mu))
         return symmetric_from_upper(upper)
 
@@ -127,7 +127,7 @@ def geometric_stiffness(model: Model, u: np.ndarray) -> sp.csr_matrix:
     (exact for sigma of degree order - 1), on the model's node pattern
     (:func:`.assembly.geometric_stiffness`). (K + K_sigma) is the tangent about a prestressed
     reference configuration."""
-    mesh = model.mesh.mesh
+    mesh = model.cell_mesh
     stress = model.stress(u)[:model.dim, :model.dim]  # (dim, dim, e, q) on model.quadrature
     return assembly.geometric_stiffness(mesh, scalar_element(mesh, model.order), model.quadrature,
                                         model.node_pattern, model.dim, stress, model.thickness)

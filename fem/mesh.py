@@ -38,11 +38,16 @@ class FEMesh:
     """A first-order skfem mesh with named boundaries (facet indices) and subdomains
     (element indices). Coordinates in metres. Refused with ValueError: no elements, non-finite
     coordinates, vertices in no element, degenerate, folded, inverted or overlapping elements,
-    and non-conforming meshes (hanging nodes); see :mod:`~flexfem.fem.mesh_check`."""
+    and non-conforming meshes (hanging nodes); see :mod:`~flexfem.fem.mesh_check`.
+
+    ``edge_nodes`` (optional, (dim, n_edges) m, tetrahedral meshes): where a quadratic
+    element's node on each edge of ``mesh.edges`` lies, for cells curved onto a round
+    surface (:meth:`cell_mesh`); None: every edge straight, its node at the midpoint."""
 
     mesh: skfem.Mesh
     boundaries: dict = field(default_factory=dict)
     subdomains: dict = field(default_factory=dict)
+    edge_nodes: np.ndarray | None = None
 
     def __post_init__(self):
         if self.mesh.t.shape[1] == 0:
@@ -54,6 +59,18 @@ class FEMesh:
         check_unused_vertices(self.mesh)
         check_facet_sharing(self.mesh)
         check_hanging_nodes(self.mesh)
+        if self.edge_nodes is not None:
+            expected = (3, self.mesh.edges.shape[1]) if isinstance(self.mesh, skfem.MeshTet) else None
+            if np.shape(self.edge_nodes) != expected:
+                raise ValueError(f"edge_nodes of shape {np.shape(self.edge_nodes)}: a tetrahedral "
+                                 f"mesh's curved edges take one node per edge, {expected}")
+
+    def cell_mesh(self, order: int) -> skfem.Mesh:
+        """The mesh the cells of ``order`` are mapped on: with :attr:`edge_nodes` and order 2,
+        skfem's quadratic (isoparametric) MeshTet2 through them; else :attr:`mesh`."""
+        if self.edge_nodes is None or order != 2:
+            return self.mesh
+        return skfem.MeshTet2(np.hstack([self.mesh.p, self.edge_nodes]), self.mesh.t)
 
     @property
     def dim(self) -> int:
@@ -102,7 +119,7 @@ class FEMesh:
     def with_groups(self, boundaries=None, subdomains=None) -> "FEMesh":
         """A copy with extra groups added (e.g. built with :func:`facets_where`)."""
         return FEMesh(self.mesh, {**self.boundaries, **(boundaries or {})},
-                      {**self.subdomains, **(subdomains or {})})
+                      {**self.subdomains, **(subdomains or {})}, self.edge_nodes)
 
 
 def facets_where(mesh: skfem.Mesh, condition) -> np.ndarray:

@@ -139,16 +139,23 @@ class Model:
             lam = 2 * lam * mu / (lam + 2 * mu)
         return lam, mu
 
+    @cached_property
+    def cell_mesh(self) -> skfem.Mesh:
+        """The mesh the cells are mapped on: ``mesh.mesh``, or its quadratic (curved) copy
+        where the mesh has curved edges and the order is 2 (:meth:`.FEMesh.cell_mesh`)."""
+        return self.mesh.cell_mesh(self.order)
+
     @property
     def is_affine(self) -> bool:
-        return isinstance(self.mesh.mesh, (skfem.MeshTri, skfem.MeshTet))
+        """Straight-sided triangles or tetrahedra: a constant Jacobian in each cell."""
+        return bool(getattr(self.cell_mesh, "affine", False))
 
     @cached_property
     def basis(self) -> skfem.CellBasis:
         """Vector basis; quadrature exact for the mass matrix (degree 2 * order)."""
-        element = skfem.ElementVector(scalar_element(self.mesh.mesh, self.order))
+        element = skfem.ElementVector(scalar_element(self.cell_mesh, self.order))
         intorder = 2 * self.order if self.is_affine else 2 * self.order + 1
-        return LazyCellBasis(self.mesh.mesh, element, intorder=intorder)
+        return LazyCellBasis(self.cell_mesh, element, intorder=intorder)
 
     @cached_property
     def stiffness_basis(self) -> skfem.CellBasis:
@@ -156,7 +163,7 @@ class Model:
         straight-sided simplices; the mass-matrix rule elsewhere."""
         if not self.is_affine:
             return self.basis
-        return LazyCellBasis(self.mesh.mesh, self.basis.elem, intorder=max(2 * (self.order - 1), 1))
+        return LazyCellBasis(self.cell_mesh, self.basis.elem, intorder=max(2 * (self.order - 1), 1))
 
     @property
     def n_dofs(self) -> int:
@@ -179,7 +186,7 @@ class Model:
         """``stiffness_upper`` assembled anew and not kept on the model."""
         lam, mu = self.lame
         K = assembly.elasticity_stiffness_upper(
-            self.mesh.mesh, scalar_element(self.mesh.mesh, self.order), self.stiffness_quadrature,
+            self.cell_mesh, scalar_element(self.cell_mesh, self.order), self.stiffness_quadrature,
             self.node_pattern, self.dim, lam, mu, self.thickness)
         memory.release_freed()  # the element blocks' temporaries
         return K
@@ -190,7 +197,7 @@ class Model:
         :func:`.assembly.consistent_mass` on the quadrature of ``basis`` (the matrix of
         skfem's BilinearForm rho t u.v)."""
         M = symmetric.upper(assembly.consistent_mass(
-            self.mesh.mesh, scalar_element(self.mesh.mesh, self.order), self.quadrature,
+            self.cell_mesh, scalar_element(self.cell_mesh, self.order), self.quadrature,
             self.node_pattern, self.dim, self.material.density * self.thickness))
         memory.release_freed()
         return M
@@ -249,7 +256,7 @@ class Model:
         zz = lambda (xx + yy))."""
         if basis is None:  # from the scalar shape functions: the vector basis is not built
             gu = assembly.displacement_gradient(
-                self.mesh.mesh, scalar_element(self.mesh.mesh, self.order), self.quadrature,
+                self.cell_mesh, scalar_element(self.cell_mesh, self.order), self.quadrature,
                 self.basis.element_dofs, self.dim, u)
         else:
             gu = grad(basis.interpolate(u))

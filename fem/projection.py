@@ -11,7 +11,7 @@ def nodal_average(model: Model, values: np.ndarray) -> np.ndarray:
     """L2 projection of quadrature-point values ((..., n_elements, n_points)) onto continuous
     piecewise-linear fields at the mesh vertices (consistent P1 mass matrix, so a linear stress
     field is recovered exactly; scikit-fem issue #618)."""
-    mesh = model.mesh.mesh
+    mesh = model.mesh.mesh  # the vertices' hat functions (a curved copy's p holds its edge nodes too)
     hat = skfem.CellBasis(mesh, scalar_element(mesh, 1), quadrature=(model.basis.X, model.basis.W))
     flat = values.reshape((-1,) + hat.dx.shape)
     M = skfem.BilinearForm(lambda u, v, w: u * v).assemble(hat).tocsr()

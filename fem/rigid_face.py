@@ -103,7 +103,7 @@ def face_kinematics(model, face: RigidFace):
         raise ValueError(f"RigidFace({face.group!r}) needs a boundary group, not a subdomain")
     pair = np.array([dofs[0], dofs[1]])
     X = model.basis.doflocs[:, pair[0]]
-    fb = skfem.FacetBasis(model.mesh.mesh, model.basis.elem, facets=model.mesh.facets(face.group),
+    fb = skfem.FacetBasis(model.cell_mesh, model.basis.elem, facets=model.mesh.facets(face.group),
                           intorder=2)
     length = float(np.sum(fb.dx))
     centroid = np.array([np.sum(np.asarray(fb.global_coordinates())[i] * fb.dx) for i in range(2)]) / length

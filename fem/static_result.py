@@ -89,7 +89,7 @@ def group_basis(model: Model, group: str):
     the model's shape functions."""
     mesh = model.mesh
     if group in mesh.boundaries:
-        return skfem.FacetBasis(mesh.mesh, model.basis.elem, facets=mesh.facets(group),
+        return skfem.FacetBasis(model.cell_mesh, model.basis.elem, facets=mesh.facets(group),
                                 intorder=2 * model.order)
     return model.basis.with_elements(mesh.elements(group))
 

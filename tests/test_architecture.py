@@ -115,7 +115,8 @@ def test_fem_knows_no_mechanism_and_the_engine_no_mechanism_by_name():
 
 
 # what geometry/ may use of fem: meshes, gmsh, materials and the mesh budget, never a solver
-DRAWING_MODULES = {"fem.gmsh_session", "fem.mesh", "fem.materials", "fem.budget", "fem.checks"}
+DRAWING_MODULES = {"fem.gmsh_session", "fem.mesh", "fem.materials", "fem.budget", "fem.checks",
+                   "fem.curved"}
 DRAWING_NAMES = {"FEMesh", "gmsh_session", "mesh_from_gmsh", "read_mesh", "facets_where",
                  "drop_unused_vertices", "Material", "material", "material_names"}
 

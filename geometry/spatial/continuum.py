@@ -10,6 +10,7 @@ import math
 import numpy as np
 
 from ...fem import FEMesh, gmsh_session, mesh_from_gmsh
+from ...fem.curved import curved_onto_cylinders
 from ...fem.budget import NODES_PER_ELEMENT, TETRAHEDRA_PER_CUBE, check_budget
 from ..mechanism.draw import size_by_fields, threshold_field
 from .description import AXES, SpatialMechanism, Wire, flexure_label
@@ -19,9 +20,9 @@ from .mass import mass_properties
 THROUGH = 2
 #: Elements round a curved surface's full circle (a wire's circumference, a cylinder
 #: body's), by default: gmsh's curvature-based size (Mesh.MeshSizeFromCurvature). Two
-#: elements through a wire alone make its section a polygon of about six sides (straight-
-#: sided cells), 0.69 of the circle's I: the wire guide's continuum was 25 % soft; sixteen
-#: round it give 0.95-0.97 of it at twice the DOFs (docs/spatial.md).
+#: elements through a wire alone would make its section a polygon of about six sides,
+#: 0.69 of the circle's I; sixteen round it, with the cells curved onto the cylinder
+#: (fem/curved.py), give the circle's to O(h^4) (docs/spatial.md).
 AROUND = 16
 
 
@@ -207,8 +208,9 @@ def _refine(gmsh, mechanism, shapes, size_factor, coarse) -> None:
 def mesh_spatial(mechanism: SpatialMechanism, size_factor: float = 1.0,
                  coarse: float | None = None, order: int = 2,
                  max_dofs: int | None = None) -> FEMesh:
-    """The meshed continuum (linear tetrahedra; the Model raises the order) with a boundary
-    group per body and "solid". ``size_factor`` scales every element size, ``coarse`` the
+    """The meshed continuum (linear tetrahedra; the Model raises the order, and at order 2
+    the cells on the wires' and cylinders' surfaces are curved onto them: fem/curved.py)
+    with a boundary group per body and "solid". ``size_factor`` scales every element size, ``coarse`` the
     bodies' size (m); a mesh whose estimate is above ``max_dofs`` (None: half the available
     memory) is refused first (BudgetError, fem/budget.py), and so is one whose nodes pass it
     once meshed."""
@@ -244,4 +246,12 @@ def mesh_spatial(mechanism: SpatialMechanism, size_factor: float = 1.0,
         ratio = NODES_PER_ELEMENT[(3, order)] / NODES_PER_ELEMENT[(3, 1)]
         check_budget({"elements": 0, "nodes": int(nodes * ratio),
                       "dofs": int(3 * nodes * ratio)}, 3, max_dofs, what=what)
-        return mesh_from_gmsh(gmsh)
+        mesh = mesh_from_gmsh(gmsh)
+    return curved_onto_cylinders(mesh, round_surfaces(mechanism)) if order == 2 else mesh
+
+
+def round_surfaces(mechanism: SpatialMechanism) -> list:
+    """[(start, end, radius)] (m) of every wire and cylinder body: the surfaces the quadratic
+    cells are curved onto (fem/curved.py)."""
+    out = [(f.start, f.end, f.diameter / 2) for f in mechanism.flexures if isinstance(f, Wire)]
+    return out + [(c.start, c.end, c.diameter / 2) for b in mechanism.bodies for c in b.cylinders]

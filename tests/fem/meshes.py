@@ -47,3 +47,16 @@ def beam_3d(length, height, width, size, hexes=False):
             gmsh.option.setNumber("Mesh.MeshSizeMax", size)
         gmsh.model.mesh.generate(3)
         return mesh_from_gmsh(gmsh)
+
+
+def rod_3d(length, radius, around):
+    """Round rod along x from 0 to ``length`` (m) of ``radius`` (m), ``around`` elements
+    round its circle (gmsh's curvature-based size), groups fixed/tip/body."""
+    with gmsh_session() as gmsh:
+        v = gmsh.model.occ.addCylinder(0, 0, 0, length, 0, 0, radius)
+        gmsh.model.occ.synchronize()
+        _name_box_faces(gmsh, 3, v, length)
+        gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", around)
+        gmsh.option.setNumber("Mesh.MeshSizeMax", radius)
+        gmsh.model.mesh.generate(3)
+        return mesh_from_gmsh(gmsh)
