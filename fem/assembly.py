@@ -119,20 +119,41 @@ def affine_gradients(mesh: skfem.Mesh, reference: np.ndarray, weights: np.ndarra
     return G, determinant[:, None] * weights[None, :]
 
 
+def mapped_gradients(nodes: np.ndarray, geometry: np.ndarray, reference: np.ndarray,
+                     weights: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(G, dx) of elements mapped isoparametrically: ``nodes`` (n_elements, n_geometry,
+    dim) their geometry nodes (m), ``geometry`` (n_geometry, dim, n_points) the geometry
+    shape functions' reference gradients, ``reference`` (n_local, dim, n_points) the field's;
+    G (n_elements, n_local, dim, n_points) (1/m), dx (n_elements, n_points) = |det J| w
+    (m^dim), J the map's Jacobian at each point."""
+    J = np.einsum("eax,arq->eqxr", nodes, geometry, optimize=True)
+    inverse = np.linalg.inv(J)                                       # (e, q, r, x)
+    G = np.einsum("eqrx,arq->eaxq", inverse, reference, optimize=True)
+    return G, np.abs(np.linalg.det(J)) * weights[None, :]
+
+
 def block_gradients(mesh: skfem.Mesh, element: skfem.Element, quadrature):
     """(slice, G, dx) per block of BLOCK elements: the scalar shape functions' gradients
     (n_elements, n_local, dim, n_points) (1/m) and the quadrature weights times the Jacobian
-    (n_elements, n_points) (m^dim). Affine meshes (straight-sided triangles, tetrahedra): from
-    the reference gradients computed once; others through skfem's CellBasis."""
+    (n_elements, n_points) (m^dim), from the reference gradients computed once. Affine
+    meshes (straight-sided triangles, tetrahedra): each element's constant Jacobian; others
+    (curved, quadrilaterals, hexahedra): the Jacobian at each point from the mesh's geometry
+    element (:func:`mapped_gradients`)."""
+    points, weights = quadrature
+    reference = reference_gradients(element, points)
+    n_el = mesh.t.shape[1]
     if getattr(mesh, "affine", False):
-        points, weights = quadrature
-        reference = reference_gradients(element, points)
-        for start in range(0, mesh.t.shape[1], BLOCK):
-            block = slice(start, min(start + BLOCK, mesh.t.shape[1]))
+        for start in range(0, n_el, BLOCK):
+            block = slice(start, min(start + BLOCK, n_el))
             yield (block, *affine_gradients(mesh, reference, weights, block))
         return
-    for block, scalar in element_blocks(mesh, element, quadrature):
-        yield block, scalar_gradients(scalar), scalar.dx
+    shape = mesh.elem()
+    geometry = reference_gradients(shape, points)
+    nodes = skfem.assembly.Dofs(mesh, shape).element_dofs        # (n_geometry, n_elements)
+    for start in range(0, n_el, BLOCK):
+        block = slice(start, min(start + BLOCK, n_el))
+        X = mesh.doflocs[:, nodes[:, block]].transpose(2, 1, 0)  # (e, a, x)
+        yield (block, *mapped_gradients(X, geometry, reference, weights))
 
 
 def add_node_blocks(out: np.ndarray, pattern: NodePattern, block: slice,

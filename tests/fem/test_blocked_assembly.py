@@ -8,20 +8,35 @@ from flexfem.fem import FEMesh, Model, PlaneStress, Solid3D, assembly
 from flexfem.fem.model import LazyCellBasis
 from skfem.helpers import grad
 
+def _bent(mesh):
+    """``mesh`` with its vertices moved off a regular grid (non-parallelogram cells)."""
+    return mesh.morphed(lambda p: p[0] + 0.1 * np.sin(3 * p[1]) * p[0],
+                        lambda p: p[1] + 0.08 * np.cos(2 * p[0]) * p[1])
+
+
 MESHES = {
     "tri": lambda: skfem.MeshTri().refined(2),
     "quad": lambda: skfem.MeshQuad().refined(2),
     "tet": lambda: skfem.MeshTet().refined(1),
     "hex": lambda: skfem.MeshHex().refined(1),
+    "bent quad": lambda: _bent(skfem.MeshQuad().refined(2)),
+    "bent hex": lambda: _bent(skfem.MeshHex().refined(1)),
 }
+
+
+def _curved_tet(mesh):
+    """A FEMesh of ``mesh`` (tetrahedra) with every edge's middle node moved off its
+    midpoint (isoparametric cells, fem/curved.py's edge_nodes)."""
+    middle = (mesh.p[:, mesh.edges[0]] + mesh.p[:, mesh.edges[1]]) / 2
+    return FEMesh(mesh, edge_nodes=middle + 0.02 * np.sin(7 * middle[::-1]))
 
 
 @pytest.mark.parametrize("name", list(MESHES))
 def test_lazy_basis_equals_skfem_basis(name):
-    mesh = MESHES[name]()
-    element = skfem.ElementVector(skfem.ElementTriP2() if name == "tri" else
-                                  skfem.ElementQuad2() if name == "quad" else
-                                  skfem.ElementTetP2() if name == "tet" else skfem.ElementHex2())
+    mesh, kind = MESHES[name](), name.split()[-1]
+    element = skfem.ElementVector(skfem.ElementTriP2() if kind == "tri" else
+                                  skfem.ElementQuad2() if kind == "quad" else
+                                  skfem.ElementTetP2() if kind == "tet" else skfem.ElementHex2())
     lazy, eager = LazyCellBasis(mesh, element, intorder=4), skfem.CellBasis(mesh, element, intorder=4)
     assert "basis" not in lazy.__dict__  # nothing evaluated on construction
     assert np.array_equal(lazy.element_dofs, eager.element_dofs)
@@ -70,6 +85,23 @@ def test_stiffness_and_mass_equal_skfem_asm(name, steel, monkeypatch):
     assert abs(model.stiffness - K).max() <= 1e-12 * abs(K).max()
     assert abs(model.stiffness_upper - sp.triu(model.stiffness)).max() == 0
     assert abs(model.mass - M).max() <= 1e-12 * abs(M).max()
+
+
+def test_curved_cells_stiffness_and_mass_equal_skfem_asm(steel, monkeypatch):
+    """On isoparametric (curved) P2 tetrahedra the Jacobian at each point comes from the
+    geometry nodes (assembly.mapped_gradients): K and M equal skfem's asm on MeshTet2."""
+    from skfem.helpers import dot
+    from skfem.models.elasticity import linear_elasticity
+    monkeypatch.setattr(assembly, "BLOCK", 7)
+    model = Model(_curved_tet(skfem.MeshTet().refined(1)), steel, Solid3D(), order=2)
+    assert isinstance(model.cell_mesh, skfem.MeshTet2) and not model.is_affine
+    lam, mu = model.lame
+    K = skfem.asm(linear_elasticity(lam, mu), model.stiffness_basis)
+    M = skfem.asm(skfem.BilinearForm(lambda u, v, w: steel.rho * dot(u, v)), model.basis)
+    assert abs(model.stiffness - K).max() <= 1e-12 * abs(K).max()
+    assert abs(model.mass - M).max() <= 1e-12 * abs(M).max()
+    straight = Model(FEMesh(model.mesh.mesh), steel, Solid3D(), order=2)
+    assert abs(straight.stiffness - K).max() > 1e-3 * abs(K).max()   # the curving counts
 
 
 def test_node_dofs_refuses_a_numbering_not_by_node():
