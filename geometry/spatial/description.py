@@ -232,7 +232,8 @@ class SpatialMechanism:
         built: a name used twice, a flexure joining an unknown body or one body to itself,
         an end outside its body, a leaf's width_along not perpendicular to it, flexures
         that meet (unless either declares ``crosses``), a body joined to nothing, and (when
-        ``supported`` is given: the held group names) a mechanism with no held body."""
+        ``supported`` is given: the held group names) a mechanism with no held body; and a
+        root fillet, which neither model draws yet."""
         names = [b.name for b in self.bodies]
         for b in self.bodies:
             if names.count(b.name) > 1:
@@ -245,6 +246,10 @@ class SpatialMechanism:
                                      f"{', '.join(names)}")
             if f.between[0] == f.between[1]:
                 raise ValueError(f"{f.source}: {label} joins body {f.between[0]!r} to itself")
+            if f.fillet:
+                raise ValueError(f"{f.source}: {label}: fillet = {f.fillet!r} m: root fillets "
+                                 "of spatial flexures are not modelled yet (both models "
+                                 "would draw square roots); leave fillet out or write 0")
             axis = np.subtract(f.end, f.start)
             length = float(np.linalg.norm(axis))
             if not length > self.tol:

@@ -108,3 +108,15 @@ def test_unknown_body_and_wrong_unit_are_refused(tmp_path):
     with pytest.raises(ValueError, match="diameter"):
         load_spatial(_write(tmp_path, WIRE_GUIDE.replace('d = "1 mm"', 'd = "1 mm"\nq = 1')
                             .replace('diameter = "d"', 'diameter = "5 deg"', 1), "u.toml"))
+
+
+def test_a_root_fillet_is_refused_not_ignored(tmp_path):
+    """Neither model draws a spatial flexure's root fillet yet: a nonzero fillet would run
+    the square-rooted design unchanged, so it is refused at its line; 0 is accepted."""
+    text = LEAF_GUIDE.replace('width = "w"', 'width = "w"\nfillet = "0.5 mm"', 1)
+    message = _error(tmp_path, text)
+    assert re.search(r"line \d+: flexure 1 'front'", message)
+    assert "fillet = 0.0005 m" in message and "not modelled" in message
+    zero = _write(tmp_path, LEAF_GUIDE.replace('width = "w"', 'width = "w"\nfillet = 0', 1),
+                  "zero.toml")
+    assert load_spatial(zero)[0].flexures[0].fillet == 0
