@@ -203,18 +203,27 @@ FACTOR_SHARE = 0.5
 
 
 def factor_plan(in_core: float, out_of_core: float | None,
-                available: float | None = None) -> tuple[str, str]:
+                available: float | None = None,
+                address_space: float | None = None) -> tuple[str, str]:
     """How a direct factorization fits the memory: ('in-core' | 'out-of-core' | 'iterative',
     why). ``in_core``: the peak (bytes) of the factor held in memory; ``out_of_core``: the
     peak with the factor on disk (None: no out-of-core mode); both from PARDISO's analysis.
     ``available`` (bytes; None: :func:`available_memory_bytes`) of which FACTOR_SHARE may be
-    taken. In core wherever it fits, out of core next, the iterative path beyond."""
+    taken. In core wherever it fits, out of core next, the iterative path beyond. PARDISO's
+    out-of-core mode fails (its error -2) under an address-space limit below its in-core
+    factor, whatever its budget (docs/large_models.md): ``address_space`` (bytes; None:
+    what this process' ``ulimit -v`` leaves, inf without one) below ``in_core`` rules it out."""
     budget = FACTOR_SHARE * (available_memory_bytes() if available is None else available)
+    room = _address_space_left() if address_space is None else address_space
     gib = 2**30
     head = f"the direct factor's {in_core / gib:.2f} GiB (PARDISO's analysis)"
     share = f"half the available memory, {budget / gib:.2f} GiB"
     if in_core <= budget:
         return "in-core", f"{head} fits {share}"
+    if out_of_core is not None and out_of_core <= budget and room < in_core:
+        return "iterative", (f"{head} is above {share}; out of core PARDISO needs an address "
+                             f"space above its in-core factor, and the address-space limit "
+                             f"(ulimit -v) leaves {room / gib:.2f} GiB")
     if out_of_core is not None and out_of_core <= budget:
         return "out-of-core", (f"{head} is above {share}; out of core (the factor on disk) it "
                                f"needs {out_of_core / gib:.2f} GiB in memory, which fits")

@@ -74,6 +74,20 @@ def test_the_plan_by_memory_on_a_fixed_budget():
     assert factor_plan(17 * gib, None, available=20 * gib)[0] == "iterative"
 
 
+def test_no_out_of_core_plan_under_an_address_space_limit_below_the_factor():
+    """PARDISO's out-of-core mode fails under an address-space limit below its in-core
+    factor (measured on the 1M-DOF cube): such a limit sends the plan to the iterative path,
+    saying why; a limit above the factor, or none, keeps out of core."""
+    gib = 2**30
+    plan, why = factor_plan(17 * gib, 3 * gib, available=20 * gib, address_space=16 * gib)
+    assert plan == "iterative" and "ulimit -v" in why and "16.00 GiB" in why
+    assert factor_plan(17 * gib, 3 * gib, available=20 * gib,
+                       address_space=18 * gib)[0] == "out-of-core"
+    assert factor_plan(17 * gib, 3 * gib, available=20 * gib,
+                       address_space=float("inf"))[0] == "out-of-core"
+    assert factor_plan(8 * gib, 3 * gib, available=20 * gib, address_space=9 * gib)[0] == "in-core"
+
+
 def test_out_of_core_is_refused_by_other_backends():
     A = sp.identity(4, format="csr")
     with pytest.raises(ValueError, match="out_of_core: PARDISO's mode only"):
