@@ -86,7 +86,8 @@ def _prism(occ, prism) -> list:
 
 
 def body_shapes(occ, body) -> list:
-    """[(3, tag)]: a body's boxes, cylinders and prisms drawn and fused into one shape."""
+    """[(3, tag)]: a body's boxes, cylinders and prisms drawn, fused into one shape and
+    turned by its pose."""
     shapes = [(3, occ.addBox(*lo, *np.subtract(hi, lo))) for lo, hi in body.boxes]
     shapes += [(3, occ.addCylinder(*c.start, *np.subtract(c.end, c.start), c.diameter / 2))
                for c in body.cylinders]
@@ -94,6 +95,8 @@ def body_shapes(occ, body) -> list:
         shapes += _prism(occ, p)
     if len(shapes) > 1:
         shapes, _ = occ.fuse(shapes[:1], shapes[1:])
+    if body.pose is not None:
+        occ.rotate(shapes, *body.pose.about, *body.pose.axis, body.pose.angle)
     return shapes
 
 
@@ -254,4 +257,7 @@ def round_surfaces(mechanism: SpatialMechanism) -> list:
     """[(start, end, radius)] (m) of every wire and cylinder body: the surfaces the quadratic
     cells are curved onto (fem/curved.py)."""
     out = [(f.start, f.end, f.diameter / 2) for f in mechanism.flexures if isinstance(f, Wire)]
-    return out + [(c.start, c.end, c.diameter / 2) for b in mechanism.bodies for c in b.cylinders]
+    for b in mechanism.bodies:
+        turn = (lambda p: p) if b.pose is None else b.pose.to_world
+        out += [(turn(c.start), turn(c.end), c.diameter / 2) for c in b.cylinders]
+    return out

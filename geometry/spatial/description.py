@@ -58,19 +58,48 @@ class Prism:
 
 
 @dataclass(frozen=True)
+class Pose:
+    """A body's rotation by ``angle`` (rad, right-handed) about the direction ``axis``
+    through the point ``about`` (m): its parts are written unrotated and turned so."""
+
+    axis: tuple
+    angle: float
+    about: tuple
+
+    @property
+    def matrix(self) -> np.ndarray:
+        """The rotation matrix (3, 3) (Rodrigues' formula)."""
+        k = np.asarray(self.axis, float) / np.linalg.norm(self.axis)
+        K = np.array([[0.0, -k[2], k[1]], [k[2], 0.0, -k[0]], [-k[1], k[0], 0.0]])
+        return np.eye(3) + math.sin(self.angle) * K + (1 - math.cos(self.angle)) * K @ K
+
+    def to_world(self, p) -> np.ndarray:
+        """Points ``p`` ((3,) or (n, 3), m) of the unrotated parts where the body puts them."""
+        c = np.asarray(self.about, float)
+        return c + (np.asarray(p, float) - c) @ self.matrix.T
+
+    def to_parts(self, p) -> np.ndarray:
+        """The inverse of :meth:`to_world`."""
+        c = np.asarray(self.about, float)
+        return c + (np.asarray(p, float) - c) @ self.matrix
+
+
+@dataclass(frozen=True)
 class SolidBody:
     """A rigid body: the union of ``boxes`` (((x0, y0, z0), (x1, y1, z1)), m), ``cylinders``
-    and ``prisms``; its ``name`` is its group (its free faces) in every model."""
+    and ``prisms``, turned by its ``pose`` (a :class:`Pose`; None: as written); its
+    ``name`` is its group (its free faces) in every model."""
 
     name: str
     boxes: tuple = ()
     cylinders: tuple = ()
     prisms: tuple = ()
     source: str = ""
+    pose: Pose | None = None
 
     def contains(self, p, tol: float) -> bool:
         """Whether point ``p`` (m) lies inside or on the body (within ``tol``, m)."""
-        p = np.asarray(p, float)
+        p = np.asarray(p, float) if self.pose is None else self.pose.to_parts(p)
         for lo, hi in self.boxes:
             lo, hi = np.minimum(lo, hi), np.maximum(lo, hi)
             if np.all(p >= lo - tol) and np.all(p <= hi + tol):
@@ -78,7 +107,8 @@ class SolidBody:
         return any(c.contains(p, tol) for c in self.cylinders + self.prisms)
 
     def extent(self) -> tuple:
-        """(lower, upper) corners (m) of the body's bounding box."""
+        """(lower, upper) corners (m) of the body's bounding box (of a posed body, a box
+        round its parts' turned bounding box)."""
         points = [np.asarray(c) for box in self.boxes for c in box]
         for c in self.cylinders:
             r = c.diameter / 2
@@ -92,7 +122,12 @@ class SolidBody:
                     q[(k + 1) % 3], q[(k + 2) % 3], q[k] = u, v, w
                     points.append(q)
         stack = np.array(points, float)
-        return stack.min(axis=0), stack.max(axis=0)
+        lo, hi = stack.min(axis=0), stack.max(axis=0)
+        if self.pose is None:
+            return lo, hi
+        corners = self.pose.to_world([[(lo, hi)[i >> k & 1][k] for k in range(3)]
+                                      for i in range(8)])
+        return corners.min(axis=0), corners.max(axis=0)
 
 
 @dataclass(frozen=True)

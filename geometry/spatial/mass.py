@@ -61,12 +61,15 @@ def _prism(p) -> tuple:
 
 def mass_properties(body) -> MassProperties:
     """The :class:`MassProperties` of a SolidBody: its parts' volumes, centroids and second
-    moments combined (parallel axes)."""
+    moments combined (parallel axes), turned by its pose."""
     parts = [_box(lo, hi) for lo, hi in body.boxes]
     parts += [_cylinder(c) for c in body.cylinders] + [_prism(p) for p in body.prisms]
     volume = sum(v for v, _, _ in parts)
     centroid = sum(v * c for v, c, _ in parts) / volume
     s = sum(si + v * np.outer(c - centroid, c - centroid) for v, c, si in parts)
+    if body.pose is not None:  # the parts turned: the centroid moves, the moments rotate
+        R = body.pose.matrix
+        centroid, s = body.pose.to_world(centroid), R @ s @ R.T
     return MassProperties(float(volume), centroid, s)
 
 

@@ -3,6 +3,7 @@
 (or a body is a cylinder or prism). Coordinates and sizes are numbers (m), quantities with
 units or expressions of the ``[parameters]`` (the planar format's expressions and units);
 errors name the model file, the line and the body or flexure."""
+from dataclasses import replace
 from pathlib import Path
 import math
 import tomllib
@@ -12,9 +13,10 @@ from ..user_model.mechanism_tables import body_name, check_arrays, flexure_head
 from ..user_model.quantities import with_si_units
 from ..user_model.tables import Locator, check_keys
 from .detect import is_spatial  # noqa: F401 - the spatial tables' own test, re-exported
-from .description import AXES, Cylinder, Plate, Prism, SolidBody, SpatialMechanism, Wire
+from .description import AXES, Cylinder, Plate, Pose, Prism, SolidBody, SpatialMechanism, Wire
 
-BODY_KEYS = ("name", "box", "cylinder", "prism")
+BODY_KEYS = ("name", "box", "cylinder", "prism", "pose")
+POSE_KEYS = ("axis", "angle", "about")
 CYLINDER_KEYS = ("from", "to", "diameter")
 PRISM_KEYS = ("polygon", "axis", "span")
 FLEXURE_KEYS = {"wire": ("kind", "name", "between", "from", "to", "diameter", "fillet",
@@ -96,6 +98,29 @@ def _prisms(raw, names, where) -> tuple:
     return tuple(out)
 
 
+def _pose(raw, names, where, centre) -> Pose:
+    """A [[body]]'s ``pose = {axis = [x, y, z], angle = A, about = [x, y, z]}``: turned by A
+    (rad, or "30 deg") about ``axis`` through ``about`` (m; default ``centre``, the middle
+    of its parts' bounding box)."""
+    if not isinstance(raw, dict):
+        raise ValueError(f"{where} = {raw!r} must be an inline table {{axis, angle, about}}")
+    unknown = sorted(set(raw) - set(POSE_KEYS))
+    missing = [k for k in ("axis", "angle") if k not in raw]
+    if unknown or missing:
+        raise ValueError(f"{where} takes axis, angle and (optionally) about"
+                         + (f"; unknown {', '.join(unknown)}" if unknown else "")
+                         + (f"; missing {', '.join(missing)}" if missing else ""))
+    axis = _values(raw["axis"], 3, names, f"{where} axis")
+    if not any(axis):
+        raise ValueError(f"{where} axis = [0, 0, 0] must be a direction")
+    angle = evaluate_expression(raw["angle"], names, f"{where} angle")
+    if not math.isfinite(angle):
+        raise ValueError(f"{where} angle = {raw['angle']!r} must be a finite angle (rad)")
+    about = (_values(raw["about"], 3, names, f"{where} about") if "about" in raw
+             else tuple(float(c) for c in centre))
+    return Pose(axis, angle, about)
+
+
 def _body(entry, i, names, loc: Locator) -> SolidBody:
     check_keys(entry, BODY_KEYS, loc, "body", i, "[[body]]")
     name = body_name(entry, i, loc)
@@ -110,8 +135,16 @@ def _body(entry, i, names, loc: Locator) -> SolidBody:
                 parts[key] = parse(entry[key], names, f"[[body]] {name!r} {key}")
             except ValueError as error:
                 raise loc.error(str(error), "body", key, i) from None
-    return SolidBody(name, parts.get("box", ()), parts.get("cylinder", ()),
+    body = SolidBody(name, parts.get("box", ()), parts.get("cylinder", ()),
                      parts.get("prism", ()), loc.at("body", "name", i))
+    if "pose" not in entry:
+        return body
+    lo, hi = body.extent()
+    try:
+        pose = _pose(entry["pose"], names, f"[[body]] {name!r} pose", (lo + hi) / 2)
+    except ValueError as error:
+        raise loc.error(str(error), "body", "pose", i) from None
+    return replace(body, pose=pose)
 
 
 def _flexure(entry, i, names, loc: Locator):
